@@ -1,0 +1,12 @@
+// The pkmopt subcommands. Each `add_*_command` adds one subcommand (with its options and its
+// callback) to the CLI11 app; callbacks throw InputError for bad input (exit status 2).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace pkmopt::cli {
+
+void add_analyze_command(CLI::App& app);
+void add_fk_command(CLI::App& app);
+
+}  // namespace pkmopt::cli

@@ -1,0 +1,30 @@
+// Errors in what a user gave pkmopt: files, options, values.
+//
+// Every bad input becomes one InputError whose message names the file, the line and column
+// (1-based) or the key, what was expected and what was found, e.g.
+//   machine.yaml:4:12: legs.min_length: expected a finite number, found 'abc'
+// The CLI prints the message to stderr and exits with status 2 (kExitInputError); internal
+// failures exit with status 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace pkmopt {
+
+inline constexpr int kExitInputError = 2;
+inline constexpr int kExitInternalError = 1;
+
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+/// "file:line:col: " (line and column 1-based; omitted when <= 0).
+std::string location_prefix(std::string_view file, int line = 0, int column = 0);
+
+/// A short, printable rendering of a found value for messages ('abc', 'a very lo...').
+std::string quote_found(std::string_view text);
+
+}  // namespace pkmopt

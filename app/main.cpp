@@ -1,0 +1,34 @@
+// pkmopt: the command line. See README.md for every command, file format and column.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <exception>
+
+#include "app/commands.hpp"
+#include "app/input_error.hpp"
+#include "pkmopt/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "pkmopt: multi-objective design optimisation of parallel kinematic machine tools"};
+  app.set_version_flag("--version", std::string("pkmopt ") + pkmopt::kVersion);
+  app.require_subcommand(1);
+  pkmopt::cli::add_analyze_command(app);
+  pkmopt::cli::add_fk_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : pkmopt::kExitInputError;
+  } catch (const pkmopt::InputError& e) {
+    std::fflush(stdout);
+    fmt::print(stderr, "pkmopt: error: {}\n", e.what());
+    return pkmopt::kExitInputError;
+  } catch (const std::exception& e) {
+    std::fflush(stdout);
+    fmt::print(stderr, "pkmopt: internal error: {}\n", e.what());
+    return pkmopt::kExitInternalError;
+  }
+  return 0;
+}

@@ -1,0 +1,189 @@
+// The Gough-Stewart hexapod (6-UPS): six legs of variable length join base joints a_i to
+// platform joints b_i.
+//
+// Frames and formulas (CONVENTIONS.md):
+//   base joints a_i in the base frame, platform joints b_i and the TCP `tcp` in the platform
+//   frame; for a TCP pose (p, R):   p0 = p - R tcp,   r_i = R (b_i - tcp),
+//   leg vector  l_i = p + r_i - a_i,   length q_i = |l_i|,   unit vector s_i = l_i / q_i.
+//   Inverse Jacobian (6x6, at the TCP, base axes): q_dot = J [v; omega],
+//   row i = [s_i^T, (r_i x s_i)^T].
+//   Leg forces for a wrench w at the TCP: J^T tau = w, tension positive.
+//   Leg stiffness: k_i = 1 / (1/k_leg_i + 1/actuator_stiffness), where k_leg_i is either
+//   the constant `axial_stiffness` or E * area / q_i; the actuator term is optional.
+//   Stiffness matrix K = J^T diag(k) J; compliance C = K^-1;
+//   stiffness_min = 1 / lambda_max(C_tt) (C_tt the translational 3x3 block of C).
+//   singularity_margin = 1 / cond(J_h), J_h = J diag(1, 1, 1, 1/L, 1/L, 1/L).
+//   tcp_error_max = max over |dq_i| <= actuator_error of |(J^-1 dq)_position| (at a vertex).
+//   Base joint angle: angle(s_i, base_axis); platform joint angle: angle(-s_i, R platform_axis).
+//   A pose is reachable when min_length <= q_i <= max_length and every joint angle is within
+//   its limit.
+//   Singular pose: 1 / cond(J_h) < kSingularRcond; then singularity_margin = 0,
+//   stiffness_min = 0, tau_i = tcp_error_max = +inf.
+//
+// Units: metres, newtons, N/m, radians inside the code.
+//
+// The kinematic core (`hexapod_legs`) is templated on the scalar type so that ceres::Jet and
+// Eigen::AutoDiffScalar differentiate through it; the metrics are computed in double.
+//
+// Example:
+//   pkmopt::HexapodDesign design = pkmopt::semi_regular_hexapod(0.6, deg_to_rad(20),
+//                                                               0.25, deg_to_rad(20));
+//   design.min_length = 0.7; design.max_length = 1.15;
+//   design.stiffness.E = 2.1e11; design.stiffness.area = 3e-4;
+//   pkmopt::Hexapod hexapod(design);
+//   pkmopt::HexapodData data(hexapod);
+//   pkmopt::PoseMetrics m;
+//   hexapod.analyze(data, pkmopt::Pose{{0, 0, 0.9}, {0, 0, 0}}, pkmopt::Wrench::Zero(), m);
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <limits>
+#include <optional>
+
+#include "models/machine.hpp"
+#include "models/pose.hpp"
+
+namespace pkmopt {
+
+/// Below this reciprocal condition number of J_h a pose counts as singular.
+inline constexpr double kSingularRcond = 1e-12;
+
+/// How stiff each leg is along its axis.
+struct LegStiffness {
+  /// Constant axial stiffness of the leg (N/m); used when > 0, instead of E * area / q.
+  double axial_stiffness = 0.0;
+  double E = 0.0;                   ///< Young's modulus of the leg (Pa)
+  double area = 0.0;                ///< cross-section of the leg (m^2)
+  double actuator_stiffness = 0.0;  ///< in series with the leg (N/m); 0 = absent (rigid)
+};
+
+/// Universal / spherical joint limits. An angle limit of +inf means unlimited.
+struct HexapodJointLimits {
+  double base_max_angle = std::numeric_limits<double>::infinity();      ///< rad
+  double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
+  Eigen::Vector3d base_axis{0, 0, 1};       ///< base joint axis, base frame (unit)
+  Eigen::Vector3d platform_axis{0, 0, -1};  ///< platform joint axis, platform frame (unit)
+};
+
+/// Everything that defines a hexapod. Validated by the Hexapod constructor.
+struct HexapodDesign {
+  Eigen::Matrix<double, 3, 6> base_joints;      ///< a_i, base frame (m)
+  Eigen::Matrix<double, 3, 6> platform_joints;  ///< b_i, platform frame (m)
+  double min_length = 0.0;                      ///< shortest leg (m)
+  double max_length = 0.0;                      ///< longest leg (m)
+  LegStiffness stiffness;
+  HexapodJointLimits joints;
+  Eigen::Vector3d tcp = Eigen::Vector3d::Zero();  ///< TCP in the platform frame (m)
+  /// L in J_h; when empty, the mean distance from the TCP to the platform joints.
+  std::optional<double> characteristic_length;
+  double actuator_error = 1e-5;  ///< m, half-width of the actuator error box
+};
+
+/// Joints of a semi-regular hexagon of the given radius and pair separation (rad), CONVENTIONS.md:
+/// base: angle 120k -+ sep/2 (even/odd i); platform: 120k - 60 + sep/2 (even), 120k + 60 - sep/2
+/// (odd), with k = floor(i / 2).
+Eigen::Matrix<double, 3, 6> semi_regular_base_joints(double radius, double pair_separation);
+Eigen::Matrix<double, 3, 6> semi_regular_platform_joints(double radius, double pair_separation);
+
+/// A design with semi-regular base and platform; lengths, stiffness and limits left to fill in.
+HexapodDesign semi_regular_hexapod(double base_radius, double base_pair_separation,
+                                   double platform_radius, double platform_pair_separation);
+
+/// Leg lengths and (optionally) the inverse Jacobian at a TCP pose, for any scalar type.
+///   base: a_i (3x6), platform_rel: b_i - tcp (3x6), position/angles: the TCP pose (rad).
+///   q: leg lengths (out); J: inverse Jacobian (out, may be null); s: unit leg vectors (out,
+///   may be null); r: R (b_i - tcp) (out, may be null).
+template <typename T>
+void hexapod_legs(const Eigen::Matrix<T, 3, 6>& base, const Eigen::Matrix<T, 3, 6>& platform_rel,
+                  const Vec3<T>& position, const Vec3<T>& angles, Vec6<T>* q, Mat6<T>* J = nullptr,
+                  Eigen::Matrix<T, 3, 6>* s = nullptr, Eigen::Matrix<T, 3, 6>* r = nullptr) {
+  using std::sqrt;
+  const Mat3<T> R = rotation_zyx<T>(angles);
+  for (int i = 0; i < 6; ++i) {
+    const Vec3<T> ri = R * platform_rel.col(i);
+    const Vec3<T> li = position + ri - base.col(i);
+    const T length = sqrt(li.squaredNorm());
+    if (q) (*q)(i) = length;
+    if (J || s) {
+      const Vec3<T> si = li / length;
+      if (s) s->col(i) = si;
+      if (J) {
+        J->template block<1, 3>(i, 0) = si.transpose();
+        J->template block<1, 3>(i, 3) = ri.cross(si).transpose();
+      }
+    }
+    if (r) r->col(i) = ri;
+  }
+}
+
+/// Per-thread scratch space and last results of a hexapod.
+class HexapodData : public MachineData {
+ public:
+  HexapodData() = default;
+  explicit HexapodData(const class Hexapod&) {}
+
+  Vec6<double> q;                   ///< leg lengths (m)
+  Eigen::Matrix<double, 3, 6> s;    ///< unit leg vectors, base frame
+  Eigen::Matrix<double, 3, 6> r;    ///< R (b_i - tcp), base frame
+  Matrix6d J;                       ///< inverse Jacobian
+  Matrix6d J_inv;                   ///< J^-1 (valid when not singular)
+  Vec6<double> leg_stiffness;       ///< k_i (N/m)
+  Eigen::PartialPivLU<Matrix6d> lu;
+};
+
+/// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.
+class Hexapod final : public Machine {
+ public:
+  /// Validates the design; throws std::invalid_argument naming the offending field.
+  explicit Hexapod(const HexapodDesign& design);
+
+  const HexapodDesign& design() const { return design_; }
+  /// b_i - tcp (3x6), platform frame.
+  const Eigen::Matrix<double, 3, 6>& platform_rel_tcp() const { return platform_rel_; }
+  /// The characteristic length L (m) used in J_h.
+  double characteristic_length() const { return characteristic_length_; }
+
+  std::string_view model() const override { return "hexapod"; }
+  int num_actuators() const override { return 6; }
+  bool revolute_actuators() const override { return false; }
+  std::unique_ptr<MachineData> make_data() const override;
+
+  void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
+               PoseMetrics& out) const override;
+  bool reachable(MachineData& data, const Pose& pose) const override;
+  FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
+                              const FkOptions& options = {}) const override;
+
+  /// Leg lengths at a pose.
+  Vec6<double> inverse_kinematics(const Pose& pose) const;
+  /// The inverse Jacobian at a pose.
+  Matrix6d inverse_jacobian(const Pose& pose) const;
+  /// The 6x6 stiffness matrix K = J^T diag(k) J at a pose (N/m, N, N*m/rad blocks).
+  Matrix6d stiffness_matrix(const Pose& pose) const;
+  /// Leg stiffness k_i for a leg of length q (N/m).
+  double leg_stiffness(double q) const;
+  /// Base and platform joint angles (rad) of every leg at a pose.
+  void joint_angles(const Pose& pose, Vec6<double>& base_angles,
+                    Vec6<double>& platform_angles) const;
+  /// The home pose used as the default FK guess: x = y = 0, no rotation, and the height at
+  /// which the mean leg length equals the mean of q.
+  Pose home_pose_for(const Vec6<double>& q) const;
+
+  /// Kinematics only (q, s, r, J) into data; returns false when a leg has zero length.
+  bool compute_kinematics(HexapodData& data, const Pose& pose) const;
+  /// Full metric set (the fast path behind analyze).
+  void compute_metrics(HexapodData& data, const Pose& pose, const Wrench& wrench,
+                       PoseMetrics& out) const;
+
+ private:
+  bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
+
+  HexapodDesign design_;
+  Eigen::Matrix<double, 3, 6> platform_rel_;
+  double characteristic_length_ = 1.0;
+  double cos_base_limit_ = -2.0;      // cos of the base joint limit (-2: unlimited)
+  double cos_platform_limit_ = -2.0;  // cos of the platform joint limit
+};
+
+}  // namespace pkmopt

@@ -1,0 +1,94 @@
+// The interface every machine model offers to workspaces, problems and the CLI.
+//
+// A Machine is immutable once built and may be shared between threads. Every per-pose
+// algorithm takes a MachineData made by the same machine (`make_data()`), which holds the
+// scratch space and results of one thread (the Model/Data split of Pinocchio):
+//
+//   auto data = machine.make_data();
+//   pkmopt::PoseMetrics metrics;
+//   machine.analyze(*data, pose, wrench, metrics);
+//
+// The meaning of every metric is fixed by CONVENTIONS.md:
+//   q             actuator coordinates (m for prismatic actuators, rad for revolute ones;
+//                 files show revolute coordinates in degrees)
+//   tau           actuator forces (N) or torques (N*m) balancing the wrench, J^T tau = w,
+//                 tension positive; +inf at a singular pose
+//   stiffness_min the TCP stiffness in the worst direction of a pure force (N/m), 0 if singular
+//   singularity_margin  1 / cond(J_h), 0..1, 0 if singular
+//   det_j         det of the inverse Jacobian J
+//   tcp_error_max the largest TCP position error (m) for actuator errors within the box
+//                 |dq_i| <= actuator_error; +inf if singular
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "models/pose.hpp"
+
+namespace pkmopt {
+
+/// Everything `analyze` computes at one pose.
+struct PoseMetrics {
+  bool reachable = false;
+  Eigen::VectorXd q;    ///< actuator coordinates (dim num_actuators)
+  Eigen::VectorXd tau;  ///< actuator forces / torques (dim num_actuators)
+  double stiffness_min = 0.0;
+  double singularity_margin = 0.0;
+  double det_j = 0.0;
+  double tcp_error_max = 0.0;
+  bool singular = false;  ///< J numerically singular (see the model's header for the test)
+};
+
+/// Options of the forward kinematics solve.
+struct FkOptions {
+  int max_iterations = 100;          ///< Newton / Levenberg-Marquardt iterations at most
+  double tolerance = 1e-12;          ///< converged when max |q(pose) - q| <= tolerance (q units)
+  double initial_damping = 1e-6;     ///< Levenberg-Marquardt damping relative to diag(J^T J)
+};
+
+/// Result of a forward kinematics solve. Never contains NaN; on failure `converged` is false,
+/// `pose` is the best pose found and `message` says why.
+struct FkResult {
+  Pose pose;
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;  ///< max |q(pose) - q| at the returned pose
+  std::string message;
+};
+
+/// Per-thread scratch space of a machine. Made by Machine::make_data().
+class MachineData {
+ public:
+  virtual ~MachineData() = default;
+};
+
+class Machine {
+ public:
+  virtual ~Machine() = default;
+
+  /// The `model:` name in machine files ("hexapod", ...).
+  virtual std::string_view model() const = 0;
+  /// Number of actuators (dimension of q and tau).
+  virtual int num_actuators() const = 0;
+  /// True when the actuators are revolute (q in rad inside, degrees in files).
+  virtual bool revolute_actuators() const = 0;
+
+  virtual std::unique_ptr<MachineData> make_data() const = 0;
+
+  /// Every metric at a TCP pose under an external wrench at the TCP (base axes).
+  virtual void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
+                       PoseMetrics& out) const = 0;
+
+  /// Reachability only (actuator ranges and joint limits); cheaper than analyze.
+  virtual bool reachable(MachineData& data, const Pose& pose) const = 0;
+
+  /// Forward kinematics: the TCP pose for actuator coordinates q, from a guess
+  /// (a model-chosen home pose when none is given).
+  virtual FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
+                                      const FkOptions& options = {}) const = 0;
+};
+
+}  // namespace pkmopt
