@@ -1,5 +1,7 @@
 #include "models/hexapod.hpp"
 
+#include "models/linalg.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -134,7 +136,10 @@ double Hexapod::leg_stiffness(double q) const {
 }
 
 bool Hexapod::compute_kinematics(HexapodData& d, const Pose& pose) const {
-  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  return compute_kinematics(d, pose, rotation_zyx<double>(pose.angles));
+}
+
+bool Hexapod::compute_kinematics(HexapodData& d, const Pose& pose, const Mat3<double>& R) const {
   bool ok = true;
   for (int i = 0; i < 6; ++i) {
     const Eigen::Vector3d ri = R * platform_rel_.col(i);
@@ -166,14 +171,15 @@ bool Hexapod::reachable_from_kinematics(const HexapodData& d, const Mat3<double>
 
 bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
   auto& d = static_cast<HexapodData&>(data);
-  if (!compute_kinematics(d, pose)) return false;
-  return reachable_from_kinematics(d, rotation_zyx<double>(pose.angles));
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  if (!compute_kinematics(d, pose, R)) return false;
+  return reachable_from_kinematics(d, R);
 }
 
 void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wrench,
                               PoseMetrics& out) const {
-  const bool legs_ok = compute_kinematics(d, pose);
   const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  const bool legs_ok = compute_kinematics(d, pose, R);
   out.reachable = legs_ok && reachable_from_kinematics(d, R);
   out.q = d.q;
   for (int i = 0; i < 6; ++i) d.leg_stiffness(i) = leg_stiffness(d.q(i));
@@ -182,22 +188,21 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   Matrix6d Jh = d.J;
   Jh.rightCols<3>() /= characteristic_length_;
   Matrix6d gram;
-  gram.setZero();
-  gram.selfadjointView<Eigen::Lower>().rankUpdate(Jh);
-  Eigen::SelfAdjointEigenSolver<Matrix6d> eig(gram, Eigen::EigenvaluesOnly);
-  const double lambda_max = eig.eigenvalues()(5);
-  const double lambda_min = std::max(eig.eigenvalues()(0), 0.0);
+  gram.noalias() = Jh.lazyProduct(Jh.transpose());
+  Vec6<double> lambda;
+  symmetric_eigenvalues6(gram, lambda);
+  const double lambda_max = lambda(5);
+  const double lambda_min = std::max(lambda(0), 0.0);
   double rcond = lambda_max > 0.0 ? std::sqrt(lambda_min / lambda_max) : 0.0;
   if (rcond < kRcondSvdFallback && lambda_max > 0.0) {
     Eigen::JacobiSVD<Matrix6d> svd(Jh);
     const auto& sv = svd.singularValues();
     rcond = sv(0) > 0.0 ? sv(5) / sv(0) : 0.0;
   }
-  d.lu.compute(d.J);
-  out.det_j = d.lu.determinant();
-  if (!std::isfinite(out.det_j)) out.det_j = 0.0;
+  const Lu6 lu(d.J);
+  out.det_j = std::isfinite(lu.determinant()) ? lu.determinant() : 0.0;
 
-  out.singular = !legs_ok || !(rcond >= kSingularRcond);
+  out.singular = !legs_ok || lu.exactly_singular() || !(rcond >= kSingularRcond);
   if (out.singular) {
     out.singularity_margin = 0.0;
     out.stiffness_min = 0.0;
@@ -206,13 +211,15 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     return;
   }
   out.singularity_margin = rcond;
-  d.J_inv = d.lu.inverse();
-  out.tau = d.J_inv.transpose() * wrench;
+  // Transposed solves with one LU: J^T x = e_k gives row k of J^-1; tau = J^-T w.
+  out.tau = lu.solve_transposed(wrench);
+  Eigen::Matrix<double, 3, 6> P;
+  for (int k = 0; k < 3; ++k) P.row(k) = lu.solve_transposed(Vec6<double>::Unit(k)).transpose();
 
   // C_tt = P diag(1/k) P^T with P the translational rows of J^-1 (C = J^-1 diag(1/k) J^-T).
-  const Eigen::Matrix<double, 3, 6> P = d.J_inv.topRows<3>();
   const Eigen::Matrix<double, 3, 6> Pk = P * d.leg_stiffness.cwiseInverse().asDiagonal();
-  const Mat3<double> Ctt = Pk * P.transpose();
+  Mat3<double> Ctt;
+  Ctt.noalias() = Pk.lazyProduct(P.transpose());
   Eigen::SelfAdjointEigenSolver<Mat3<double>> eig3;
   eig3.computeDirect(Ctt, Eigen::EigenvaluesOnly);
   const double c_max = eig3.eigenvalues()(2);

@@ -37,7 +37,6 @@
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 #include <limits>
 #include <optional>
 
@@ -127,9 +126,7 @@ class HexapodData : public MachineData {
   Eigen::Matrix<double, 3, 6> s;    ///< unit leg vectors, base frame
   Eigen::Matrix<double, 3, 6> r;    ///< R (b_i - tcp), base frame
   Matrix6d J;                       ///< inverse Jacobian
-  Matrix6d J_inv;                   ///< J^-1 (valid when not singular)
   Vec6<double> leg_stiffness;       ///< k_i (N/m)
-  Eigen::PartialPivLU<Matrix6d> lu;
 };
 
 /// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.
@@ -172,6 +169,8 @@ class Hexapod final : public Machine {
 
   /// Kinematics only (q, s, r, J) into data; returns false when a leg has zero length.
   bool compute_kinematics(HexapodData& data, const Pose& pose) const;
+  /// The same with R = rotation_zyx(pose.angles) already computed.
+  bool compute_kinematics(HexapodData& data, const Pose& pose, const Mat3<double>& R) const;
   /// Full metric set (the fast path behind analyze).
   void compute_metrics(HexapodData& data, const Pose& pose, const Wrench& wrench,
                        PoseMetrics& out) const;

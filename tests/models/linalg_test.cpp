@@ -1,0 +1,86 @@
+// Tests of models/linalg: the fast 6x6 symmetric eigenvalues against Eigen's solver and exact
+// spectra, including repeated and zero eigenvalues.
+#include "models/linalg.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
+#include "tests/sample_machines.hpp"
+
+namespace pkmopt {
+namespace {
+
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+// Q diag(lambda) Q^T with a random orthogonal Q.
+Matrix6 with_spectrum(const Vector6& lambda, sample_machines::Uniform& u) {
+  Matrix6 M;
+  for (int i = 0; i < 36; ++i) M.data()[i] = u(-1, 1);
+  const Matrix6 Q = Eigen::HouseholderQR<Matrix6>(M).householderQ();
+  return Q * lambda.asDiagonal() * Q.transpose();
+}
+
+TEST(Linalg, EigenvaluesOfRandomSymmetricMatrices) {
+  sample_machines::Uniform u(1);
+  for (int k = 0; k < 500; ++k) {
+    Matrix6 M;
+    for (int i = 0; i < 36; ++i) M.data()[i] = u(-1, 1);
+    const Matrix6 A = M * M.transpose() + (k % 2 ? Matrix6::Zero() : Matrix6(M + M.transpose()));
+    Vector6 fast;
+    symmetric_eigenvalues6(A, fast);
+    const Vector6 ref = Eigen::SelfAdjointEigenSolver<Matrix6>(A).eigenvalues();
+    const double scale = ref.cwiseAbs().maxCoeff();
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(fast(i), ref(i), 1e-14 * scale);
+  }
+}
+
+TEST(Linalg, KnownSpectraWithRepeatedAndZeroEigenvalues) {
+  sample_machines::Uniform u(2);
+  const Vector6 spectra[] = {
+      (Vector6() << 1, 1, 1, 1, 1, 1).finished(),
+      (Vector6() << 0.5, 0.5, 2, 2, 3, 3).finished(),
+      (Vector6() << 0, 0, 1e-3, 1, 1, 7).finished(),
+      (Vector6() << 1e-8, 1e-4, 1e-2, 1, 1e2, 1e4).finished(),
+      (Vector6() << -3, -1, 0, 0, 2, 5).finished(),
+  };
+  for (const Vector6& lambda : spectra) {
+    for (int rep = 0; rep < 20; ++rep) {
+      Vector6 fast;
+      symmetric_eigenvalues6(with_spectrum(lambda, u), fast);
+      const double scale = lambda.cwiseAbs().maxCoeff();
+      for (int i = 0; i < 6; ++i) EXPECT_NEAR(fast(i), lambda(i), 1e-14 * scale);
+    }
+  }
+  // Already diagonal (the tridiagonal form splits at once) and zero.
+  Vector6 fast;
+  symmetric_eigenvalues6(Vector6(6, 5, 4, 3, 2, 1).asDiagonal().toDenseMatrix(), fast);
+  EXPECT_EQ(fast, (Vector6() << 1, 2, 3, 4, 5, 6).finished());
+  symmetric_eigenvalues6(Matrix6::Zero(), fast);
+  EXPECT_EQ(fast, Vector6::Zero());
+}
+
+TEST(Linalg, Lu6SolvesAndDeterminantMatchEigen) {
+  sample_machines::Uniform u(3);
+  for (int k = 0; k < 200; ++k) {
+    Matrix6 J;
+    for (int i = 0; i < 36; ++i) J.data()[i] = u(-1, 1);
+    Vector6 b;
+    for (int i = 0; i < 6; ++i) b(i) = u(-1, 1);
+    const Lu6 lu(J);
+    EXPECT_FALSE(lu.exactly_singular());
+    EXPECT_NEAR(lu.determinant(), J.determinant(), 1e-12 * std::abs(J.determinant()) + 1e-15);
+    EXPECT_LT((J * lu.solve(b) - b).norm(), 1e-10 * b.norm());
+    EXPECT_LT((J.transpose() * lu.solve_transposed(b) - b).norm(), 1e-10 * b.norm());
+  }
+  Matrix6 singular = Matrix6::Identity();
+  singular(3, 3) = 0.0;
+  const Lu6 lu(singular);
+  EXPECT_TRUE(lu.exactly_singular());
+  EXPECT_EQ(lu.determinant(), 0.0);
+}
+
+}  // namespace
+}  // namespace pkmopt
