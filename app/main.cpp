@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   pkmopt::cli::add_analyze_command(app);
   pkmopt::cli::add_fk_command(app);
+  pkmopt::cli::add_run_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

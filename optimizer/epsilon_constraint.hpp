@@ -1,0 +1,48 @@
+// The epsilon-constraint method (Haimes, Lasdon & Wismer 1971) driven by Ipopt.
+//
+// With anchors (see anchors.hpp) giving the ideal point z and the pay-off nadir N, each
+// subproblem minimises the primary objective p with bounds on the others:
+//   min f_p(x) / s_p   s.t.  (f_j(x) - epsilon_j) / s_j <= 0  (j != p),  h(x) = 0,  g(x) <= 0
+// with s_j = N_j - z_j. Two objectives: epsilon runs over `points` - 2 evenly spaced interior
+// values between the anchors (plus the two anchors, `points` in all). More objectives: a grid
+// of q = max(2, floor(points^(1/(m-1)))) values z_j + k (N_j - z_j) / q, k = 1..q, per other
+// objective, visited in serpentine order. Each subproblem starts from the previous successful
+// solution (continuation along the front). Subproblems that fail (Ipopt not converged,
+// infeasible result) are counted and skipped; solutions dominated by another one (inactive or
+// redundant epsilon bounds, gaps of a disconnected front) are counted and dropped.
+//
+// Example:
+//   pkmopt::EpsilonConstraintOptions options;
+//   options.points = 50;
+//   pkmopt::FrontResult front = pkmopt::run_epsilon_constraint(zdt1, options);
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "optimizer/front_result.hpp"
+#include "optimizer/ipopt_solver.hpp"
+#include "optimizer/problem.hpp"
+
+namespace pkmopt {
+
+struct EpsilonConstraintOptions {
+  std::size_t points = 21;            ///< >= 2 (see header comment)
+  std::size_t primary_objective = 0;  ///< p, 0-based
+  IpoptOptions ipopt;                 ///< for every subproblem
+  std::vector<double> start;          ///< first start point; empty = default_start()
+
+  std::optional<std::string> validate() const;
+};
+
+/// Why the method cannot take this problem (one objective, bad bounds, primary out of range).
+std::optional<std::string> epsilon_constraint_explain_unsupported(
+    const Problem& problem, const EpsilonConstraintOptions& options);
+
+/// Builds the front. Throws std::invalid_argument for bad options or an unsupported problem;
+/// solver failures are counted in the result (and `message` explains an empty front).
+FrontResult run_epsilon_constraint(const Problem& problem, const EpsilonConstraintOptions& options);
+
+}  // namespace pkmopt

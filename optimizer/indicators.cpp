@@ -1,0 +1,279 @@
+#include "optimizer/indicators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+#include "optimizer/archive.hpp"
+
+namespace pkmopt {
+namespace {
+
+void check_dimensions(const ObjectiveSet& points, std::size_t m, const char* what) {
+  for (const auto& p : points)
+    if (p.size() != m)
+      throw std::invalid_argument(std::string(what) + ": objective vectors differ in size");
+}
+
+// Points (already strictly inside the reference box and non-dominated) in two objectives.
+double hypervolume_2d(ObjectiveSet points, const std::vector<double>& reference) {
+  std::sort(points.begin(), points.end());
+  double volume = 0.0;
+  double previous_second = reference[1];
+  for (const auto& p : points) {
+    if (p[1] < previous_second) {
+      volume += (reference[0] - p[0]) * (previous_second - p[1]);
+      previous_second = p[1];
+    }
+  }
+  return volume;
+}
+
+// Sweep in f_3; the staircase of (f_1, f_2) seen so far lives in a map f_1 -> f_2 with f_2
+// strictly decreasing in f_1, and its area is updated incrementally.
+double hypervolume_3d(ObjectiveSet points, const std::vector<double>& reference) {
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a[2] < b[2]; });
+  std::map<double, double> staircase;
+  double area = 0.0;
+  double volume = 0.0;
+  double previous_third = points.empty() ? reference[2] : points.front()[2];
+  for (const auto& p : points) {
+    volume += area * (p[2] - previous_third);
+    previous_third = p[2];
+    const double x = p[0];
+    const double y = p[1];
+    // Dominated in (f_1, f_2) by an entry with f_1 <= x?
+    auto after = staircase.upper_bound(x);  // first entry with f_1 > x
+    double height_before = reference[1];    // staircase height just left of x
+    if (after != staircase.begin()) {
+      const auto at_or_before = std::prev(after);
+      if (at_or_before->second <= y) continue;
+      height_before = at_or_before->second;
+    }
+    // Entries with f_1 >= x and f_2 >= y are now dominated: remove them, adding the area
+    // between their steps and the new height y.
+    auto it = staircase.lower_bound(x);
+    double left = x;
+    double height = height_before;
+    while (it != staircase.end() && it->second >= y) {
+      area += (it->first - left) * (height - y);
+      left = it->first;
+      height = it->second;
+      it = staircase.erase(it);
+    }
+    const double right = it == staircase.end() ? reference[0] : it->first;
+    area += (right - left) * (height - y);
+    staircase[x] = y;
+  }
+  volume += area * (reference[2] - previous_third);
+  return volume;
+}
+
+double hypervolume_nondominated(ObjectiveSet points, const std::vector<double>& reference);
+
+// WFG slicing: sorted by the last objective, worst first; each point's exclusive volume with
+// respect to the points after it is a slab (reference_m - p_m) times an (m-1)-dimensional
+// exclusive area.
+double hypervolume_wfg(ObjectiveSet points, const std::vector<double>& reference) {
+  const std::size_t m = reference.size();
+  std::sort(points.begin(), points.end(),
+            [m](const auto& a, const auto& b) { return a[m - 1] > b[m - 1]; });
+  const std::vector<double> reduced_reference(reference.begin(), reference.end() - 1);
+  double volume = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const auto& p = points[k];
+    const double depth = reference[m - 1] - p[m - 1];
+    if (depth <= 0.0) continue;
+    double box = 1.0;
+    for (std::size_t i = 0; i + 1 < m; ++i) box *= reference[i] - p[i];
+    ObjectiveSet limited;
+    limited.reserve(points.size() - k - 1);
+    for (std::size_t j = k + 1; j < points.size(); ++j) {
+      std::vector<double> q(m - 1);
+      for (std::size_t i = 0; i + 1 < m; ++i) q[i] = std::max(p[i], points[j][i]);
+      limited.push_back(std::move(q));
+    }
+    ObjectiveSet filtered;
+    for (std::size_t index : non_dominated_indices(limited)) filtered.push_back(limited[index]);
+    volume += depth * (box - hypervolume_nondominated(std::move(filtered), reduced_reference));
+  }
+  return volume;
+}
+
+double hypervolume_nondominated(ObjectiveSet points, const std::vector<double>& reference) {
+  if (points.empty()) return 0.0;
+  switch (reference.size()) {
+    case 1:
+      return reference[0] - points.front()[0];
+    case 2:
+      return hypervolume_2d(std::move(points), reference);
+    case 3:
+      return hypervolume_3d(std::move(points), reference);
+    default:
+      return hypervolume_wfg(std::move(points), reference);
+  }
+}
+
+}  // namespace
+
+double hypervolume(const ObjectiveSet& points, const std::vector<double>& reference) {
+  const std::size_t m = reference.size();
+  if (m == 0) throw std::invalid_argument("hypervolume: empty reference point");
+  check_dimensions(points, m, "hypervolume");
+  for (double r : reference)
+    if (!std::isfinite(r)) throw std::invalid_argument("hypervolume: non-finite reference point");
+  ObjectiveSet inside;
+  for (const auto& p : points) {
+    bool strictly_inside = true;
+    for (std::size_t i = 0; i < m; ++i) strictly_inside = strictly_inside && p[i] < reference[i];
+    if (strictly_inside) inside.push_back(p);
+  }
+  ObjectiveSet front;
+  if (m == 1) {
+    if (inside.empty()) return 0.0;
+    double best = inside.front()[0];
+    for (const auto& p : inside) best = std::min(best, p[0]);
+    return reference[0] - best;
+  }
+  for (std::size_t index : non_dominated_indices(inside)) front.push_back(inside[index]);
+  return hypervolume_nondominated(std::move(front), reference);
+}
+
+double igd_plus(const ObjectiveSet& approximation, const ObjectiveSet& reference_front) {
+  if (approximation.empty() || reference_front.empty())
+    throw std::invalid_argument("igd_plus: empty approximation or reference front");
+  const std::size_t m = reference_front.front().size();
+  check_dimensions(approximation, m, "igd_plus");
+  check_dimensions(reference_front, m, "igd_plus");
+  double total = 0.0;
+  for (const auto& z : reference_front) {
+    double nearest = INFINITY;
+    for (const auto& a : approximation) {
+      double squared = 0.0;
+      for (std::size_t i = 0; i < m; ++i) {
+        const double d = std::max(a[i] - z[i], 0.0);
+        squared += d * d;
+      }
+      nearest = std::min(nearest, squared);
+    }
+    total += std::sqrt(nearest);
+  }
+  return total / static_cast<double>(reference_front.size());
+}
+
+double spacing(const ObjectiveSet& front) {
+  const std::size_t n = front.size();
+  if (n < 2) return 0.0;
+  const std::size_t m = front.front().size();
+  check_dimensions(front, m, "spacing");
+  std::vector<double> nearest(n, INFINITY);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b) {
+      if (a == b) continue;
+      double distance = 0.0;
+      for (std::size_t i = 0; i < m; ++i) distance += std::abs(front[a][i] - front[b][i]);
+      nearest[a] = std::min(nearest[a], distance);
+    }
+  const double mean = std::accumulate(nearest.begin(), nearest.end(), 0.0) / static_cast<double>(n);
+  double sum_squares = 0.0;
+  for (double d : nearest) sum_squares += (d - mean) * (d - mean);
+  return std::sqrt(sum_squares / static_cast<double>(n - 1));
+}
+
+std::vector<double> ideal_point(const ObjectiveSet& front) {
+  if (front.empty()) throw std::invalid_argument("ideal_point: empty front");
+  std::vector<double> ideal = front.front();
+  for (const auto& p : front)
+    for (std::size_t i = 0; i < ideal.size(); ++i) ideal[i] = std::min(ideal[i], p[i]);
+  return ideal;
+}
+
+std::vector<double> nadir_point(const ObjectiveSet& front) {
+  if (front.empty()) throw std::invalid_argument("nadir_point: empty front");
+  std::vector<double> nadir = front.front();
+  for (const auto& p : front)
+    for (std::size_t i = 0; i < nadir.size(); ++i) nadir[i] = std::max(nadir[i], p[i]);
+  return nadir;
+}
+
+std::vector<double> reference_point_from(const ObjectiveSet& front, double margin) {
+  const std::vector<double> ideal = ideal_point(front);
+  std::vector<double> reference = nadir_point(front);
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const double range = reference[i] - ideal[i];
+    reference[i] += margin * (range > 0.0 ? range : 1.0);
+  }
+  return reference;
+}
+
+namespace {
+
+ObjectiveSet normalised(const ObjectiveSet& front) {
+  const std::vector<double> ideal = ideal_point(front);
+  const std::vector<double> nadir = nadir_point(front);
+  ObjectiveSet result = front;
+  for (auto& p : result)
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double range = nadir[i] - ideal[i];
+      p[i] = range > 0.0 ? (p[i] - ideal[i]) / range : 0.0;
+    }
+  return result;
+}
+
+}  // namespace
+
+std::size_t knee_point(const ObjectiveSet& front) {
+  const ObjectiveSet scaled = normalised(front);
+  std::size_t best = 0;
+  double best_sum = INFINITY;
+  for (std::size_t k = 0; k < scaled.size(); ++k) {
+    const double sum = std::accumulate(scaled[k].begin(), scaled[k].end(), 0.0);
+    if (sum < best_sum) {
+      best_sum = sum;
+      best = k;
+    }
+  }
+  return best;
+}
+
+ObjectiveSet pseudo_weights(const ObjectiveSet& front) {
+  const ObjectiveSet scaled = normalised(front);
+  ObjectiveSet weights;
+  weights.reserve(scaled.size());
+  for (const auto& p : scaled) {
+    std::vector<double> w(p.size());
+    double total = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      w[i] = 1.0 - p[i];
+      total += w[i];
+    }
+    for (double& value : w)
+      value = total > 0.0 ? value / total : 1.0 / static_cast<double>(p.size());
+    weights.push_back(std::move(w));
+  }
+  return weights;
+}
+
+std::size_t choose_by_weights(const ObjectiveSet& front, const std::vector<double>& preference) {
+  const ObjectiveSet weights = pseudo_weights(front);
+  if (preference.size() != front.front().size())
+    throw std::invalid_argument("choose_by_weights: preference size differs from the objectives");
+  std::size_t best = 0;
+  double best_distance = INFINITY;
+  for (std::size_t k = 0; k < weights.size(); ++k) {
+    double distance = 0.0;
+    for (std::size_t i = 0; i < preference.size(); ++i)
+      distance += (weights[k][i] - preference[i]) * (weights[k][i] - preference[i]);
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = k;
+    }
+  }
+  return best;
+}
+
+}  // namespace pkmopt

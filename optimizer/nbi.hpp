@@ -1,0 +1,49 @@
+// Normal Boundary Intersection (Das & Dennis 1998) driven by Ipopt.
+//
+// Anchors (anchors.hpp) give the ideal point z, the ranges s and the normalised pay-off matrix
+// Phi (row i = (f(anchor_i) - z) / s). For each weight vector beta on a Das–Dennis lattice of
+// the unit simplex (H divisions, C(H + m - 1, m - 1) >= `points` vectors; H = points - 1 for
+// two objectives) the subproblem of NbiProblem (scalarization.hpp) is solved:
+//   max t  s.t.  (f(x) - z) / s - Phi^T beta - t n  (= 0 or <= 0),  h(x) = 0,  g(x) <= 0
+// walking the lattice in order so each subproblem starts from its neighbour's solution (with
+// t reset to the largest feasible value for the new beta). Vertices of the lattice are the
+// anchors themselves and are not re-solved. Failed subproblems are counted and skipped;
+// dominated results (non-convex or disconnected parts of the front) are counted and dropped.
+//
+// Example:
+//   pkmopt::NbiOptions options;
+//   options.points = 50;
+//   pkmopt::FrontResult front = pkmopt::run_nbi(zdt2, options);
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "optimizer/front_result.hpp"
+#include "optimizer/ipopt_solver.hpp"
+#include "optimizer/problem.hpp"
+
+namespace pkmopt {
+
+struct NbiOptions {
+  std::size_t points = 21;     ///< >= 2, lattice size (see header comment)
+  bool equality_form = false;  ///< Das & Dennis' equality constraints instead of the relaxed form
+  IpoptOptions ipopt;          ///< for every subproblem
+  std::vector<double> start;   ///< first start point; empty = default_start()
+
+  std::optional<std::string> validate() const;
+};
+
+/// Das–Dennis weight vectors: all beta >= 0, sum beta = 1, entries multiples of 1/divisions,
+/// in lexicographic order (the first weight decreasing).
+std::vector<std::vector<double>> simplex_lattice(std::size_t dimensions, std::size_t divisions);
+
+std::optional<std::string> nbi_explain_unsupported(const Problem& problem,
+                                                   const NbiOptions& options);
+
+/// Builds the front. Throws std::invalid_argument for bad options or an unsupported problem.
+FrontResult run_nbi(const Problem& problem, const NbiOptions& options);
+
+}  // namespace pkmopt

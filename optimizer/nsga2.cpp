@@ -1,0 +1,300 @@
+#include "optimizer/nsga2.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+#include "optimizer/random.hpp"
+
+namespace pkmopt {
+namespace {
+
+struct Individual {
+  std::vector<double> x;
+  std::vector<double> fitness;
+  double violation = 0.0;
+  std::size_t rank = 0;
+  double crowding = 0.0;
+};
+
+// Deb's constraint-domination: true when a is better than b.
+bool constrained_dominates(const Individual& a, const Individual& b, std::size_t m) {
+  if (a.violation == 0.0 && b.violation > 0.0) return true;
+  if (a.violation > 0.0 || b.violation > 0.0) return a.violation < b.violation;
+  bool strictly = false;
+  for (std::size_t i = 0; i < m; ++i) {
+    if (a.fitness[i] > b.fitness[i]) return false;
+    if (a.fitness[i] < b.fitness[i]) strictly = true;
+  }
+  return strictly;
+}
+
+// Fast non-dominated sort; sets rank, returns the fronts (indices in ascending order).
+std::vector<std::vector<std::size_t>> sort_fronts(std::vector<Individual>& pop, std::size_t m) {
+  const std::size_t n = pop.size();
+  std::vector<std::vector<std::size_t>> dominated(n);
+  std::vector<std::size_t> domination_count(n, 0);
+  std::vector<std::vector<std::size_t>> fronts(1);
+  for (std::size_t p = 0; p < n; ++p) {
+    for (std::size_t q = p + 1; q < n; ++q) {
+      if (constrained_dominates(pop[p], pop[q], m)) {
+        dominated[p].push_back(q);
+        ++domination_count[q];
+      } else if (constrained_dominates(pop[q], pop[p], m)) {
+        dominated[q].push_back(p);
+        ++domination_count[p];
+      }
+    }
+  }
+  for (std::size_t p = 0; p < n; ++p)
+    if (domination_count[p] == 0) {
+      pop[p].rank = 0;
+      fronts[0].push_back(p);
+    }
+  for (std::size_t level = 0; !fronts[level].empty(); ++level) {
+    std::vector<std::size_t> next;
+    for (std::size_t p : fronts[level])
+      for (std::size_t q : dominated[p])
+        if (--domination_count[q] == 0) {
+          pop[q].rank = level + 1;
+          next.push_back(q);
+        }
+    std::sort(next.begin(), next.end());
+    fronts.push_back(std::move(next));
+  }
+  fronts.pop_back();
+  return fronts;
+}
+
+void assign_crowding(std::vector<Individual>& pop, const std::vector<std::size_t>& front,
+                     std::size_t m) {
+  for (std::size_t k : front) pop[k].crowding = 0.0;
+  if (front.size() <= 2) {
+    for (std::size_t k : front) pop[k].crowding = INFINITY;
+    return;
+  }
+  std::vector<std::size_t> order = front;
+  for (std::size_t i = 0; i < m; ++i) {
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return pop[a].fitness[i] < pop[b].fitness[i];
+    });
+    const double low = pop[order.front()].fitness[i];
+    const double high = pop[order.back()].fitness[i];
+    pop[order.front()].crowding = INFINITY;
+    pop[order.back()].crowding = INFINITY;
+    const double range = high - low;
+    if (!(range > 0.0) || !std::isfinite(range)) continue;
+    for (std::size_t k = 1; k + 1 < order.size(); ++k)
+      pop[order[k]].crowding +=
+          (pop[order[k + 1]].fitness[i] - pop[order[k - 1]].fitness[i]) / range;
+  }
+}
+
+// Crowded-comparison binary tournament.
+std::size_t tournament(const std::vector<Individual>& pop, Random& rng) {
+  const std::size_t a = rng.below(pop.size());
+  const std::size_t b = rng.below(pop.size());
+  if (pop[a].rank != pop[b].rank) return pop[a].rank < pop[b].rank ? a : b;
+  if (pop[a].crowding != pop[b].crowding) return pop[a].crowding > pop[b].crowding ? a : b;
+  return rng.bernoulli(0.5) ? a : b;
+}
+
+// Simulated binary crossover, bounded form (Deb & Agrawal 1995; NSGA-II reference code).
+void sbx(std::vector<double>& c1, std::vector<double>& c2, const Bounds& bounds, double eta,
+         Random& rng) {
+  for (std::size_t i = 0; i < c1.size(); ++i) {
+    if (!rng.bernoulli(0.5)) continue;
+    const double lower = bounds.lower[i];
+    const double upper = bounds.upper[i];
+    if (std::abs(c1[i] - c2[i]) <= 1e-14 || !(upper > lower)) continue;
+    const double y1 = std::min(c1[i], c2[i]);
+    const double y2 = std::max(c1[i], c2[i]);
+    const double u = rng.uniform01();
+    auto spread = [&](double beta) {
+      const double alpha = 2.0 - std::pow(beta, -(eta + 1.0));
+      return u <= 1.0 / alpha ? std::pow(u * alpha, 1.0 / (eta + 1.0))
+                              : std::pow(1.0 / (2.0 - u * alpha), 1.0 / (eta + 1.0));
+    };
+    const double beta_low = 1.0 + 2.0 * (y1 - lower) / (y2 - y1);
+    const double beta_high = 1.0 + 2.0 * (upper - y2) / (y2 - y1);
+    double child1 = 0.5 * ((y1 + y2) - spread(beta_low) * (y2 - y1));
+    double child2 = 0.5 * ((y1 + y2) + spread(beta_high) * (y2 - y1));
+    child1 = std::clamp(child1, lower, upper);
+    child2 = std::clamp(child2, lower, upper);
+    if (rng.bernoulli(0.5)) std::swap(child1, child2);
+    c1[i] = child1;
+    c2[i] = child2;
+  }
+}
+
+// Polynomial mutation, bounded form (Deb & Goyal 1996; NSGA-II reference code).
+void polynomial_mutation(std::vector<double>& x, const Bounds& bounds, double probability,
+                         double eta, Random& rng) {
+  const double power = 1.0 / (eta + 1.0);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!rng.bernoulli(probability)) continue;
+    const double lower = bounds.lower[i];
+    const double upper = bounds.upper[i];
+    const double range = upper - lower;
+    if (!(range > 0.0)) continue;
+    const double delta1 = (x[i] - lower) / range;
+    const double delta2 = (upper - x[i]) / range;
+    const double u = rng.uniform01();
+    double deltaq;
+    if (u <= 0.5) {
+      const double value = 2.0 * u + (1.0 - 2.0 * u) * std::pow(1.0 - delta1, eta + 1.0);
+      deltaq = std::pow(value, power) - 1.0;
+    } else {
+      const double value = 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * std::pow(1.0 - delta2, eta + 1.0);
+      deltaq = 1.0 - std::pow(value, power);
+    }
+    x[i] = std::clamp(x[i] + deltaq * range, lower, upper);
+  }
+}
+
+void evaluate(const Problem& problem, std::vector<Individual>& individuals, std::size_t first,
+              int threads, double equality_tolerance) {
+  std::vector<std::vector<double>> xs;
+  xs.reserve(individuals.size() - first);
+  for (std::size_t k = first; k < individuals.size(); ++k) xs.push_back(individuals[k].x);
+  std::vector<std::vector<double>> fitness = problem.batch_fitness(xs, threads);
+  const std::size_t m = problem.num_objectives();
+  for (std::size_t k = 0; k < fitness.size(); ++k) {
+    Individual& ind = individuals[first + k];
+    if (fitness[k].size() != problem.fitness_size())
+      throw std::runtime_error(fmt::format("problem '{}': fitness returned {} values, expected {}",
+                                           problem.name(), fitness[k].size(),
+                                           problem.fitness_size()));
+    ind.fitness = std::move(fitness[k]);
+    // Non-finite objectives make a design useless: treat it as infeasible.
+    bool finite = true;
+    for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(ind.fitness[i]);
+    ind.violation = constraint_violation(problem, ind.fitness, equality_tolerance, 0.0);
+    if (!finite) ind.violation = std::numeric_limits<double>::max();
+  }
+}
+
+}  // namespace
+
+std::optional<std::string> Nsga2Options::validate() const {
+  auto violated = [](const char* name, auto value, const char* rule) {
+    return fmt::format("Nsga2Options::{} = {}. Violated constraint: {}", name, value, rule);
+  };
+  if (population < 4 || population % 2 != 0)
+    return violated("population", population, "population even and >= 4");
+  if (!(crossover_probability >= 0.0 && crossover_probability <= 1.0))
+    return violated("crossover_probability", crossover_probability,
+                    "0 <= crossover_probability <= 1");
+  if (!(crossover_eta > 0.0)) return violated("crossover_eta", crossover_eta, "crossover_eta > 0");
+  if (!(mutation_probability >= 0.0 && mutation_probability <= 1.0))
+    return violated("mutation_probability", mutation_probability, "0 <= mutation_probability <= 1");
+  if (!(mutation_eta > 0.0)) return violated("mutation_eta", mutation_eta, "mutation_eta > 0");
+  if (!(equality_tolerance >= 0.0))
+    return violated("equality_tolerance", equality_tolerance, "equality_tolerance >= 0");
+  if (threads < 0) return violated("threads", threads, "threads >= 0");
+  return std::nullopt;
+}
+
+std::optional<std::string> nsga2_explain_unsupported(const Problem& problem) {
+  try {
+    check_bounds(problem);
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  const Bounds b = problem.bounds();
+  for (std::size_t j = 0; j < b.lower.size(); ++j)
+    if (!std::isfinite(b.lower[j]) || !std::isfinite(b.upper[j]))
+      return fmt::format("nsga2 samples within the bounds, but variable {} of '{}' is unbounded",
+                         j + 1, problem.name());
+  return std::nullopt;
+}
+
+FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
+  if (auto error = options.validate()) throw std::invalid_argument(*error);
+  if (auto reason = nsga2_explain_unsupported(problem)) throw std::invalid_argument(*reason);
+  const auto start = std::chrono::steady_clock::now();
+  CountingProblem counted(problem);
+  const Bounds bounds = problem.bounds();
+  const std::size_t n = bounds.lower.size();
+  const std::size_t m = problem.num_objectives();
+  const std::size_t size = options.population;
+  const double mutation_probability = options.mutation_probability > 0.0
+                                          ? options.mutation_probability
+                                          : 1.0 / static_cast<double>(n);
+  Random rng(options.seed);
+
+  std::vector<Individual> population(size);
+  for (std::size_t k = 0; k < size; ++k) {
+    std::vector<double>& x = population[k].x;
+    if (k < options.initial_population.size()) {
+      x = options.initial_population[k];
+      if (x.size() != n)
+        throw std::invalid_argument(
+            fmt::format("nsga2: initial design {} has {} values, problem '{}' has {} variables",
+                        k + 1, x.size(), problem.name(), n));
+      for (std::size_t j = 0; j < n; ++j) x[j] = std::clamp(x[j], bounds.lower[j], bounds.upper[j]);
+    } else {
+      x.resize(n);
+      for (std::size_t j = 0; j < n; ++j) x[j] = rng.uniform(bounds.lower[j], bounds.upper[j]);
+    }
+  }
+  evaluate(counted, population, 0, options.threads, options.equality_tolerance);
+  for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
+
+  for (std::size_t generation = 0; generation < options.generations; ++generation) {
+    std::vector<Individual> merged = population;
+    merged.reserve(2 * size);
+    for (std::size_t k = 0; k < size / 2; ++k) {
+      Individual child1, child2;
+      child1.x = population[tournament(population, rng)].x;
+      child2.x = population[tournament(population, rng)].x;
+      if (rng.bernoulli(options.crossover_probability))
+        sbx(child1.x, child2.x, bounds, options.crossover_eta, rng);
+      polynomial_mutation(child1.x, bounds, mutation_probability, options.mutation_eta, rng);
+      polynomial_mutation(child2.x, bounds, mutation_probability, options.mutation_eta, rng);
+      merged.push_back(std::move(child1));
+      merged.push_back(std::move(child2));
+    }
+    evaluate(counted, merged, size, options.threads, options.equality_tolerance);
+
+    std::vector<Individual> next;
+    next.reserve(size);
+    for (const auto& front : sort_fronts(merged, m)) {
+      assign_crowding(merged, front, m);
+      if (next.size() + front.size() <= size) {
+        for (std::size_t k : front) next.push_back(std::move(merged[k]));
+        if (next.size() == size) break;
+        continue;
+      }
+      std::vector<std::size_t> order = front;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return merged[a].crowding > merged[b].crowding;
+      });
+      for (std::size_t k = 0; next.size() < size; ++k) next.push_back(std::move(merged[order[k]]));
+      break;
+    }
+    population = std::move(next);
+    // Ranks and crowding of the survivors, for the next tournaments.
+    for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
+  }
+
+  std::vector<std::vector<double>> xs, fitness;
+  for (const Individual& ind : population) {
+    xs.push_back(ind.x);
+    fitness.push_back(ind.fitness);
+  }
+  FrontResult result = make_front(problem, xs, fitness, options.equality_tolerance, 0.0);
+  result.algorithm = "nsga2";
+  result.fitness_evaluations = counted.fitness_evaluations();
+  result.gradient_evaluations = counted.gradient_evaluations();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (result.x.empty()) result.message = "no feasible design in the final population";
+  return result;
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,62 @@
+// NSGA-II (Deb, Pratap, Agarwal & Meyarivan 2002) with Deb's constraint-domination.
+//
+// Each generation: binary tournaments on (rank, crowding distance) pick parents; simulated
+// binary crossover (SBX, distribution index eta_c, each variable crossed with probability 1/2)
+// and polynomial mutation (distribution index eta_m, probability p_m per variable), both in
+// Deb's bounded form, make `population` children; parents and children are merged, sorted into
+// non-dominated fronts and truncated by crowding distance.
+//
+// Constraint-domination (Deb 2000): with violation V = sum max(|h| - tol_eq, 0) + sum max(g, 0),
+// a feasible design beats an infeasible one; of two infeasible designs the one with smaller V
+// wins; of two feasible ones Pareto dominance decides.
+//
+// Fitness is evaluated by Problem::batch_fitness, in parallel when the problem declares
+// ThreadSafety::basic. Every random draw comes from one pkmopt::Random stream on the calling
+// thread, so a seed gives bit-identical fronts for any number of threads.
+// Evaluations: population * (generations + 1).
+//
+// Example:
+//   pkmopt::Nsga2Options options;
+//   options.population = 100;
+//   options.generations = 250;
+//   options.seed = 1;
+//   pkmopt::FrontResult front = pkmopt::run_nsga2(zdt1, options);
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "optimizer/front_result.hpp"
+#include "optimizer/problem.hpp"
+
+namespace pkmopt {
+
+struct Nsga2Options {
+  std::size_t population = 100;        ///< even, >= 4
+  std::size_t generations = 250;       ///< >= 0
+  double crossover_probability = 0.9;  ///< per pair, in [0, 1]
+  double crossover_eta = 15.0;         ///< SBX distribution index, > 0
+  double mutation_probability = 0.0;   ///< per variable in [0, 1]; 0 means 1/n
+  double mutation_eta = 20.0;          ///< polynomial mutation distribution index, > 0
+  double equality_tolerance = 1e-4;    ///< |h| below this counts as satisfied
+  std::uint64_t seed = 1;
+  int threads = 0;  ///< 0 = OpenMP's default
+  /// Designs to start from (clamped into the bounds); the rest of the population is drawn
+  /// uniformly in the bounds.
+  std::vector<std::vector<double>> initial_population;
+
+  std::optional<std::string> validate() const;
+};
+
+/// Why NSGA-II cannot take this problem (infinite bounds, inconsistent bounds), or empty.
+std::optional<std::string> nsga2_explain_unsupported(const Problem& problem);
+
+/// Runs NSGA-II. Throws std::invalid_argument for invalid options or an unsupported problem.
+/// The result is the feasible non-dominated part of the final population (empty if no design
+/// is feasible; `message` says so).
+FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options);
+
+}  // namespace pkmopt

@@ -1,0 +1,137 @@
+// Tests of optimizer/indicators: exact hypervolume against brute force, IGD+, spacing, knee.
+#include "optimizer/indicators.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "optimizer/random.hpp"
+
+namespace pkmopt {
+namespace {
+
+// Brute force: the union of boxes [p, r] measured on the grid of all point coordinates.
+double grid_hypervolume(const ObjectiveSet& points, const std::vector<double>& reference) {
+  const std::size_t m = reference.size();
+  std::vector<std::vector<double>> axes(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    axes[i].push_back(reference[i]);
+    for (const auto& p : points)
+      if (p[i] < reference[i]) axes[i].push_back(p[i]);
+    std::sort(axes[i].begin(), axes[i].end());
+    axes[i].erase(std::unique(axes[i].begin(), axes[i].end()), axes[i].end());
+  }
+  std::vector<std::size_t> cell(m, 0);
+  double volume = 0.0;
+  while (true) {
+    bool empty_axis = false;
+    for (std::size_t i = 0; i < m; ++i) empty_axis = empty_axis || axes[i].size() < 2;
+    if (empty_axis) return 0.0;
+    double cell_volume = 1.0;
+    std::vector<double> corner(m);
+    for (std::size_t i = 0; i < m; ++i) {
+      corner[i] = axes[i][cell[i]];
+      cell_volume *= axes[i][cell[i] + 1] - axes[i][cell[i]];
+    }
+    const bool covered = std::any_of(points.begin(), points.end(), [&](const auto& p) {
+      for (std::size_t i = 0; i < m; ++i)
+        if (!(p[i] <= corner[i])) return false;
+      return true;
+    });
+    if (covered) volume += cell_volume;
+    std::size_t axis = 0;
+    while (axis < m && ++cell[axis] + 1 == axes[axis].size()) cell[axis++] = 0;
+    if (axis == m) break;
+  }
+  return volume;
+}
+
+ObjectiveSet random_set(Random& rng, std::size_t n, std::size_t m, bool on_sphere) {
+  ObjectiveSet points(n, std::vector<double>(m));
+  for (auto& p : points) {
+    double norm = 0.0;
+    for (double& v : p) {
+      v = rng.uniform01();
+      norm += v * v;
+    }
+    if (on_sphere)
+      for (double& v : p) v /= std::sqrt(norm);  // mutually non-dominated, like a front
+  }
+  return points;
+}
+
+TEST(Hypervolume, KnownValues) {
+  EXPECT_DOUBLE_EQ(hypervolume({{0.0, 1.0}, {0.5, 0.5}, {1.0, 0.0}}, {1.0, 1.0}), 0.25);
+  EXPECT_DOUBLE_EQ(hypervolume({{0.5, 0.5, 0.5}}, {1.0, 1.0, 1.0}), 0.125);
+  EXPECT_DOUBLE_EQ(hypervolume({{0.5, 0.5, 0.5, 0.5}}, {1.0, 1.0, 1.0, 1.0}), 0.0625);
+  EXPECT_DOUBLE_EQ(hypervolume({{2.0, 0.0}}, {1.0, 1.0}), 0.0);  // outside the box
+  EXPECT_DOUBLE_EQ(hypervolume({}, {1.0, 1.0}), 0.0);
+  EXPECT_DOUBLE_EQ(hypervolume({{0.25}, {0.5}}, {1.0}), 0.75);
+}
+
+TEST(Hypervolume, MatchesBruteForceOnRandomSets) {
+  Random rng(2024);
+  for (std::size_t m = 2; m <= 5; ++m) {
+    const std::size_t n = m <= 3 ? 40 : (m == 4 ? 15 : 8);
+    const std::vector<double> reference(m, 1.1);
+    for (int trial = 0; trial < 10; ++trial) {
+      const ObjectiveSet points = random_set(rng, n, m, trial % 2 == 0);
+      const double exact = grid_hypervolume(points, reference);
+      EXPECT_NEAR(hypervolume(points, reference), exact, 1e-12 * std::max(1.0, exact))
+          << "m = " << m << ", trial " << trial;
+    }
+  }
+}
+
+TEST(Hypervolume, ThreeDimensionalWithTies) {
+  // Repeated coordinates exercise equal keys in the 3-D sweep.
+  Random rng(9);
+  for (int trial = 0; trial < 20; ++trial) {
+    ObjectiveSet points(30, std::vector<double>(3));
+    for (auto& p : points)
+      for (double& v : p) v = 0.25 * static_cast<double>(rng.below(4));
+    const std::vector<double> reference{1.0, 1.0, 1.0};
+    EXPECT_NEAR(hypervolume(points, reference), grid_hypervolume(points, reference), 1e-12);
+  }
+}
+
+TEST(IgdPlus, KnownValues) {
+  const ObjectiveSet reference{{0.0, 1.0}, {1.0, 0.0}};
+  EXPECT_DOUBLE_EQ(igd_plus(reference, reference), 0.0);
+  // A point dominating the reference costs nothing; a point behind costs its excess only.
+  EXPECT_DOUBLE_EQ(igd_plus({{-1.0, -1.0}}, reference), 0.0);
+  EXPECT_DOUBLE_EQ(igd_plus({{0.0, 1.5}}, {{0.0, 1.0}}), 0.5);
+  // For z = (1, 0) and a = (0, 1.5): d+ = sqrt(0 + 1.5^2).
+  EXPECT_DOUBLE_EQ(igd_plus({{0.0, 1.5}}, reference), (0.5 + 1.5) / 2.0);
+}
+
+TEST(Spacing, EvenFrontHasZeroSpacing) {
+  ObjectiveSet even;
+  for (int k = 0; k <= 10; ++k) even.push_back({0.1 * k, 1.0 - 0.1 * k});
+  EXPECT_NEAR(spacing(even), 0.0, 1e-12);
+  // Nearest L1 distances 1, 1, 3 (points 0, 1, 4): mean 5/3, sample deviation sqrt(4/3).
+  EXPECT_NEAR(spacing({{0.0, 0.0}, {1.0, 0.0}, {4.0, 0.0}}), std::sqrt(4.0 / 3.0), 1e-12);
+}
+
+TEST(KneeAndWeights, TwoObjectives) {
+  // Extremes (0, 1) and (1, 0); (0.2, 0.2) is farthest from the line joining them.
+  const ObjectiveSet front{{0.0, 1.0}, {0.5, 0.45}, {0.2, 0.2}, {1.0, 0.0}};
+  EXPECT_EQ(knee_point(front), 2u);
+  const ObjectiveSet weights = pseudo_weights(front);
+  EXPECT_NEAR(weights[0][0], 1.0, 1e-12);  // best in f_1: all weight on f_1
+  EXPECT_NEAR(weights[3][1], 1.0, 1e-12);
+  EXPECT_NEAR(weights[2][0], 0.5, 1e-12);
+  for (const auto& w : weights) EXPECT_NEAR(w[0] + w[1], 1.0, 1e-12);
+  EXPECT_EQ(choose_by_weights(front, {1.0, 0.0}), 0u);
+  EXPECT_EQ(choose_by_weights(front, {0.0, 1.0}), 3u);
+}
+
+TEST(ReferencePoint, NadirPlusMargin) {
+  const std::vector<double> r = reference_point_from({{0.0, 2.0}, {1.0, 0.0}}, 0.1);
+  EXPECT_DOUBLE_EQ(r[0], 1.1);
+  EXPECT_DOUBLE_EQ(r[1], 2.2);
+}
+
+}  // namespace
+}  // namespace pkmopt
