@@ -9,5 +9,6 @@ namespace pkmopt::cli {
 void add_analyze_command(CLI::App& app);
 void add_fk_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_workspace_command(CLI::App& app);
 
 }  // namespace pkmopt::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   pkmopt::cli::add_analyze_command(app);
   pkmopt::cli::add_fk_command(app);
   pkmopt::cli::add_run_command(app);
+  pkmopt::cli::add_workspace_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

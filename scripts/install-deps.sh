@@ -19,6 +19,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev
   libbenchmark-dev
   libpagmo-dev
+  libpng-dev
 )
 
 missing=()

@@ -1,0 +1,186 @@
+// Tests of `pkmopt workspace`: the files it writes and bad options failing with exit status 2,
+// one message, and nothing written.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "app/machine_file.hpp"
+#include "models/workspace/workspace.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+class WorkspaceCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pkmopt_workspace_cli_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    machine_ = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml").string();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CliRun run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(PKMOPT_CLI) + " workspace " + args + " >" + out.string() +
+                            " 2>" + err.string() + " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    CliRun r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  void expect_input_error(const std::string& args, const std::string& fragment) {
+    const fs::path out_dir = dir_ / "result";
+    const CliRun r = run(args + " --out " + out_dir.string());
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\nstderr: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out_dir)) << args;
+  }
+
+  fs::path dir_;
+  std::string machine_;
+};
+
+TEST_F(WorkspaceCli, WritesSummaryMeshPointsAndSlices) {
+  const fs::path out_dir = dir_ / "ws";
+  const CliRun r =
+      run(machine_ + " --resolution 0.04 --wrench 0,0,-1000,0,0,0 --out " + out_dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(r.out.rfind("workspace (constant_orientation): volume ", 0), 0u) << r.out;
+
+  const nlohmann::json summary = nlohmann::json::parse(read_text(out_dir / "summary.json"));
+  // The same numbers as the library at the same options.
+  pkmopt::WorkspaceOptions options;
+  options.resolution = 0.04;
+  options.wrench << 0, 0, -1000, 0, 0, 0;
+  const auto machine = pkmopt::load_machine_file(machine_);
+  const pkmopt::WorkspaceResult ws = pkmopt::compute_workspace(*machine, options);
+  EXPECT_DOUBLE_EQ(summary.at("volume").get<double>(), ws.volume);
+  EXPECT_DOUBLE_EQ(summary.at("convex_hull_volume").get<double>(), ws.convex_hull_volume);
+  EXPECT_DOUBLE_EQ(summary.at("surface_volume").get<double>(), ws.surface_volume);
+  EXPECT_DOUBLE_EQ(summary.at("global_conditioning_index").get<double>(),
+                   ws.maps.global_conditioning_index);
+  EXPECT_DOUBLE_EQ(summary.at("max_leg_force").get<double>(), ws.maps.max_leg_force);
+  EXPECT_DOUBLE_EQ(summary.at("envelope_ratio").get<double>(), *ws.envelope_ratio);
+  EXPECT_EQ(summary.at("resolution").get<double>(), 0.04);
+  EXPECT_EQ(summary.at("kind").get<std::string>(), "constant_orientation");
+  EXPECT_GT(summary.at("seconds").get<double>(), 0.0);
+  for (const char* key : {"stiffness_min_min", "stiffness_min_mean", "tcp_error_max",
+                          "singularity_margin_min", "envelope_volume", "voxel_volume"}) {
+    EXPECT_TRUE(summary.at(key).is_number()) << key;
+  }
+  EXPECT_GE(ws.convex_hull_volume, ws.volume);
+
+  // PLY header counts match the binary STL triangle count.
+  const std::string ply = read_text(out_dir / "boundary.ply");
+  const std::string vertex_line =
+      "element vertex " + std::to_string(ws.boundary.vertices.size()) + "\n";
+  const std::string face_line =
+      "element face " + std::to_string(ws.boundary.triangles.size()) + "\n";
+  EXPECT_EQ(ply.rfind("ply\nformat ascii 1.0\n", 0), 0u);
+  EXPECT_NE(ply.find(vertex_line), std::string::npos);
+  EXPECT_NE(ply.find(face_line), std::string::npos);
+  const std::string stl = read_text(out_dir / "boundary.stl");
+  ASSERT_GE(stl.size(), 84u);
+  EXPECT_EQ(stl.size(), 84u + 50u * ws.boundary.triangles.size());
+
+  // Point cloud: header and one row per inside node.
+  const std::string csv = read_text(out_dir / "points.csv");
+  EXPECT_EQ(csv.rfind("x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max\n", 0),
+            0u);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), ws.inside_nodes + 1);
+
+  // Slice pictures.
+  const std::string svg = read_text(out_dir / "slice_z.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("x [mm]"), std::string::npos);
+  EXPECT_NE(svg.find("y [mm]"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  const std::string png = read_text(out_dir / "slice_z.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  // No temporaries left behind.
+  for (const auto& entry : fs::directory_iterator(out_dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos);
+  }
+}
+
+TEST_F(WorkspaceCli, OrientationWorkspaceAndNoOutFolder) {
+  const CliRun some = run(machine_ +
+                          " --resolution 0.08 --tilt 10 --orientation-step 10 "
+                          "--mode some --slice-axis x --slice-metric stiffness_min "
+                          "--slice-pixel 0.02");
+  ASSERT_EQ(some.status, 0) << some.err;
+  EXPECT_EQ(some.out.rfind("workspace (some_orientation): volume ", 0), 0u) << some.out;
+  const CliRun all = run(machine_ +
+                         " --resolution 0.08 --tilt 10 --yaw-range 5 "
+                         "--orientation-step 10 --slice-pixel 0.02");
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_EQ(all.out.rfind("workspace (all_orientations): volume ", 0), 0u) << all.out;
+}
+
+TEST_F(WorkspaceCli, BadOptionsFailWithStatusTwoAndWriteNothing) {
+  expect_input_error(machine_ + " --resolution 0", "--resolution");
+  expect_input_error(machine_ + " --resolution -0.1", "--resolution");
+  expect_input_error(machine_ + " --resolution 1e-5", "max_grid_nodes");
+  expect_input_error(machine_ + " --tilt 200", "--tilt");
+  expect_input_error(machine_ + " --yaw-range -5", "--yaw-range");
+  expect_input_error(machine_ + " --orientation-step 0", "--orientation-step");
+  expect_input_error(machine_ + " --mode most", "--mode");
+  expect_input_error(machine_ + " --orientation 1,2", "--orientation");
+  expect_input_error(machine_ + " --wrench 1,2,3", "--wrench");
+  expect_input_error(machine_ + " --min-margin 1.5", "--min-margin");
+  expect_input_error(machine_ + " --min-stiffness -1", "--min-stiffness");
+  expect_input_error(machine_ + " --slice-axis w", "--slice-axis");
+  expect_input_error(machine_ + " --slice-metric volume", "--slice-metric");
+  expect_input_error(machine_ + " --slice-pixel 0", "--slice-pixel");
+  expect_input_error((dir_ / "missing.yaml").string(), "missing.yaml");
+  const fs::path bad = dir_ / "bad.yaml";
+  std::ofstream(bad) << read_text(machine_) << "colour: red\n";
+  expect_input_error(bad.string(), "colour");
+  // A value CLI11 cannot convert (its message has a second line pointing at --help).
+  const CliRun not_a_number = run(machine_ + " --resolution abc --out " + (dir_ / "r").string());
+  EXPECT_EQ(not_a_number.status, 2);
+  EXPECT_NE(not_a_number.err.find("--resolution"), std::string::npos) << not_a_number.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r"));
+  // --out naming an existing file.
+  const fs::path file = dir_ / "a_file";
+  std::ofstream(file) << "x";
+  const CliRun r = run(machine_ + " --resolution 0.05 --out " + file.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(file), "x");
+}
+
+}  // namespace
