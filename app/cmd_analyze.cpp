@@ -83,7 +83,8 @@ void run_analyze(const AnalyzeOptions& opt) {
     line += ',' + format_number(m.singularity_margin);
     line += ',' + format_number(m.det_j);
     line += ',' + format_number(m.tcp_error_max);
-    for (int c : passthrough) line += ',' + csv_field(table.rows[i].cells[static_cast<std::size_t>(c)]);
+    for (int c : passthrough)
+      line += ',' + csv_field(table.rows[i].cells[static_cast<std::size_t>(c)]);
     out << line << '\n';
   }
   if (opt.out_file.empty()) {
@@ -98,9 +99,10 @@ void run_analyze(const AnalyzeOptions& opt) {
 
 void add_analyze_command(CLI::App& app) {
   auto opt = std::make_shared<AnalyzeOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "analyze", "Evaluate a machine at every pose of a CSV file: reachability, actuator "
-                 "coordinates and forces, stiffness, singularity margin, accuracy");
+  CLI::App* cmd =
+      app.add_subcommand("analyze",
+                         "Evaluate a machine at every pose of a CSV file: reachability, actuator "
+                         "coordinates and forces, stiffness, singularity margin, accuracy");
   cmd->add_option("machine", opt->machine_file, "Machine file (YAML)")->required();
   cmd->add_option("--poses", opt->poses_file,
                   "Pose CSV with columns x,y,z (m) and optionally rx,ry,rz (deg)")

@@ -36,16 +36,16 @@ void run_fk(const FkCommandOptions& opt) {
     guess = Pose{{g[0], g[1], g[2]}, deg_to_rad(Eigen::Vector3d(g[3], g[4], g[5]))};
   }
   if (opt.max_iterations < 1) {
-    throw InputError(fmt::format("--max-iterations: expected an integer >= 1, found {}",
-                                 opt.max_iterations));
+    throw InputError(
+        fmt::format("--max-iterations: expected an integer >= 1, found {}", opt.max_iterations));
   }
   FkOptions fk_options;
   fk_options.max_iterations = opt.max_iterations;
   const FkResult r = machine->forward_kinematics(q, guess, fk_options);
   const Eigen::Vector3d angles = rad_to_deg(r.pose.angles);
   std::cout << "x,y,z,rx,ry,rz,converged,iterations,residual\n";
-  std::cout << format_number(r.pose.position(0)) << ',' << format_number(r.pose.position(1))
-            << ',' << format_number(r.pose.position(2)) << ',' << format_number(angles(0)) << ','
+  std::cout << format_number(r.pose.position(0)) << ',' << format_number(r.pose.position(1)) << ','
+            << format_number(r.pose.position(2)) << ',' << format_number(angles(0)) << ','
             << format_number(angles(1)) << ',' << format_number(angles(2)) << ','
             << (r.converged ? 1 : 0) << ',' << r.iterations << ',' << format_number(r.residual)
             << '\n';

@@ -153,8 +153,8 @@ CsvTable parse_csv(const std::string& text_in, const std::string& file) {
     table.rows.push_back(CsvRow{record_line, cells});
   }
   if (!have_header) {
-    throw InputError(fmt::format("{}expected a header line, found an empty file",
-                                 location_prefix(file)));
+    throw InputError(
+        fmt::format("{}expected a header line, found an empty file", location_prefix(file)));
   }
   return table;
 }

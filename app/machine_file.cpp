@@ -81,8 +81,8 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   design.platform_joints = read_joints(root, "platform", "platform_joints", true);
 
   const YamlValue legs = root.required("legs");
-  legs.check_keys({"min_length", "max_length", "axial_stiffness", "E", "area",
-                   "actuator_stiffness"});
+  legs.check_keys(
+      {"min_length", "max_length", "axial_stiffness", "E", "area", "actuator_stiffness"});
   design.min_length = positive(legs.required("min_length"));
   const YamlValue max_value = legs.required("max_length");
   design.max_length = positive(max_value);
@@ -94,8 +94,7 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   const bool has_e = legs.has("E");
   const bool has_area = legs.has("area");
   if (has_axial && (has_e || has_area)) {
-    legs.required("axial_stiffness")
-        .fail("either axial_stiffness or E and area, not both");
+    legs.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
   }
   if (has_axial) {
     design.stiffness.axial_stiffness = positive(legs.required("axial_stiffness"));
@@ -122,8 +121,8 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
       if (auto v = joints->optional(key)) {
         const Eigen::Vector3d axis = read_vector3(*v);
         if (!(axis.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
-        (std::string(key) == "base_axis" ? design.joints.base_axis
-                                         : design.joints.platform_axis) = axis.normalized();
+        (std::string(key) == "base_axis" ? design.joints.base_axis : design.joints.platform_axis) =
+            axis.normalized();
       }
     }
   }

@@ -1,7 +1,7 @@
 // pkmopt: the command line. See README.md for every command, file format and column.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
@@ -10,8 +10,7 @@
 #include "pkmopt/version.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{
-      "pkmopt: multi-objective design optimisation of parallel kinematic machine tools"};
+  CLI::App app{"pkmopt: multi-objective design optimisation of parallel kinematic machine tools"};
   app.set_version_flag("--version", std::string("pkmopt ") + pkmopt::kVersion);
   app.require_subcommand(1);
   pkmopt::cli::add_analyze_command(app);

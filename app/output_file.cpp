@@ -14,8 +14,8 @@ AtomicOutputFile::AtomicOutputFile(std::string path) : path_(std::move(path)) {
   temp_path_ = fmt::format("{}.tmp.{}", path_, static_cast<long>(::getpid()));
   stream_.open(temp_path_, std::ios::binary | std::ios::trunc);
   if (!stream_) {
-    throw InputError(fmt::format("{}: cannot write the output file (does its folder exist?)",
-                                 path_));
+    throw InputError(
+        fmt::format("{}: cannot write the output file (does its folder exist?)", path_));
   }
 }
 
@@ -34,8 +34,8 @@ void AtomicOutputFile::commit() {
   std::error_code ec;
   std::filesystem::rename(temp_path_, path_, ec);
   if (ec) {
-    throw InputError(fmt::format("{}: cannot move the output file into place: {}", path_,
-                                 ec.message()));
+    throw InputError(
+        fmt::format("{}: cannot move the output file into place: {}", path_, ec.message()));
   }
   committed_ = true;
 }

@@ -31,8 +31,8 @@ bool parse_double(const std::string& text, double& value) {
 YamlValue YamlValue::load_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw InputError(fmt::format("{}: cannot open the file (does it exist and is it readable?)",
-                                 path));
+    throw InputError(
+        fmt::format("{}: cannot open the file (does it exist and is it readable?)", path));
   }
   std::stringstream buffer;
   buffer << in.rdbuf();
@@ -47,8 +47,7 @@ YamlValue YamlValue::load_string(const std::string& text, const std::string& fil
     node = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}malformed YAML: {}",
-                                 location_prefix(file, e.mark.line + 1, e.mark.column + 1),
-                                 e.msg));
+                                 location_prefix(file, e.mark.line + 1, e.mark.column + 1), e.msg));
   }
   YamlValue root(node, file_name, "");
   if (root.line_ == 0) root.set_location(1, 1);

@@ -11,8 +11,8 @@
 namespace {
 
 pkmopt::Hexapod sample_hexapod() {
-  pkmopt::HexapodDesign d = pkmopt::semi_regular_hexapod(
-      0.60, pkmopt::deg_to_rad(20), 0.25, pkmopt::deg_to_rad(20));
+  pkmopt::HexapodDesign d =
+      pkmopt::semi_regular_hexapod(0.60, pkmopt::deg_to_rad(20), 0.25, pkmopt::deg_to_rad(20));
   d.min_length = 0.70;
   d.max_length = 1.15;
   d.stiffness.E = 2.1e11;
@@ -37,8 +37,8 @@ std::vector<pkmopt::Pose> sample_poses(std::size_t n) {
   std::vector<pkmopt::Pose> poses(n);
   for (auto& p : poses) {
     p.position = {uniform(-0.15, 0.15), uniform(-0.15, 0.15), uniform(0.75, 0.95)};
-    p.angles = pkmopt::deg_to_rad(
-        Eigen::Vector3d(uniform(-15, 15), uniform(-15, 15), uniform(-20, 20)));
+    p.angles =
+        pkmopt::deg_to_rad(Eigen::Vector3d(uniform(-15, 15), uniform(-15, 15), uniform(-20, 20)));
   }
   return poses;
 }
@@ -54,7 +54,8 @@ void BM_HexapodAnalyzeBatch(benchmark::State& state) {
     {
       pkmopt::HexapodData data(hexapod);
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) hexapod.compute_metrics(data, poses[i], wrench, metrics[i]);
+      for (std::size_t i = 0; i < n; ++i)
+        hexapod.compute_metrics(data, poses[i], wrench, metrics[i]);
     }
     benchmark::DoNotOptimize(metrics.data());
     benchmark::ClobberMemory();

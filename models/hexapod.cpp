@@ -1,7 +1,5 @@
 #include "models/hexapod.hpp"
 
-#include "models/linalg.hpp"
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -11,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "models/linalg.hpp"
 
 namespace pkmopt {
 namespace {
@@ -81,9 +81,9 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
           "legs.max_length must be finite and > legs.min_length (" +
               fmt_double(design_.min_length) + "), found " + fmt_double(design_.max_length));
   const LegStiffness& k = design_.stiffness;
-  require(std::isfinite(k.axial_stiffness) && k.axial_stiffness >= 0.0,
-          "legs.axial_stiffness must be a finite number >= 0, found " +
-              fmt_double(k.axial_stiffness));
+  require(
+      std::isfinite(k.axial_stiffness) && k.axial_stiffness >= 0.0,
+      "legs.axial_stiffness must be a finite number >= 0, found " + fmt_double(k.axial_stiffness));
   require(std::isfinite(k.E) && k.E >= 0.0,
           "legs.E must be a finite number >= 0, found " + fmt_double(k.E));
   require(std::isfinite(k.area) && k.area >= 0.0,
@@ -104,9 +104,9 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
           "joints.platform_axis must be a non-zero finite vector");
   design_.joints.base_axis.normalize();
   design_.joints.platform_axis.normalize();
-  require(std::isfinite(design_.actuator_error) && design_.actuator_error >= 0.0,
-          "actuator_error must be a finite number >= 0, found " +
-              fmt_double(design_.actuator_error));
+  require(
+      std::isfinite(design_.actuator_error) && design_.actuator_error >= 0.0,
+      "actuator_error must be a finite number >= 0, found " + fmt_double(design_.actuator_error));
 
   platform_rel_ = design_.platform_joints.colwise() - design_.tcp;
   if (design_.characteristic_length) {
@@ -269,13 +269,13 @@ void Hexapod::joint_angles(const Pose& pose, Vec6<double>& base_angles,
                            Vec6<double>& platform_angles) const {
   HexapodData d;
   compute_kinematics(d, pose);
-  const Eigen::Vector3d platform_axis = rotation_zyx<double>(pose.angles) *
-                                        design_.joints.platform_axis;
+  const Eigen::Vector3d platform_axis =
+      rotation_zyx<double>(pose.angles) * design_.joints.platform_axis;
   for (int i = 0; i < 6; ++i) {
     const Eigen::Vector3d si = d.s.col(i);
     // atan2 of |cross| and dot is accurate at every angle, unlike acos near 0 and pi.
-    base_angles(i) = std::atan2(si.cross(design_.joints.base_axis).norm(),
-                                si.dot(design_.joints.base_axis));
+    base_angles(i) =
+        std::atan2(si.cross(design_.joints.base_axis).norm(), si.dot(design_.joints.base_axis));
     platform_angles(i) = std::atan2(si.cross(platform_axis).norm(), -si.dot(platform_axis));
   }
 }
@@ -331,8 +331,8 @@ FkResult Hexapod::forward_kinematics(const Eigen::VectorXd& q_target,
       const Eigen::Vector3d li = pos + ri - design_.base_joints.col(i);
       const double length = li.norm();
       res(i) = length - q_goal(i);
-      const Eigen::Vector3d si = length > 0.0 ? Eigen::Vector3d(li / length)
-                                              : Eigen::Vector3d::Zero();
+      const Eigen::Vector3d si =
+          length > 0.0 ? Eigen::Vector3d(li / length) : Eigen::Vector3d::Zero();
       jac.block<1, 3>(i, 0) = si.transpose();
       jac.block<1, 3>(i, 3) = ri.cross(si).transpose();
     }
@@ -402,8 +402,8 @@ FkResult Hexapod::forward_kinematics(const Eigen::VectorXd& q_target,
     result.message = "converged";
   } else {
     std::ostringstream os;
-    os << "did not converge: max leg length error " << result.residual << " m after "
-       << iterations << " iterations";
+    os << "did not converge: max leg length error " << result.residual << " m after " << iterations
+       << " iterations";
     result.message = os.str();
   }
   return result;

@@ -122,11 +122,11 @@ class HexapodData : public MachineData {
   HexapodData() = default;
   explicit HexapodData(const class Hexapod&) {}
 
-  Vec6<double> q;                   ///< leg lengths (m)
-  Eigen::Matrix<double, 3, 6> s;    ///< unit leg vectors, base frame
-  Eigen::Matrix<double, 3, 6> r;    ///< R (b_i - tcp), base frame
-  Matrix6d J;                       ///< inverse Jacobian
-  Vec6<double> leg_stiffness;       ///< k_i (N/m)
+  Vec6<double> q;                 ///< leg lengths (m)
+  Eigen::Matrix<double, 3, 6> s;  ///< unit leg vectors, base frame
+  Eigen::Matrix<double, 3, 6> r;  ///< R (b_i - tcp), base frame
+  Matrix6d J;                     ///< inverse Jacobian
+  Vec6<double> leg_stiffness;     ///< k_i (N/m)
 };
 
 /// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.

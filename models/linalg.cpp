@@ -120,9 +120,9 @@ void symmetric_eigenvalues6(const Eigen::Matrix<double, 6, 6>& A,
   if (!tridiagonal_ql(d, e)) {
     // Never seen in practice; fall back to Eigen's solver rather than return garbage.
     Eigen::Matrix<double, 6, 6> full = A.selfadjointView<Eigen::Lower>();
-    eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(
-                      full, Eigen::EigenvaluesOnly)
-                      .eigenvalues();
+    eigenvalues =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(full, Eigen::EigenvaluesOnly)
+            .eigenvalues();
     return;
   }
   std::sort(d, d + n);

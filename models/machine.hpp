@@ -44,9 +44,9 @@ struct PoseMetrics {
 
 /// Options of the forward kinematics solve.
 struct FkOptions {
-  int max_iterations = 100;          ///< Newton / Levenberg-Marquardt iterations at most
-  double tolerance = 1e-12;          ///< converged when max |q(pose) - q| <= tolerance (q units)
-  double initial_damping = 1e-6;     ///< Levenberg-Marquardt damping relative to diag(J^T J)
+  int max_iterations = 100;       ///< Newton / Levenberg-Marquardt iterations at most
+  double tolerance = 1e-12;       ///< converged when max |q(pose) - q| <= tolerance (q units)
+  double initial_damping = 1e-6;  ///< Levenberg-Marquardt damping relative to diag(J^T J)
 };
 
 /// Result of a forward kinematics solve. Never contains NaN; on failure `converged` is false,

@@ -11,8 +11,8 @@ namespace sample_machines {
 /// pair separations 20 deg, legs 0.70..1.15 m, E 2.1e11 Pa, area 3e-4 m^2, actuator 2e8 N/m,
 /// joint limits 45 deg, TCP 0.10 m below the platform.
 inline pkmopt::HexapodDesign conventions_hexapod_design() {
-  pkmopt::HexapodDesign d = pkmopt::semi_regular_hexapod(0.60, pkmopt::deg_to_rad(20), 0.25,
-                                                         pkmopt::deg_to_rad(20));
+  pkmopt::HexapodDesign d =
+      pkmopt::semi_regular_hexapod(0.60, pkmopt::deg_to_rad(20), 0.25, pkmopt::deg_to_rad(20));
   d.min_length = 0.70;
   d.max_length = 1.15;
   d.stiffness.E = 2.1e11;

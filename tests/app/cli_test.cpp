@@ -39,8 +39,10 @@ class Cli : public ::testing::Test {
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    machine_ = write("machine.yaml", read_text(fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml"));
-    poses_ = write("poses.csv", "x,y,z,rx,ry,rz,label\n0,0,0.9,0,0,0,home\n0.1,-0.05,0.85,5,-3,10,\"a,b\"\n");
+    machine_ =
+        write("machine.yaml", read_text(fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml"));
+    poses_ = write("poses.csv",
+                   "x,y,z,rx,ry,rz,label\n0,0,0.9,0,0,0,home\n0.1,-0.05,0.85,5,-3,10,\"a,b\"\n");
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -102,17 +104,18 @@ TEST_F(Cli, AnalyzeWritesTheConventionColumns) {
   // --out writes the same text, atomically.
   const std::string out_file = (dir_ / "a.csv").string();
   const CliRun r2 = run("analyze " + machine_ + " --poses " + poses_ +
-                     " --wrench 0,0,-1000,0,0,0 --out " + out_file);
+                        " --wrench 0,0,-1000,0,0,0 --out " + out_file);
   ASSERT_EQ(r2.status, 0) << r2.err;
   EXPECT_EQ(read_text(out_file), r.out);
   EXPECT_TRUE(r2.out.empty());
 }
 
 TEST_F(Cli, AnalyzeWithoutAnglesDefaultsToZeroAndWritesInfAtSingularPoses) {
-  const std::string similar = write("similar.yaml",
-                                    "model: hexapod\nbase: {radius: 0.6, pair_separation_deg: 60}\n"
-                                    "platform: {radius: 0.3, pair_separation_deg: 60}\n"
-                                    "legs: {min_length: 0.5, max_length: 1.5, axial_stiffness: 1e8}\n");
+  const std::string similar =
+      write("similar.yaml",
+            "model: hexapod\nbase: {radius: 0.6, pair_separation_deg: 60}\n"
+            "platform: {radius: 0.3, pair_separation_deg: 60}\n"
+            "legs: {min_length: 0.5, max_length: 1.5, axial_stiffness: 1e8}\n");
   const std::string poses = write("p.csv", "z,y,x\n0.9,0,0\n");
   const CliRun r = run("analyze " + similar + " --poses " + poses + " --wrench 1,2,3,4,5,6");
   ASSERT_EQ(r.status, 0) << r.err;
@@ -205,11 +208,12 @@ TEST_F(Cli, BadMachineFiles) {
 TEST_F(Cli, BadPoseFilesAndOptions) {
   expect_input_error("analyze " + machine_ + " --poses " + write("nox.csv", "a,y,z\n1,2,3\n"),
                      "nox.csv:1: expected a column 'x' in the header, found 'a,y,z'");
-  expect_input_error("analyze " + machine_ + " --poses " +
-                         write("text.csv", "x,y,z\n0,0,0.9\n0,zero,0.9\n"),
-                     "text.csv:3: column 2 'y': expected a finite number, found 'zero'");
-  expect_input_error("analyze " + machine_ + " --poses " + write("nan.csv", "x,y,z,rx\n0,0,0.9,nan\n"),
-                     "nan.csv:2: column 4 'rx': expected a finite number, found 'nan'");
+  expect_input_error(
+      "analyze " + machine_ + " --poses " + write("text.csv", "x,y,z\n0,0,0.9\n0,zero,0.9\n"),
+      "text.csv:3: column 2 'y': expected a finite number, found 'zero'");
+  expect_input_error(
+      "analyze " + machine_ + " --poses " + write("nan.csv", "x,y,z,rx\n0,0,0.9,nan\n"),
+      "nan.csv:2: column 4 'rx': expected a finite number, found 'nan'");
   expect_input_error("analyze " + machine_ + " --poses " + write("ragged.csv", "x,y,z\n0,0\n"),
                      "ragged.csv:2: expected 3 fields as in the header, found 2");
   expect_input_error("analyze " + machine_ + " --poses " + (dir_ / "none.csv").string(),
@@ -220,7 +224,7 @@ TEST_F(Cli, BadPoseFilesAndOptions) {
                      "--wrench: expected 6 comma-separated finite numbers");
   // An output folder that does not exist.
   const CliRun r = run("analyze " + machine_ + " --poses " + poses_ + " --out " +
-                    (dir_ / "no/such/dir/out.csv").string());
+                       (dir_ / "no/such/dir/out.csv").string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("cannot write the output file"), std::string::npos);
 }

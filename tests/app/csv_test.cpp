@@ -21,8 +21,8 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(Csv, ReadsQuotedFieldsCrLfBomAndBlankLines) {
-  const CsvTable t = parse_csv("\xEF\xBB\xBFx,y,z,label\r\n1,2,3,\"a,\"\"b\"\"\"\r\n\r\n4,5,6,c\n",
-                               "f.csv");
+  const CsvTable t =
+      parse_csv("\xEF\xBB\xBFx,y,z,label\r\n1,2,3,\"a,\"\"b\"\"\"\r\n\r\n4,5,6,c\n", "f.csv");
   ASSERT_EQ(t.header.size(), 4u);
   EXPECT_EQ(t.header[0], "x");
   ASSERT_EQ(t.rows.size(), 2u);
@@ -33,10 +33,12 @@ TEST(Csv, ReadsQuotedFieldsCrLfBomAndBlankLines) {
 }
 
 TEST(Csv, ErrorsNameLineColumnExpectedAndFound) {
-  EXPECT_EQ(error_of("x,y,z\n1,2,3\n1,2\n"), "poses.csv:3: expected 3 fields as in the header, found 2");
+  EXPECT_EQ(error_of("x,y,z\n1,2,3\n1,2\n"),
+            "poses.csv:3: expected 3 fields as in the header, found 2");
   EXPECT_EQ(error_of(""), "poses.csv: expected a header line, found an empty file");
   EXPECT_EQ(error_of("x,y,x\n"), "poses.csv:1: column 3: duplicate column name 'x'");
-  EXPECT_EQ(error_of("x,y\n\"1,2\n"), "poses.csv:2: unterminated quoted field (expected a closing '\"')");
+  EXPECT_EQ(error_of("x,y\n\"1,2\n"),
+            "poses.csv:2: unterminated quoted field (expected a closing '\"')");
   const CsvTable t = parse_csv("x,y,z\n1,abc,3\n1,nan,2\n", "poses.csv");
   try {
     t.number(t.rows[0], 1);

@@ -88,11 +88,12 @@ TEST(MachineFile, ErrorsNameFileLineColumnKeyExpectedAndFound) {
             "m.yaml:3:18: platform_joints: expected a list of 6, found a list of 2");
   EXPECT_EQ(error_of("model: hexapod\nbase: [1, 2\n"),
             "m.yaml:3:1: malformed YAML: end of sequence flow not found");
-  EXPECT_NE(error_of(replace(kGood, "base: {", "base_joints: [[0,0,0]]\nbase: {")).find(
-                "either 'base' or 'base_joints', not both"),
+  EXPECT_NE(error_of(replace(kGood, "base: {", "base_joints: [[0,0,0]]\nbase: {"))
+                .find("either 'base' or 'base_joints', not both"),
             std::string::npos);
-  EXPECT_NE(error_of(replace(kGood, "E: 2.1e11, area: 3.0e-4, ", "")).find("missing the leg stiffness"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(replace(kGood, "E: 2.1e11, area: 3.0e-4, ", "")).find("missing the leg stiffness"),
+      std::string::npos);
 }
 
 TEST(MachineFile, UnknownModelIsAnError) {

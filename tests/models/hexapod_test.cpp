@@ -7,11 +7,11 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
-#include <Eigen/Geometry>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
-#include <unsupported/Eigen/AutoDiff>
 #include <cmath>
+#include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
 #include "tests/sample_machines.hpp"
@@ -260,7 +260,8 @@ TEST(Hexapod, LegForcesBalanceTheWrench) {
       const Eigen::Matrix3d R = reference_rotation(pose.angles);
       Eigen::Vector3d force = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
       for (int i = 0; i < 6; ++i) {
-        const Eigen::Vector3d r = R * (hexapod.design().platform_joints.col(i) - hexapod.design().tcp);
+        const Eigen::Vector3d r =
+            R * (hexapod.design().platform_joints.col(i) - hexapod.design().tcp);
         const Eigen::Vector3d l = pose.position + r - hexapod.design().base_joints.col(i);
         const Eigen::Vector3d s = l.normalized();
         force += m.tau(i) * s;
@@ -309,8 +310,8 @@ TEST(Hexapod, StiffnessMatrixMatchesLegSpringsUnderSmallDisplacement) {
     for (int trial = 0; trial < 3; ++trial) {
       Vec6<double> dx;
       for (int i = 0; i < 6; ++i) dx(i) = u(-1, 1) * 1e-7;
-      const Vec6<double> q1 = legs_at(d, pose.position + dx.head<3>(),
-                                      rotation_from_vector(dx.tail<3>()) * R);
+      const Vec6<double> q1 =
+          legs_at(d, pose.position + dx.head<3>(), rotation_from_vector(dx.tail<3>()) * R);
       Vec6<double> wrench = Vec6<double>::Zero();
       for (int i = 0; i < 6; ++i) {
         const double k = hexapod.leg_stiffness(q0(i));
@@ -386,8 +387,8 @@ TEST(Hexapod, SingularityMarginIsInverseConditionOfScaledJacobian) {
 TEST(Hexapod, SimilarHexagonsAreSingularEverywhere) {
   Uniform u(10);
   for (double base_sep : {60.0, 20.0, 45.0}) {
-    HexapodDesign d = semi_regular_hexapod(0.6, deg_to_rad(base_sep), 0.3,
-                                           deg_to_rad(120.0 - base_sep));
+    HexapodDesign d =
+        semi_regular_hexapod(0.6, deg_to_rad(base_sep), 0.3, deg_to_rad(120.0 - base_sep));
     d.min_length = 0.2;
     d.max_length = 2.0;
     d.stiffness.axial_stiffness = 1e8;
@@ -472,11 +473,13 @@ TEST(Hexapod, ReachabilityFollowsStrokeAndJointLimits) {
     const Eigen::Matrix3d R = reference_rotation(pose.angles);
     bool expected = true;
     for (int i = 0; i < 6; ++i) {
-      const Eigen::Vector3d l = pose.position + R * (d.platform_joints.col(i) - d.tcp) -
-                                d.base_joints.col(i);
+      const Eigen::Vector3d l =
+          pose.position + R * (d.platform_joints.col(i) - d.tcp) - d.base_joints.col(i);
       const Eigen::Vector3d s = l.normalized();
-      const double base_angle = std::acos(std::clamp(s.dot(d.joints.base_axis.normalized()), -1.0, 1.0));
-      const double platform_angle = std::acos(std::clamp(-s.dot(R * d.joints.platform_axis), -1.0, 1.0));
+      const double base_angle =
+          std::acos(std::clamp(s.dot(d.joints.base_axis.normalized()), -1.0, 1.0));
+      const double platform_angle =
+          std::acos(std::clamp(-s.dot(R * d.joints.platform_axis), -1.0, 1.0));
       expected = expected && l.norm() >= d.min_length && l.norm() <= d.max_length &&
                  base_angle <= d.joints.base_max_angle &&
                  platform_angle <= d.joints.platform_max_angle;

@@ -21,8 +21,8 @@ TEST(Pose, RotationIsFixedAxesXThenYThenZ) {
     EXPECT_LT((rotation_zyx<double>(a) - expected).norm(), 4e-15);
   }
   // rx = 90 deg turns +y into +z.
-  const Eigen::Vector3d y = rotation_zyx<double>(Eigen::Vector3d(M_PI / 2, 0, 0)) *
-                            Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d y =
+      rotation_zyx<double>(Eigen::Vector3d(M_PI / 2, 0, 0)) * Eigen::Vector3d::UnitY();
   EXPECT_LT((y - Eigen::Vector3d::UnitZ()).norm(), 1e-15);
 }
 
