@@ -159,17 +159,7 @@ CsvTable parse_csv(const std::string& text_in, const std::string& file) {
   return table;
 }
 
-CsvTable read_csv_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(
-        fmt::format("{}: cannot open the file (does it exist and is it readable?)", path));
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(fmt::format("{}: cannot read the file", path));
-  return parse_csv(buffer.str(), path);
-}
+CsvTable read_csv_file(const std::string& path) { return parse_csv(read_input_file(path), path); }
 
 std::string format_number(double value) {
   if (std::isnan(value)) return "nan";  // never written by pkmopt outputs; kept for safety

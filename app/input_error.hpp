@@ -24,6 +24,10 @@ class InputError : public std::runtime_error {
 /// "file:line:col: " (line and column 1-based; omitted when <= 0).
 std::string location_prefix(std::string_view file, int line = 0, int column = 0);
 
+/// The whole content of a file; throws InputError "path: cannot open the file ..." when it is
+/// missing or unreadable.
+std::string read_input_file(const std::string& path);
+
 /// A short, printable rendering of a found value for messages ('abc', 'a very lo...').
 std::string quote_found(std::string_view text);
 

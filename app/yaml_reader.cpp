@@ -29,15 +29,7 @@ bool parse_double(const std::string& text, double& value) {
 }  // namespace
 
 YamlValue YamlValue::load_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    throw InputError(
-        fmt::format("{}: cannot open the file (does it exist and is it readable?)", path));
-  }
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(fmt::format("{}: cannot read the file", path));
-  return load_string(buffer.str(), path);
+  return load_string(read_input_file(path), path);
 }
 
 YamlValue YamlValue::load_string(const std::string& text, const std::string& file) {

@@ -7,21 +7,12 @@
 #include <vector>
 
 #include "models/hexapod.hpp"
+#include "models/sample_machines.hpp"
 
 namespace {
 
 pkmopt::Hexapod sample_hexapod() {
-  pkmopt::HexapodDesign d =
-      pkmopt::semi_regular_hexapod(0.60, pkmopt::deg_to_rad(20), 0.25, pkmopt::deg_to_rad(20));
-  d.min_length = 0.70;
-  d.max_length = 1.15;
-  d.stiffness.E = 2.1e11;
-  d.stiffness.area = 3e-4;
-  d.stiffness.actuator_stiffness = 2e8;
-  d.joints.base_max_angle = pkmopt::deg_to_rad(45);
-  d.joints.platform_max_angle = pkmopt::deg_to_rad(45);
-  d.tcp = {0, 0, -0.10};
-  return pkmopt::Hexapod(d);
+  return pkmopt::Hexapod(pkmopt::sample_machines::conventions_hexapod_design());
 }
 
 // Deterministic poses spread over the working region (splitmix64).
@@ -48,6 +39,10 @@ void BM_HexapodAnalyzeBatch(benchmark::State& state) {
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const std::vector<pkmopt::Pose> poses = sample_poses(n);
   std::vector<pkmopt::PoseMetrics> metrics(n);
+  for (auto& m : metrics) {  // output storage is allocated once, outside the timed loop
+    m.q.resize(6);
+    m.tau.resize(6);
+  }
   const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
   for (auto _ : state) {
 #pragma omp parallel

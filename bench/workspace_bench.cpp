@@ -13,23 +13,13 @@
 #include <vector>
 
 #include "models/hexapod.hpp"
+#include "models/sample_machines.hpp"
 #include "models/workspace/workspace.hpp"
 
 namespace {
 
 pkmopt::Hexapod sample_hexapod() {
-  using pkmopt::deg_to_rad;
-  pkmopt::HexapodDesign design =
-      pkmopt::semi_regular_hexapod(0.60, deg_to_rad(20), 0.25, deg_to_rad(20));
-  design.min_length = 0.70;
-  design.max_length = 1.15;
-  design.stiffness.E = 2.1e11;
-  design.stiffness.area = 3.0e-4;
-  design.stiffness.actuator_stiffness = 2.0e8;
-  design.joints.base_max_angle = deg_to_rad(45);
-  design.joints.platform_max_angle = deg_to_rad(45);
-  design.tcp = Eigen::Vector3d(0, 0, -0.10);
-  return pkmopt::Hexapod(design);
+  return pkmopt::Hexapod(pkmopt::sample_machines::conventions_hexapod_design());
 }
 
 // splitmix64 uniform doubles in [0, 1), one independent stream per chunk (reproducible for any

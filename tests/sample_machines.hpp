@@ -4,25 +4,9 @@
 #include <cstdint>
 
 #include "models/hexapod.hpp"
+#include "models/sample_machines.hpp"
 
-namespace sample_machines {
-
-/// The hexapod of CONVENTIONS.md (examples/hexapod.yaml): base r 0.60, platform r 0.25,
-/// pair separations 20 deg, legs 0.70..1.15 m, E 2.1e11 Pa, area 3e-4 m^2, actuator 2e8 N/m,
-/// joint limits 45 deg, TCP 0.10 m below the platform.
-inline pkmopt::HexapodDesign conventions_hexapod_design() {
-  pkmopt::HexapodDesign d =
-      pkmopt::semi_regular_hexapod(0.60, pkmopt::deg_to_rad(20), 0.25, pkmopt::deg_to_rad(20));
-  d.min_length = 0.70;
-  d.max_length = 1.15;
-  d.stiffness.E = 2.1e11;
-  d.stiffness.area = 3.0e-4;
-  d.stiffness.actuator_stiffness = 2.0e8;
-  d.joints.base_max_angle = pkmopt::deg_to_rad(45);
-  d.joints.platform_max_angle = pkmopt::deg_to_rad(45);
-  d.tcp = {0, 0, -0.10};
-  return d;
-}
+namespace pkmopt::sample_machines {
 
 /// Dietmaier's general Stewart-Gough platform with 40 real assembly modes (P. Dietmaier,
 /// "The Stewart-Gough platform of general geometry can have 40 real postures", Advances in
@@ -94,4 +78,7 @@ inline pkmopt::Pose random_pose(Uniform& u) {
   return p;
 }
 
-}  // namespace sample_machines
+}  // namespace pkmopt::sample_machines
+
+// Test code outside namespace pkmopt names the fixtures sample_machines::...
+namespace sample_machines = pkmopt::sample_machines;

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "models/hexapod.hpp"
+#include "models/sample_machines.hpp"
 
 namespace pkmopt {
 namespace {
@@ -54,18 +55,7 @@ Hexapod two_shell_hexapod(const Eigen::Vector3d& centre_a, const Eigen::Vector3d
 }
 
 // The sample hexapod of CONVENTIONS.md.
-Hexapod sample_hexapod() {
-  HexapodDesign design = semi_regular_hexapod(0.60, deg_to_rad(20), 0.25, deg_to_rad(20));
-  design.min_length = 0.70;
-  design.max_length = 1.15;
-  design.stiffness.E = 2.1e11;
-  design.stiffness.area = 3.0e-4;
-  design.stiffness.actuator_stiffness = 2.0e8;
-  design.joints.base_max_angle = deg_to_rad(45);
-  design.joints.platform_max_angle = deg_to_rad(45);
-  design.tcp = Eigen::Vector3d(0, 0, -0.10);
-  return Hexapod(design);
-}
+Hexapod sample_hexapod() { return Hexapod(sample_machines::conventions_hexapod_design()); }
 
 WorkspaceOptions volume_only(double resolution) {
   WorkspaceOptions options;
