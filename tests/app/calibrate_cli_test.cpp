@@ -1,0 +1,253 @@
+// Tests of the pkmopt binary for calibration: simulate-measurements -> calibrate -> analyze on
+// the calibrated machine file, and bad calibration inputs giving exit status 2, one message
+// and no output files.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/csv.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CalibrateCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pkmopt_calibrate_cli_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    machine_ = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml").string();
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+    return path(name);
+  }
+
+  CliRun run(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(PKMOPT_CLI) + " " + args + " >" + out.string() + " 2>" +
+                            err.string() + " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    CliRun r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = read_text(out);
+    r.err = read_text(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  // Simulated measurements (40 poses, 3 outliers) in dir_/sim; returns the CSV lines.
+  std::vector<std::string> simulate() {
+    const CliRun r =
+        run("simulate-measurements " + machine_ + " --out " + path("sim") + " --poses 40 --seed 3");
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::vector<std::string> lines;
+    std::istringstream in(read_text(path("sim/measurements.csv")));
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  }
+
+  // A calibration YAML next to the simulated data with `body` after the machine key.
+  std::string calibration_file(const std::string& measurements, const std::string& body) {
+    return write("calibration.yaml", "machine: " + path("sim/nominal.yaml") +
+                                         "\nmeasurements: " + measurements + "\n" + body);
+  }
+
+  // Bad input: status 2, one line on stderr containing `fragment`, nothing in --out.
+  void expect_calibrate_error(const std::string& calibration, const std::string& fragment) {
+    const std::string out_dir = path("out");
+    const CliRun r = run("calibrate " + calibration + " --out " + out_dir);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << "stderr: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(fs::exists(out_dir));
+  }
+
+  fs::path dir_;
+  std::string machine_;
+};
+
+const char* kGoodSettings =
+    "frame: base\n"
+    "actuators: {unit: mm, zero_length: 0.7}\n"
+    "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.001}\n"
+    "model: 48\n";
+
+TEST_F(CalibrateCli, SimulateCalibrateAnalyze) {
+  const std::vector<std::string> lines = simulate();
+  ASSERT_EQ(lines.size(), 41u);
+  EXPECT_EQ(lines[0], "x,y,z,rx,ry,rz,q_1,q_2,q_3,q_4,q_5,q_6");
+  for (const char* name : {"nominal.yaml", "truth.yaml", "truth.json", "calibration.yaml"}) {
+    EXPECT_TRUE(fs::exists(path(std::string("sim/") + name))) << name;
+  }
+  // The same seed writes the same measurements.
+  ASSERT_EQ(
+      run("simulate-measurements " + machine_ + " --out " + path("sim2") + " --poses 40 --seed 3")
+          .status,
+      0);
+  EXPECT_EQ(read_text(path("sim/measurements.csv")), read_text(path("sim2/measurements.csv")));
+
+  const CliRun cal = run("calibrate " + path("sim/calibration.yaml") + " --out " + path("cal"));
+  ASSERT_EQ(cal.status, 0) << cal.err;
+  EXPECT_NE(cal.out.find("Held-out outliers"), std::string::npos);
+  const nlohmann::json report = nlohmann::json::parse(read_text(path("cal/report.json")));
+  EXPECT_EQ(read_text(path("cal/report.txt")), cal.out);
+  EXPECT_EQ(report["poses"]["total"].get<int>(), 40);
+  EXPECT_EQ(report["identification"]["rank"].get<int>(), 48);
+  EXPECT_TRUE(report["solver"]["converged"].get<bool>());
+
+  // Every simulated outlier is found, among the fitted or among the held-out rows, and no other.
+  const nlohmann::json truth = nlohmann::json::parse(read_text(path("sim/truth.json")));
+  std::set<int> expected, found;
+  for (const auto& row : truth["outlier_rows"]) expected.insert(row.get<int>());
+  for (const auto& o : report["outliers"]) found.insert(o["row"].get<int>());
+  for (const auto& o : report["held_out_outliers"]) found.insert(o["row"].get<int>());
+  EXPECT_EQ(found, expected);
+
+  // Nominal misses by millimetres; calibrated, the clean held-out rows come within 3 times the
+  // noise floor (sqrt(3) sigma), and the held-out RMS over all rows is the larger one when
+  // gross outliers are held out.
+  const double floor = report["noise_floor"]["tcp_position_rms"].get<double>();
+  const auto& errors = report["errors"];
+  EXPECT_GT(errors["before"]["held_out_inliers"]["tcp_position_rms"].get<double>(), 5e-4);
+  EXPECT_LT(errors["after"]["held_out_inliers"]["tcp_position_rms"].get<double>(), 3.0 * floor);
+  EXPECT_LT(errors["after"]["fitted"]["tcp_position_rms"].get<double>(), 3.0 * floor);
+  EXPECT_GE(errors["after"]["held_out"]["tcp_position_rms"].get<double>(),
+            errors["after"]["held_out_inliers"]["tcp_position_rms"].get<double>());
+  EXPECT_EQ(errors["after"]["held_out"]["count"].get<int>(),
+            errors["after"]["held_out_inliers"]["count"].get<int>() +
+                static_cast<int>(report["held_out_outliers"].size()));
+
+  // The calibrated machine file works with analyze and differs from the nominal one.
+  const std::string poses =
+      write("poses.csv", "x,y,z,rx,ry,rz\n0,0,0.85,0,0,0\n0.05,0,0.8,3,0,5\n");
+  const CliRun calibrated = run("analyze " + path("cal/calibrated.yaml") + " --poses " + poses +
+                                " --out " + path("calibrated.csv"));
+  ASSERT_EQ(calibrated.status, 0) << calibrated.err;
+  const CliRun nominal = run("analyze " + path("sim/nominal.yaml") + " --poses " + poses +
+                             " --out " + path("nominal.csv"));
+  ASSERT_EQ(nominal.status, 0) << nominal.err;
+  const pkmopt::CsvTable a = pkmopt::read_csv_file(path("calibrated.csv"));
+  const pkmopt::CsvTable b = pkmopt::read_csv_file(path("nominal.csv"));
+  ASSERT_EQ(a.rows.size(), 2u);
+  ASSERT_EQ(b.rows.size(), 2u);
+  double largest_change = 0.0;
+  for (int i = 1; i <= 6; ++i) {
+    const int column = a.require_column("q_" + std::to_string(i));
+    for (std::size_t r = 0; r < 2; ++r) {
+      largest_change = std::max(
+          largest_change, std::abs(a.number(a.rows[r], column) - b.number(b.rows[r], column)));
+    }
+  }
+  EXPECT_GT(largest_change, 1e-4);  // joints moved by about a millimetre
+  EXPECT_LT(largest_change, 1e-2);
+}
+
+TEST_F(CalibrateCli, WrongColumnCountIsAnError) {
+  std::vector<std::string> lines = simulate();
+  lines[5] = lines[5].substr(0, lines[5].rfind(','));  // row 5 loses q_6
+  std::string text;
+  for (const auto& line : lines) text += line + "\n";
+  const std::string csv = write("measurements.csv", text);
+  expect_calibrate_error(calibration_file(csv, kGoodSettings), "expected 12 fields");
+}
+
+TEST_F(CalibrateCli, MissingReadingColumnIsAnError) {
+  std::vector<std::string> lines = simulate();
+  std::string text;
+  for (const auto& line : lines) text += line.substr(0, line.rfind(',')) + "\n";  // no q_6
+  const std::string csv = write("measurements.csv", text);
+  expect_calibrate_error(calibration_file(csv, kGoodSettings), "q_6");
+}
+
+TEST_F(CalibrateCli, MissingUnitIsAnError) {
+  simulate();
+  expect_calibrate_error(
+      calibration_file(path("sim/measurements.csv"),
+                       "actuators: {zero_length: 0.7}\n"
+                       "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.001}\n"),
+      "unit");
+}
+
+TEST_F(CalibrateCli, NaNIsAnError) {
+  std::vector<std::string> lines = simulate();
+  lines[7].replace(0, lines[7].find(','), "nan");
+  std::string text;
+  for (const auto& line : lines) text += line + "\n";
+  const std::string csv = write("measurements.csv", text);
+  expect_calibrate_error(calibration_file(csv, kGoodSettings), "expected a finite number");
+}
+
+TEST_F(CalibrateCli, TooFewPosesIsAnError) {
+  std::vector<std::string> lines = simulate();
+  std::string text;
+  for (std::size_t i = 0; i <= 8; ++i) text += lines[i] + "\n";  // 8 poses for 48 parameters
+  const std::string csv = write("measurements.csv", text);
+  expect_calibrate_error(calibration_file(csv, kGoodSettings), "too few poses");
+}
+
+// Without rotations a_i and b_i cannot be told apart: the message names them.
+TEST_F(CalibrateCli, NonIdentifiableParameterIsAnError) {
+  std::vector<std::string> lines = simulate();
+  std::string text = lines[0] + "\n";
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    std::vector<std::string> cells;
+    std::istringstream in(lines[i]);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    cells[3] = cells[4] = cells[5] = "0";
+    std::string row;
+    for (const auto& cell : cells) row += (row.empty() ? "" : ",") + cell;
+    text += row + "\n";
+  }
+  const std::string csv = write("measurements.csv", text);
+  expect_calibrate_error(calibration_file(csv, kGoodSettings), "cannot identify");
+  const CliRun r = run("calibrate " + path("calibration.yaml") + " --out " + path("out"));
+  EXPECT_NE(r.err.find("b1.x"), std::string::npos) << r.err;
+}
+
+// Instrument and target transforms free with `gauge: none`: the 12 frame freedoms are named.
+TEST_F(CalibrateCli, GaugeLeftFreeIsAnError) {
+  simulate();
+  expect_calibrate_error(calibration_file(path("sim/measurements.csv"),
+                                          "frame: instrument\n"
+                                          "instrument: {position: [0, 0, 0]}\n"
+                                          "actuators: {unit: mm, zero_length: 0.7}\n"
+                                          "noise: {position: 2.0e-5, orientation_deg: 0.003, "
+                                          "actuator: 0.001}\n"
+                                          "gauge: none\n"),
+                         "instrument.x");
+}
+
+}  // namespace
