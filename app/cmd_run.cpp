@@ -7,6 +7,7 @@
 #include "app/commands.hpp"
 #include "app/input_error.hpp"
 #include "app/study_benchmark.hpp"
+#include "app/study_design.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -20,6 +21,16 @@ struct RunCommandOptions {
 void run_study(const RunCommandOptions& opt) {
   if (opt.threads < 0)
     throw InputError(fmt::format("--threads: expected an integer >= 0, found {}", opt.threads));
+  if (is_design_study_file(opt.study_file)) {
+    const DesignStudy design = load_design_study(opt.study_file);
+    const RunOutcome outcome = run_optimizer(*design.problem, design.optimizer, opt.threads);
+    write_design_outputs(opt.out, design, outcome, opt.threads);
+    std::cout << fmt::format("{}: {}: {} design(s), {} evaluations, {:.3f} s, status {}\n",
+                             design.name, design.optimizer.algorithm, outcome.front.x.size(),
+                             outcome.front.fitness_evaluations, outcome.front.seconds,
+                             outcome.status);
+    return;
+  }
   const BenchmarkStudy study = load_benchmark_study(opt.study_file);
   const RunOutcome outcome = run_optimizer(*study.problem, study.optimizer, opt.threads);
   const ObjectiveSet reference_front =

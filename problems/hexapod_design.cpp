@@ -1,0 +1,458 @@
+#include "problems/hexapod_design.hpp"
+
+#include <ceres/jet.h>
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace pkmopt {
+namespace {
+
+constexpr std::array<std::string_view, kNumDesignParameters> kParameterNames = {
+    "base_radius",
+    "platform_radius",
+    "base_pair_separation_deg",
+    "platform_pair_separation_deg",
+    "min_length",
+    "stroke",
+    "home_height"};
+
+constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
+    "stiffness_min",    "singularity_margin", "leg_force_max", "tcp_error_max",
+    "workspace_volume", "conditioning_index", "machine_size"};
+
+using DesignJet = ceres::Jet<double, kNumDesignParameters>;
+
+// Semi-regular joints (CONVENTIONS.md) for any scalar type.
+template <typename T>
+Eigen::Matrix<T, 3, 6> semi_regular_joints(const T& radius, const T& separation, bool platform) {
+  using std::cos;
+  using std::sin;
+  Eigen::Matrix<T, 3, 6> joints;
+  for (int i = 0; i < 6; ++i) {
+    const double k120 = 120.0 * kDegToRad * (i / 2);
+    const bool even = i % 2 == 0;
+    T angle;
+    if (!platform) {
+      angle = even ? T(k120) - separation / 2.0 : T(k120) + separation / 2.0;
+    } else {
+      angle = even ? T(k120 - 60.0 * kDegToRad) + separation / 2.0
+                   : T(k120 + 60.0 * kDegToRad) - separation / 2.0;
+    }
+    joints(0, i) = radius * cos(angle);
+    joints(1, i) = radius * sin(angle);
+    joints(2, i) = T(0.0);
+  }
+  return joints;
+}
+
+double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
+
+}  // namespace
+
+std::string_view design_parameter_name(int index) { return kParameterNames.at(index); }
+bool design_parameter_in_degrees(int index) {
+  return index == kBasePairSeparation || index == kPlatformPairSeparation;
+}
+std::string_view design_metric_name(DesignMetric metric) {
+  return kMetricNames.at(static_cast<int>(metric));
+}
+std::optional<DesignMetric> design_metric_from_name(std::string_view name) {
+  for (int m = 0; m < kNumDesignMetrics; ++m)
+    if (kMetricNames[m] == name) return static_cast<DesignMetric>(m);
+  return std::nullopt;
+}
+
+std::vector<Pose> box_task_poses(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_extents,
+                                 const Eigen::Vector3i& counts, double tilt, double yaw,
+                                 double orientation_step) {
+  if ((counts.array() < 1).any()) throw std::invalid_argument("box task: counts must be >= 1");
+  OrientationSet set;
+  set.tilt = tilt;
+  set.yaw_range = yaw;
+  set.orientation_step = orientation_step;
+  const std::vector<Eigen::Matrix3d> rotations = sample_orientations(set);
+  auto coordinate = [&](int axis, int j) {
+    if (counts(axis) == 1) return centre(axis);
+    return centre(axis) - half_extents(axis) + 2.0 * half_extents(axis) * j / (counts(axis) - 1);
+  };
+  std::vector<Pose> poses;
+  for (int iz = 0; iz < counts.z(); ++iz)
+    for (int iy = 0; iy < counts.y(); ++iy)
+      for (int ix = 0; ix < counts.x(); ++ix)
+        for (const Eigen::Matrix3d& R : rotations)
+          poses.push_back(Pose{{coordinate(0, ix), coordinate(1, iy), coordinate(2, iz)},
+                               angles_from_rotation(R)});
+  return poses;
+}
+
+std::vector<Pose> cylinder_task_poses(const Eigen::Vector3d& centre, double radius, double height,
+                                      int rings, int per_ring, int layers, double tilt, double yaw,
+                                      double orientation_step) {
+  if (rings < 0 || per_ring < 1 || layers < 1)
+    throw std::invalid_argument("cylinder task: rings >= 0, per_ring >= 1, layers >= 1");
+  OrientationSet set;
+  set.tilt = tilt;
+  set.yaw_range = yaw;
+  set.orientation_step = orientation_step;
+  const std::vector<Eigen::Matrix3d> rotations = sample_orientations(set);
+  std::vector<Pose> poses;
+  for (int layer = 0; layer < layers; ++layer) {
+    const double z =
+        layers == 1 ? centre.z() : centre.z() - height / 2.0 + height * layer / (layers - 1);
+    std::vector<Eigen::Vector3d> points{{centre.x(), centre.y(), z}};
+    for (int ring = 1; ring <= rings; ++ring)
+      for (int k = 0; k < per_ring; ++k) {
+        const double phi = 2.0 * std::numbers::pi * k / per_ring;
+        const double rr = radius * ring / rings;
+        points.emplace_back(centre.x() + rr * std::cos(phi), centre.y() + rr * std::sin(phi), z);
+      }
+    for (const Eigen::Vector3d& p : points)
+      for (const Eigen::Matrix3d& R : rotations) poses.push_back(Pose{p, angles_from_rotation(R)});
+  }
+  return poses;
+}
+
+HexapodDesignSpec::HexapodDesignSpec() {
+  machine_template = semi_regular_hexapod(0.60, deg_to_rad(20), 0.25, deg_to_rad(20));
+  machine_template.min_length = 0.70;
+  machine_template.max_length = 1.15;
+  machine_template.stiffness.E = 2.1e11;
+  machine_template.stiffness.area = 3.0e-4;
+  machine_template.stiffness.actuator_stiffness = 2.0e8;
+  machine_template.joints.base_max_angle = deg_to_rad(45);
+  machine_template.joints.platform_max_angle = deg_to_rad(45);
+  machine_template.tcp = {0, 0, -0.10};
+  const std::array<double, kNumDesignParameters> values = {
+      0.60, 0.25, deg_to_rad(20), deg_to_rad(20), 0.70, 0.45, 0.0};
+  for (int i = 0; i < kNumDesignParameters; ++i) parameters[i] = {values[i], values[i]};
+  task.workspace.resolution = 0.05;
+  task.workspace.bisection_steps = 4;
+}
+
+HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::move(spec)) {
+  const std::string where = fmt::format("hexapod design problem '{}'", spec_.name);
+  for (int i = 0; i < kNumDesignParameters; ++i) {
+    const ParameterRange& r = spec_.parameters[i];
+    if (!std::isfinite(r.lower) || !std::isfinite(r.upper) || r.lower > r.upper)
+      throw std::invalid_argument(
+          fmt::format("{}: parameter {}: expected finite lower <= upper, "
+                      "found [{}, {}]",
+                      where, kParameterNames[i], r.lower, r.upper));
+    if (!r.fixed()) free_.push_back(i);
+  }
+  if (spec_.objectives.empty())
+    throw std::invalid_argument(where + ": expected at least one objective, found none");
+  if (spec_.task.poses.empty())
+    throw std::invalid_argument(where + ": expected at least one task pose, found none");
+  for (const DesignObjective& o : spec_.objectives) needed_[static_cast<int>(o.metric)] = true;
+  for (const DesignConstraint& c : spec_.constraints) {
+    if (!std::isfinite(c.bound))
+      throw std::invalid_argument(fmt::format("{}: constraint on {}: expected a finite bound",
+                                              where, design_metric_name(c.metric)));
+    needed_[static_cast<int>(c.metric)] = true;
+  }
+  if (needed_[static_cast<int>(DesignMetric::workspace_volume)]) {
+    WorkspaceOptions& w = spec_.task.workspace;
+    w.compute_maps = false;
+    w.compute_hull = false;
+    w.keep_points = false;
+    const std::string message = validate(w);
+    if (!message.empty()) throw std::invalid_argument(where + ": task workspace: " + message);
+  }
+
+  const std::size_t poses = spec_.task.poses.size();
+  const HexapodJointLimits& limits = spec_.machine_template.joints;
+  const std::size_t reach_per_pose = 12 + (std::isfinite(limits.base_max_angle) ? 6 : 0) +
+                                     (std::isfinite(limits.platform_max_angle) ? 6 : 0);
+  if (spec_.formulation == DesignFormulation::aggregate) {
+    num_inequality_ = spec_.constraints.size() + (spec_.require_reachable ? 1 : 0);
+    return;
+  }
+  for (std::size_t k = 0; k < spec_.objectives.size(); ++k) {
+    const DesignObjective& o = spec_.objectives[k];
+    if (o.metric == DesignMetric::leg_force_max && o.sense == Sense::minimize) {
+      epigraph_objectives_.push_back(k);
+      num_inequality_ += 12 * poses;
+    } else if (o.metric != DesignMetric::machine_size) {
+      throw std::invalid_argument(fmt::format(
+          "{}: objective {} {} has no smooth formulation (smooth: minimize leg_force_max, "
+          "machine_size); use an evolutionary optimizer (aggregate formulation)",
+          where, o.sense == Sense::minimize ? "minimize" : "maximize",
+          design_metric_name(o.metric)));
+    }
+  }
+  for (const DesignConstraint& c : spec_.constraints) {
+    if (c.metric == DesignMetric::leg_force_max && c.relation == Relation::less_equal) {
+      num_inequality_ += 12 * poses;
+    } else if (c.metric == DesignMetric::machine_size) {
+      num_inequality_ += 1;
+    } else {
+      throw std::invalid_argument(fmt::format(
+          "{}: constraint {} {} has no smooth formulation (smooth: leg_force_max <=, "
+          "machine_size <= or >=); use an evolutionary optimizer (aggregate formulation)",
+          where, design_metric_name(c.metric), c.relation == Relation::less_equal ? "<=" : ">="));
+    }
+  }
+  if (spec_.require_reachable) num_inequality_ += reach_per_pose * poses;
+}
+
+Bounds HexapodDesignProblem::bounds() const {
+  Bounds b;
+  for (int i : free_) {
+    b.lower.push_back(spec_.parameters[i].lower);
+    b.upper.push_back(spec_.parameters[i].upper);
+  }
+  for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e) {
+    b.lower.push_back(0.0);
+    b.upper.push_back(kEpigraphForceUpper);
+  }
+  return b;
+}
+
+std::array<double, kNumDesignParameters> HexapodDesignProblem::parameters_of(
+    const std::vector<double>& x) const {
+  if (x.size() != free_.size() + epigraph_objectives_.size())
+    throw std::invalid_argument(fmt::format("{}: expected {} variables, found {}", spec_.name,
+                                            free_.size() + epigraph_objectives_.size(), x.size()));
+  std::array<double, kNumDesignParameters> p;
+  for (int i = 0; i < kNumDesignParameters; ++i) p[i] = spec_.parameters[i].lower;
+  for (std::size_t j = 0; j < free_.size(); ++j) p[free_[j]] = x[j];
+  return p;
+}
+
+HexapodDesign HexapodDesignProblem::design_of(
+    const std::array<double, kNumDesignParameters>& p) const {
+  HexapodDesign d = spec_.machine_template;
+  d.base_joints = semi_regular_joints<double>(p[kBaseRadius], p[kBasePairSeparation], false);
+  d.platform_joints =
+      semi_regular_joints<double>(p[kPlatformRadius], p[kPlatformPairSeparation], true);
+  d.min_length = p[kMinLength];
+  d.max_length = p[kMinLength] + p[kStroke];
+  return d;
+}
+
+// Reachability terms (each <= 0 when satisfied) for every pose; returns their maximum.
+template <typename T>
+T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
+                                   std::vector<T>* rows) const {
+  const HexapodDesign& tmpl = spec_.machine_template;
+  const Eigen::Matrix<T, 3, 6> base =
+      semi_regular_joints<T>(p[kBaseRadius], p[kBasePairSeparation], false);
+  Eigen::Matrix<T, 3, 6> platform_rel =
+      semi_regular_joints<T>(p[kPlatformRadius], p[kPlatformPairSeparation], true);
+  for (int i = 0; i < 6; ++i)
+    for (int a = 0; a < 3; ++a) platform_rel(a, i) -= tmpl.tcp(a);
+  const T max_length = p[kMinLength] + p[kStroke];
+  const bool base_limit = std::isfinite(tmpl.joints.base_max_angle);
+  const bool platform_limit = std::isfinite(tmpl.joints.platform_max_angle);
+  const double cos_base = std::cos(tmpl.joints.base_max_angle);
+  const double cos_platform = std::cos(tmpl.joints.platform_max_angle);
+  T worst = T(-std::numeric_limits<double>::infinity());
+  auto add = [&](const T& value) {
+    if (rows) rows->push_back(value);
+    if (value > worst) worst = value;
+  };
+  for (const Pose& pose : spec_.task.poses) {
+    Vec3<T> position = pose.position.cast<T>();
+    position(2) += p[kHomeHeight];
+    const Vec3<T> angles = pose.angles.cast<T>();
+    Vec6<T> q;
+    Eigen::Matrix<T, 3, 6> s;
+    hexapod_legs<T>(base, platform_rel, position, angles, &q, nullptr, &s);
+    for (int i = 0; i < 6; ++i) add(p[kMinLength] - q(i));
+    for (int i = 0; i < 6; ++i) add(q(i) - max_length);
+    if (base_limit)
+      for (int i = 0; i < 6; ++i) add(T(cos_base) - s.col(i).dot(tmpl.joints.base_axis.cast<T>()));
+    if (platform_limit) {
+      const Vec3<double> n = rotation_zyx<double>(pose.angles) * tmpl.joints.platform_axis;
+      for (int i = 0; i < 6; ++i) add(T(cos_platform) + s.col(i).dot(n.cast<T>()));
+    }
+  }
+  return worst;
+}
+
+template <typename T>
+void HexapodDesignProblem::smooth_rows(const std::array<T, kNumDesignParameters>& p,
+                                       const std::vector<T>& epigraph, std::vector<T>& rows) const {
+  rows.clear();
+  const T machine_size =
+      T(std::numbers::pi) * p[kBaseRadius] * p[kBaseRadius] * (p[kMinLength] + p[kStroke]);
+  std::size_t e = 0;
+  for (const DesignObjective& o : spec_.objectives) {
+    if (o.metric == DesignMetric::machine_size)
+      rows.push_back(metric_sign(o.sense) * machine_size);
+    else
+      rows.push_back(epigraph[e++]);
+  }
+  // Leg forces at every pose: J^T tau = w.
+  std::vector<Vec6<T>> tau;
+  bool need_tau = !epigraph_objectives_.empty();
+  for (const DesignConstraint& c : spec_.constraints)
+    need_tau = need_tau || c.metric == DesignMetric::leg_force_max;
+  if (need_tau) {
+    const Eigen::Matrix<T, 3, 6> base =
+        semi_regular_joints<T>(p[kBaseRadius], p[kBasePairSeparation], false);
+    Eigen::Matrix<T, 3, 6> platform_rel =
+        semi_regular_joints<T>(p[kPlatformRadius], p[kPlatformPairSeparation], true);
+    for (int i = 0; i < 6; ++i)
+      for (int a = 0; a < 3; ++a) platform_rel(a, i) -= spec_.machine_template.tcp(a);
+    const Vec6<T> wrench = spec_.task.wrench.cast<T>();
+    for (const Pose& pose : spec_.task.poses) {
+      Vec3<T> position = pose.position.cast<T>();
+      position(2) += p[kHomeHeight];
+      Vec6<T> q;
+      Mat6<T> J;
+      hexapod_legs<T>(base, platform_rel, position, pose.angles.cast<T>(), &q, &J);
+      tau.push_back(Eigen::PartialPivLU<Mat6<T>>(J.transpose()).solve(wrench));
+    }
+  }
+  auto add_force_rows = [&](const T& limit) {
+    for (const Vec6<T>& t : tau)
+      for (int i = 0; i < 6; ++i) {
+        rows.push_back(t(i) - limit);
+        rows.push_back(-t(i) - limit);
+      }
+  };
+  for (std::size_t k = 0; k < epigraph_objectives_.size(); ++k) add_force_rows(epigraph[k]);
+  for (const DesignConstraint& c : spec_.constraints) {
+    if (c.metric == DesignMetric::leg_force_max) {
+      add_force_rows(T(c.bound));
+    } else {  // machine_size
+      rows.push_back(c.relation == Relation::less_equal ? machine_size - c.bound
+                                                        : T(c.bound) - machine_size);
+    }
+  }
+  if (spec_.require_reachable) reach_rows<T>(p, &rows);
+}
+
+DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) const {
+  DesignEvaluation ev;
+  ev.parameters = parameters_of(x);
+  const auto& p = ev.parameters;
+  ev.metrics.fill(0.0);
+  ev.reach_violation = reach_rows<double>(p, nullptr);
+  ev.reachable = ev.reach_violation <= 0.0;
+  if (!std::isfinite(ev.reach_violation)) ev.failure = "non-finite leg lengths at a task pose";
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
+  metric(DesignMetric::machine_size) =
+      std::numbers::pi * p[kBaseRadius] * p[kBaseRadius] * (p[kMinLength] + p[kStroke]);
+
+  std::optional<Hexapod> hexapod;
+  try {
+    hexapod.emplace(design_of(p));
+  } catch (const std::invalid_argument& error) {
+    ev.failure = fmt::format("invalid machine: {}", error.what());
+    return ev;
+  }
+  auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
+  if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
+      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) ||
+      need(DesignMetric::conditioning_index)) {
+    HexapodData data(*hexapod);
+    PoseMetrics m;
+    double stiffness = std::numeric_limits<double>::infinity();
+    double margin = std::numeric_limits<double>::infinity();
+    double force = 0.0, error = 0.0, margin_sum = 0.0;
+    for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
+      Pose pose = spec_.task.poses[k];
+      pose.position.z() += p[kHomeHeight];
+      hexapod->compute_metrics(data, pose, spec_.task.wrench, m);
+      if (m.singular && ev.failure.empty())
+        ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
+                                 pose.position.x(), pose.position.y(), pose.position.z());
+      stiffness = std::min(stiffness, m.stiffness_min);
+      margin = std::min(margin, m.singularity_margin);
+      margin_sum += m.singularity_margin;
+      force = std::max(force, m.tau.cwiseAbs().maxCoeff());
+      error = std::max(error, m.tcp_error_max);
+    }
+    metric(DesignMetric::stiffness_min) = stiffness;
+    metric(DesignMetric::singularity_margin) = margin;
+    metric(DesignMetric::leg_force_max) = force;
+    metric(DesignMetric::tcp_error_max) = error;
+    metric(DesignMetric::conditioning_index) =
+        margin_sum / static_cast<double>(spec_.task.poses.size());
+  }
+  if (need(DesignMetric::workspace_volume)) {
+    try {
+      metric(DesignMetric::workspace_volume) = workspace_volume(*hexapod, spec_.task.workspace);
+    } catch (const std::exception& error) {
+      if (ev.failure.empty()) ev.failure = fmt::format("workspace volume: {}", error.what());
+    }
+  }
+  for (int m = 0; m < kNumDesignMetrics; ++m) {
+    if (needed_[m] && !std::isfinite(ev.metrics[m])) {
+      if (ev.failure.empty()) ev.failure = fmt::format("{} is not finite", kMetricNames[m]);
+      ev.metrics[m] = kFailurePenalty;
+    }
+  }
+  return ev;
+}
+
+std::vector<double> HexapodDesignProblem::aggregate_fitness(const DesignEvaluation& ev) const {
+  std::vector<double> f;
+  f.reserve(fitness_size());
+  const bool failed = !ev.ok();
+  for (const DesignObjective& o : spec_.objectives)
+    f.push_back(failed ? kFailurePenalty
+                       : metric_sign(o.sense) * ev.metrics[static_cast<int>(o.metric)]);
+  for (const DesignConstraint& c : spec_.constraints) {
+    const double value = ev.metrics[static_cast<int>(c.metric)];
+    f.push_back(failed ? kFailurePenalty
+                       : (c.relation == Relation::less_equal ? value - c.bound : c.bound - value));
+  }
+  if (spec_.require_reachable) f.push_back(failed ? kFailurePenalty : ev.reach_violation);
+  return f;
+}
+
+std::vector<double> HexapodDesignProblem::fitness(const std::vector<double>& x) const {
+  if (spec_.formulation == DesignFormulation::aggregate) return aggregate_fitness(evaluate(x));
+  const std::array<double, kNumDesignParameters> p = parameters_of(x);
+  const std::vector<double> epigraph(x.begin() + static_cast<std::ptrdiff_t>(free_.size()),
+                                     x.end());
+  std::vector<double> rows;
+  smooth_rows<double>(p, epigraph, rows);
+  for (double& v : rows)
+    if (!std::isfinite(v)) v = kFailurePenalty;
+  return rows;
+}
+
+std::vector<double> HexapodDesignProblem::gradient(const std::vector<double>& x) const {
+  if (spec_.formulation != DesignFormulation::smooth)
+    throw std::logic_error(spec_.name + ": the aggregate formulation has no gradient");
+  const std::array<double, kNumDesignParameters> p = parameters_of(x);
+  std::array<DesignJet, kNumDesignParameters> pj;
+  for (int i = 0; i < kNumDesignParameters; ++i) pj[i] = DesignJet(p[i], i);
+  const std::size_t n_free = free_.size();
+  const std::size_t n = n_free + epigraph_objectives_.size();
+  // Epigraph variables enter linearly with coefficient 1 or -1: track them as constants here and
+  // set their derivatives below from the row layout.
+  std::vector<DesignJet> epigraph;
+  for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e)
+    epigraph.emplace_back(x[n_free + e]);
+  std::vector<DesignJet> rows;
+  smooth_rows<DesignJet>(pj, epigraph, rows);
+  std::vector<double> jacobian(rows.size() * n, 0.0);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (std::size_t j = 0; j < n_free; ++j) {
+      const double v = rows[r].v(free_[j]);
+      jacobian[r * n + j] = std::isfinite(v) ? v : 0.0;
+    }
+  // Objective rows of the epigraph variables, then their 12 N force rows each (+-tau - t).
+  const std::size_t m = spec_.objectives.size();
+  const std::size_t per_epigraph = 12 * spec_.task.poses.size();
+  for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e) {
+    jacobian[epigraph_objectives_[e] * n + n_free + e] = 1.0;
+    for (std::size_t r = 0; r < per_epigraph; ++r)
+      jacobian[(m + e * per_epigraph + r) * n + n_free + e] = -1.0;
+  }
+  return jacobian;
+}
+
+}  // namespace pkmopt

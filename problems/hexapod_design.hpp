@@ -1,0 +1,224 @@
+// The hexapod design problem: a design vector -> a semi-regular Gough-Stewart hexapod -> metrics
+// over a task -> [objectives | inequality constraints] for the pkmopt optimizers.
+//
+// Design parameters (internal units: m and rad; files give the separations in degrees):
+//   base_radius r_b, platform_radius r_p (m), base_pair_separation alpha_b,
+//   platform_pair_separation alpha_p (rad), min_length (m), stroke (m; max_length = min_length +
+//   stroke), home_height h (m: the task region is lifted by h along base z).
+// Each is fixed (lower == upper) or free within [lower, upper]; only free ones are variables.
+// The rest of the machine (leg stiffness, joint limits, TCP, actuator error, characteristic
+// length) comes from a fixed HexapodDesign template. Joints follow CONVENTIONS.md (semi-regular).
+//
+// Task: N TCP poses (positions of a box or cylinder grid x orientations of a tilt cone x yaw
+// range, sampled by sample_orientations of models/workspace), a constant wrench w at the TCP.
+// Pose k: position p_k + (0, 0, h), angles of R_k.
+//
+// Metrics (user units and signs; see CONVENTIONS.md for the per-pose definitions):
+//   stiffness_min       min_k stiffness_min(pose k)                    N/m
+//   singularity_margin  min_k singularity_margin(pose k)               0..1
+//   leg_force_max       max_k max_i |tau_i(pose k)| under w            N
+//   tcp_error_max       max_k tcp_error_max(pose k)                    m
+//   workspace_volume    workspace_volume(hexapod, task.workspace)     m^3 (constant orientation
+//                       set of task.workspace; coarse resolution for speed)
+//   conditioning_index  mean_k singularity_margin(pose k)              0..1 (over the task poses)
+//   machine_size        pi r_b^2 max_length: the envelope cylinder of machine_envelope_volume
+//                       (planar base joints)                           m^3
+// An objective is minimised as f = metric, maximised as f = -metric. A constraint
+// "metric <= b" gives g = metric - b <= 0, "metric >= b" gives g = b - metric <= 0.
+// Task reachability (optional, default on), one row g_reach <= 0 with
+//   g_reach = max over poses and legs of { min_length - q_i, q_i - max_length,
+//             cos(base_limit) - s_i . a_axis, cos(platform_limit) + s_i . (R n_b) }
+// (joint rows only for finite joint limits; lengths in m, cosines dimensionless).
+//
+// Formulations:
+//   aggregate (derivative-free, for NSGA-II): rows as above, one per objective and constraint.
+//   smooth (gradient solvers: Ipopt, NLopt, epsilon-constraint, NBI): worst cases become
+//     per-pose rows. Variables = free design parameters + one epigraph variable t per
+//     leg_force_max objective, 0 <= t <= kEpigraphForceUpper (minimise t with
+//     +-tau_i(pose k) - t <= 0 for all i, k).
+//     Constraints: leg_force_max <= b gives +-tau_i(pose k) - b <= 0; machine_size <= / >= b
+//     one row; reachability: the terms of g_reach, each its own row. Only leg_force_max
+//     (minimised, or bounded above) and machine_size are smooth; other metrics are refused with
+//     a message. Gradients come from hexapod_legs<ceres::Jet> (forward-mode autodiff).
+//
+// Failures: a design the Hexapod constructor rejects, a singular task pose or any non-finite
+// metric makes the evaluation fail: `DesignEvaluation::failure` says why, and every objective and
+// constraint row of the fitness is kFailurePenalty (finite: the design is infeasible and
+// dominated, never NaN).
+//
+// Thread safety: basic. Every fitness call builds its own Hexapod and HexapodData, so
+// batch_fitness evaluates designs in parallel (OpenMP) with one HexapodData per thread.
+//
+// Example:
+//   HexapodDesignSpec spec;                       // defaults: the CONVENTIONS.md hexapod
+//   spec.parameters[kBaseRadius] = {0.5, 0.7};    // free
+//   spec.task = box_task({0, 0, 0.9}, {0.15, 0.15, 0.1}, {3, 3, 3}, deg_to_rad(20), 0);
+//   spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
+//                      {DesignMetric::machine_size, Sense::minimize}};
+//   HexapodDesignProblem problem(spec);
+//   std::vector<double> f = problem.fitness({0.6});
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "models/hexapod.hpp"
+#include "models/workspace/workspace.hpp"
+#include "optimizer/problem.hpp"
+
+namespace pkmopt {
+
+enum DesignParameterIndex : int {
+  kBaseRadius = 0,
+  kPlatformRadius,
+  kBasePairSeparation,
+  kPlatformPairSeparation,
+  kMinLength,
+  kStroke,
+  kHomeHeight,
+  kNumDesignParameters
+};
+
+/// The name of a design parameter in files ("base_radius", "base_pair_separation_deg", ...).
+std::string_view design_parameter_name(int index);
+/// True for the parameters given in degrees in files (the pair separations).
+bool design_parameter_in_degrees(int index);
+
+/// A parameter's range in internal units; fixed when lower == upper.
+struct ParameterRange {
+  double lower = 0.0;
+  double upper = 0.0;
+  bool fixed() const { return lower == upper; }
+};
+
+enum class DesignMetric {
+  stiffness_min,
+  singularity_margin,
+  leg_force_max,
+  tcp_error_max,
+  workspace_volume,
+  conditioning_index,
+  machine_size
+};
+inline constexpr int kNumDesignMetrics = 7;
+std::string_view design_metric_name(DesignMetric metric);
+/// The metric named `name`, nullopt if none is.
+std::optional<DesignMetric> design_metric_from_name(std::string_view name);
+
+enum class Sense { minimize, maximize };
+enum class Relation { less_equal, greater_equal };
+
+struct DesignObjective {
+  DesignMetric metric = DesignMetric::stiffness_min;
+  Sense sense = Sense::minimize;
+};
+
+struct DesignConstraint {
+  DesignMetric metric = DesignMetric::leg_force_max;
+  Relation relation = Relation::less_equal;
+  double bound = 0.0;  ///< in the metric's unit
+};
+
+/// The poses and load the machine must handle.
+struct DesignTask {
+  std::vector<Pose> poses;         ///< TCP poses before the home_height lift (rad)
+  Wrench wrench = Wrench::Zero();  ///< at the TCP, base axes (N, N*m)
+  WorkspaceOptions workspace;      ///< for workspace_volume (maps and hull are switched off)
+};
+
+/// Positions on an n_x x n_y x n_z grid of the box centre +- half_extents (a count of 1 puts the
+/// points on the centre plane), times the orientations of a cone of half-angle `tilt` and a yaw
+/// range +-yaw (rad) sampled with `orientation_step` (sample_orientations, R0 = I).
+std::vector<Pose> box_task_poses(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_extents,
+                                 const Eigen::Vector3i& counts, double tilt, double yaw,
+                                 double orientation_step = 10.0 * kDegToRad);
+/// Positions on a cylinder about the vertical axis through `centre`: the axis point and
+/// `rings` rings (radius radius*j/rings) of `per_ring` points each, on `layers` planes spanning
+/// centre.z +- height/2, times the orientations as in box_task_poses.
+std::vector<Pose> cylinder_task_poses(const Eigen::Vector3d& centre, double radius, double height,
+                                      int rings, int per_ring, int layers, double tilt, double yaw,
+                                      double orientation_step = 10.0 * kDegToRad);
+
+enum class DesignFormulation { aggregate, smooth };
+
+/// Everything that defines a hexapod design problem.
+struct HexapodDesignSpec {
+  std::string name = "hexapod-design";
+  /// The fixed part of the machine (its joints and lengths are overwritten by the parameters).
+  HexapodDesign machine_template;
+  std::array<ParameterRange, kNumDesignParameters> parameters;
+  DesignTask task;
+  std::vector<DesignObjective> objectives;
+  std::vector<DesignConstraint> constraints;
+  bool require_reachable = true;
+  DesignFormulation formulation = DesignFormulation::aggregate;
+
+  /// The CONVENTIONS.md hexapod with every parameter fixed at its value.
+  HexapodDesignSpec();
+};
+
+/// Upper bound (N) of the epigraph variables of the smooth formulation: finite so that
+/// multi-start solvers can sample it; far above any actuator force.
+inline constexpr double kEpigraphForceUpper = 1e8;
+
+/// Objective and constraint rows of a failed design (finite: never NaN in outputs).
+inline constexpr double kFailurePenalty = 1e20;
+
+/// Everything an evaluation measured, in user units and signs.
+struct DesignEvaluation {
+  std::array<double, kNumDesignParameters> parameters{};  ///< internal units (rad)
+  std::array<double, kNumDesignMetrics> metrics{};        ///< by DesignMetric; only the needed ones
+  bool reachable = false;                                 ///< every task pose reachable
+  double reach_violation = 0.0;                           ///< g_reach (<= 0 when reachable)
+  std::string failure;                                    ///< empty when the evaluation succeeded
+  bool ok() const { return failure.empty(); }
+};
+
+class HexapodDesignProblem final : public Problem {
+ public:
+  /// Checks the spec; throws std::invalid_argument naming the field (empty task, no objective,
+  /// lower > upper, a metric that has no smooth formulation in smooth mode...).
+  explicit HexapodDesignProblem(HexapodDesignSpec spec);
+
+  Bounds bounds() const override;
+  std::size_t num_objectives() const override { return spec_.objectives.size(); }
+  std::size_t num_inequality() const override { return num_inequality_; }
+  std::vector<double> fitness(const std::vector<double>& x) const override;
+  bool has_gradient() const override { return spec_.formulation == DesignFormulation::smooth; }
+  /// Dense row-major Jacobian of the smooth fitness (smooth formulation only).
+  std::vector<double> gradient(const std::vector<double>& x) const override;
+  std::string name() const override { return spec_.name; }
+  ThreadSafety thread_safety() const override { return ThreadSafety::basic; }
+
+  const HexapodDesignSpec& spec() const { return spec_; }
+  /// Indices of the free parameters, in variable order.
+  const std::vector<int>& free_parameters() const { return free_; }
+  /// Number of epigraph variables (smooth formulation), after the free parameters.
+  std::size_t num_epigraph() const { return epigraph_objectives_.size(); }
+  /// All parameters (internal units) for a variable vector.
+  std::array<double, kNumDesignParameters> parameters_of(const std::vector<double>& x) const;
+  /// The machine of a parameter vector (internal units).
+  HexapodDesign design_of(const std::array<double, kNumDesignParameters>& parameters) const;
+  /// Measures a design over the task (every metric the objectives and constraints need).
+  DesignEvaluation evaluate(const std::vector<double>& x) const;
+  /// Objective and constraint rows of the aggregate formulation from an evaluation.
+  std::vector<double> aggregate_fitness(const DesignEvaluation& evaluation) const;
+
+ private:
+  template <typename T>
+  void smooth_rows(const std::array<T, kNumDesignParameters>& p, const std::vector<T>& epigraph,
+                   std::vector<T>& rows) const;
+  template <typename T>
+  T reach_rows(const std::array<T, kNumDesignParameters>& p, std::vector<T>* rows) const;
+
+  HexapodDesignSpec spec_;
+  std::vector<int> free_;
+  std::vector<std::size_t> epigraph_objectives_;  // objective indices with an epigraph variable
+  std::size_t num_inequality_ = 0;
+  std::array<bool, kNumDesignMetrics> needed_{};
+};
+
+}  // namespace pkmopt

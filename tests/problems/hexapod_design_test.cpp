@@ -1,0 +1,263 @@
+// Tests of problems/hexapod_design: a hand-computed design evaluation, sign conventions,
+// failures without NaN, agreement with the model, and gradients against finite differences.
+#include "problems/hexapod_design.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <stdexcept>
+
+namespace pkmopt {
+namespace {
+
+// One pose above the base centre, no rotation, a pure vertical load.
+HexapodDesignSpec single_pose_spec(double z, double fz) {
+  HexapodDesignSpec spec;
+  spec.task.poses = {Pose{{0, 0, z}, {0, 0, 0}}};
+  spec.task.wrench << 0, 0, fz, 0, 0, 0;
+  spec.objectives = {{DesignMetric::leg_force_max, Sense::minimize}};
+  return spec;
+}
+
+TEST(HexapodDesign, BoxTaskPosesCoverTheGridTimesTheOrientations) {
+  const std::vector<Pose> poses =
+      box_task_poses({0, 0, 1}, {0.1, 0.2, 0.05}, {2, 3, 1}, deg_to_rad(20), 0, deg_to_rad(10));
+  OrientationSet set;
+  set.tilt = deg_to_rad(20);
+  set.orientation_step = deg_to_rad(10);
+  const std::size_t orientations = sample_orientations(set).size();
+  ASSERT_EQ(poses.size(), 6 * orientations);
+  double max_tilt = 0.0;
+  for (const Pose& pose : poses) {
+    EXPECT_NEAR(std::abs(pose.position.x()), 0.1, 1e-15);
+    EXPECT_LE(std::abs(pose.position.y()), 0.2 + 1e-15);
+    EXPECT_DOUBLE_EQ(pose.position.z(), 1.0);
+    const Eigen::Vector3d axis = rotation_zyx<double>(pose.angles).col(2);
+    max_tilt = std::max(max_tilt, std::acos(std::clamp(axis.z(), -1.0, 1.0)));
+  }
+  EXPECT_NEAR(max_tilt, deg_to_rad(20), 1e-9);
+  const std::vector<Pose> cylinder = cylinder_task_poses({0, 0, 1}, 0.1, 0.2, 2, 4, 3, 0, 0);
+  EXPECT_EQ(cylinder.size(), 3u * (1 + 2 * 4));
+}
+
+// Symmetric hexapod at its home pose under a vertical force F: by the three-fold and mirror
+// symmetry all legs carry the same force and the moments cancel, so 6 tau cos(beta) = F with
+// beta the angle of each leg from the vertical: tau = F / (6 cos beta).
+TEST(HexapodDesign, LegForcesAtTheHomePoseOfASymmetricHexapod) {
+  const double z_tcp = 0.9, force = -12000.0;
+  HexapodDesignProblem problem(single_pose_spec(z_tcp, force));
+  ASSERT_EQ(problem.num_variables(), 0u);
+  const DesignEvaluation ev = problem.evaluate({});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+
+  // Leg 0: base joint at angle -10 deg, radius 0.6; platform joint at -60 + 10 deg, radius 0.25.
+  const std::complex<double> a = std::polar(0.60, deg_to_rad(-10));
+  const std::complex<double> b = std::polar(0.25, deg_to_rad(-50));
+  const double height = z_tcp + 0.10;  // platform origin above the TCP (tcp = (0, 0, -0.1))
+  const double length = std::hypot(std::abs(b - a), height);
+  const double cos_beta = height / length;
+  EXPECT_NEAR(ev.metrics[static_cast<int>(DesignMetric::leg_force_max)],
+              std::abs(force) / (6.0 * cos_beta), 1e-9 * std::abs(force));
+  EXPECT_TRUE(ev.reachable);
+  EXPECT_LT(ev.reach_violation, 0.0);
+
+  // machine_size = pi r_b^2 max_length, the envelope of the workspace module.
+  const double size = ev.metrics[static_cast<int>(DesignMetric::machine_size)];
+  EXPECT_NEAR(size, std::numbers::pi * 0.36 * 1.15, 1e-12);
+  const Hexapod hexapod(problem.design_of(ev.parameters));
+  EXPECT_NEAR(size, machine_envelope_volume(hexapod).value(), 1e-12);
+  // The joints built by the problem are the library's semi-regular joints.
+  const HexapodDesign reference = semi_regular_hexapod(0.60, deg_to_rad(20), 0.25, deg_to_rad(20));
+  EXPECT_LT((hexapod.design().base_joints - reference.base_joints).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT((hexapod.design().platform_joints - reference.platform_joints).cwiseAbs().maxCoeff(),
+            1e-15);
+}
+
+TEST(HexapodDesign, MaximizeFlipsTheSignAndConstraintsFollowTheirRelation) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, -5000.0);
+  spec.parameters[kBaseRadius] = {0.5, 0.7};
+  spec.objectives = {{DesignMetric::stiffness_min, Sense::minimize},
+                     {DesignMetric::singularity_margin, Sense::minimize}};
+  spec.constraints = {{DesignMetric::leg_force_max, Relation::less_equal, 900.0},
+                      {DesignMetric::leg_force_max, Relation::greater_equal, 900.0}};
+  const HexapodDesignProblem minimized(spec);
+  spec.objectives[0].sense = Sense::maximize;
+  spec.objectives[1].sense = Sense::maximize;
+  const HexapodDesignProblem maximized(spec);
+  const std::vector<double> x{0.62};
+  const std::vector<double> fmin = minimized.fitness(x);
+  const std::vector<double> fmax = maximized.fitness(x);
+  ASSERT_EQ(fmin.size(), 5u);  // 2 objectives, 2 constraints, reachability
+  EXPECT_GT(fmin[0], 0.0);
+  EXPECT_EQ(fmax[0], -fmin[0]);
+  EXPECT_EQ(fmax[1], -fmin[1]);
+  const DesignEvaluation ev = minimized.evaluate(x);
+  const double force = ev.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+  EXPECT_EQ(fmin[2], force - 900.0);
+  EXPECT_EQ(fmin[3], 900.0 - force);
+  EXPECT_EQ(fmin[4], ev.reach_violation);
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::stiffness_min)], fmin[0]);
+}
+
+TEST(HexapodDesign, ReachabilityRowsAgreeWithTheModel) {
+  HexapodDesignSpec spec;
+  spec.objectives = {{DesignMetric::machine_size, Sense::minimize}};
+  const Hexapod hexapod(spec.machine_template);
+  HexapodData data(hexapod);
+  int reachable = 0, unreachable = 0;
+  // Poses spread from well inside to well outside the workspace.
+  for (const Pose& pose : box_task_poses({0, 0, 0.95}, {0.5, 0.5, 0.45}, {5, 5, 7}, deg_to_rad(30),
+                                         deg_to_rad(20), deg_to_rad(15))) {
+    spec.task.poses = {pose};
+    const DesignEvaluation ev = HexapodDesignProblem(spec).evaluate({});
+    ASSERT_TRUE(std::isfinite(ev.reach_violation));
+    EXPECT_EQ(ev.reachable, hexapod.reachable(data, pose));
+    (ev.reachable ? reachable : unreachable)++;
+  }
+  EXPECT_GT(reachable, 20);
+  EXPECT_GT(unreachable, 20);
+}
+
+TEST(HexapodDesign, FailingDesignsAreRecordedWithAReasonAndFiniteRows) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, -5000.0);
+  spec.parameters[kPlatformRadius] = {0.0, 0.3};  // r_p = 0: all platform joints coincide
+  spec.objectives = {{DesignMetric::leg_force_max, Sense::minimize},
+                     {DesignMetric::stiffness_min, Sense::maximize},
+                     {DesignMetric::tcp_error_max, Sense::minimize}};
+  spec.constraints = {{DesignMetric::singularity_margin, Relation::greater_equal, 0.01}};
+  const HexapodDesignProblem problem(spec);
+  const DesignEvaluation failed = problem.evaluate({0.0});
+  EXPECT_FALSE(failed.ok());
+  EXPECT_NE(failed.failure.find("singular"), std::string::npos) << failed.failure;
+  for (double v : failed.metrics) EXPECT_TRUE(std::isfinite(v));
+  const std::vector<double> f = problem.fitness({0.0});
+  ASSERT_EQ(f.size(), 5u);
+  for (double v : f) EXPECT_EQ(v, kFailurePenalty);
+  EXPECT_GT(constraint_violation(problem, f), 0.0);
+
+  // A good design next to it succeeds; an unreachable task is a violated constraint, not NaN.
+  EXPECT_TRUE(problem.evaluate({0.25}).ok());
+  spec.task.poses = {Pose{{0, 0, 3.0}, {0, 0, 0}}};
+  const HexapodDesignProblem far_task(spec);
+  const std::vector<double> g = far_task.fitness({0.25});
+  for (double v : g) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_GT(g.back(), 1.0);  // legs about 3.1 m long against max_length 1.15 m
+}
+
+TEST(HexapodDesign, WorkspaceVolumeIsTheWorkspaceModuleFastPath) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, 0.0);
+  spec.objectives = {{DesignMetric::workspace_volume, Sense::maximize}};
+  spec.task.workspace.resolution = 0.08;
+  const HexapodDesignProblem problem(spec);
+  const std::vector<double> f = problem.fitness({});
+  WorkspaceOptions options = spec.task.workspace;
+  options.compute_maps = false;
+  options.compute_hull = false;
+  const double volume = workspace_volume(Hexapod(spec.machine_template), options);
+  EXPECT_GT(volume, 0.05);
+  EXPECT_EQ(f[0], -volume);
+}
+
+TEST(HexapodDesign, BatchFitnessInParallelEqualsSerial) {
+  HexapodDesignSpec spec;
+  spec.task.poses = box_task_poses({0, 0, 0.9}, {0.1, 0.1, 0.05}, {2, 2, 2}, deg_to_rad(10), 0);
+  spec.task.wrench << 100, 0, -3000, 0, 20, 0;
+  spec.parameters[kBaseRadius] = {0.5, 0.7};
+  spec.parameters[kStroke] = {0.3, 0.6};
+  spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
+                     {DesignMetric::conditioning_index, Sense::maximize}};
+  const HexapodDesignProblem problem(spec);
+  EXPECT_EQ(problem.thread_safety(), ThreadSafety::basic);
+  std::vector<std::vector<double>> xs;
+  for (int k = 0; k < 8; ++k) xs.push_back({0.5 + 0.025 * k, 0.3 + 0.04 * k});
+  const auto serial = problem.batch_fitness(xs, 1);
+  const auto parallel = problem.batch_fitness(xs, 2);
+  ASSERT_EQ(serial.size(), xs.size());
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    EXPECT_EQ(serial[k], parallel[k]);
+    EXPECT_EQ(serial[k], problem.fitness(xs[k]));
+  }
+}
+
+HexapodDesignSpec smooth_spec() {
+  HexapodDesignSpec spec;
+  spec.formulation = DesignFormulation::smooth;
+  spec.task.poses = box_task_poses({0.02, -0.01, 0.9}, {0.1, 0.1, 0.05}, {2, 2, 2}, deg_to_rad(15),
+                                   deg_to_rad(10), deg_to_rad(15));
+  spec.task.wrench << 300, -200, -4000, 15, -25, 10;
+  spec.parameters[kBaseRadius] = {0.5, 0.7};
+  spec.parameters[kPlatformRadius] = {0.2, 0.3};
+  spec.parameters[kBasePairSeparation] = {deg_to_rad(10), deg_to_rad(40)};
+  spec.parameters[kPlatformPairSeparation] = {deg_to_rad(10), deg_to_rad(40)};
+  spec.parameters[kMinLength] = {0.6, 0.8};
+  spec.parameters[kStroke] = {0.3, 0.6};
+  spec.parameters[kHomeHeight] = {-0.1, 0.1};
+  spec.objectives = {{DesignMetric::leg_force_max, Sense::minimize},
+                     {DesignMetric::machine_size, Sense::maximize}};
+  spec.constraints = {{DesignMetric::leg_force_max, Relation::less_equal, 5000.0},
+                      {DesignMetric::machine_size, Relation::greater_equal, 0.5}};
+  return spec;
+}
+
+TEST(HexapodDesign, SmoothFormulationGradientsMatchFiniteDifferences) {
+  const HexapodDesignProblem problem(smooth_spec());
+  ASSERT_TRUE(problem.has_gradient());
+  ASSERT_EQ(problem.num_variables(), 8u);  // 7 parameters + 1 epigraph variable
+  const std::size_t poses = problem.spec().task.poses.size();
+  EXPECT_EQ(problem.num_inequality(), 12 * poses + 12 * poses + 1 + 24 * poses);
+  const std::vector<std::vector<double>> points = {
+      {0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.45, 0.0, 2000.0},
+      {0.55, 0.28, deg_to_rad(32), deg_to_rad(14), 0.75, 0.35, 0.06, 3500.0}};
+  for (const std::vector<double>& x : points) {
+    const GradientCheck check = check_gradient(problem, x);
+    EXPECT_TRUE(check.ok) << check.report;
+    for (double v : problem.fitness(x)) EXPECT_TRUE(std::isfinite(v));
+  }
+}
+
+TEST(HexapodDesign, SmoothRowsAgreeWithTheAggregateMetrics) {
+  HexapodDesignSpec spec = smooth_spec();
+  const HexapodDesignProblem smooth(spec);
+  spec.formulation = DesignFormulation::aggregate;
+  const HexapodDesignProblem aggregate(spec);
+  const std::vector<double> design{0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.45, 0.0};
+  const DesignEvaluation ev = aggregate.evaluate(design);
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  const double force = ev.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+  // With t = the worst leg force the largest epigraph row is exactly 0.
+  std::vector<double> x = design;
+  x.push_back(force);
+  const std::vector<double> f = smooth.fitness(x);
+  const std::size_t rows = 12 * spec.task.poses.size();
+  const double worst = *std::max_element(f.begin() + 2, f.begin() + 2 + rows);
+  EXPECT_NEAR(worst, 0.0, 1e-9 * force);
+  EXPECT_EQ(f[0], force);
+  EXPECT_DOUBLE_EQ(f[1], -ev.metrics[static_cast<int>(DesignMetric::machine_size)]);
+  // The reachability rows' maximum is the aggregate g_reach.
+  EXPECT_DOUBLE_EQ(*std::max_element(f.end() - 24 * spec.task.poses.size(), f.end()),
+                   ev.reach_violation);
+}
+
+TEST(HexapodDesign, SmoothFormulationRefusesNonSmoothMetricsAndAggregateHasNoGradient) {
+  HexapodDesignSpec spec = smooth_spec();
+  spec.objectives[1] = {DesignMetric::stiffness_min, Sense::maximize};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+  spec = smooth_spec();
+  spec.constraints.push_back({DesignMetric::singularity_margin, Relation::greater_equal, 0.1});
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+  spec = smooth_spec();
+  spec.formulation = DesignFormulation::aggregate;
+  const HexapodDesignProblem aggregate(spec);
+  EXPECT_FALSE(aggregate.has_gradient());
+  EXPECT_THROW(aggregate.gradient(std::vector<double>(7, 0.5)), std::logic_error);
+  spec.parameters[kStroke] = {0.6, 0.3};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+  spec = smooth_spec();
+  spec.objectives.clear();
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pkmopt
