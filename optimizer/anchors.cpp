@@ -23,31 +23,34 @@ std::vector<double> default_start(const Problem& problem) {
   return x;
 }
 
+std::vector<std::vector<double>> latin_hypercube(const Problem& problem, std::size_t count,
+                                                 std::uint64_t seed,
+                                                 const std::vector<double>& start) {
+  const Bounds b = problem.bounds();
+  const std::size_t n = b.lower.size();
+  Random rng(seed);
+  std::vector<std::vector<double>> lhs(count, std::vector<double>(n));
+  std::vector<std::size_t> strata(count);
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t k = 0; k < count; ++k) strata[k] = k;
+    rng.shuffle(strata);
+    const bool finite = std::isfinite(b.lower[j]) && std::isfinite(b.upper[j]);
+    for (std::size_t k = 0; k < count; ++k) {
+      const double u =
+          (static_cast<double>(strata[k]) + rng.uniform01()) / static_cast<double>(count);
+      lhs[k][j] = finite ? b.lower[j] + u * (b.upper[j] - b.lower[j]) : start[j];
+    }
+  }
+  return lhs;
+}
+
 AnchorSet compute_anchors(const Problem& problem, const std::vector<double>& start,
                           const IpoptOptions& options, std::size_t random_starts,
                           std::uint64_t seed) {
   const std::size_t m = problem.num_objectives();
   AnchorSet set;
   set.points.resize(m);
-  std::vector<std::vector<double>> lhs;
-  {
-    const Bounds b = problem.bounds();
-    const std::size_t n = b.lower.size();
-    Random rng(seed);
-    lhs.resize(random_starts);
-    for (auto& point : lhs) point.resize(n);
-    std::vector<std::size_t> strata(random_starts);
-    for (std::size_t j = 0; j < n; ++j) {
-      for (std::size_t k = 0; k < random_starts; ++k) strata[k] = k;
-      rng.shuffle(strata);
-      const bool finite = std::isfinite(b.lower[j]) && std::isfinite(b.upper[j]);
-      for (std::size_t k = 0; k < random_starts; ++k) {
-        const double u =
-            (static_cast<double>(strata[k]) + rng.uniform01()) / static_cast<double>(random_starts);
-        lhs[k][j] = finite ? b.lower[j] + u * (b.upper[j] - b.lower[j]) : start[j];
-      }
-    }
-  }
+  const std::vector<std::vector<double>> lhs = latin_hypercube(problem, random_starts, seed, start);
   for (std::size_t i = 0; i < m; ++i) {
     AnchorPoint& anchor = set.points[i];
     // Stage 1: min f_i + rho sum_{j != i} f_j / s_j (rho = 1e-3, s_j = max(1, |f_j(start)|)):

@@ -38,6 +38,13 @@ struct AnchorSet {
 /// A start point inside the bounds: the centre, or the finite bound, or 0.
 std::vector<double> default_start(const Problem& problem);
 
+/// `count` Latin-hypercube points in the bounds (each variable's range cut into `count`
+/// strata, one point per stratum, strata shuffled per variable by a Random seeded with `seed`);
+/// a variable with an infinite bound takes its value from `start` (size n).
+std::vector<std::vector<double>> latin_hypercube(const Problem& problem, std::size_t count,
+                                                 std::uint64_t seed,
+                                                 const std::vector<double>& start);
+
 /// Anchors of a multi-objective problem from `start` (see header comment). Never throws for
 /// solver failure: a failed anchor has ok = false; if every anchor failed, failed == m and
 /// range is left empty.

@@ -13,14 +13,14 @@
 namespace pkmopt {
 namespace {
 
-// True when an earlier result weakly dominates the objectives of f (first m entries).
+// True when an earlier result weakly dominates the objectives of f (first m entries) within
+// `tolerance` (one entry per objective).
 bool dominated_by_any(const std::vector<std::vector<double>>& earlier, const std::vector<double>& f,
-                      std::size_t m) {
+                      std::size_t m, const std::vector<double>& tolerance) {
   if (f.empty()) return false;
   for (const auto& e : earlier) {
     bool covers = true;
-    for (std::size_t i = 0; i < m && covers; ++i)
-      covers = e[i] <= f[i] + 1e-9 * (1.0 + std::abs(f[i]));
+    for (std::size_t i = 0; i < m && covers; ++i) covers = e[i] <= f[i] + tolerance[i];
     if (covers) return true;
   }
   return false;
@@ -73,7 +73,9 @@ FrontResult run_epsilon_constraint(const Problem& problem,
 
   std::vector<std::vector<double>> xs, fitness;
   FrontResult result;
-  const AnchorSet anchors = compute_anchors(counted, start, options.ipopt);
+  std::size_t duplicates = 0;
+  std::vector<double> tolerance(m, 0.0);
+  const AnchorSet anchors = compute_anchors(counted, start, options.ipopt, 8, options.seed);
   result.subproblems += anchors.solves;
   result.failed_subproblems += anchors.failed;
   for (const AnchorPoint& anchor : anchors.points)
@@ -110,6 +112,17 @@ FrontResult run_epsilon_constraint(const Problem& problem,
             ? 0
             : static_cast<std::size_t>(std::llround(std::pow(static_cast<double>(fractions.size()),
                                                              static_cast<double>(others.size()))));
+    // Global starts: the anchors of the other objectives (each satisfies its own epsilon
+    // bound whatever its value, so narrow feasible sets stay reachable), then a Latin hypercube.
+    std::vector<std::vector<double>> global_starts;
+    for (std::size_t j = 0; j < m; ++j)
+      if (j != p && anchors.points[j].ok) global_starts.push_back(anchors.points[j].x);
+    for (std::vector<double>& point :
+         latin_hypercube(problem, options.global_starts, options.seed, start))
+      global_starts.push_back(std::move(point));
+    IpoptOptions short_run = options.ipopt;
+    short_run.max_iterations = std::min(options.ipopt.max_iterations, 100);
+    for (std::size_t j = 0; j < m; ++j) tolerance[j] = 1e-5 * anchors.range[j];
     const double primary_scale = anchors.range[p];
     std::vector<double> weights(m, 0.0);
     weights[p] = 1.0 / primary_scale;
@@ -131,15 +144,29 @@ FrontResult run_epsilon_constraint(const Problem& problem,
           solved.usable() ? checked_fitness(counted, solved.x) : std::vector<double>{};
       // Continuation can trap the local solver on one piece of a disconnected front: a failed
       // or dominated result is retried once from the primary anchor.
-      if ((!solved.usable() || dominated_by_any(fitness, f, m)) && anchors.points[p].ok) {
+      if ((!solved.usable() || dominated_by_any(fitness, f, m, tolerance)) &&
+          anchors.points[p].ok) {
         SolveResult retry = solve_with_ipopt(sub, anchors.points[p].x, options.ipopt);
         ++result.subproblems;
         if (retry.usable()) {
           std::vector<double> g = checked_fitness(counted, retry.x);
-          if (f.empty() || !dominated_by_any(fitness, g, m)) {
+          if (f.empty() || !dominated_by_any(fitness, g, m, tolerance)) {
             solved = std::move(retry);
             f = std::move(g);
           }
+        }
+      }
+      // Multi-start: the same subproblem from each global start point; the usable optimum
+      // with the lowest primary objective wins (a local solver otherwise stops on locally
+      // optimal pieces that the global front dominates, as on ZDT3).
+      for (const std::vector<double>& global_start : global_starts) {
+        SolveResult other = solve_with_ipopt(sub, global_start, short_run);
+        ++result.subproblems;
+        if (other.usable() &&
+            (!solved.usable() ||
+             other.objective < solved.objective - 1e-9 * (1.0 + std::abs(solved.objective)))) {
+          solved = std::move(other);
+          f = checked_fitness(counted, solved.x);
         }
       }
       if (!solved.usable()) {
@@ -147,6 +174,12 @@ FrontResult run_epsilon_constraint(const Problem& problem,
         continue;
       }
       warm = solved.x;
+      // A result that an earlier one weakly dominates within 1e-5 of the objective ranges
+      // (epsilon bounds in a gap of the front, or inactive ones) adds nothing: dropped.
+      if (dominated_by_any(fitness, f, m, tolerance)) {
+        ++duplicates;
+        continue;
+      }
       xs.push_back(solved.x);
       fitness.push_back(std::move(f));
     }
@@ -156,7 +189,7 @@ FrontResult run_epsilon_constraint(const Problem& problem,
   front.algorithm = "epsilon_constraint";
   front.subproblems = result.subproblems;
   front.failed_subproblems = result.failed_subproblems;
-  front.dominated_subproblems = xs.size() - front.x.size();
+  front.dominated_subproblems = duplicates + xs.size() - front.x.size();
   front.fitness_evaluations = counted.fitness_evaluations();
   front.gradient_evaluations = counted.gradient_evaluations();
   front.seconds =

@@ -10,6 +10,11 @@
 // solution (continuation along the front). Subproblems that fail (Ipopt not converged,
 // infeasible result) are counted and skipped; solutions dominated by another one (inactive or
 // redundant epsilon bounds, gaps of a disconnected front) are counted and dropped.
+// Each subproblem is also solved from the anchors of the other objectives and from
+// `global_starts` Latin-hypercube points of the design
+// space (seeded by `seed`, the same points for every subproblem, at most 100 Ipopt iterations
+// each), and the usable result with the lowest primary objective is kept: a local solver
+// alone stops on locally optimal pieces that the global front dominates (ZDT3).
 //
 // Example:
 //   pkmopt::EpsilonConstraintOptions options;
@@ -18,6 +23,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,6 +39,8 @@ struct EpsilonConstraintOptions {
   std::size_t primary_objective = 0;  ///< p, 0-based
   IpoptOptions ipopt;                 ///< for every subproblem
   std::vector<double> start;          ///< first start point; empty = default_start()
+  std::size_t global_starts = 2;      ///< extra Latin-hypercube starts per subproblem
+  std::uint64_t seed = 1;             ///< seeds the Latin hypercubes (anchors and subproblems)
 
   std::optional<std::string> validate() const;
 };

@@ -70,8 +70,8 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
   const std::vector<double> start = options.start.empty() ? default_start(problem) : options.start;
 
   std::vector<std::vector<double>> xs, fitness;
-  std::size_t subproblems = 0, failed = 0;
-  const AnchorSet anchors = compute_anchors(counted, start, options.ipopt);
+  std::size_t subproblems = 0, failed = 0, duplicates = 0;
+  const AnchorSet anchors = compute_anchors(counted, start, options.ipopt, 8, options.seed);
   subproblems += anchors.solves;
   failed += anchors.failed;
   for (const AnchorPoint& anchor : anchors.points)
@@ -101,6 +101,10 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
     } else {
       while (simplex_lattice(m, divisions).size() < options.points) ++divisions;
     }
+    const std::vector<std::vector<double>> global_starts =
+        latin_hypercube(problem, options.global_starts, options.seed, start);
+    IpoptOptions short_run = options.ipopt;
+    short_run.max_iterations = std::min(options.ipopt.max_iterations, 100);
     std::vector<double> warm = anchors.points[0].x;
     for (const std::vector<double>& beta : simplex_lattice(m, divisions)) {
       if (std::count(beta.begin(), beta.end(), 1.0) == 1) continue;  // an anchor
@@ -122,13 +126,38 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
         solved = solve_with_ipopt(sub, restart, options.ipopt);
         ++subproblems;
       }
+      // Multi-start: the same subproblem from each global start point; the usable optimum
+      // with the largest t wins (a local solver otherwise stops on locally optimal pieces that
+      // the global front dominates, as on ZDT3).
+      for (const std::vector<double>& global_start : global_starts) {
+        std::vector<double> from = global_start;
+        from.push_back(sub.feasible_t(checked_fitness(counted, global_start)));
+        SolveResult other = solve_with_ipopt(sub, from, short_run);
+        ++subproblems;
+        if (other.usable() &&
+            (!solved.usable() ||
+             other.objective < solved.objective - 1e-9 * (1.0 + std::abs(solved.objective))))
+          solved = std::move(other);
+      }
       if (!solved.usable()) {
         ++failed;
         continue;
       }
       warm.assign(solved.x.begin(), solved.x.end() - 1);
+      // A result that an earlier one weakly dominates within 1e-5 of the objective ranges
+      // (lattice points facing a gap of the front) adds nothing: dropped.
+      std::vector<double> f = checked_fitness(counted, warm);
+      const bool covered = std::any_of(fitness.begin(), fitness.end(), [&](const auto& e) {
+        for (std::size_t j = 0; j < m; ++j)
+          if (e[j] > f[j] + 1e-5 * anchors.range[j]) return false;
+        return true;
+      });
+      if (covered) {
+        ++duplicates;
+        continue;
+      }
       xs.push_back(warm);
-      fitness.push_back(checked_fitness(counted, warm));
+      fitness.push_back(std::move(f));
     }
   }
 
@@ -136,7 +165,7 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
   front.algorithm = "nbi";
   front.subproblems = subproblems;
   front.failed_subproblems = failed;
-  front.dominated_subproblems = xs.size() - front.x.size();
+  front.dominated_subproblems = duplicates + xs.size() - front.x.size();
   front.fitness_evaluations = counted.fitness_evaluations();
   front.gradient_evaluations = counted.gradient_evaluations();
   front.seconds =

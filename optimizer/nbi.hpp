@@ -9,6 +9,10 @@
 // t reset to the largest feasible value for the new beta). Vertices of the lattice are the
 // anchors themselves and are not re-solved. Failed subproblems are counted and skipped;
 // dominated results (non-convex or disconnected parts of the front) are counted and dropped.
+// Each subproblem is also solved from `global_starts` Latin-hypercube points of the design
+// space (seeded by `seed`, the same points for every subproblem, t set to its largest feasible
+// value, at most 100 Ipopt iterations each), and the usable result with the largest t is kept:
+// a local solver alone stops on locally optimal pieces that the global front dominates (ZDT3).
 //
 // Example:
 //   pkmopt::NbiOptions options;
@@ -17,6 +21,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +37,8 @@ struct NbiOptions {
   bool equality_form = false;  ///< Das & Dennis' equality constraints instead of the relaxed form
   IpoptOptions ipopt;          ///< for every subproblem
   std::vector<double> start;   ///< first start point; empty = default_start()
+  std::size_t global_starts = 2;  ///< extra Latin-hypercube starts per subproblem
+  std::uint64_t seed = 1;         ///< seeds the Latin hypercubes (anchors and subproblems)
 
   std::optional<std::string> validate() const;
 };
