@@ -9,6 +9,9 @@ namespace pkmopt::cli {
 void add_analyze_command(CLI::App& app);
 void add_fk_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_calibrate_command(CLI::App& app);
+void add_simulate_measurements_command(CLI::App& app);
+void add_calibration_poses_command(CLI::App& app);
 void add_workspace_command(CLI::App& app);
 
 }  // namespace pkmopt::cli

@@ -16,6 +16,9 @@ int main(int argc, char** argv) {
   pkmopt::cli::add_analyze_command(app);
   pkmopt::cli::add_fk_command(app);
   pkmopt::cli::add_run_command(app);
+  pkmopt::cli::add_calibrate_command(app);
+  pkmopt::cli::add_simulate_measurements_command(app);
+  pkmopt::cli::add_calibration_poses_command(app);
   pkmopt::cli::add_workspace_command(app);
   try {
     app.parse(argc, argv);
