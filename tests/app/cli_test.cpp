@@ -12,24 +12,15 @@
 
 #include "app/csv.hpp"
 #include "models/hexapod.hpp"
+#include "tests/cli_runner.hpp"
 #include "tests/sample_machines.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using cli_runner::CliRun;
+using cli_runner::read_text;
 
 class Cli : public ::testing::Test {
  protected:
@@ -51,19 +42,7 @@ class Cli : public ::testing::Test {
     return (dir_ / name).string();
   }
 
-  CliRun run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(PKMOPT_CLI) + " " + args + " >" + out.string() + " 2>" +
-                            err.string() + " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    CliRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, args); }
 
   // A bad-input run: status 2, one line on stderr containing `fragment`, no output file and
   // no temporary left in the folder.

@@ -14,23 +14,14 @@
 
 #include "app/machine_file.hpp"
 #include "models/workspace/workspace.hpp"
+#include "tests/cli_runner.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct CliRun {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
+using cli_runner::CliRun;
+using cli_runner::read_text;
 
 class WorkspaceCli : public ::testing::Test {
  protected:
@@ -44,19 +35,7 @@ class WorkspaceCli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CliRun run(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(PKMOPT_CLI) + " workspace " + args + " >" + out.string() +
-                            " 2>" + err.string() + " </dev/null";
-    const int raw = std::system(cmd.c_str());
-    CliRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
+  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, "workspace " + args); }
 
   void expect_input_error(const std::string& args, const std::string& fragment) {
     const fs::path out_dir = dir_ / "result";
