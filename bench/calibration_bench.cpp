@@ -4,23 +4,13 @@
 // instead of the one from the identification SVD.
 #include <benchmark/benchmark.h>
 
+#include "models/sample_machines.hpp"
 #include "problems/calibration.hpp"
 
 namespace {
 
 pkmopt::HexapodDesign bench_hexapod() {
-  using pkmopt::deg_to_rad;
-  pkmopt::HexapodDesign design =
-      pkmopt::semi_regular_hexapod(0.60, deg_to_rad(20.0), 0.25, deg_to_rad(20.0));
-  design.min_length = 0.70;
-  design.max_length = 1.15;
-  design.stiffness.E = 2.1e11;
-  design.stiffness.area = 3e-4;
-  design.stiffness.actuator_stiffness = 2e8;
-  design.joints.base_max_angle = deg_to_rad(45.0);
-  design.joints.platform_max_angle = deg_to_rad(45.0);
-  design.tcp = Eigen::Vector3d(0, 0, -0.10);
-  return design;
+  return pkmopt::sample_machines::conventions_hexapod_design();
 }
 
 void run(benchmark::State& state, bool covariance,

@@ -10,6 +10,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "models/sample_machines.hpp"
+
 namespace pkmopt {
 namespace {
 
@@ -119,15 +121,7 @@ std::vector<Pose> cylinder_task_poses(const Eigen::Vector3d& centre, double radi
 }
 
 HexapodDesignSpec::HexapodDesignSpec() {
-  machine_template = semi_regular_hexapod(0.60, deg_to_rad(20), 0.25, deg_to_rad(20));
-  machine_template.min_length = 0.70;
-  machine_template.max_length = 1.15;
-  machine_template.stiffness.E = 2.1e11;
-  machine_template.stiffness.area = 3.0e-4;
-  machine_template.stiffness.actuator_stiffness = 2.0e8;
-  machine_template.joints.base_max_angle = deg_to_rad(45);
-  machine_template.joints.platform_max_angle = deg_to_rad(45);
-  machine_template.tcp = {0, 0, -0.10};
+  machine_template = sample_machines::conventions_hexapod_design();
   const std::array<double, kNumDesignParameters> values = {
       0.60, 0.25, deg_to_rad(20), deg_to_rad(20), 0.70, 0.45, 0.0};
   for (int i = 0; i < kNumDesignParameters; ++i) parameters[i] = {values[i], values[i]};

@@ -10,22 +10,13 @@
 #include <cmath>
 #include <numeric>
 
+#include "models/sample_machines.hpp"
+
 namespace pkmopt {
 namespace {
 
 // The sample hexapod of CONVENTIONS.md.
-HexapodDesign sample_hexapod() {
-  HexapodDesign design = semi_regular_hexapod(0.60, deg_to_rad(20.0), 0.25, deg_to_rad(20.0));
-  design.min_length = 0.70;
-  design.max_length = 1.15;
-  design.stiffness.E = 2.1e11;
-  design.stiffness.area = 3e-4;
-  design.stiffness.actuator_stiffness = 2e8;
-  design.joints.base_max_angle = deg_to_rad(45.0);
-  design.joints.platform_max_angle = deg_to_rad(45.0);
-  design.tcp = Eigen::Vector3d(0, 0, -0.10);
-  return design;
-}
+HexapodDesign sample_hexapod() { return sample_machines::conventions_hexapod_design(); }
 
 // Readings are strokes from a 0.7 m zero length.
 CalibrationVector sample_nominal(const HexapodDesign& design) {
