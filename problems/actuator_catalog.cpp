@@ -1,0 +1,99 @@
+#include "problems/actuator_catalog.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <tuple>
+
+namespace pkmopt {
+namespace {
+
+bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+
+// Sort key of an entry: cost (or force rating when the catalog has no costs), force, stroke.
+std::tuple<double, double, double> order_key(const ActuatorEntry& e, bool use_cost) {
+  return {use_cost ? e.cost.value_or(std::numeric_limits<double>::infinity()) : e.max_force,
+          e.max_force, e.stroke};
+}
+
+}  // namespace
+
+std::string check_actuator_catalog(const ActuatorCatalog& catalog) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < catalog.entries.size(); ++i) {
+    const ActuatorEntry& e = catalog.entries[i];
+    const std::string where = fmt::format("entry {} ({})", i, e.name.empty() ? "unnamed" : e.name);
+    if (e.name.empty()) return where + ": name: expected a non-empty name";
+    if (!names.insert(e.name).second)
+      return where + ": name: expected a unique name, found a repeat";
+    if (!positive(e.max_force))
+      return fmt::format("{}: max_force: expected a number > 0, found {}", where, e.max_force);
+    if (!positive(e.stroke))
+      return fmt::format("{}: stroke: expected a number > 0, found {}", where, e.stroke);
+    if (!positive(e.max_speed))
+      return fmt::format("{}: max_speed: expected a number > 0, found {}", where, e.max_speed);
+    const std::pair<const char*, const std::optional<double>*> optional_values[] = {
+        {"accuracy", &e.accuracy}, {"stiffness", &e.stiffness}, {"cost", &e.cost}};
+    for (const auto& [key, value] : optional_values) {
+      if (*value && !positive(**value))
+        return fmt::format("{}: {}: expected a number > 0, found {}", where, key, **value);
+    }
+  }
+  return {};
+}
+
+bool carries(const ActuatorEntry& entry, const ActuatorRequirement& need) {
+  return entry.max_force >= need.force && entry.stroke >= need.stroke &&
+         entry.max_speed >= need.speed;
+}
+
+ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorRequirement& need) {
+  bool any_cost = false;
+  for (const ActuatorEntry& e : catalog.entries) any_cost = any_cost || e.cost.has_value();
+  ActuatorChoice choice;
+  for (const ActuatorEntry& e : catalog.entries) {
+    if (!carries(e, need)) continue;
+    if (choice.entry == nullptr || order_key(e, any_cost) < order_key(*choice.entry, any_cost)) {
+      choice.entry = &e;
+    }
+  }
+  if (choice.entry != nullptr) {
+    choice.force_reserve = need.force > 0.0 ? choice.entry->max_force / need.force
+                                            : std::numeric_limits<double>::infinity();
+    return choice;
+  }
+  double best_force = 0.0, best_stroke = 0.0, best_speed = 0.0;
+  for (const ActuatorEntry& e : catalog.entries) {
+    best_force = std::max(best_force, e.max_force);
+    best_stroke = std::max(best_stroke, e.stroke);
+    best_speed = std::max(best_speed, e.max_speed);
+  }
+  if (catalog.entries.empty()) {
+    choice.reason = "the catalog has no entries";
+  } else if (best_force < need.force) {
+    choice.reason = fmt::format("force {:.6g} N exceeds the strongest entry ({:.6g} N)", need.force,
+                                best_force);
+  } else if (best_stroke < need.stroke) {
+    choice.reason = fmt::format("stroke {:.6g} m exceeds the longest entry ({:.6g} m)", need.stroke,
+                                best_stroke);
+  } else if (best_speed < need.speed) {
+    choice.reason = fmt::format("speed {:.6g} m/s exceeds the fastest entry ({:.6g} m/s)",
+                                need.speed, best_speed);
+  } else {
+    choice.reason = fmt::format(
+        "no single entry has force >= {:.6g} N, stroke >= {:.6g} m and speed >= {:.6g} m/s",
+        need.force, need.stroke, need.speed);
+  }
+  return choice;
+}
+
+const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name) {
+  for (const ActuatorEntry& e : catalog.entries) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,76 @@
+// Actuator catalogs: the linear drives a leg can be built from, and the choice of the entry
+// that carries a load.
+//
+// An entry is one orderable variant: a name ("SEW CMS63S/200"), the drive type, the largest
+// continuous axial force it carries (N), its stroke (m), maximum speed (m/s) and, when known,
+// positioning accuracy (m), axial stiffness (N/m) and a relative cost (any positive unit; when
+// no entry of a catalog has one, the force rating orders the entries: a stronger drive of the
+// same family is the bigger, dearer one).
+//
+//   const ActuatorCatalog catalog = ...;               // e.g. app/actuator_catalog_file
+//   ActuatorRequirement need{.force = 6633.0, .stroke = 0.18};
+//   const ActuatorChoice choice = choose_actuator(catalog, need);
+//   if (choice.entry) ... choice.entry->name, choice.force_reserve ...
+//
+// `carries(entry, need)`: max_force >= need.force, stroke >= need.stroke, max_speed >=
+// need.speed (each requirement optional: 0 means none). The cheapest carrying entry wins; ties
+// go to the smaller force rating, then the shorter stroke, then the catalog order.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace pkmopt {
+
+struct ActuatorEntry {
+  std::string name;
+  std::string type;                 ///< e.g. electric_cylinder, linear_motor, hydraulic
+  double max_force = 0.0;           ///< N
+  double stroke = 0.0;              ///< m
+  double max_speed = 0.0;           ///< m/s
+  std::optional<double> accuracy;   ///< m, positioning accuracy (repeatability) if known
+  std::optional<double> stiffness;  ///< N/m, axial stiffness if known
+  std::optional<double> cost;       ///< relative cost if known
+};
+
+/// Typical figures of a drive type (ranges; for comparison tables, not for sizing).
+struct DriveType {
+  std::string name;
+  double speed_min = 0.0, speed_max = 0.0;        ///< m/s
+  double accuracy_min = 0.0, accuracy_max = 0.0;  ///< m (best .. worst)
+  std::string note;
+};
+
+struct ActuatorCatalog {
+  std::string name;
+  std::vector<ActuatorEntry> entries;
+  std::vector<DriveType> drive_types;
+};
+
+/// What one leg must do (0 = no requirement).
+struct ActuatorRequirement {
+  double force = 0.0;   ///< N, largest |axial force| over the task
+  double stroke = 0.0;  ///< m, max_length - min_length
+  double speed = 0.0;   ///< m/s
+};
+
+struct ActuatorChoice {
+  const ActuatorEntry* entry = nullptr;  ///< null when no entry carries the requirement
+  double force_reserve = 0.0;            ///< max_force / need.force (inf when no force need)
+  std::string reason;                    ///< when entry is null: the closest miss
+};
+
+/// Empty when usable: every entry named, finite positive force, stroke and speed, optional
+/// values finite and positive, names unique; otherwise what is wrong.
+std::string check_actuator_catalog(const ActuatorCatalog& catalog);
+
+bool carries(const ActuatorEntry& entry, const ActuatorRequirement& need);
+
+/// The cheapest entry that carries `need` (see the header comment for the order).
+ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorRequirement& need);
+
+/// The entry named `name`, or null.
+const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name);
+
+}  // namespace pkmopt

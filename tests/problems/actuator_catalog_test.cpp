@@ -1,0 +1,94 @@
+// Tests of problems/actuator_catalog: which entry carries a load, the order of choice, and
+// the checks of a catalog.
+#include "problems/actuator_catalog.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace pkmopt {
+namespace {
+
+// The seeds' electro-cylinders (SEW CMS50S / CMS63S / CMS71L), one entry per stroke.
+ActuatorCatalog seeds_catalog() {
+  ActuatorCatalog c;
+  c.name = "sew-cms";
+  c.entries = {{"CMS50S/70", "electric_cylinder", 5300, 0.070, 0.375, {}, {}, {}},
+               {"CMS50S/150", "electric_cylinder", 5300, 0.150, 0.375, {}, {}, {}},
+               {"CMS50S/300", "electric_cylinder", 5300, 0.300, 0.375, {}, {}, {}},
+               {"CMS63S/100", "electric_cylinder", 10500, 0.100, 0.45, {}, {}, {}},
+               {"CMS63S/200", "electric_cylinder", 10500, 0.200, 0.45, {}, {}, {}},
+               {"CMS71L/200", "electric_cylinder", 20000, 0.200, 0.5, {}, {}, {}},
+               {"CMS71L/350", "electric_cylinder", 17000, 0.350, 0.5, {}, {}, {}}};
+  return c;
+}
+
+TEST(ActuatorCatalog, ChoosesTheSmallestDriveThatCarriesTheLoad) {
+  const ActuatorCatalog catalog = seeds_catalog();
+  EXPECT_EQ(check_actuator_catalog(catalog), "");
+  // The lathe's turning load (6633 N) over a 180 mm stroke: CMS50S is too weak, CMS63S/200 fits.
+  ActuatorChoice choice = choose_actuator(catalog, {6633.0, 0.18, 0.0});
+  ASSERT_NE(choice.entry, nullptr);
+  EXPECT_EQ(choice.entry->name, "CMS63S/200");
+  EXPECT_NEAR(choice.force_reserve, 10500.0 / 6633.0, 1e-15);
+  // A light load with a short stroke: the shortest CMS50S.
+  choice = choose_actuator(catalog, {2000.0, 0.05, 0.3});
+  ASSERT_NE(choice.entry, nullptr);
+  EXPECT_EQ(choice.entry->name, "CMS50S/70");
+  // 300 mm stroke and 8 kN: only CMS71L/350 (17000 N) has both.
+  choice = choose_actuator(catalog, {8000.0, 0.30, 0.0});
+  ASSERT_NE(choice.entry, nullptr);
+  EXPECT_EQ(choice.entry->name, "CMS71L/350");
+  // 18 kN with 300 mm: none (the long CMS71L is rated 17 kN, the strong one is short).
+  choice = choose_actuator(catalog, {18000.0, 0.30, 0.0});
+  EXPECT_EQ(choice.entry, nullptr);
+  EXPECT_EQ(choice.reason,
+            "no single entry has force >= 18000 N, stroke >= 0.3 m and speed >= 0 m/s");
+  choice = choose_actuator(catalog, {25000.0, 0.1, 0.0});
+  EXPECT_EQ(choice.entry, nullptr);
+  EXPECT_EQ(choice.reason, "force 25000 N exceeds the strongest entry (20000 N)");
+  choice = choose_actuator(catalog, {1000.0, 0.1, 0.6});
+  EXPECT_EQ(choice.reason, "speed 0.6 m/s exceeds the fastest entry (0.5 m/s)");
+  choice = choose_actuator(catalog, {0.0, 0.1, 0.0});
+  ASSERT_NE(choice.entry, nullptr);
+  EXPECT_EQ(choice.force_reserve, std::numeric_limits<double>::infinity());
+}
+
+TEST(ActuatorCatalog, CostsOrderTheChoiceWhenGiven) {
+  ActuatorCatalog catalog = seeds_catalog();
+  // Suppose the CMS71L/200 were on offer cheaper than the CMS63S/200.
+  for (auto& e : catalog.entries) e.cost = e.max_force / 1000.0;
+  catalog.entries[5].cost = 5.0;
+  const ActuatorChoice choice = choose_actuator(catalog, {6633.0, 0.18, 0.0});
+  ASSERT_NE(choice.entry, nullptr);
+  EXPECT_EQ(choice.entry->name, "CMS71L/200");
+  EXPECT_EQ(find_actuator(catalog, "CMS63S/100"), &catalog.entries[3]);
+  EXPECT_EQ(find_actuator(catalog, "CMS99"), nullptr);
+}
+
+TEST(ActuatorCatalog, CarriesChecksEveryRequirement) {
+  const ActuatorEntry e{"x", "electric_cylinder", 100.0, 0.2, 0.5, {}, {}, {}};
+  EXPECT_TRUE(carries(e, {100.0, 0.2, 0.5}));
+  EXPECT_FALSE(carries(e, {100.1, 0.2, 0.5}));
+  EXPECT_FALSE(carries(e, {100.0, 0.21, 0.5}));
+  EXPECT_FALSE(carries(e, {100.0, 0.2, 0.51}));
+}
+
+TEST(ActuatorCatalog, CheckNamesTheBadEntry) {
+  ActuatorCatalog catalog = seeds_catalog();
+  catalog.entries[2].stroke = -0.1;
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "entry 2 (CMS50S/300): stroke: expected a number > 0, found -0.1");
+  catalog = seeds_catalog();
+  catalog.entries[1].name = "CMS50S/70";
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "entry 1 (CMS50S/70): name: expected a unique name, found a repeat");
+  catalog = seeds_catalog();
+  catalog.entries[0].stiffness = std::nan("");
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "entry 0 (CMS50S/70): stiffness: expected a number > 0, found nan");
+}
+
+}  // namespace
+}  // namespace pkmopt
