@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   pkmopt::cli::add_analyze_command(app);
   pkmopt::cli::add_fk_command(app);
+  pkmopt::cli::add_describe_command(app);
   pkmopt::cli::add_run_command(app);
   pkmopt::cli::add_calibrate_command(app);
   pkmopt::cli::add_simulate_measurements_command(app);
