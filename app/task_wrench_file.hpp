@@ -15,8 +15,9 @@
 //     feed_direction: [1, 0, 0]               # base x-y plane; default [1, 0, 0]
 //
 // The turning force on the tool is Rot(rotation) Rx(approach) (P_x, P_y, P_z) (see
-// problems/cutting_load.hpp for the lathe frame); the milling force -F_t f + F_r (e_z x f) +
-// F_a e_z. Moments at the TCP are zero. Errors: InputError with file, line, column and key.
+// problems/cutting_load.hpp for the lathe frame), with zero moments at the TCP; the milling
+// force -F_t f + F_r (e_z x f) + F_a e_z with the cutting torque -F_t D_c / 2 e_z.
+// Errors: InputError with file, line, column and key.
 #pragma once
 
 #include <string>

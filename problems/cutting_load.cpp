@@ -108,6 +108,7 @@ MillingLoad milling_load(const MillingConditions& c) {
   load.tangential = 60000.0 * load.power_kw / c.cutting_speed;
   load.radial = c.radial_ratio * load.tangential;
   load.axial = c.axial_ratio * load.tangential;
+  load.spindle_torque = load.tangential * c.cutter_diameter_mm / 2000.0;
   return load;
 }
 
@@ -123,6 +124,7 @@ Wrench milling_wrench(const MillingLoad& load, const Eigen::Vector3d& feed_direc
   const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(f);
   Wrench w = Wrench::Zero();
   w.head<3>() = -load.tangential * f + load.radial * across + load.axial * Eigen::Vector3d::UnitZ();
+  w(5) = -load.spindle_torque;
   return w;
 }
 

@@ -34,8 +34,11 @@
 //   mean tangential force F_t = 60000 P_c / v_c                              N
 //                        (the tangential force at the cutter rim that needs P_c)
 //   F_r = radial_ratio F_t, F_a = axial_ratio F_t                            N
+//   spindle torque       M_c = F_t D_c / 2000                                N*m
 // The milling wrench on the tool (base axes, at the TCP, tool axis along base z, feed along
-// the unit vector f in the base x-y plane): F = -F_t f + F_r (e_z x f) + F_a e_z, moments 0.
+// the unit vector f in the base x-y plane): F = -F_t f + F_r (e_z x f) + F_a e_z, and the
+// cutting torque reacted by the spindle housing on the platform, M = -M_c e_z (spindle turning
+// positively about +z; the cut resists the rotation).
 // (A representative mean load: the tangential force resists the feed, the radial force acts
 // across it, the axial force pushes the tool back along its axis.)
 #pragma once
@@ -116,6 +119,7 @@ struct MillingLoad {
   double tangential = 0.0;           ///< F_t, N
   double radial = 0.0;               ///< F_r, N
   double axial = 0.0;                ///< F_a, N
+  double spindle_torque = 0.0;       ///< M_c, N*m
 };
 
 /// Empty when the conditions are usable; otherwise what is wrong.
@@ -126,7 +130,7 @@ MillingLoad milling_load(const MillingConditions& c);
 
 /// The wrench on the tool at the TCP (base axes) for a cut fed along `feed_direction` (any
 /// non-zero vector in the base x-y plane; normalised here), tool axis along base z:
-/// F = -F_t f + F_r (e_z x f) + F_a e_z, zero moments. Throws std::invalid_argument for a
+/// F = -F_t f + F_r (e_z x f) + F_a e_z, moment -M_c e_z. Throws std::invalid_argument for a
 /// feed direction that is zero, non-finite or not in the x-y plane.
 Wrench milling_wrench(const MillingLoad& load, const Eigen::Vector3d& feed_direction);
 

@@ -74,6 +74,7 @@ TEST(TaskWrenchFile, Milling) {
   EXPECT_NEAR(w.wrench(1), -F_t, 1e-9 * F_t);        // against the feed (+y)
   EXPECT_NEAR(w.wrench(0), -0.3 * F_t, 1e-9 * F_t);  // e_z x e_y = -e_x
   EXPECT_NEAR(w.wrench(2), 0.2 * F_t, 1e-9 * F_t);
+  EXPECT_NEAR(w.wrench(5), -F_t * 0.063 / 2.0, 1e-9 * F_t);  // cutting torque, N*m
   EXPECT_EQ(w.origin.rfind("milling: n 1112 rev/min", 0), 0u) << w.origin;
 }
 

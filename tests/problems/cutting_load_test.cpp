@@ -147,7 +147,8 @@ TEST(MillingLoad, WrenchDirections) {
   EXPECT_NEAR(w(0), -load.tangential, 1e-12);
   EXPECT_NEAR(w(1), load.radial, 1e-12);
   EXPECT_NEAR(w(2), load.axial, 1e-12);
-  EXPECT_EQ(w.tail<3>(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(w.tail<3>(), Eigen::Vector3d(0.0, 0.0, -load.spindle_torque));
+  EXPECT_NEAR(load.spindle_torque, load.tangential * 0.063 / 2.0, 1e-12);
   const Wrench turned = milling_wrench(load, Eigen::Vector3d(0.0, -1.0, 0.0));
   EXPECT_NEAR(turned(0), load.radial, 1e-12);
   EXPECT_NEAR(turned(1), load.tangential, 1e-12);
