@@ -27,7 +27,7 @@ double read_or(const YamlValue& map, std::string_view key, double fallback) {
 }
 
 TaskWrench read_turning(const YamlValue& root) {
-  root.check_keys({"turning", "approach_angle_deg", "rotation_deg"});
+  root.check_keys({"turning", "approach_angle_deg", "rotation_deg", "factor"});
   const YamlValue t = root.required("turning");
   t.check_keys({"diameter_mm", "depth_mm", "feed_mm_per_rev", "tool_life_min", "C_v", "x_v", "y_v",
                 "m", "K_v", "C_p", "x_p", "y_p", "n_p", "K_p", "radial_ratio", "axial_ratio"});
@@ -80,7 +80,7 @@ TaskWrench read_turning(const YamlValue& root) {
 }
 
 TaskWrench read_milling(const YamlValue& root) {
-  root.check_keys({"milling", "feed_direction"});
+  root.check_keys({"milling", "feed_direction", "factor"});
   const YamlValue m = root.required("milling");
   m.check_keys({"cutter_diameter_mm", "teeth", "cutting_speed", "feed_per_tooth_mm", "width_mm",
                 "depth_mm", "lead_angle_deg", "k_c1", "m_c", "radial_ratio", "axial_ratio"});
@@ -133,8 +133,16 @@ TaskWrench read_task_wrench(const YamlValue& value) {
   if (!value.is_map()) {
     value.fail("a list of 6 numbers or a map with 'turning' or 'milling'", value.describe());
   }
-  if (value.has("turning")) return read_turning(value);
-  if (value.has("milling")) return read_milling(value);
+  if (value.has("turning") || value.has("milling")) {
+    TaskWrench result = value.has("turning") ? read_turning(value) : read_milling(value);
+    if (const auto f = value.optional("factor")) {
+      const double factor = f->as_double();
+      if (!(factor > 0.0 && factor <= 100.0)) f->fail("a number in (0, 100]", f->describe());
+      result.wrench *= factor;
+      result.origin += fmt::format(", times factor {:g}", factor);
+    }
+    return result;
+  }
   value.fail("a list of 6 numbers or a map with 'turning' or 'milling'", value.describe());
 }
 

@@ -13,6 +13,8 @@
 //               width_mm: 40, depth_mm: 3, lead_angle_deg: 90, k_c1: 1700, m_c: 0.25,
 //               radial_ratio: 0.3, axial_ratio: 0.2}        # lead angle, m_c, ratios optional
 //     feed_direction: [1, 0, 0]               # base x-y plane; default [1, 0, 0]
+//     factor: 1.8                              # optional, both models: a design factor (wear,
+//                                              # interrupted cut) multiplying the wrench
 //
 // The turning force on the tool is Rot(rotation) Rx(approach) (P_x, P_y, P_z) (see
 // problems/cutting_load.hpp for the lathe frame), with zero moments at the TCP; the milling

@@ -76,6 +76,16 @@ TEST(TaskWrenchFile, Milling) {
   EXPECT_NEAR(w.wrench(2), 0.2 * F_t, 1e-9 * F_t);
   EXPECT_NEAR(w.wrench(5), -F_t * 0.063 / 2.0, 1e-9 * F_t);  // cutting torque, N*m
   EXPECT_EQ(w.origin.rfind("milling: n 1112 rev/min", 0), 0u) << w.origin;
+  const TaskWrench doubled = read(
+      "wrench:\n"
+      "  milling: {cutter_diameter_mm: 63, teeth: 5, cutting_speed: 220, feed_per_tooth_mm: "
+      "0.15,\n"
+      "            width_mm: 63, depth_mm: 3, k_c1: 1700}\n"
+      "  feed_direction: [0, 1, 0]\n  factor: 2\n");
+  EXPECT_TRUE(doubled.wrench.isApprox(2.0 * w.wrench, 1e-15));
+  EXPECT_EQ(doubled.origin, w.origin + ", times factor 2");
+  EXPECT_EQ(error_of(kSeedsTurning + "  factor: 0\n"),
+            "study.yaml:5:11: wrench.factor: expected a number in (0, 100], found '0'");
 }
 
 TEST(TaskWrenchFile, BadInputGivesExactMessages) {
@@ -95,7 +105,7 @@ TEST(TaskWrenchFile, BadInputGivesExactMessages) {
             "study.yaml:5:23: wrench.approach_angle_deg: expected a finite number, found 'steep'");
   EXPECT_EQ(error_of(kSeedsTurning + "  spin: 1\n"),
             "study.yaml:5:3: wrench.spin: unknown key 'spin'; allowed keys here: turning, "
-            "approach_angle_deg, rotation_deg");
+            "approach_angle_deg, rotation_deg, factor");
   EXPECT_EQ(error_of("wrench:\n  milling: {cutter_diameter_mm: 63, teeth: 5, cutting_speed: "
                      "220, feed_per_tooth_mm: 0.1, width_mm: 80, depth_mm: 3, k_c1: 1700}\n"),
             "study.yaml:2:101: wrench.milling.width_mm: expected at most cutter_diameter_mm "
