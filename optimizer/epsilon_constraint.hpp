@@ -7,14 +7,19 @@
 // values between the anchors (plus the two anchors, `points` in all). More objectives: a grid
 // of q = max(2, floor(points^(1/(m-1)))) values z_j + k (N_j - z_j) / q, k = 1..q, per other
 // objective, visited in serpentine order. Each subproblem starts from the previous successful
-// solution (continuation along the front). Subproblems that fail (Ipopt not converged,
-// infeasible result) are counted and skipped; solutions dominated by another one (inactive or
-// redundant epsilon bounds, gaps of a disconnected front) are counted and dropped.
-// Each subproblem is also solved from the anchors of the other objectives and from
-// `global_starts` Latin-hypercube points of the design
-// space (seeded by `seed`, the same points for every subproblem, at most 100 Ipopt iterations
-// each), and the usable result with the lowest primary objective is kept: a local solver
-// alone stops on locally optimal pieces that the global front dominates (ZDT3).
+// solution (continuation along the front). Extra starts are spent only when that solve fails,
+// lands on a point a known one weakly dominates (within 1e-5 of the ranges), or jumps (lands
+// farther than 3 grid steps from the previous result, in objectives scaled by the ranges): then
+// the subproblem is also solved from 3 points on the design-space segment between the previous
+// and the new result (a piece of a disconnected front the continuation skipped lies between
+// them), from the anchors, and from `global_starts` Latin-hypercube points (seeded by `seed`, at
+// most 100 Ipopt iterations each); the usable result with the lowest f_p is kept. A repair pass
+// then re-solves every subproblem whose result (or failure) a known point beats, i.e. a point
+// satisfying its epsilon bounds with a lower f_p (typically the neighbour with the tighter
+// bound): this moves results stuck on dominated pieces (ZDT3) and gives failed subproblems a
+// feasible start. Subproblems with no feasible point are counted as failed; results that a kept
+// one weakly dominates within 1e-5 of the ranges (levels in a gap of the front repeat the end of
+// the piece before the gap; inactive bounds) are counted as dominated and dropped.
 //
 // Example:
 //   pkmopt::EpsilonConstraintOptions options;
@@ -39,7 +44,7 @@ struct EpsilonConstraintOptions {
   std::size_t primary_objective = 0;  ///< p, 0-based
   IpoptOptions ipopt;                 ///< for every subproblem
   std::vector<double> start;          ///< first start point; empty = default_start()
-  std::size_t global_starts = 2;      ///< extra Latin-hypercube starts per subproblem
+  std::size_t global_starts = 2;      ///< Latin-hypercube starts per restarted subproblem
   std::uint64_t seed = 1;             ///< seeds the Latin hypercubes (anchors and subproblems)
 
   std::optional<std::string> validate() const;

@@ -1,10 +1,12 @@
 #include "optimizer/indicators.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <limits>
 #include <map>
+#include <memory_resource>
 #include <numeric>
 #include <stdexcept>
 
@@ -19,8 +21,10 @@ void check_dimensions(const ObjectiveSet& points, std::size_t m, const char* wha
       throw std::invalid_argument(std::string(what) + ": objective vectors differ in size");
 }
 
-// Points (already strictly inside the reference box and non-dominated) in two objectives.
-double hypervolume_2d(ObjectiveSet points, const std::vector<double>& reference) {
+// Two objectives, points flattened as (f_1, f_2) pairs strictly inside the reference box, not
+// necessarily non-dominated: sorted lexicographically, a point adds a slab only when its f_2
+// is below every f_2 seen before (dominated points and duplicates add nothing).
+double hypervolume_2d_flat(std::vector<std::array<double, 2>>& points, const double* reference) {
   std::sort(points.begin(), points.end());
   double volume = 0.0;
   double previous_second = reference[1];
@@ -33,32 +37,44 @@ double hypervolume_2d(ObjectiveSet points, const std::vector<double>& reference)
   return volume;
 }
 
-// Sweep in f_3; the staircase of (f_1, f_2) seen so far lives in a map f_1 -> f_2 with f_2
-// strictly decreasing in f_1, and its area is updated incrementally.
-double hypervolume_3d(ObjectiveSet points, const std::vector<double>& reference) {
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a[2] < b[2]; });
-  std::map<double, double> staircase;
+// Three objectives: the dimension sweep of Beume, Fonseca, Lopez-Ibanez, Paquete & Vahrenhold
+// (2009, IEEE TEC 13(5)), O(N log N). Points (strictly inside the reference box, dominated ones
+// and duplicates allowed) are visited in increasing f_3 (ties: lexicographic in f_1, f_2, so a
+// point that weakly dominates another comes first). The 2-D staircase of the (f_1, f_2)
+// projections seen so far is a balanced tree f_1 -> f_2 (f_2 strictly decreasing in f_1) whose
+// dominated area A is updated incrementally; between consecutive f_3 values the volume grows
+// by A times the f_3 step. A point whose projection the staircase weakly dominates is skipped;
+// otherwise the entries it dominates are removed and A grows by the uncovered part of the box
+// [p_1, r_1] x [p_2, r_2]. Tree nodes come from one arena (no allocation per point).
+double hypervolume_3d_flat(std::vector<std::array<double, 3>>& points, const double* reference) {
+  if (points.empty()) return 0.0;
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
+    if (a[2] != b[2]) return a[2] < b[2];
+    if (a[0] != b[0]) return a[0] < b[0];
+    return a[1] < b[1];
+  });
+  // Each tree node holds two doubles plus the red-black links: 64 bytes covers it.
+  std::pmr::monotonic_buffer_resource arena(points.size() * 64 + 256);
+  std::pmr::map<double, double> staircase(&arena);
   double area = 0.0;
   double volume = 0.0;
-  double previous_third = points.empty() ? reference[2] : points.front()[2];
+  double previous_third = points.front()[2];
   for (const auto& p : points) {
     volume += area * (p[2] - previous_third);
     previous_third = p[2];
     const double x = p[0];
     const double y = p[1];
-    // Dominated in (f_1, f_2) by an entry with f_1 <= x?
-    auto after = staircase.upper_bound(x);  // first entry with f_1 > x
-    double height_before = reference[1];    // staircase height just left of x
-    if (after != staircase.begin()) {
-      const auto at_or_before = std::prev(after);
-      if (at_or_before->second <= y) continue;
-      height_before = at_or_before->second;
+    auto it = staircase.lower_bound(x);  // first entry with f_1 >= x
+    if (it != staircase.end() && it->first == x && it->second <= y) continue;  // covered
+    double height = reference[1];  // staircase height just left of x
+    if (it != staircase.begin()) {
+      const auto before = std::prev(it);
+      if (before->second <= y) continue;  // weakly dominated
+      height = before->second;
     }
     // Entries with f_1 >= x and f_2 >= y are now dominated: remove them, adding the area
     // between their steps and the new height y.
-    auto it = staircase.lower_bound(x);
     double left = x;
-    double height = height_before;
     while (it != staircase.end() && it->second >= y) {
       area += (it->first - left) * (height - y);
       left = it->first;
@@ -67,10 +83,23 @@ double hypervolume_3d(ObjectiveSet points, const std::vector<double>& reference)
     }
     const double right = it == staircase.end() ? reference[0] : it->first;
     area += (right - left) * (height - y);
-    staircase[x] = y;
+    staircase.emplace_hint(it, x, y);
   }
   volume += area * (reference[2] - previous_third);
   return volume;
+}
+
+double hypervolume_3d(const ObjectiveSet& points, const std::vector<double>& reference) {
+  std::vector<std::array<double, 3>> flat(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    flat[k] = {points[k][0], points[k][1], points[k][2]};
+  return hypervolume_3d_flat(flat, reference.data());
+}
+
+double hypervolume_2d(const ObjectiveSet& points, const std::vector<double>& reference) {
+  std::vector<std::array<double, 2>> flat(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) flat[k] = {points[k][0], points[k][1]};
+  return hypervolume_2d_flat(flat, reference.data());
 }
 
 double hypervolume_nondominated(ObjectiveSet points, const std::vector<double>& reference);
@@ -110,9 +139,9 @@ double hypervolume_nondominated(ObjectiveSet points, const std::vector<double>& 
     case 1:
       return reference[0] - points.front()[0];
     case 2:
-      return hypervolume_2d(std::move(points), reference);
+      return hypervolume_2d(points, reference);
     case 3:
-      return hypervolume_3d(std::move(points), reference);
+      return hypervolume_3d(points, reference);
     default:
       return hypervolume_wfg(std::move(points), reference);
   }
@@ -126,19 +155,37 @@ double hypervolume(const ObjectiveSet& points, const std::vector<double>& refere
   check_dimensions(points, m, "hypervolume");
   for (double r : reference)
     if (!std::isfinite(r)) throw std::invalid_argument("hypervolume: non-finite reference point");
-  ObjectiveSet inside;
-  for (const auto& p : points) {
-    bool strictly_inside = true;
-    for (std::size_t i = 0; i < m; ++i) strictly_inside = strictly_inside && p[i] < reference[i];
-    if (strictly_inside) inside.push_back(p);
+  // Two and three objectives: straight to the sweeps, which skip dominated points and
+  // duplicates themselves (no O(N^2) filtering).
+  auto strictly_inside = [&](const std::vector<double>& p) {
+    for (std::size_t i = 0; i < m; ++i)
+      if (!(p[i] < reference[i])) return false;  // also drops NaN
+    return true;
+  };
+  if (m == 2) {
+    std::vector<std::array<double, 2>> flat;
+    flat.reserve(points.size());
+    for (const auto& p : points)
+      if (strictly_inside(p)) flat.push_back({p[0], p[1]});
+    return hypervolume_2d_flat(flat, reference.data());
   }
-  ObjectiveSet front;
+  if (m == 3) {
+    std::vector<std::array<double, 3>> flat;
+    flat.reserve(points.size());
+    for (const auto& p : points)
+      if (strictly_inside(p)) flat.push_back({p[0], p[1], p[2]});
+    return hypervolume_3d_flat(flat, reference.data());
+  }
+  ObjectiveSet inside;
+  for (const auto& p : points)
+    if (strictly_inside(p)) inside.push_back(p);
   if (m == 1) {
     if (inside.empty()) return 0.0;
     double best = inside.front()[0];
     for (const auto& p : inside) best = std::min(best, p[0]);
     return reference[0] - best;
   }
+  ObjectiveSet front;
   for (std::size_t index : non_dominated_indices(inside)) front.push_back(inside[index]);
   return hypervolume_nondominated(std::move(front), reference);
 }

@@ -3,9 +3,12 @@
 //
 // - hypervolume(A, r): the Lebesgue measure of the region dominated by A and bounded by the
 //   reference point r, { y : a <= y <= r for some a in A } (larger is better). Points with any
-//   a_i >= r_i add nothing. Exact: m = 2 by one sweep (O(N log N)), m = 3 by a sweep in f_3
-//   over a 2-D staircase kept in a balanced tree (O(N log N), Beume et al. 2009), m >= 4 by
-//   WFG's slicing recursion (While, Bradstreet & Barone 2012) down to the 3-D case.
+//   a_i >= r_i add nothing. Exact: m = 2 by one sweep (O(N log N)); m = 3 by the dimension
+//   sweep of Beume, Fonseca, Lopez-Ibanez, Paquete & Vahrenhold (2009, IEEE TEC 13(5)): in
+//   increasing f_3, the (f_1, f_2) staircase of the points seen so far is kept in a balanced
+//   tree (nodes from one arena) with its area updated incrementally, O(N log N); both sweeps
+//   skip dominated points and duplicates themselves (no O(N^2) pre-filtering). m >= 4 by WFG's
+//   slicing recursion (While, Bradstreet & Barone 2012) down to the 3-D case.
 // - igd_plus(A, Z): IGD+ of Ishibuchi et al. (2015), the mean over reference points z in Z of
 //   min_{a in A} sqrt( sum_i max(a_i - z_i, 0)^2 ) (smaller is better; 0 when A covers Z).
 // - spacing(A): Schott's spacing, the standard deviation (divisor N - 1) of the L1 distance of

@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "optimizer/anchors.hpp"
 #include "optimizer/scalarization.hpp"
@@ -69,16 +72,37 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
   const std::size_t m = problem.num_objectives();
   const std::vector<double> start = options.start.empty() ? default_start(problem) : options.start;
 
-  std::vector<std::vector<double>> xs, fitness;
-  std::size_t subproblems = 0, failed = 0, duplicates = 0;
+  std::size_t solves = 0, failed = 0, retried = 0, repaired = 0;
   const AnchorSet anchors = compute_anchors(counted, start, options.ipopt, 8, options.seed);
-  subproblems += anchors.solves;
+  solves += anchors.solves;
   failed += anchors.failed;
+  // Every point found so far (anchors, then subproblem results): x and full fitness.
+  std::vector<std::vector<double>> known_x, known_f;
   for (const AnchorPoint& anchor : anchors.points)
     if (anchor.ok) {
-      xs.push_back(anchor.x);
-      fitness.push_back(anchor.fitness);
+      known_x.push_back(anchor.x);
+      known_f.push_back(anchor.fitness);
     }
+  const std::size_t anchor_count = known_x.size();
+  std::vector<double> tolerance(m, 0.0);
+  for (std::size_t j = 0; j < m && !anchors.range.empty(); ++j)
+    tolerance[j] = 1e-5 * anchors.range[j];
+  // True when a known point weakly dominates f within `tolerance`.
+  auto covered = [&](const std::vector<std::vector<double>>& points, const std::vector<double>& f) {
+    return std::any_of(points.begin(), points.end(), [&](const auto& e) {
+      for (std::size_t j = 0; j < m; ++j)
+        if (e[j] > f[j] + tolerance[j]) return false;
+      return true;
+    });
+  };
+
+  // One lattice point: its subproblem and best result so far.
+  struct Slot {
+    std::vector<double> beta, chim;
+    std::vector<double> x, f;              // empty while no usable result is known
+    std::size_t repaired_from = SIZE_MAX;  // known point the last repair started from
+  };
+  std::vector<Slot> slots;
 
   const bool all_anchors = anchors.failed == 0;
   if (all_anchors) {
@@ -101,71 +125,178 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
     } else {
       while (simplex_lattice(m, divisions).size() < options.points) ++divisions;
     }
+    for (const std::vector<double>& beta : simplex_lattice(m, divisions)) {
+      if (std::count(beta.begin(), beta.end(), 1.0) == 1) continue;  // an anchor
+      Slot slot;
+      slot.beta = beta;
+      slot.chim.assign(m, 0.0);
+      for (std::size_t i = 0; i < m; ++i)
+        for (std::size_t j = 0; j < m; ++j) slot.chim[j] += beta[i] * phi[i][j];
+      slots.push_back(std::move(slot));
+    }
     const std::vector<std::vector<double>> global_starts =
         latin_hypercube(problem, options.global_starts, options.seed, start);
     IpoptOptions short_run = options.ipopt;
     short_run.max_iterations = std::min(options.ipopt.max_iterations, 100);
+    auto subproblem = [&](const Slot& slot) {
+      return NbiProblem(counted, anchors.ideal, anchors.range, slot.chim, normal,
+                        options.equality_form);
+    };
+    // The design x with t set to its largest feasible value for this subproblem.
+    auto with_t = [&](const NbiProblem& sub, const std::vector<double>& x,
+                      const std::vector<double>& f) {
+      std::vector<double> xt = x;
+      xt.push_back(sub.feasible_t(f));
+      return xt;
+    };
+    // a replaces b when usable with a larger t (objective -t lower beyond rounding).
+    auto better = [](const SolveResult& a, const SolveResult& b) {
+      return a.usable() &&
+             (!b.usable() || a.objective < b.objective - 1e-9 * (1.0 + std::abs(b.objective)));
+    };
+
     std::vector<double> warm = anchors.points[0].x;
-    for (const std::vector<double>& beta : simplex_lattice(m, divisions)) {
-      if (std::count(beta.begin(), beta.end(), 1.0) == 1) continue;  // an anchor
-      std::vector<double> chim(m, 0.0);
-      for (std::size_t i = 0; i < m; ++i)
-        for (std::size_t j = 0; j < m; ++j) chim[j] += beta[i] * phi[i][j];
-      NbiProblem sub(counted, anchors.ideal, anchors.range, chim, normal, options.equality_form);
-      std::vector<double> xt = warm;
-      xt.push_back(sub.feasible_t(checked_fitness(counted, warm)));
-      SolveResult solved = solve_with_ipopt(sub, xt, options.ipopt);
-      ++subproblems;
-      // A failed result is retried once from the anchor with the largest weight (continuation
-      // can trap the local solver on one piece of a disconnected front).
-      if (!solved.usable()) {
-        const std::size_t nearest =
-            static_cast<std::size_t>(std::max_element(beta.begin(), beta.end()) - beta.begin());
-        std::vector<double> restart = anchors.points[nearest].x;
-        restart.push_back(sub.feasible_t(anchors.points[nearest].fitness));
-        solved = solve_with_ipopt(sub, restart, options.ipopt);
-        ++subproblems;
+    std::vector<double> warm_f = anchors.points[0].fitness;
+    // Continuation jumped: the result is farther from the previous one than 3 lattice steps
+    // (1 / divisions, in objectives scaled by their ranges), as when the front has a gap here,
+    // or when the local solver skipped over a piece of a disconnected front.
+    auto jumped = [&](const std::vector<double>& f) {
+      double squared = 0.0;
+      for (std::size_t j = 0; j < m; ++j) {
+        const double d = (f[j] - warm_f[j]) / anchors.range[j];
+        squared += d * d;
       }
-      // Multi-start: the same subproblem from each global start point; the usable optimum
-      // with the largest t wins (a local solver otherwise stops on locally optimal pieces that
-      // the global front dominates, as on ZDT3).
-      for (const std::vector<double>& global_start : global_starts) {
-        std::vector<double> from = global_start;
-        from.push_back(sub.feasible_t(checked_fitness(counted, global_start)));
-        SolveResult other = solve_with_ipopt(sub, from, short_run);
-        ++subproblems;
-        if (other.usable() &&
-            (!solved.usable() ||
-             other.objective < solved.objective - 1e-9 * (1.0 + std::abs(solved.objective))))
-          solved = std::move(other);
+      return std::sqrt(squared) > 3.0 / static_cast<double>(divisions);
+    };
+    for (Slot& slot : slots) {
+      const NbiProblem sub = subproblem(slot);
+      SolveResult solved = solve_with_ipopt(sub, with_t(sub, warm, warm_f), options.ipopt);
+      ++solves;
+      std::vector<double> f;
+      if (solved.usable()) {
+        solved.x.pop_back();
+        f = checked_fitness(counted, solved.x);
       }
-      if (!solved.usable()) {
-        ++failed;
-        continue;
+      // Extra starts only when the warm-started solve failed, landed on a point a known one
+      // weakly dominates, or jumped (continuation trapped on, or skipping, pieces of a
+      // disconnected front): the anchors, nearest (largest weight) first, then `global_starts`
+      // Latin-hypercube points (at most 100 iterations each); the largest t wins.
+      if (!solved.usable() || covered(known_f, f) || jumped(f)) {
+        ++retried;
+        auto try_from = [&](const std::vector<double>& x, const std::vector<double>& fx,
+                            bool is_short) {
+          SolveResult other =
+              solve_with_ipopt(sub, with_t(sub, x, fx), is_short ? short_run : options.ipopt);
+          ++solves;
+          if (other.usable()) other.x.pop_back();
+          if (better(other, solved)) {
+            solved = std::move(other);
+            f = checked_fitness(counted, solved.x);
+          }
+        };
+        // After a jump, a piece of the front the continuation skipped lies between the
+        // previous result and this one: starts on the segment joining them in design space.
+        bool bridged = false;
+        auto bridge = [&]() {
+          bridged = true;
+          const std::vector<double> end = solved.x;
+          for (double lambda : {0.25, 0.5, 0.75}) {
+            std::vector<double> between(warm.size());
+            for (std::size_t i = 0; i < warm.size(); ++i)
+              between[i] = (1.0 - lambda) * warm[i] + lambda * end[i];
+            try_from(between, checked_fitness(counted, between), true);
+          }
+        };
+        if (solved.usable()) bridge();
+        std::vector<std::size_t> order(m);
+        for (std::size_t i = 0; i < m; ++i) order[i] = i;
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return slot.beta[a] > slot.beta[b]; });
+        for (std::size_t i : order) try_from(anchors.points[i].x, anchors.points[i].fitness, false);
+        for (const std::vector<double>& x : global_starts)
+          try_from(x, checked_fitness(counted, x), true);
+        if (!bridged && solved.usable() && jumped(f)) bridge();
       }
-      warm.assign(solved.x.begin(), solved.x.end() - 1);
-      // A result that an earlier one weakly dominates within 1e-5 of the objective ranges
-      // (lattice points facing a gap of the front) adds nothing: dropped.
-      std::vector<double> f = checked_fitness(counted, warm);
-      const bool covered = std::any_of(fitness.begin(), fitness.end(), [&](const auto& e) {
-        for (std::size_t j = 0; j < m; ++j)
-          if (e[j] > f[j] + 1e-5 * anchors.range[j]) return false;
-        return true;
-      });
-      if (covered) {
-        ++duplicates;
-        continue;
-      }
-      xs.push_back(warm);
-      fitness.push_back(std::move(f));
+      if (!solved.usable()) continue;  // retried from its neighbours below
+      warm = solved.x;
+      warm_f = f;
+      slot.x = solved.x;
+      slot.f = f;
+      known_x.push_back(std::move(solved.x));
+      known_f.push_back(std::move(f));
     }
+
+    // Repair: a lattice point whose result (or failure) is beaten by a known point reaching a
+    // larger t on its line (typically a neighbour's solution) is re-solved from that point.
+    // On a disconnected front this moves results stuck on a dominated piece to the global one.
+    // In the relaxed form the known point is itself feasible, so if Ipopt still fails it is
+    // the lattice point's best answer (a repeat, dropped below).
+    for (int pass = 0; pass < 3; ++pass) {
+      bool changed = false;
+      for (Slot& slot : slots) {
+        const NbiProblem sub = subproblem(slot);
+        const double current = slot.f.empty() ? -INFINITY : sub.feasible_t(slot.f) + 1e-5;
+        std::size_t best = known_f.size();
+        double best_t = current;
+        for (std::size_t k = 0; k < known_f.size(); ++k) {
+          const double t = sub.feasible_t(known_f[k]);
+          if (t > best_t) {
+            best_t = t;
+            best = k;
+          }
+        }
+        if (best == known_f.size() || best == slot.repaired_from) continue;
+        slot.repaired_from = best;
+        ++repaired;
+        changed = true;
+        SolveResult solved =
+            solve_with_ipopt(sub, with_t(sub, known_x[best], known_f[best]), options.ipopt);
+        ++solves;
+        std::vector<double> f;
+        if (solved.usable()) {
+          solved.x.pop_back();
+          f = checked_fitness(counted, solved.x);
+        }
+        if (!f.empty() && sub.feasible_t(f) > best_t) {
+          slot.x = solved.x;
+          slot.f = f;
+          known_x.push_back(std::move(solved.x));
+          known_f.push_back(std::move(f));
+        } else if (!options.equality_form) {
+          slot.x = known_x[best];
+          slot.f = known_f[best];
+        }
+      }
+      if (!changed) break;
+    }
+  }
+
+  // The front: anchors, then the lattice results in order; a result that a kept one weakly
+  // dominates within 1e-5 of the objective ranges (lattice points facing a gap of the front),
+  // or that any other result dominates, adds nothing and is dropped.
+  std::vector<std::vector<double>> xs(known_x.begin(),
+                                      known_x.begin() + static_cast<std::ptrdiff_t>(anchor_count));
+  std::vector<std::vector<double>> fitness(
+      known_f.begin(), known_f.begin() + static_cast<std::ptrdiff_t>(anchor_count));
+  std::size_t dominated = 0;
+  for (const Slot& slot : slots) {
+    if (slot.f.empty()) {
+      ++failed;
+      continue;
+    }
+    if (covered(fitness, slot.f)) {
+      ++dominated;
+      continue;
+    }
+    xs.push_back(slot.x);
+    fitness.push_back(slot.f);
   }
 
   FrontResult front = make_front(problem, xs, fitness);
   front.algorithm = "nbi";
-  front.subproblems = subproblems;
+  front.subproblems = solves;
   front.failed_subproblems = failed;
-  front.dominated_subproblems = duplicates + xs.size() - front.x.size();
+  front.dominated_subproblems = dominated + xs.size() - front.x.size();
   front.fitness_evaluations = counted.fitness_evaluations();
   front.gradient_evaluations = counted.gradient_evaluations();
   front.seconds =
@@ -174,7 +305,10 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
     front.message =
         fmt::format("{} anchor(s) failed, so NBI could not build its simplex", anchors.failed);
   else if (failed > 0)
-    front.message = fmt::format("{} of {} subproblems failed", failed, subproblems);
+    front.message = fmt::format("{} of {} subproblems failed", failed, slots.size());
+  if (retried > 0 || repaired > 0)
+    front.message += fmt::format("{}{} subproblem(s) restarted, {} repaired from a neighbour",
+                                 front.message.empty() ? "" : "; ", retried, repaired);
   return front;
 }
 

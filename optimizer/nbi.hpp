@@ -7,12 +7,15 @@
 //   max t  s.t.  (f(x) - z) / s - Phi^T beta - t n  (= 0 or <= 0),  h(x) = 0,  g(x) <= 0
 // walking the lattice in order so each subproblem starts from its neighbour's solution (with
 // t reset to the largest feasible value for the new beta). Vertices of the lattice are the
-// anchors themselves and are not re-solved. Failed subproblems are counted and skipped;
-// dominated results (non-convex or disconnected parts of the front) are counted and dropped.
-// Each subproblem is also solved from `global_starts` Latin-hypercube points of the design
-// space (seeded by `seed`, the same points for every subproblem, t set to its largest feasible
-// value, at most 100 Ipopt iterations each), and the usable result with the largest t is kept:
-// a local solver alone stops on locally optimal pieces that the global front dominates (ZDT3).
+// anchors themselves and are not re-solved. Extra starts only when a solve fails, lands on a
+// point a known one weakly dominates (within 1e-5 of the ranges), or jumps (farther than
+// 3 / H from the previous result in scaled objectives): 3 points on the design-space segment
+// between the previous and the new result, the anchors (largest weight first), and
+// `global_starts` Latin-hypercube points (seeded by `seed`, t set to its largest feasible value,
+// at most 100 Ipopt iterations each); the largest t wins. A repair pass re-solves each lattice
+// point from any known point reaching a larger t on its line. Failed subproblems are counted;
+// results a kept one weakly dominates within 1e-5 of the ranges (lattice points facing a gap of
+// the front) are counted as dominated and dropped.
 //
 // Example:
 //   pkmopt::NbiOptions options;
@@ -37,7 +40,7 @@ struct NbiOptions {
   bool equality_form = false;  ///< Das & Dennis' equality constraints instead of the relaxed form
   IpoptOptions ipopt;          ///< for every subproblem
   std::vector<double> start;   ///< first start point; empty = default_start()
-  std::size_t global_starts = 2;  ///< extra Latin-hypercube starts per subproblem
+  std::size_t global_starts = 2;  ///< Latin-hypercube starts per restarted subproblem
   std::uint64_t seed = 1;         ///< seeds the Latin hypercubes (anchors and subproblems)
 
   std::optional<std::string> validate() const;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "optimizer/random.hpp"
+#include "optimizer/variation.hpp"
 
 namespace pkmopt {
 namespace {
@@ -102,59 +103,6 @@ std::size_t tournament(const std::vector<Individual>& pop, Random& rng) {
   if (pop[a].rank != pop[b].rank) return pop[a].rank < pop[b].rank ? a : b;
   if (pop[a].crowding != pop[b].crowding) return pop[a].crowding > pop[b].crowding ? a : b;
   return rng.bernoulli(0.5) ? a : b;
-}
-
-// Simulated binary crossover, bounded form (Deb & Agrawal 1995; NSGA-II reference code).
-void sbx(std::vector<double>& c1, std::vector<double>& c2, const Bounds& bounds, double eta,
-         Random& rng) {
-  for (std::size_t i = 0; i < c1.size(); ++i) {
-    if (!rng.bernoulli(0.5)) continue;
-    const double lower = bounds.lower[i];
-    const double upper = bounds.upper[i];
-    if (std::abs(c1[i] - c2[i]) <= 1e-14 || !(upper > lower)) continue;
-    const double y1 = std::min(c1[i], c2[i]);
-    const double y2 = std::max(c1[i], c2[i]);
-    const double u = rng.uniform01();
-    auto spread = [&](double beta) {
-      const double alpha = 2.0 - std::pow(beta, -(eta + 1.0));
-      return u <= 1.0 / alpha ? std::pow(u * alpha, 1.0 / (eta + 1.0))
-                              : std::pow(1.0 / (2.0 - u * alpha), 1.0 / (eta + 1.0));
-    };
-    const double beta_low = 1.0 + 2.0 * (y1 - lower) / (y2 - y1);
-    const double beta_high = 1.0 + 2.0 * (upper - y2) / (y2 - y1);
-    double child1 = 0.5 * ((y1 + y2) - spread(beta_low) * (y2 - y1));
-    double child2 = 0.5 * ((y1 + y2) + spread(beta_high) * (y2 - y1));
-    child1 = std::clamp(child1, lower, upper);
-    child2 = std::clamp(child2, lower, upper);
-    if (rng.bernoulli(0.5)) std::swap(child1, child2);
-    c1[i] = child1;
-    c2[i] = child2;
-  }
-}
-
-// Polynomial mutation, bounded form (Deb & Goyal 1996; NSGA-II reference code).
-void polynomial_mutation(std::vector<double>& x, const Bounds& bounds, double probability,
-                         double eta, Random& rng) {
-  const double power = 1.0 / (eta + 1.0);
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (!rng.bernoulli(probability)) continue;
-    const double lower = bounds.lower[i];
-    const double upper = bounds.upper[i];
-    const double range = upper - lower;
-    if (!(range > 0.0)) continue;
-    const double delta1 = (x[i] - lower) / range;
-    const double delta2 = (upper - x[i]) / range;
-    const double u = rng.uniform01();
-    double deltaq;
-    if (u <= 0.5) {
-      const double value = 2.0 * u + (1.0 - 2.0 * u) * std::pow(1.0 - delta1, eta + 1.0);
-      deltaq = std::pow(value, power) - 1.0;
-    } else {
-      const double value = 2.0 * (1.0 - u) + 2.0 * (u - 0.5) * std::pow(1.0 - delta2, eta + 1.0);
-      deltaq = 1.0 - std::pow(value, power);
-    }
-    x[i] = std::clamp(x[i] + deltaq * range, lower, upper);
-  }
 }
 
 void evaluate(const Problem& problem, std::vector<Individual>& individuals, std::size_t first,
@@ -254,7 +202,7 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
       child1.x = population[tournament(population, rng)].x;
       child2.x = population[tournament(population, rng)].x;
       if (rng.bernoulli(options.crossover_probability))
-        sbx(child1.x, child2.x, bounds, options.crossover_eta, rng);
+        sbx_crossover(child1.x, child2.x, bounds, options.crossover_eta, rng);
       polynomial_mutation(child1.x, bounds, mutation_probability, options.mutation_eta, rng);
       polynomial_mutation(child2.x, bounds, mutation_probability, options.mutation_eta, rng);
       merged.push_back(std::move(child1));

@@ -3,8 +3,9 @@
 // Each generation: binary tournaments on (rank, crowding distance) pick parents; simulated
 // binary crossover (SBX, distribution index eta_c, each variable crossed with probability 1/2)
 // and polynomial mutation (distribution index eta_m, probability p_m per variable), both in
-// Deb's bounded form, make `population` children; parents and children are merged, sorted into
-// non-dominated fronts and truncated by crowding distance.
+// Deb's bounded form (optimizer/variation.hpp, checked against nsga2r), make `population`
+// children; parents and children are merged, sorted into non-dominated fronts and truncated by
+// crowding distance.
 //
 // Constraint-domination (Deb 2000): with violation V = sum max(|h| - tol_eq, 0) + sum max(g, 0),
 // a feasible design beats an infeasible one; of two infeasible designs the one with smaller V
