@@ -3,7 +3,13 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "models/hexapod.hpp"
@@ -88,5 +94,65 @@ void BM_HexapodMetricsOneThread(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_HexapodMetricsOneThread);
+
+// The same metric set written plainly with Eigen's fixed-size general solvers (JacobiSVD for
+// cond(J_h), PartialPivLU for det J and J^-1, SelfAdjointEigenSolver for C_tt, all 64 vertices
+// of the error box): the yardstick the fast path is measured against.
+void plain_eigen_metrics(const pkmopt::Hexapod& hexapod, pkmopt::HexapodData& data,
+                         const pkmopt::Pose& pose, const pkmopt::Wrench& wrench,
+                         pkmopt::PoseMetrics& out) {
+  using pkmopt::Matrix6d;
+  using Vector6d = Eigen::Matrix<double, 6, 1>;
+  Vector6d q;
+  Matrix6d J;
+  pkmopt::hexapod_legs<double>(hexapod.design().base_joints, hexapod.platform_rel_tcp(),
+                               pose.position, pose.angles, &q, &J);
+  out.reachable = hexapod.reachable(data, pose);
+  out.q = q;
+  Vector6d compliance;
+  for (int i = 0; i < 6; ++i) compliance(i) = 1.0 / hexapod.leg_stiffness(q(i));
+  Matrix6d Jh = J;
+  Jh.rightCols<3>() /= hexapod.characteristic_length();
+  const Vector6d sigma = Eigen::JacobiSVD<Matrix6d>(Jh).singularValues();
+  const double rcond = sigma(0) > 0.0 ? sigma(5) / sigma(0) : 0.0;
+  const Eigen::PartialPivLU<Matrix6d> lu(J);
+  out.det_j = lu.determinant();
+  out.singular = !(rcond >= pkmopt::kSingularRcond);
+  if (out.singular) {
+    out.singularity_margin = out.stiffness_min = 0.0;
+    out.tau = Vector6d::Constant(std::numeric_limits<double>::infinity());
+    out.tcp_error_max = std::numeric_limits<double>::infinity();
+    return;
+  }
+  out.singularity_margin = rcond;
+  const Matrix6d Jinv = lu.inverse();
+  out.tau = Jinv.transpose() * wrench;
+  const Eigen::Matrix3d Ctt =
+      Jinv.topRows<3>() * compliance.asDiagonal() * Jinv.topRows<3>().transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Ctt, Eigen::EigenvaluesOnly);
+  out.stiffness_min = 1.0 / eig.eigenvalues()(2);
+  double best = 0.0;
+  for (int mask = 0; mask < 64; ++mask) {
+    Vector6d dq;
+    for (int i = 0; i < 6; ++i) dq(i) = (mask >> i & 1) ? 1.0 : -1.0;
+    best = std::max(best, (Jinv.topRows<3>() * dq).squaredNorm());
+  }
+  out.tcp_error_max = hexapod.design().actuator_error * std::sqrt(best);
+}
+
+void BM_HexapodPlainEigenOneThread(benchmark::State& state) {
+  const pkmopt::Hexapod hexapod = sample_hexapod();
+  const auto poses = sample_poses(4096);
+  pkmopt::HexapodData data(hexapod);
+  pkmopt::PoseMetrics m;
+  const pkmopt::Wrench wrench = pkmopt::Wrench::Constant(100);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    plain_eigen_metrics(hexapod, data, poses[i++ & 4095], wrench, m);
+    benchmark::DoNotOptimize(m.tcp_error_max);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_HexapodPlainEigenOneThread);
 
 }  // namespace

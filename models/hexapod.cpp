@@ -17,9 +17,10 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Below this reciprocal condition number the eigenvalues of J_h J_h^T lose too many digits
-// (relative error ~ eps * cond^2) and the margin is taken from an SVD of J_h instead.
-constexpr double kRcondSvdFallback = 1e-3;
+// Below this reciprocal condition number the eigenvalues of J_h^T J_h lose too many digits
+// (lambda_min has a relative error ~ eps * cond^2, so the margin ~ eps * cond^2 / 2: 1e-12 at
+// 1e-2, 1e-10 at 1e-3) and the margin is taken from an SVD of J_h instead.
+constexpr double kRcondSvdFallback = 1e-2;
 
 std::string fmt_double(double v) {
   std::ostringstream os;
@@ -30,6 +31,13 @@ std::string fmt_double(double v) {
 
 void require(bool condition, const std::string& message) {
   if (!condition) throw std::invalid_argument(message);
+}
+
+// 1 / k_i of a leg of length q (m/N): the leg and the actuator in series.
+double leg_compliance(const LegStiffness& k, double q) {
+  double compliance = k.axial_stiffness > 0.0 ? 1.0 / k.axial_stiffness : q / (k.E * k.area);
+  if (k.actuator_stiffness > 0.0) compliance += 1.0 / k.actuator_stiffness;
+  return compliance;
 }
 
 Eigen::Matrix<double, 3, 6> hexagon(double radius, const double (&angles_deg)[6]) {
@@ -128,12 +136,7 @@ std::unique_ptr<MachineData> Hexapod::make_data() const {
   return std::make_unique<HexapodData>(*this);
 }
 
-double Hexapod::leg_stiffness(double q) const {
-  const LegStiffness& k = design_.stiffness;
-  double compliance = k.axial_stiffness > 0.0 ? 1.0 / k.axial_stiffness : q / (k.E * k.area);
-  if (k.actuator_stiffness > 0.0) compliance += 1.0 / k.actuator_stiffness;
-  return 1.0 / compliance;
-}
+double Hexapod::leg_stiffness(double q) const { return 1.0 / leg_compliance(design_.stiffness, q); }
 
 bool Hexapod::compute_kinematics(HexapodData& d, const Pose& pose) const {
   return compute_kinematics(d, pose, rotation_zyx<double>(pose.angles));
@@ -182,13 +185,17 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   const bool legs_ok = compute_kinematics(d, pose, R);
   out.reachable = legs_ok && reachable_from_kinematics(d, R);
   out.q = d.q;
-  for (int i = 0; i < 6; ++i) d.leg_stiffness(i) = leg_stiffness(d.q(i));
+  Vec6<double> compliance;  // 1 / k_i
+  for (int i = 0; i < 6; ++i) {
+    compliance(i) = leg_compliance(design_.stiffness, d.q(i));
+    d.leg_stiffness(i) = 1.0 / compliance(i);
+  }
 
-  // singularity_margin = 1 / cond(J_h) from the eigenvalues of J_h J_h^T.
+  // singularity_margin = 1 / cond(J_h) from the eigenvalues of J_h^T J_h.
   Matrix6d Jh = d.J;
-  Jh.rightCols<3>() /= characteristic_length_;
+  Jh.rightCols<3>() *= 1.0 / characteristic_length_;
   Matrix6d gram;
-  gram.noalias() = Jh.lazyProduct(Jh.transpose());
+  gram.noalias() = Jh.transpose().lazyProduct(Jh);
   Vec6<double> lambda;
   symmetric_eigenvalues6(gram, lambda);
   const double lambda_max = lambda(5);
@@ -199,10 +206,18 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     const auto& sv = svd.singularValues();
     rcond = sv(0) > 0.0 ? sv(5) / sv(0) : 0.0;
   }
-  const Lu6 lu(d.J);
-  out.det_j = std::isfinite(lu.determinant()) ? lu.determinant() : 0.0;
 
-  out.singular = !legs_ok || lu.exactly_singular() || !(rcond >= kSingularRcond);
+  // One elimination on J^T gives det J, the leg forces tau = J^-T w and the translational rows
+  // P of J^-1 (J^T x = e_k gives row k of J^-1).
+  Eigen::Matrix<double, 6, 4> rhs = Eigen::Matrix<double, 6, 4>::Zero();
+  rhs(0, 0) = rhs(1, 1) = rhs(2, 2) = 1.0;
+  rhs.col(3) = wrench;
+  Eigen::Matrix<double, 6, 4> solution;
+  double det = 0.0;
+  const bool invertible = solve_transposed6x4(d.J, rhs, solution, det);
+  out.det_j = std::isfinite(det) ? det : 0.0;
+
+  out.singular = !legs_ok || !invertible || !(rcond >= kSingularRcond);
   if (out.singular) {
     out.singularity_margin = 0.0;
     out.stiffness_min = 0.0;
@@ -211,31 +226,47 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     return;
   }
   out.singularity_margin = rcond;
-  // Transposed solves with one LU: J^T x = e_k gives row k of J^-1; tau = J^-T w.
-  out.tau = lu.solve_transposed(wrench);
-  Eigen::Matrix<double, 3, 6> P;
-  for (int k = 0; k < 3; ++k) P.row(k) = lu.solve_transposed(Vec6<double>::Unit(k)).transpose();
+  out.tau = solution.col(3);
 
   // C_tt = P diag(1/k) P^T with P the translational rows of J^-1 (C = J^-1 diag(1/k) J^-T).
-  const Eigen::Matrix<double, 3, 6> Pk = P * d.leg_stiffness.cwiseInverse().asDiagonal();
+  const Eigen::Matrix<double, 6, 3> Pt = solution.leftCols<3>();  // P^T
   Mat3<double> Ctt;
-  Ctt.noalias() = Pk.lazyProduct(P.transpose());
-  Eigen::SelfAdjointEigenSolver<Mat3<double>> eig3;
-  eig3.computeDirect(Ctt, Eigen::EigenvaluesOnly);
-  const double c_max = eig3.eigenvalues()(2);
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b <= a; ++b) {
+      double sum = 0.0;
+      for (int i = 0; i < 6; ++i) sum += Pt(i, a) * compliance(i) * Pt(i, b);
+      Ctt(a, b) = Ctt(b, a) = sum;
+    }
+  }
+  Eigen::Vector3d c_eigenvalues;
+  symmetric_eigenvalues3(Ctt, c_eigenvalues);
+  const double c_max = c_eigenvalues(2);
   out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : 0.0;
 
-  // tcp_error_max: the largest |P s| over the 32 sign vectors s with s_0 = +1 (Gray code).
-  Eigen::Vector3d v = P.rowwise().sum();
-  double best = v.squaredNorm();
-  double sign[6] = {1, 1, 1, 1, 1, 1};
-  for (unsigned g = 1; g < 32; ++g) {
-    const int col = std::countr_zero(g) + 1;
-    sign[col] = -sign[col];
-    v += (2.0 * sign[col]) * P.col(col);
-    best = std::max(best, v.squaredNorm());
+  // tcp_error_max: the largest |P s| over the 32 sign vectors s with s_0 = +1, as the sums of
+  // p_0 +- p_1 +- p_2 (4 vectors) and +- p_3 +- p_4 +- p_5 (8 vectors), p_j the columns of P.
+  double head[3][4], tail[3][8];
+  for (int c = 0; c < 3; ++c) {
+    for (int m = 0; m < 4; ++m) {
+      head[c][m] = Pt(0, c) + ((m & 1) ? -Pt(1, c) : Pt(1, c)) + ((m & 2) ? -Pt(2, c) : Pt(2, c));
+    }
+    for (int m = 0; m < 8; ++m) {
+      tail[c][m] = ((m & 1) ? -Pt(3, c) : Pt(3, c)) + ((m & 2) ? -Pt(4, c) : Pt(4, c)) +
+                   ((m & 4) ? -Pt(5, c) : Pt(5, c));
+    }
   }
-  out.tcp_error_max = design_.actuator_error * std::sqrt(best);
+  double best[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  for (int h = 0; h < 4; ++h) {
+    for (int m = 0; m < 8; ++m) {
+      const double x = head[0][h] + tail[0][m];
+      const double y = head[1][h] + tail[1][m];
+      const double z = head[2][h] + tail[2][m];
+      const double norm2 = x * x + y * y + z * z;
+      best[m] = norm2 > best[m] ? norm2 : best[m];
+    }
+  }
+  const double best_norm2 = *std::max_element(best, best + 8);
+  out.tcp_error_max = design_.actuator_error * std::sqrt(best_norm2);
 }
 
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
@@ -407,6 +438,42 @@ FkResult Hexapod::forward_kinematics(const Eigen::VectorXd& q_target,
     result.message = os.str();
   }
   return result;
+}
+
+std::optional<Eigen::AlignedBox3d> Hexapod::workspace_search_box(
+    const std::vector<Eigen::Matrix3d>& orientations) const {
+  const double beta = design_.joints.base_max_angle;
+  const bool axis_is_z = (design_.joints.base_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-12;
+  const bool cone = axis_is_z && beta < std::numbers::pi / 2;
+  Eigen::AlignedBox3d united;  // empty
+  for (const Eigen::Matrix3d& R : orientations) {
+    Eigen::AlignedBox3d box(Eigen::Vector3d::Constant(-kInf), Eigen::Vector3d::Constant(kInf));
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector3d centre = design_.base_joints.col(i) - R * platform_rel_.col(i);
+      const double L = design_.max_length;
+      Eigen::Vector3d low = centre - Eigen::Vector3d::Constant(L);
+      Eigen::Vector3d high = centre + Eigen::Vector3d::Constant(L);
+      if (cone) {
+        const double radial = L * std::sin(beta);
+        low = centre + Eigen::Vector3d(-radial, -radial, design_.min_length * std::cos(beta));
+        high = centre + Eigen::Vector3d(radial, radial, L);
+      }
+      box = box.intersection(Eigen::AlignedBox3d(low, high));
+    }
+    if (!box.isEmpty()) united.extend(box);
+  }
+  return united;
+}
+
+std::optional<double> Hexapod::envelope_volume() const {
+  const Eigen::Vector3d centroid = design_.base_joints.rowwise().mean();
+  double radius = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    radius = std::max(radius, (design_.base_joints.col(i) - centroid).head<2>().norm());
+  }
+  const double height = design_.base_joints.row(2).maxCoeff() -
+                        design_.base_joints.row(2).minCoeff() + design_.max_length;
+  return std::numbers::pi * radius * radius * height;
 }
 
 }  // namespace pkmopt

@@ -151,6 +151,16 @@ class Hexapod final : public Machine {
   bool reachable(MachineData& data, const Pose& pose) const override;
   FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
                               const FkOptions& options = {}) const override;
+  /// Leg i puts the TCP in the ball of radius max_length about c_i = a_i - R (b_i - tcp); with
+  /// a base joint limit beta < 90 deg about +z the leg also keeps min_length cos(beta) <= l_z
+  /// and |l_xy| <= max_length sin(beta). The box is the intersection over legs, united over the
+  /// orientations. Empty box: nothing is reachable.
+  std::optional<Eigen::AlignedBox3d> workspace_search_box(
+      const std::vector<Eigen::Matrix3d>& orientations) const override;
+  /// The vertical cylinder about the centroid of the base joints whose radius is the largest
+  /// horizontal distance of a base joint from that axis and whose height is the z extent of the
+  /// base joints plus max_length (the legs standing straight up at full stroke).
+  std::optional<double> envelope_volume() const override;
 
   /// Leg lengths at a pose.
   Vec6<double> inverse_kinematics(const Pose& pose) const;

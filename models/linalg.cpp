@@ -11,63 +11,57 @@ namespace {
 
 constexpr int n = 6;
 
-// Householder reduction of the symmetric matrix z (lower triangle) to tridiagonal form:
-// diagonal d, sub-diagonal e with e[i] coupling d[i] and d[i+1], e[n-1] = 0 (tred1).
-void tridiagonalize(double z[n][n], double d[n], double e[n]) {
-  for (int i = n - 1; i > 0; --i) {
-    const int l = i - 1;
-    double h = 0.0;
-    if (l > 0) {
-      double scale = 0.0;
-      for (int k = 0; k < i; ++k) scale += std::abs(z[i][k]);
-      if (scale == 0.0) {
-        e[i] = z[i][l];
-      } else {
-        for (int k = 0; k < i; ++k) {
-          z[i][k] /= scale;
-          h += z[i][k] * z[i][k];
-        }
-        double f = z[i][l];
-        double g = f >= 0.0 ? -std::sqrt(h) : std::sqrt(h);
-        e[i] = scale * g;
-        h -= f * g;
-        z[i][l] = f - g;
-        f = 0.0;
-        for (int j = 0; j < i; ++j) {
-          g = 0.0;
-          for (int k = 0; k <= j; ++k) g += z[j][k] * z[i][k];
-          for (int k = j + 1; k < i; ++k) g += z[k][j] * z[i][k];
-          e[j] = g / h;
-          f += e[j] * z[i][j];
-        }
-        const double hh = f / (h + h);
-        for (int j = 0; j < i; ++j) {
-          f = z[i][j];
-          e[j] = g = e[j] - hh * f;
-          for (int k = 0; k <= j; ++k) z[j][k] -= (f * e[k] + g * z[i][k]);
-        }
-      }
-    } else {
-      e[i] = z[i][l];
+// Householder reduction of the symmetric matrix a (full storage, overwritten) to tridiagonal
+// form: diagonal d, sub-diagonal e with e[i] coupling d[i] and d[i + 1], e[N - 1] = 0.
+// Step k annihilates a(k + 2 .. N - 1, k) with H = I - v v^T / h, v = x - alpha e_(k+1),
+// h = v^T v / 2, applied to the whole matrix (v is zero in its first k + 1 entries, so the
+// fixed-size vector operations below leave the rows already reduced unchanged).
+template <int N>
+void tridiagonalize(Eigen::Matrix<double, N, N>& a, double (&d)[N], double (&e)[N]) {
+  using Vector = Eigen::Matrix<double, N, 1>;
+  for (int k = 0; k < N - 2; ++k) {
+    double below = 0.0;  // squared norm of a(k + 2 .. N - 1, k)
+    for (int i = k + 2; i < N; ++i) below += a(i, k) * a(i, k);
+    const double x0 = a(k + 1, k);
+    if (below == 0.0) {  // already tridiagonal in this column: H = I
+      e[k] = x0;
+      continue;
     }
-    d[i] = h;
+    const double norm = std::sqrt(x0 * x0 + below);
+    const double alpha = x0 >= 0.0 ? -norm : norm;
+    Vector v = a.col(k);
+    for (int i = 0; i <= k; ++i) v(i) = 0.0;
+    v(k + 1) = x0 - alpha;  // no cancellation: x0 and alpha have opposite signs
+    const double inv_h = 1.0 / (norm * norm - x0 * alpha);
+    Vector p;
+    p.noalias() = a * v;  // a is symmetric: a v = a^T v
+    p *= inv_h;
+    const Vector q = p - (0.5 * inv_h * v.dot(p)) * v;
+    a.noalias() -= v * q.transpose();
+    a.noalias() -= q * v.transpose();
+    e[k] = alpha;
   }
-  e[0] = 0.0;
-  for (int i = 0; i < n; ++i) d[i] = z[i][i];
-  // Shift so that e[i] couples d[i] and d[i + 1].
-  for (int i = 1; i < n; ++i) e[i - 1] = e[i];
-  e[n - 1] = 0.0;
+  for (int i = 0; i < N; ++i) d[i] = a(i, i);
+  e[N - 2] = a(N - 1, N - 2);
+  e[N - 1] = 0.0;
+  // QL converges fastest with the larger entries at the bottom (LAPACK dsteqr chooses between
+  // QL and QR the same way); reversing the order of a tridiagonal keeps its eigenvalues.
+  if (std::abs(d[N - 1]) < std::abs(d[0])) {
+    std::reverse(d, d + N);
+    std::reverse(e, e + N - 1);
+  }
 }
 
 // Implicit QL with Wilkinson shifts on the tridiagonal (d, e); eigenvalues left in d (tql1).
 // Returns false if an eigenvalue needed more than 60 iterations.
-bool tridiagonal_ql(double d[n], double e[n]) {
+template <int N>
+bool tridiagonal_ql(double (&d)[N], double (&e)[N]) {
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  for (int l = 0; l < n; ++l) {
+  for (int l = 0; l < N; ++l) {
     int iterations = 0;
     int m = l;
     do {
-      for (m = l; m < n - 1; ++m) {
+      for (m = l; m < N - 1; ++m) {
         const double dd = std::abs(d[m]) + std::abs(d[m + 1]);
         if (std::abs(e[m]) <= eps * dd) break;
       }
@@ -107,26 +101,172 @@ bool tridiagonal_ql(double d[n], double e[n]) {
   return true;
 }
 
+// Eigenvalues of the symmetric 2x2 matrix [a b; b c] (LAPACK dlae2): rt1 has the larger
+// absolute value; rt2 is formed from det / rt1 to keep its relative accuracy.
+void eigenvalues2(double a, double b, double c, double& rt1, double& rt2) {
+  const double sm = a + c;
+  const double df = a - c;
+  const double rt = std::sqrt(df * df + 4.0 * b * b);
+  const double acmx = std::abs(a) > std::abs(c) ? a : c;
+  const double acmn = std::abs(a) > std::abs(c) ? c : a;
+  if (sm != 0.0) {
+    rt1 = 0.5 * (sm < 0.0 ? sm - rt : sm + rt);
+    rt2 = (acmx / rt1) * acmn - (b / rt1) * b;
+  } else {
+    rt1 = 0.5 * rt;
+    rt2 = -0.5 * rt;
+  }
+}
+
+// The root-free (Pal-Walker-Kahan) variant of implicit QL with Wilkinson shifts, eigenvalues
+// only: it works on the squared off-diagonals and needs no square root per rotation (LAPACK
+// dsterf, QL branch). A trailing 2x2 block is solved in closed form. Eigenvalues left in d;
+// returns false after 30 N iterations without convergence.
+template <int N>
+bool tridiagonal_ql_root_free(double (&d)[N], const double (&e)[N]) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  double e2[N];
+  for (int i = 0; i < N; ++i) e2[i] = e[i] * e[i];
+  int iterations = 0;
+  int l = 0;
+  while (l < N) {
+    int m = l;
+    for (; m < N - 1; ++m) {
+      const double dd = std::abs(d[m]) + std::abs(d[m + 1]);
+      if (e2[m] <= (eps * dd) * (eps * dd)) break;
+    }
+    if (m == l) {  // d[l] is an eigenvalue
+      ++l;
+      continue;
+    }
+    if (m == l + 1) {  // an isolated 2x2 block
+      double rt1, rt2;
+      eigenvalues2(d[l], std::sqrt(e2[l]), d[l + 1], rt1, rt2);
+      d[l] = rt1;
+      d[l + 1] = rt2;
+      l += 2;
+      continue;
+    }
+    if (++iterations > 30 * N) return false;
+    // Wilkinson shift: the eigenvalue of the leading 2x2 block nearer d[l],
+    // d[l] - e^2 / (delta + sign(delta) sqrt(delta^2 + e^2)), delta = (d[l + 1] - d[l]) / 2.
+    const double delta = 0.5 * (d[l + 1] - d[l]);
+    const double sigma =
+        d[l] - e2[l] / (delta + std::copysign(std::sqrt(delta * delta + e2[l]), delta));
+    double c = 1.0, s = 0.0;
+    double gamma = d[m] - sigma;
+    double p = gamma * gamma;
+    for (int i = m - 1; i >= l; --i) {
+      // gamma^2 / c = gamma^2 * rr / p: both reciprocals start as soon as p is known, which
+      // shortens the chain of dependent divisions from one rotation to the next.
+      const double inv_p = 1.0 / p;
+      const double bb = e2[i];
+      const double rr = p + bb;
+      const double inv_rr = 1.0 / rr;
+      if (i != m - 1) e2[i + 1] = s * rr;
+      const double old_c = c;
+      c = p * inv_rr;
+      s = bb * inv_rr;
+      const double old_gamma = gamma;
+      const double alpha = d[i];
+      gamma = c * (alpha - sigma) - s * old_gamma;
+      d[i + 1] = old_gamma + (alpha - gamma);
+      p = c != 0.0 ? (gamma * gamma) * (rr * inv_p) : old_c * bb;
+    }
+    e2[l] = s * p;
+    d[l] = sigma + gamma;
+  }
+  return true;
+}
+
+// Eigen's general solver (dynamic size), ascending; the fallback if QL fails to converge.
+Eigen::VectorXd eigenvalues_by_eigen(const Eigen::MatrixXd& A) {
+  const Eigen::MatrixXd full = A.selfadjointView<Eigen::Lower>();
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(full, Eigen::EigenvaluesOnly).eigenvalues();
+}
+
+// Eigenvalues of the symmetric N x N matrix whose lower triangle is read, ascending.
+template <int N>
+void symmetric_eigenvalues(const Eigen::Matrix<double, N, N>& A,
+                           Eigen::Matrix<double, N, 1>& eigenvalues) {
+  Eigen::Matrix<double, N, N> a = A.template selfadjointView<Eigen::Lower>();
+  double d[N], e[N];
+  tridiagonalize<N>(a, d, e);
+  double d_copy[N], e_copy[N];
+  std::copy(d, d + N, d_copy);
+  std::copy(e, e + N, e_copy);
+  if (!tridiagonal_ql_root_free<N>(d, e)) {
+    // Never seen in practice: retry with the classic QL, then Eigen's general solver.
+    std::copy(d_copy, d_copy + N, d);
+    if (!tridiagonal_ql<N>(d, e_copy)) {
+      eigenvalues = eigenvalues_by_eigen(A);
+      return;
+    }
+  }
+  std::sort(d, d + N);
+  for (int i = 0; i < N; ++i) eigenvalues(i) = d[i];
+}
+
 }  // namespace
 
 void symmetric_eigenvalues6(const Eigen::Matrix<double, 6, 6>& A,
                             Eigen::Matrix<double, 6, 1>& eigenvalues) {
-  double z[n][n];
+  symmetric_eigenvalues<6>(A, eigenvalues);
+}
+
+void symmetric_eigenvalues3(const Eigen::Matrix<double, 3, 3>& A,
+                            Eigen::Matrix<double, 3, 1>& eigenvalues) {
+  symmetric_eigenvalues<3>(A, eigenvalues);
+}
+
+bool solve_transposed6x4(const Eigen::Matrix<double, 6, 6>& J, const Eigen::Matrix<double, 6, 4>& B,
+                         Eigen::Matrix<double, 6, 4>& X, double& det) {
+  constexpr int width = n + 4;
+  // Row i of the augmented system: row i of J^T (column i of J), then row i of B.
+  double a[n][width];
   for (int i = 0; i < n; ++i) {
-    for (int k = 0; k <= i; ++k) z[i][k] = A(i, k);
+    for (int j = 0; j < n; ++j) a[i][j] = J(j, i);
+    for (int j = 0; j < 4; ++j) a[i][n + j] = B(i, j);
   }
-  double d[n], e[n];
-  tridiagonalize(z, d, e);
-  if (!tridiagonal_ql(d, e)) {
-    // Never seen in practice; fall back to Eigen's solver rather than return garbage.
-    Eigen::Matrix<double, 6, 6> full = A.selfadjointView<Eigen::Lower>();
-    eigenvalues =
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(full, Eigen::EigenvaluesOnly)
-            .eigenvalues();
-    return;
+  det = 1.0;
+  for (int k = 0; k < n; ++k) {
+    int pivot = k;
+    double best = std::abs(a[k][k]);
+    for (int i = k + 1; i < n; ++i) {
+      if (std::abs(a[i][k]) > best) {
+        best = std::abs(a[i][k]);
+        pivot = i;
+      }
+    }
+    if (pivot != k) {
+      for (int j = 0; j < width; ++j) std::swap(a[k][j], a[pivot][j]);
+      det = -det;
+    }
+    const double diagonal = a[k][k];
+    if (diagonal == 0.0) {
+      det = 0.0;
+      return false;
+    }
+    det *= diagonal;
+    for (int i = k + 1; i < n; ++i) {
+      const double factor = a[i][k] / diagonal;
+      // Full-length row update (the entries left of k are never read again).
+      for (int j = 0; j < width; ++j) a[i][j] -= factor * a[k][j];
+    }
   }
-  std::sort(d, d + n);
-  for (int i = 0; i < n; ++i) eigenvalues(i) = d[i];
+  double x[n][4];
+  for (int i = n - 1; i >= 0; --i) {
+    double sum[4];
+    for (int c = 0; c < 4; ++c) sum[c] = a[i][n + c];
+    for (int j = i + 1; j < n; ++j) {
+      for (int c = 0; c < 4; ++c) sum[c] -= a[i][j] * x[j][c];
+    }
+    for (int c = 0; c < 4; ++c) x[i][c] = sum[c] / a[i][i];
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < 4; ++c) X(i, c) = x[i][c];
+  }
+  return true;
 }
 
 Lu6::Lu6(const Eigen::Matrix<double, 6, 6>& J) {

@@ -1,22 +1,33 @@
 // Small fixed-size linear algebra that the per-pose metrics need fast.
 //
-// These routines are written for n = 6 with plain loops: Eigen's general paths for
-// eigenvalues, LU solves and rank updates go through dynamic-size blocked kernels whose
+// These routines are written for n = 3 and n = 6 with plain fixed-length loops: Eigen's general
+// paths for eigenvalues, LU solves and rank updates go through dynamic-size blocked kernels whose
 // bookkeeping costs more than the arithmetic at this size.
 //
-// symmetric_eigenvalues6: all eigenvalues of a symmetric 6x6 matrix, ascending, by Householder
-// tridiagonalisation followed by the implicit QL iteration with Wilkinson shifts, eigenvalues
-// only (EISPACK tred1/tql1; Press et al., Numerical Recipes 3rd ed., 11.3-11.4). Backward
-// stable: each eigenvalue has an absolute error of a few eps * |A|.
+// symmetric_eigenvalues6 / symmetric_eigenvalues3: all eigenvalues of a symmetric matrix,
+// ascending. Householder tridiagonalisation H_k A H_k (H_k = I - v v^T / h, applied to the full
+// matrix as the symmetric rank-2 update A - v q^T - q v^T with p = A v / h, q = p - (v^T p / 2h) v;
+// Golub & Van Loan, Matrix Computations 4th ed., 8.3.1), followed by the root-free
+// (Pal-Walker-Kahan) implicit QL iteration with Wilkinson shifts on the squared off-diagonals,
+// eigenvalues only, with a closed-form 2x2 end (LAPACK dsterf, dlae2; Parlett, The Symmetric
+// Eigenvalue Problem, 8.15); should it ever fail to converge, the classic QL (EISPACK tql1) and
+// then Eigen's solver take over. Backward stable: each eigenvalue has an absolute error of a few
+// eps * |A|, also for repeated and clustered eigenvalues (unlike closed-form cubic roots). Entries
+// must lie within about 1e-150 .. 1e150 in magnitude (squares are formed without scaling).
 //
 // Lu6: LU factorisation with partial pivoting P J = L U of a 6x6 matrix, its determinant, and
 // solves with J or J^T.
+//
+// solve_transposed6x4: J^T X = B for a 6x6 J and four right-hand sides at once, by Gaussian
+// elimination with partial pivoting on the augmented rows [J^T | B], with det J as a by-product.
 //
 //   Eigen::Matrix<double, 6, 1> lambda;
 //   pkmopt::symmetric_eigenvalues6(A, lambda);   // lambda(0) smallest, lambda(5) largest
 //   pkmopt::Lu6 lu(J);
 //   double det = lu.determinant();
 //   Eigen::Matrix<double, 6, 1> x = lu.solve_transposed(b);   // J^T x = b
+//   Eigen::Matrix<double, 6, 4> X;
+//   bool ok = pkmopt::solve_transposed6x4(J, B, X, det);      // J^T X = B
 #pragma once
 
 #include <Eigen/Core>
@@ -26,6 +37,15 @@ namespace pkmopt {
 /// Eigenvalues of the symmetric matrix A (only its lower triangle is read), ascending.
 void symmetric_eigenvalues6(const Eigen::Matrix<double, 6, 6>& A,
                             Eigen::Matrix<double, 6, 1>& eigenvalues);
+
+/// Eigenvalues of the symmetric 3x3 matrix A (only its lower triangle is read), ascending.
+void symmetric_eigenvalues3(const Eigen::Matrix<double, 3, 3>& A,
+                            Eigen::Matrix<double, 3, 1>& eigenvalues);
+
+/// Solves J^T X = B (partial pivoting) and sets det = det J. Returns false, with det = 0 and X
+/// unspecified, when a pivot is exactly 0.
+bool solve_transposed6x4(const Eigen::Matrix<double, 6, 6>& J, const Eigen::Matrix<double, 6, 4>& B,
+                         Eigen::Matrix<double, 6, 4>& X, double& det);
 
 /// LU factorisation with partial pivoting of a 6x6 matrix.
 class Lu6 {

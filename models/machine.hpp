@@ -21,10 +21,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "models/pose.hpp"
 
@@ -89,6 +91,15 @@ class Machine {
   /// (a model-chosen home pose when none is given).
   virtual FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
                                       const FkOptions& options = {}) const = 0;
+
+  /// A box containing every reachable TCP position for the given platform orientations, from
+  /// the geometry (used by the workspace search); nullopt when the model does not know one.
+  virtual std::optional<Eigen::AlignedBox3d> workspace_search_box(
+      const std::vector<Eigen::Matrix3d>& /*orientations*/) const {
+    return std::nullopt;
+  }
+  /// The volume of the machine's envelope (m^3, see the model's header); nullopt if unknown.
+  virtual std::optional<double> envelope_volume() const { return std::nullopt; }
 };
 
 }  // namespace pkmopt

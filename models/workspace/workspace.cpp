@@ -537,45 +537,11 @@ double workspace_volume(const Machine& machine, const WorkspaceOptions& options)
 
 std::optional<Eigen::AlignedBox3d> workspace_search_box(
     const Machine& machine, const std::vector<Eigen::Matrix3d>& orientations) {
-  const auto* hexapod = dynamic_cast<const Hexapod*>(&machine);
-  if (!hexapod) return std::nullopt;
-  const HexapodDesign& design = hexapod->design();
-  const double beta = design.joints.base_max_angle;
-  const bool axis_is_z = (design.joints.base_axis - Eigen::Vector3d::UnitZ()).norm() < 1e-12;
-  const bool cone = axis_is_z && beta < std::numbers::pi / 2;
-  Eigen::AlignedBox3d united;  // empty
-  for (const Eigen::Matrix3d& R : orientations) {
-    Eigen::AlignedBox3d box(Eigen::Vector3d::Constant(-kInf), Eigen::Vector3d::Constant(kInf));
-    for (int i = 0; i < 6; ++i) {
-      const Eigen::Vector3d centre =
-          design.base_joints.col(i) - R * hexapod->platform_rel_tcp().col(i);
-      const double L = design.max_length;
-      Eigen::Vector3d low = centre - Eigen::Vector3d::Constant(L);
-      Eigen::Vector3d high = centre + Eigen::Vector3d::Constant(L);
-      if (cone) {
-        const double radial = L * std::sin(beta);
-        low = centre + Eigen::Vector3d(-radial, -radial, design.min_length * std::cos(beta));
-        high = centre + Eigen::Vector3d(radial, radial, L);
-      }
-      box = box.intersection(Eigen::AlignedBox3d(low, high));
-    }
-    if (!box.isEmpty()) united.extend(box);
-  }
-  return united;
+  return machine.workspace_search_box(orientations);
 }
 
 std::optional<double> machine_envelope_volume(const Machine& machine) {
-  const auto* hexapod = dynamic_cast<const Hexapod*>(&machine);
-  if (!hexapod) return std::nullopt;
-  const HexapodDesign& design = hexapod->design();
-  const Eigen::Vector3d centroid = design.base_joints.rowwise().mean();
-  double radius = 0.0;
-  for (int i = 0; i < 6; ++i) {
-    radius = std::max(radius, (design.base_joints.col(i) - centroid).head<2>().norm());
-  }
-  const double height = design.base_joints.row(2).maxCoeff() -
-                        design.base_joints.row(2).minCoeff() + design.max_length;
-  return std::numbers::pi * radius * radius * height;
+  return machine.envelope_volume();
 }
 
 double mesh_volume(const TriangleMesh& mesh) {

@@ -101,7 +101,9 @@ TEST(MachineFile, UnknownModelIsAnError) {
     load_machine(YamlValue::load_string("model: octopod\n", "m.yaml"));
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "m.yaml:1:8: model: expected a known model (hexapod), found 'octopod'");
+    EXPECT_STREQ(e.what(),
+                 "m.yaml:1:8: model: expected a known model (hexapod, delta, linear_delta, "
+                 "hexaglide), found 'octopod'");
   }
   EXPECT_THROW(load_machine_file("/nonexistent/machine.yaml"), InputError);
 }

@@ -9,8 +9,11 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
@@ -548,6 +551,176 @@ TEST(Hexapod, ParallelBatchEqualsSerial) {
     EXPECT_EQ(serial[i].singularity_margin, parallel[i].singularity_margin);
     EXPECT_EQ(serial[i].tcp_error_max, parallel[i].tcp_error_max);
   }
+}
+
+// ---- Regression harness of the fast metric path ------------------------------------------------
+// A plain reference of every metric `analyze` writes, with Eigen's general solvers: JacobiSVD
+// for cond(J_h), FullPivLU for det J, J^-1 and the leg forces, the iterative
+// SelfAdjointEigenSolver for lambda_max(C_tt), and all 64 vertices of the error box.
+struct ReferenceMetrics {
+  Vec6<double> q;
+  Vec6<double> tau;
+  double stiffness_min = 0.0;
+  double rcond = 0.0;  // sigma_min / sigma_max of J_h
+  double det_j = 0.0;
+  double tcp_error_max = 0.0;
+  double cond = 0.0;  // cond(J) (2-norm), for the error bound of ill-conditioned poses
+};
+
+ReferenceMetrics reference_metrics(const Hexapod& hexapod, const Pose& pose, const Wrench& w) {
+  const HexapodDesign& d = hexapod.design();
+  const Eigen::Matrix3d R = reference_rotation(pose.angles);
+  ReferenceMetrics ref;
+  Matrix6d J;
+  Vec6<double> k;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d r = R * (d.platform_joints.col(i) - d.tcp);
+    const Eigen::Vector3d l = pose.position + r - d.base_joints.col(i);
+    ref.q(i) = l.norm();
+    const Eigen::Vector3d s = l / ref.q(i);
+    J.block<1, 3>(i, 0) = s.transpose();
+    J.block<1, 3>(i, 3) = r.cross(s).transpose();
+    double compliance = d.stiffness.axial_stiffness > 0.0
+                            ? 1.0 / d.stiffness.axial_stiffness
+                            : ref.q(i) / (d.stiffness.E * d.stiffness.area);
+    if (d.stiffness.actuator_stiffness > 0.0) compliance += 1.0 / d.stiffness.actuator_stiffness;
+    k(i) = 1.0 / compliance;
+  }
+  Matrix6d Jh = J;
+  Jh.rightCols<3>() /= hexapod.characteristic_length();
+  const Vec6<double> sigma_h = Eigen::JacobiSVD<Matrix6d>(Jh).singularValues();
+  ref.rcond = sigma_h(5) / sigma_h(0);
+  const Vec6<double> sigma = Eigen::JacobiSVD<Matrix6d>(J).singularValues();
+  ref.cond = sigma(0) / sigma(5);
+  const Eigen::FullPivLU<Matrix6d> lu(J);
+  ref.det_j = lu.determinant();
+  const Matrix6d Jinv = lu.inverse();
+  ref.tau = J.transpose().fullPivLu().solve(w);
+  const Matrix6d C = Jinv * k.cwiseInverse().asDiagonal() * Jinv.transpose();
+  const Eigen::Matrix3d Ctt = C.topLeftCorner<3, 3>();
+  ref.stiffness_min = 1.0 / Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ctt).eigenvalues()(2);
+  for (int mask = 0; mask < 64; ++mask) {
+    Vec6<double> dq;
+    for (int i = 0; i < 6; ++i) dq(i) = (mask >> i & 1) ? d.actuator_error : -d.actuator_error;
+    ref.tcp_error_max = std::max(ref.tcp_error_max, (Jinv * dq).head<3>().norm());
+  }
+  return ref;
+}
+
+// Compares analyze with the reference; returns the number of poses checked as non-singular.
+// Relative tolerance 1e-10; where cond(J) is so large that no backward-stable method (the
+// reference included) determines the result to 1e-10, the bound is 64 eps cond(J) instead.
+int expect_matches_reference(const Hexapod& hexapod, const Pose& pose, const Wrench& w,
+                             const std::string& where) {
+  HexapodData data(hexapod);
+  PoseMetrics m;
+  hexapod.analyze(data, pose, w, m);
+  const ReferenceMetrics ref = reference_metrics(hexapod, pose, w);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(m.q(i), ref.q(i), 1e-14 * ref.q(i)) << where;
+  EXPECT_FALSE(std::isnan(m.det_j) || std::isnan(m.stiffness_min) ||
+               std::isnan(m.singularity_margin) || std::isnan(m.tcp_error_max) || m.tau.hasNaN())
+      << where;
+  if (ref.rcond < 0.5 * kSingularRcond) {
+    EXPECT_TRUE(m.singular) << where;
+  }
+  if (ref.rcond < 2.0 * kSingularRcond) {  // at the singularity threshold either answer is right
+    if (m.singular) {
+      EXPECT_EQ(m.singularity_margin, 0.0) << where;
+      EXPECT_EQ(m.stiffness_min, 0.0) << where;
+      EXPECT_TRUE(std::isinf(m.tcp_error_max)) << where;
+      for (int i = 0; i < 6; ++i) EXPECT_TRUE(std::isinf(m.tau(i))) << where;
+    }
+    return 0;
+  }
+  EXPECT_FALSE(m.singular) << where << " rcond " << ref.rcond;
+  if (m.singular) return 0;
+  const double tol = std::max(1e-10, 64.0 * std::numeric_limits<double>::epsilon() * ref.cond);
+  EXPECT_NEAR(m.singularity_margin, ref.rcond, tol * ref.rcond) << where;
+  EXPECT_NEAR(m.det_j, ref.det_j, tol * std::abs(ref.det_j)) << where;
+  EXPECT_NEAR(m.stiffness_min, ref.stiffness_min, tol * ref.stiffness_min) << where;
+  EXPECT_NEAR(m.tcp_error_max, ref.tcp_error_max, tol * ref.tcp_error_max) << where;
+  const double tau_scale = ref.tau.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(m.tau(i), ref.tau(i), tol * tau_scale) << where;
+  return 1;
+}
+
+Wrench random_wrench(Uniform& u) {
+  Wrench w;
+  for (int i = 0; i < 6; ++i) w(i) = u(-1000, 1000);
+  return w;
+}
+
+TEST(HexapodFastPath, MatchesReferenceOnRandomGeometriesAndPoses) {
+  Uniform u(21);
+  int checked = 0;
+  for (int g = 0; g < 300; ++g) {
+    const Hexapod hexapod(sample_machines::random_hexapod_design(u));
+    for (int k = 0; k < 10; ++k) {
+      checked += expect_matches_reference(hexapod, sample_machines::random_pose(u),
+                                          random_wrench(u), "geometry " + std::to_string(g));
+    }
+  }
+  EXPECT_GT(checked, 2900);
+}
+
+// Symmetric poses of semi-regular designs (repeated eigenvalues of J_h J_h^T and of C_tt).
+TEST(HexapodFastPath, MatchesReferenceAtSymmetricPoses) {
+  Uniform u(22);
+  for (int g = 0; g < 100; ++g) {
+    HexapodDesign d =
+        semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(u(5, 50)), u(0.15, 0.4), deg_to_rad(u(5, 50)));
+    d.min_length = 0.3;
+    d.max_length = 2.0;
+    d.stiffness.axial_stiffness = u(1e7, 1e8);
+    if (g % 2) d.tcp = {0, 0, u(-0.2, 0.0)};
+    if (g % 3 == 0) d.characteristic_length = u(0.1, 0.6);
+    const Hexapod hexapod(d);
+    for (int k = 0; k < 10; ++k) {
+      // Centre poses with a yaw that is a multiple of 60 deg keep the 3-fold symmetry.
+      const Pose pose{{0, 0, u(0.5, 1.2)}, {0, 0, deg_to_rad(60.0 * (k % 3))}};
+      expect_matches_reference(hexapod, pose, random_wrench(u), "geometry " + std::to_string(g));
+    }
+  }
+}
+
+// Near-singular poses: similar hexagons (architecturally singular) with their joints moved by
+// 1e-9 .. 1e-2 m, and Fichter's yaw singularity approached to 1e-10 .. 1e-2 rad.
+TEST(HexapodFastPath, MatchesReferenceNearSingularities) {
+  Uniform u(23);
+  int near_singular = 0;
+  for (int g = 0; g < 200; ++g) {
+    const double base_sep = u(10, 60);
+    HexapodDesign d = semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(base_sep), u(0.15, 0.4),
+                                           deg_to_rad(120.0 - base_sep));
+    const double amplitude = std::pow(10.0, u(-9, -2));
+    for (int i = 0; i < 6; ++i) {
+      for (int c = 0; c < 3; ++c) d.platform_joints(c, i) += amplitude * u(-1, 1);
+    }
+    d.min_length = 0.2;
+    d.max_length = 2.0;
+    d.stiffness.E = 2.1e11;
+    d.stiffness.area = 3e-4;
+    d.stiffness.actuator_stiffness = g % 2 ? 2e8 : 0.0;
+    const Hexapod hexapod(d);
+    for (int k = 0; k < 5; ++k) {
+      const Pose pose = sample_machines::random_pose(u);
+      if (reference_metrics(hexapod, pose, Wrench::Zero()).rcond < 1e-4) ++near_singular;
+      expect_matches_reference(hexapod, pose, random_wrench(u), "similar " + std::to_string(g));
+    }
+  }
+  for (int g = 0; g < 200; ++g) {
+    HexapodDesign d =
+        semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(u(5, 50)), u(0.15, 0.4), deg_to_rad(u(5, 50)));
+    d.min_length = 0.2;
+    d.max_length = 2.0;
+    d.stiffness.axial_stiffness = 1e8;
+    const Hexapod hexapod(d);
+    const double offset = (g % 2 ? 1.0 : -1.0) * std::pow(10.0, u(-10, -2));
+    const Pose pose{{0, 0, u(0.5, 1.2)}, {0, 0, deg_to_rad(g % 4 < 2 ? 90.0 : -90.0) + offset}};
+    if (reference_metrics(hexapod, pose, Wrench::Zero()).rcond < 1e-4) ++near_singular;
+    expect_matches_reference(hexapod, pose, random_wrench(u), "fichter " + std::to_string(g));
+  }
+  EXPECT_GT(near_singular, 300);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Tests of models/linalg: the fast 6x6 symmetric eigenvalues against Eigen's solver and exact
-// spectra, including repeated and zero eigenvalues.
+// Tests of models/linalg: the fast 6x6 and 3x3 symmetric eigenvalues against Eigen's solver and
+// exact spectra, including repeated, clustered and zero eigenvalues; the LU solves.
 #include "models/linalg.hpp"
 
 #include <gtest/gtest.h>
@@ -80,6 +80,63 @@ TEST(Linalg, Lu6SolvesAndDeterminantMatchEigen) {
   const Lu6 lu(singular);
   EXPECT_TRUE(lu.exactly_singular());
   EXPECT_EQ(lu.determinant(), 0.0);
+}
+
+TEST(Linalg, ThreeByThreeEigenvaluesIncludingClusters) {
+  sample_machines::Uniform u(4);
+  using Matrix3 = Eigen::Matrix3d;
+  for (int k = 0; k < 500; ++k) {
+    Matrix3 M;
+    for (int i = 0; i < 9; ++i) M.data()[i] = u(-1, 1);
+    const Matrix3 A = M * M.transpose();
+    Eigen::Vector3d fast;
+    symmetric_eigenvalues3(A, fast);
+    const Eigen::Vector3d ref = Eigen::SelfAdjointEigenSolver<Matrix3>(A).eigenvalues();
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(fast(i), ref(i), 1e-14 * ref(2));
+  }
+  // Two largest eigenvalues equal or within 1e-9 (the case a closed-form cubic solution gets
+  // wrong to ~1e-8): Q diag(lambda) Q^T with a random rotation Q.
+  for (const double gap : {0.0, 1e-12, 1e-9, 1e-6}) {
+    for (int rep = 0; rep < 50; ++rep) {
+      Matrix3 M;
+      for (int i = 0; i < 9; ++i) M.data()[i] = u(-1, 1);
+      const Matrix3 Q = Eigen::HouseholderQR<Matrix3>(M).householderQ();
+      const Eigen::Vector3d lambda(0.3e-8, 1e-8, (1.0 + gap) * 1e-8);
+      Eigen::Vector3d fast;
+      symmetric_eigenvalues3(Q * lambda.asDiagonal() * Q.transpose(), fast);
+      for (int i = 0; i < 3; ++i) EXPECT_NEAR(fast(i), lambda(i), 1e-15 * 1e-8);
+    }
+  }
+  Eigen::Vector3d fast;
+  symmetric_eigenvalues3(Eigen::Vector3d(3, 1, 2).asDiagonal().toDenseMatrix(), fast);
+  EXPECT_EQ(fast, Eigen::Vector3d(1, 2, 3));
+}
+
+TEST(Linalg, TransposedSolveWithFourRightHandSides) {
+  sample_machines::Uniform u(5);
+  for (int k = 0; k < 200; ++k) {
+    Matrix6 J;
+    for (int i = 0; i < 36; ++i) J.data()[i] = u(-1, 1);
+    Eigen::Matrix<double, 6, 4> B, X;
+    for (int i = 0; i < 24; ++i) B.data()[i] = u(-1, 1);
+    double det = 0.0;
+    ASSERT_TRUE(solve_transposed6x4(J, B, X, det));
+    EXPECT_NEAR(det, J.determinant(), 1e-12 * std::abs(J.determinant()) + 1e-15);
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_LT((J.transpose() * X.col(c) - B.col(c)).norm(), 1e-10 * B.col(c).norm());
+    }
+  }
+  Matrix6 singular = Matrix6::Identity();
+  singular(2, 2) = 0.0;
+  Eigen::Matrix<double, 6, 4> X;
+  double det = 1.0;
+  EXPECT_FALSE(solve_transposed6x4(singular, Eigen::Matrix<double, 6, 4>::Ones(), X, det));
+  EXPECT_EQ(det, 0.0);
+  // A row permutation: pivoting flips the sign of the determinant.
+  Matrix6 swapped = Matrix6::Identity();
+  swapped.row(0).swap(swapped.row(4));
+  ASSERT_TRUE(solve_transposed6x4(swapped, Eigen::Matrix<double, 6, 4>::Ones(), X, det));
+  EXPECT_EQ(det, -1.0);
 }
 
 }  // namespace

@@ -1,0 +1,234 @@
+#include "app/machine_file_leg_chain.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "app/csv.hpp"
+#include "app/input_error.hpp"
+#include "models/hexapod.hpp"
+
+namespace pkmopt {
+namespace {
+
+double positive(const YamlValue& value) {
+  const double v = value.as_double();
+  if (!(v > 0.0)) value.fail("a number > 0", value.describe());
+  return v;
+}
+
+double non_negative(const YamlValue& value) {
+  const double v = value.as_double();
+  if (!(v >= 0.0)) value.fail("a number >= 0", value.describe());
+  return v;
+}
+
+double angle_limit(const YamlValue& value) {
+  const double v = value.as_double();
+  if (!(v > 0.0 && v <= 180.0)) value.fail("an angle in degrees in (0, 180]", value.describe());
+  return deg_to_rad(v);
+}
+
+Eigen::Vector3d read_vector3(const YamlValue& value) {
+  const auto v = value.as_doubles(3);
+  return {v[0], v[1], v[2]};
+}
+
+// [low, high] with low < high, each within [lo_bound, hi_bound]; scale converts to the code's unit.
+std::pair<double, double> read_range(const YamlValue& value, double lo_bound, double hi_bound,
+                                     const char* unit) {
+  const auto v = value.as_doubles(2);
+  if (!(v[0] < v[1])) {
+    value.fail(fmt::format("[low, high] with low < high ({})", unit), value.describe());
+  }
+  if (!(v[0] >= lo_bound && v[1] <= hi_bound)) {
+    value.fail(fmt::format("a range within [{}, {}] {}", format_number(lo_bound),
+                           format_number(hi_bound), unit),
+               fmt::format("[{}, {}]", format_number(v[0]), format_number(v[1])));
+  }
+  return {v[0], v[1]};
+}
+
+// {E, area} or {axial_stiffness}, into k (actuator stiffness untouched).
+void read_link_stiffness(const YamlValue& section, LinkStiffness& k) {
+  section.check_keys({"E", "area", "axial_stiffness"});
+  const bool has_axial = section.has("axial_stiffness");
+  const bool has_e = section.has("E");
+  const bool has_area = section.has("area");
+  if (has_axial && (has_e || has_area)) {
+    section.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
+  }
+  if (has_axial) {
+    k.axial_stiffness = positive(section.required("axial_stiffness"));
+    k.E = 0.0;
+    k.area = 0.0;
+  } else if (has_e || has_area) {
+    k.axial_stiffness = 0.0;
+    k.E = positive(section.required("E"));
+    k.area = positive(section.required("area"));
+  } else {
+    section.fail(
+        "missing the link stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
+  }
+}
+
+void read_common(const YamlValue& root, Eigen::Vector3d& tcp,
+                 std::optional<double>& characteristic_length) {
+  if (auto tool = root.optional("tool")) {
+    tool->check_keys({"tcp"});
+    if (auto v = tool->optional("tcp")) tcp = read_vector3(*v);
+  }
+  if (auto v = root.optional("characteristic_length")) characteristic_length = positive(*v);
+}
+
+void read_joint_limits(const YamlValue& root, const char* base_key, double& base_limit,
+                       double& platform_limit) {
+  if (auto joints = root.optional("joints")) {
+    joints->check_keys({base_key, "platform_max_angle_deg"});
+    if (auto v = joints->optional(base_key)) base_limit = angle_limit(*v);
+    if (auto v = joints->optional("platform_max_angle_deg")) platform_limit = angle_limit(*v);
+  }
+}
+
+// Runs the machine's own validation and turns its message into an InputError at `root`.
+template <typename Design, typename Make>
+void validate(const YamlValue& root, const Design& design, Make make) {
+  try {
+    (void)make(design);
+  } catch (const std::invalid_argument& e) {
+    root.fail(e.what());
+  }
+}
+
+}  // namespace
+
+DeltaDesign read_delta_design(const YamlValue& root) {
+  root.check_keys({"model", "name", "description", "base_radius", "platform_radius", "upper_arm",
+                   "rod", "drive_range_deg", "branch", "rods", "drive_stiffness", "joints", "tool",
+                   "characteristic_length", "actuator_error_deg"});
+  DeltaDesign d;
+  d.base_radius = positive(root.required("base_radius"));
+  d.platform_radius = non_negative(root.required("platform_radius"));
+  d.upper_arm = positive(root.required("upper_arm"));
+  d.rod = positive(root.required("rod"));
+  const auto range = read_range(root.required("drive_range_deg"), -180.0, 180.0, "deg");
+  d.theta_min = deg_to_rad(range.first);
+  d.theta_max = deg_to_rad(range.second);
+  if (auto v = root.optional("branch")) {
+    const std::string b = v->as_string();
+    if (b == "elbow_out") {
+      d.branch = 1;
+    } else if (b == "elbow_in") {
+      d.branch = -1;
+    } else {
+      v->fail("elbow_out or elbow_in", quote_found(b));
+    }
+  }
+  read_link_stiffness(root.required("rods"), d.stiffness);
+  d.stiffness.actuator_stiffness = 0.0;
+  if (auto v = root.optional("drive_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  read_joint_limits(root, "elbow_max_angle_deg", d.elbow_max_angle, d.platform_max_angle);
+  read_common(root, d.tcp, d.characteristic_length);
+  if (auto v = root.optional("actuator_error_deg")) d.actuator_error = deg_to_rad(non_negative(*v));
+  validate(root, d, make_delta);
+  return d;
+}
+
+LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
+  root.check_keys({"model", "name", "description", "guide_radius", "platform_radius", "rod",
+                   "inclination_deg", "stroke", "rods", "carriage_stiffness", "joints", "tool",
+                   "characteristic_length", "actuator_error"});
+  LinearDeltaDesign d;
+  d.guide_radius = positive(root.required("guide_radius"));
+  d.platform_radius = non_negative(root.required("platform_radius"));
+  d.rod = positive(root.required("rod"));
+  if (auto v = root.optional("inclination_deg")) {
+    const double a = v->as_double();
+    if (!(a > -90.0 && a < 90.0)) v->fail("an angle in degrees in (-90, 90)", v->describe());
+    d.inclination = deg_to_rad(a);
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
+  d.q_min = stroke.first;
+  d.q_max = stroke.second;
+  read_link_stiffness(root.required("rods"), d.stiffness);
+  d.stiffness.actuator_stiffness = 0.0;
+  if (auto v = root.optional("carriage_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
+  read_common(root, d.tcp, d.characteristic_length);
+  if (auto v = root.optional("actuator_error")) d.actuator_error = non_negative(*v);
+  validate(root, d, make_linear_delta);
+  return d;
+}
+
+HexaglideDesign read_hexaglide_design(const YamlValue& root) {
+  root.check_keys({"model", "name", "description", "guides", "strut", "platform", "platform_joints",
+                   "stroke", "struts", "carriage_stiffness", "joints", "tool",
+                   "characteristic_length", "actuator_error", "home_height"});
+  HexaglideDesign d;
+  const YamlValue guides = root.required("guides");
+  guides.check_keys({"y", "z", "inclination_deg"});
+  const auto ys = guides.required("y").as_doubles(6);
+  for (int i = 0; i < 6; ++i)
+    d.guide_y[static_cast<std::size_t>(i)] = ys[static_cast<std::size_t>(i)];
+  if (auto v = guides.optional("z")) {
+    const auto zs = v->as_doubles(6);
+    for (int i = 0; i < 6; ++i)
+      d.guide_z[static_cast<std::size_t>(i)] = zs[static_cast<std::size_t>(i)];
+  }
+  if (auto v = guides.optional("inclination_deg")) {
+    const double a = v->as_double();
+    if (!(a > -90.0 && a < 90.0)) v->fail("an angle in degrees in (-90, 90)", v->describe());
+    d.inclination = deg_to_rad(a);
+  }
+  d.strut = positive(root.required("strut"));
+  const bool has_form = root.has("platform");
+  const bool has_list = root.has("platform_joints");
+  if (has_form && has_list) {
+    root.required("platform_joints").fail("either 'platform' or 'platform_joints', not both");
+  }
+  if (!has_form && !has_list) root.fail("missing required key 'platform' (or 'platform_joints')");
+  if (has_form) {
+    const YamlValue p = root.required("platform");
+    p.check_keys({"radius", "pair_separation_deg", "rotation_deg"});
+    const double radius = positive(p.required("radius"));
+    const YamlValue sep_value = p.required("pair_separation_deg");
+    const double sep = sep_value.as_double();
+    if (!(sep >= 0.0 && sep <= 120.0)) {
+      sep_value.fail("an angle in degrees in [0, 120]", sep_value.describe());
+    }
+    double rotation = 0.0;
+    if (auto v = p.optional("rotation_deg")) rotation = deg_to_rad(v->as_double());
+    d.platform_joints = Eigen::AngleAxisd(rotation, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                        semi_regular_platform_joints(radius, deg_to_rad(sep));
+  } else {
+    const auto rows = root.required("platform_joints").elements(6);
+    for (int i = 0; i < 6; ++i)
+      d.platform_joints.col(i) = read_vector3(rows[static_cast<std::size_t>(i)]);
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
+  d.q_min = stroke.first;
+  d.q_max = stroke.second;
+  read_link_stiffness(root.required("struts"), d.stiffness);
+  d.stiffness.actuator_stiffness = 0.0;
+  if (auto v = root.optional("carriage_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
+  read_common(root, d.tcp, d.characteristic_length);
+  if (auto v = root.optional("actuator_error")) d.actuator_error = non_negative(*v);
+  if (auto v = root.optional("home_height")) d.home_height = v->as_double();
+  validate(root, d, make_hexaglide);
+  return d;
+}
+
+std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std::string& model) {
+  if (model == "delta") return make_delta(read_delta_design(root));
+  if (model == "linear_delta") return make_linear_delta(read_linear_delta_design(root));
+  if (model == "hexaglide") return make_hexaglide(read_hexaglide_design(root));
+  return nullptr;
+}
+
+const char* leg_chain_model_names() { return "delta, linear_delta, hexaglide"; }
+
+}  // namespace pkmopt

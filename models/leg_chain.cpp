@@ -1,0 +1,830 @@
+#include "models/leg_chain.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "models/hexapod.hpp"  // kSingularRcond, semi_regular_platform_joints
+
+namespace pkmopt {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = std::numbers::pi;
+// A leg is serial-singular when |B_i| / scale_i is below this: near a branch point the closed-form
+// IK (a square root of a difference) only gives B_i to about sqrt(eps).
+constexpr double kSerialTolerance = 1e-7;
+
+using MatM = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+using VecM = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+using Mat3M = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6>;
+
+std::string fmt_double(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
+}
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw std::invalid_argument(message);
+}
+
+// Angle wrapped to (-pi, pi].
+double wrap_angle(double a) {
+  a = std::remainder(a, 2.0 * kPi);
+  return a <= -kPi ? a + 2.0 * kPi : a;
+}
+
+double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// Rotation of v about the unit axis w by angle a (Rodrigues).
+Eigen::Vector3d rotate_about(const Eigen::Vector3d& w, double a, const Eigen::Vector3d& v) {
+  return std::cos(a) * v + std::sin(a) * w.cross(v) + (1.0 - std::cos(a)) * w.dot(v) * w;
+}
+
+// 1 / cond(M) = sigma_min / sigma_max (0 if not finite). 3x3: from the eigenvalues of M^T M
+// (closed form), with an SVD when the ratio is below 1e-3 (the squared matrix loses digits there,
+// relative error ~ eps cond^2); other sizes: SVD.
+double reciprocal_condition(const MatM& M) {
+  if (!M.allFinite()) return 0.0;
+  if (M.rows() == 3) {
+    const Mat3<double> gram = M.transpose() * M;
+    Eigen::SelfAdjointEigenSolver<Mat3<double>> eig;
+    eig.computeDirect(gram, Eigen::EigenvaluesOnly);
+    const double lambda_max = eig.eigenvalues()(2);
+    const double lambda_min = std::max(eig.eigenvalues()(0), 0.0);
+    const double rcond = lambda_max > 0.0 ? std::sqrt(lambda_min / lambda_max) : 0.0;
+    if (rcond >= 1e-3) return rcond;
+  }
+  Eigen::JacobiSVD<MatM> svd(M);
+  const auto& sv = svd.singularValues();
+  const double rcond = sv(0) > 0.0 ? sv(M.rows() - 1) / sv(0) : 0.0;
+  return std::isfinite(rcond) ? rcond : 0.0;
+}
+
+// Azimuth unit vector (cos phi, sin phi, 0).
+Eigen::Vector3d radial(double phi) { return {std::cos(phi), std::sin(phi), 0.0}; }
+
+}  // namespace
+
+LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design) {
+  const int n = static_cast<int>(design_.legs.size());
+  if (design_.mobility == PlatformMobility::kSixDof) {
+    require(n == 6, "a 6-DOF leg-chain machine needs 6 legs, found " + std::to_string(n));
+    dof_ = 6;
+  } else {
+    require(n == 3,
+            "a 3-DOF translational leg-chain machine needs 3 legs, found " + std::to_string(n));
+    dof_ = 3;
+  }
+  require(design_.tcp.allFinite(), "tool.tcp must be finite numbers");
+  require(
+      std::isfinite(design_.actuator_error) && design_.actuator_error >= 0.0,
+      "actuator_error must be a finite number >= 0, found " + fmt_double(design_.actuator_error));
+  require(design_.home.position.allFinite() && design_.home.angles.allFinite(),
+          "the home pose must be finite");
+  int revolute = 0;
+  for (int i = 0; i < n; ++i) {
+    LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    const std::string name = "leg " + std::to_string(i + 1) + ": ";
+    require(leg.base_point.allFinite() && leg.platform_point.allFinite() && leg.axis.allFinite() &&
+                leg.crank_zero.allFinite(),
+            name + "points and axes must be finite numbers");
+    require(std::isfinite(leg.q_min) && std::isfinite(leg.q_max) && leg.q_min < leg.q_max,
+            name + "the actuator range needs finite q_min < q_max, found [" +
+                fmt_double(leg.q_min) + ", " + fmt_double(leg.q_max) + "]");
+    require(leg.branch == 1 || leg.branch == -1, name + "branch must be +1 or -1");
+    if (leg.kind == LegKind::kUPS) {
+      require(leg.q_min > 0.0, name + "min_length must be > 0, found " + fmt_double(leg.q_min));
+    } else {
+      require(std::isfinite(leg.link_length) && leg.link_length > 0.0,
+              name + "the link length must be a finite number > 0, found " +
+                  fmt_double(leg.link_length));
+      require(leg.axis.norm() > 1e-12, name + "the guide / crank axis must be non-zero");
+      leg.axis.normalize();
+    }
+    if (leg.kind == LegKind::kRUS) {
+      ++revolute;
+      require(std::isfinite(leg.crank_length) && leg.crank_length > 0.0,
+              name + "the crank length must be a finite number > 0, found " +
+                  fmt_double(leg.crank_length));
+      leg.crank_zero -= leg.crank_zero.dot(leg.axis) * leg.axis;
+      require(leg.crank_zero.norm() > 1e-12,
+              name + "the crank direction at q = 0 must not be along the crank axis");
+      leg.crank_zero.normalize();
+      require(leg.q_max - leg.q_min <= 2.0 * kPi + 1e-12,
+              name + "the crank range must not exceed 360 degrees");
+    }
+    require(std::isfinite(leg.axial_stiffness) && leg.axial_stiffness >= 0.0 &&
+                std::isfinite(leg.E) && leg.E >= 0.0 && std::isfinite(leg.area) &&
+                leg.area >= 0.0 && std::isfinite(leg.actuator_stiffness) &&
+                leg.actuator_stiffness >= 0.0 && leg.rods >= 1,
+            name + "stiffness values must be finite numbers >= 0 (rods >= 1)");
+    require(leg.axial_stiffness > 0.0 || (leg.E > 0.0 && leg.area > 0.0),
+            name + "a link stiffness is needed: axial_stiffness > 0, or E > 0 and area > 0");
+    require(!std::isnan(leg.base_max_angle) && leg.base_max_angle > 0.0 &&
+                !std::isnan(leg.platform_max_angle) && leg.platform_max_angle > 0.0,
+            name + "joint angle limits must be > 0");
+    require(leg.base_axis.allFinite() && leg.base_axis.norm() > 1e-12 &&
+                leg.platform_axis.allFinite() && leg.platform_axis.norm() > 1e-12,
+            name + "joint axes must be non-zero finite vectors");
+    leg.base_axis.normalize();
+    leg.platform_axis.normalize();
+  }
+  require(revolute == 0 || revolute == n, "legs must be all revolute or all prismatic");
+  revolute_ = revolute == n;
+
+  platform_rel_.resize(3, n);
+  for (int i = 0; i < n; ++i) {
+    platform_rel_.col(i) = design_.legs[static_cast<std::size_t>(i)].platform_point - design_.tcp;
+  }
+  // Mean leg vector at the home pose: the default FK start follows the actuated points.
+  home_leg_offset_.setZero();
+  if (const auto q_home = inverse_kinematics(design_.home)) {
+    const Eigen::Matrix3d R = platform_rotation(design_.home);
+    for (int i = 0; i < n; ++i) {
+      Eigen::Vector3d c, dc;
+      actuated_point(i, (*q_home)(i), c, dc);
+      home_leg_offset_ += design_.home.position + R * platform_rel_.col(i) - c;
+    }
+    home_leg_offset_ /= n;
+    home_ik_ok_ = true;
+  }
+  if (design_.characteristic_length) {
+    const double L = *design_.characteristic_length;
+    require(std::isfinite(L) && L > 0.0,
+            "characteristic_length must be a finite number > 0, found " + fmt_double(L));
+    characteristic_length_ = L;
+  } else {
+    characteristic_length_ = platform_rel_.colwise().norm().mean();
+    if (dof_ == 6) {
+      require(characteristic_length_ > 0.0,
+              "the platform joints all sit at the TCP; give characteristic_length");
+    } else if (!(characteristic_length_ > 0.0)) {
+      characteristic_length_ = 1.0;  // unused: no rotational DOF
+    }
+  }
+}
+
+std::unique_ptr<MachineData> LegChainMachine::make_data() const {
+  auto d = std::make_unique<LegChainData>();
+  const int n = num_actuators();
+  d->s.resize(3, n);
+  d->r.resize(3, n);
+  d->c.resize(3, n);
+  d->q.resize(n);
+  d->B.resize(n);
+  d->A.resize(n, n);
+  d->k.resize(n);
+  return d;
+}
+
+void LegChainMachine::actuated_point(int i, double q, Eigen::Vector3d& c,
+                                     Eigen::Vector3d& dc) const {
+  const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+  switch (leg.kind) {
+    case LegKind::kUPS:
+      c = leg.base_point;
+      dc.setZero();
+      break;
+    case LegKind::kPUS:
+      c = leg.base_point + q * leg.axis;
+      dc = leg.axis;
+      break;
+    case LegKind::kRUS: {
+      const Eigen::Vector3d n0 = leg.axis.cross(leg.crank_zero);
+      const Eigen::Vector3d crank =
+          leg.crank_length * (std::cos(q) * leg.crank_zero + std::sin(q) * n0);
+      c = leg.base_point + crank;
+      dc = leg.axis.cross(crank);
+      break;
+    }
+  }
+}
+
+double LegChainMachine::leg_ik(int i, const Eigen::Vector3d& P, bool& ok) const {
+  const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+  const Eigen::Vector3d d = P - leg.base_point;
+  const double L = leg.link_length;
+  ok = true;
+  switch (leg.kind) {
+    case LegKind::kUPS:
+      return d.norm();
+    case LegKind::kPUS: {
+      // |d - q u| = L:  q = t -+ sqrt(t^2 - |d|^2 + L^2), t = u.d; B = s.u = (t - q) / L.
+      const double t = leg.axis.dot(d);
+      const double disc = t * t - d.squaredNorm() + L * L;
+      if (!(disc >= 0.0)) {
+        ok = false;
+        return std::isfinite(t) ? t : 0.0;
+      }
+      return t - leg.branch * std::sqrt(disc);
+    }
+    case LegKind::kRUS: {
+      // E cos q + F sin q = G with E = d.d0, F = d.n0, G = (|d|^2 + r^2 - L^2) / (2 r);
+      // q = phi -+ acos(G / hypot(E, F)), phi = atan2(F, E); B = -r hypot(E,F) sin(q - phi).
+      const Eigen::Vector3d n0 = leg.axis.cross(leg.crank_zero);
+      const double E = d.dot(leg.crank_zero);
+      const double F = d.dot(n0);
+      const double r = leg.crank_length;
+      const double G = (d.squaredNorm() + r * r - L * L) / (2.0 * r);
+      const double H = std::hypot(E, F);
+      const double phi = std::atan2(F, E);
+      double ratio = H > 0.0 ? G / H : (G >= 0.0 ? kInf : -kInf);
+      if (!(ratio >= -1.0 && ratio <= 1.0)) {
+        ok = false;
+        ratio = ratio > 1.0 ? 1.0 : -1.0;  // the closest the elbow gets
+      }
+      const double q = wrap_angle(phi - leg.branch * std::acos(ratio));
+      return std::isfinite(q) ? q : 0.0;
+    }
+  }
+  return 0.0;
+}
+
+Eigen::Matrix3d LegChainMachine::platform_rotation(const Pose& pose) const {
+  if (design_.mobility == PlatformMobility::kTranslational) return Eigen::Matrix3d::Identity();
+  return rotation_zyx<double>(pose.angles);
+}
+
+void LegChainMachine::compute_kinematics(LegChainData& d, const Pose& pose) const {
+  const int n = num_actuators();
+  const Eigen::Matrix3d R = platform_rotation(pose);
+  d.ik_ok = true;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d ri = R * platform_rel_.col(i);
+    const Eigen::Vector3d P = pose.position + ri;
+    bool ok = true;
+    const double qi = leg_ik(i, P, ok);
+    d.ik_ok = d.ik_ok && ok;
+    Eigen::Vector3d c, dc;
+    actuated_point(i, qi, c, dc);
+    const Eigen::Vector3d l = P - c;
+    const double len = l.norm();
+    const Eigen::Vector3d si = len > 0.0 ? Eigen::Vector3d(l / len) : Eigen::Vector3d::Zero();
+    if (!(len > 0.0)) d.ik_ok = false;
+    d.q(i) = qi;
+    d.r.col(i) = ri;
+    d.c.col(i) = c;
+    d.s.col(i) = si;
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    d.B(i) = leg.kind == LegKind::kUPS ? 1.0 : si.dot(dc);
+    d.A.block(i, 0, 1, 3) = si.transpose();
+    if (dof_ == 6) d.A.block(i, 3, 1, 3) = ri.cross(si).transpose();
+  }
+  // Serial singularity: |B_i| small relative to its scale (1 for UPS/PUS, r_i for RUS).
+  d.serial_singular = false;
+  d.det_b = 1.0;
+  for (int i = 0; i < n; ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    const double scale = leg.kind == LegKind::kRUS ? leg.crank_length : 1.0;
+    if (!(std::abs(d.B(i)) >= kSerialTolerance * scale)) d.serial_singular = true;
+    d.det_b *= d.B(i);
+  }
+}
+
+void LegChainMachine::jacobians(const Pose& pose, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                                Eigen::MatrixXd& J) const {
+  LegChainData d;
+  const int n = num_actuators();
+  d.s.resize(3, n);
+  d.r.resize(3, n);
+  d.c.resize(3, n);
+  d.q.resize(n);
+  d.B.resize(n);
+  d.A.resize(n, n);
+  d.k.resize(n);
+  compute_kinematics(d, pose);
+  A = d.A;
+  B = d.B.asDiagonal();
+  if ((d.B.array() == 0.0).any()) {
+    J.resize(0, 0);
+  } else {
+    J = d.B.cwiseInverse().asDiagonal() * d.A;
+  }
+}
+
+bool LegChainMachine::reachable_from_kinematics(const LegChainData& d, const Pose& pose) const {
+  if (!d.ik_ok) return false;
+  if (design_.mobility == PlatformMobility::kTranslational &&
+      !(pose.angles.cwiseAbs().maxCoeff() <= 1e-12)) {
+    return false;
+  }
+  const Eigen::Matrix3d R = platform_rotation(pose);
+  for (int i = 0; i < num_actuators(); ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    if (!(d.q(i) >= leg.q_min && d.q(i) <= leg.q_max)) return false;
+    if (std::isfinite(leg.base_max_angle)) {
+      const Eigen::Vector3d axis =
+          leg.kind == LegKind::kRUS ? rotate_about(leg.axis, d.q(i), leg.base_axis) : leg.base_axis;
+      if (angle_between(d.s.col(i), axis) > leg.base_max_angle) return false;
+    }
+    if (std::isfinite(leg.platform_max_angle) &&
+        angle_between(-d.s.col(i), R * leg.platform_axis) > leg.platform_max_angle) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool LegChainMachine::reachable(MachineData& data, const Pose& pose) const {
+  auto& d = static_cast<LegChainData&>(data);
+  compute_kinematics(d, pose);
+  return reachable_from_kinematics(d, pose);
+}
+
+void LegChainMachine::joint_angles(const Pose& pose, Eigen::VectorXd& base_angles,
+                                   Eigen::VectorXd& platform_angles) const {
+  const auto data = make_data();
+  auto& d = static_cast<LegChainData&>(*data);
+  compute_kinematics(d, pose);
+  const Eigen::Matrix3d R = platform_rotation(pose);
+  const int n = num_actuators();
+  base_angles.resize(n);
+  platform_angles.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d axis =
+        leg.kind == LegKind::kRUS ? rotate_about(leg.axis, d.q(i), leg.base_axis) : leg.base_axis;
+    base_angles(i) = angle_between(d.s.col(i), axis);
+    platform_angles(i) = angle_between(-d.s.col(i), R * leg.platform_axis);
+  }
+}
+
+std::optional<Eigen::VectorXd> LegChainMachine::inverse_kinematics(const Pose& pose) const {
+  const Eigen::Matrix3d R = platform_rotation(pose);
+  Eigen::VectorXd q(num_actuators());
+  for (int i = 0; i < num_actuators(); ++i) {
+    bool ok = true;
+    q(i) = leg_ik(i, pose.position + R * platform_rel_.col(i), ok);
+    if (!ok) return std::nullopt;
+  }
+  return q;
+}
+
+void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
+                              PoseMetrics& out) const {
+  auto& d = static_cast<LegChainData&>(data);
+  const int n = num_actuators();
+  compute_kinematics(d, pose);
+  out.reachable = reachable_from_kinematics(d, pose);
+  out.q = d.q;
+
+  // Axial stiffness of every leg at its platform point: actuator and link in series.
+  for (int i = 0; i < n; ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    const double length = leg.kind == LegKind::kUPS ? d.q(i) : leg.link_length;
+    double compliance = leg.axial_stiffness > 0.0 ? 1.0 / leg.axial_stiffness
+                                                  : length / (leg.E * leg.area * leg.rods);
+    if (leg.actuator_stiffness > 0.0) compliance += d.B(i) * d.B(i) / leg.actuator_stiffness;
+    d.k(i) = compliance > 0.0 ? 1.0 / compliance : kInf;
+  }
+
+  // Parallel singularity from the conditioning of A_h = A diag(1, 1/L) (the part of J_h that
+  // does not depend on the actuators).
+  MatM Ah = d.A;
+  if (dof_ == 6) Ah.rightCols(3) /= characteristic_length_;
+  const Eigen::PartialPivLU<MatM> lu_a(d.A);
+  d.det_a = std::isfinite(lu_a.determinant()) ? lu_a.determinant() : 0.0;
+  const double rcond_a = reciprocal_condition(Ah);
+  d.parallel_singular = !(rcond_a >= kSingularRcond) || d.det_a == 0.0;
+
+  double rcond = 0.0;
+  if (!d.serial_singular && !d.parallel_singular) {
+    const MatM Jh = d.B.cwiseInverse().asDiagonal() * Ah;
+    rcond = reciprocal_condition(Jh);
+  }
+  const double det_j = d.det_b != 0.0 ? d.det_a / d.det_b : 0.0;
+  out.det_j = std::isfinite(det_j) ? det_j : 0.0;
+  out.singular = d.serial_singular || d.parallel_singular || !(rcond >= kSingularRcond) || !d.ik_ok;
+  if (out.singular) {
+    out.singularity_margin = 0.0;
+    out.stiffness_min = 0.0;
+    out.tau = VecM::Constant(n, kInf);
+    out.tcp_error_max = kInf;
+    return;
+  }
+  out.singularity_margin = rcond;
+
+  // Generalised force on the platform DOF: T^T w.
+  VecM w_dof(n);
+  w_dof = wrench.head(n);
+  // Rod forces f = A^-T w_dof; tau_i = B_i f_i.
+  const VecM f = lu_a.transpose().solve(w_dof);
+  out.tau = d.B.cwiseProduct(f).array() + 0.0;  // + 0.0: no negative zeros in files
+
+  // A^-1: its translational rows P give the TCP displacement per unit axial displacement.
+  const MatM Ainv = lu_a.inverse();
+  const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> P = Ainv.topRows(3);
+  const Mat3M Pk = P * d.k.cwiseInverse().asDiagonal();
+  Mat3<double> Ctt = Pk * P.transpose();
+  Eigen::SelfAdjointEigenSolver<Mat3<double>> eig3;
+  eig3.computeDirect(Ctt, Eigen::EigenvaluesOnly);
+  const double c_max = eig3.eigenvalues()(2);
+  out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : kInf;
+
+  // tcp_error_max: dx = A^-1 B dq; the largest |position part| over the box vertices.
+  const Mat3M E = P * d.B.asDiagonal();
+  double best = 0.0;
+  const unsigned vertices = 1u << (n - 1);
+  for (unsigned g = 0; g < vertices; ++g) {
+    Eigen::Vector3d v = E.col(0);
+    for (int j = 1; j < n; ++j) v += ((g >> (j - 1)) & 1u ? -1.0 : 1.0) * E.col(j);
+    best = std::max(best, v.squaredNorm());
+  }
+  out.tcp_error_max = design_.actuator_error * std::sqrt(best);
+  if (!std::isfinite(out.stiffness_min) || !out.tau.allFinite() ||
+      !std::isfinite(out.tcp_error_max)) {
+    out.singular = true;
+    out.singularity_margin = 0.0;
+    out.stiffness_min = 0.0;
+    out.tau = VecM::Constant(n, kInf);
+    out.tcp_error_max = kInf;
+  }
+}
+
+FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,
+                                             const std::optional<Pose>& guess,
+                                             const FkOptions& options) const {
+  FkResult result;
+  const int n = num_actuators();
+  if (q_target.size() != n || !q_target.allFinite()) {
+    result.message = "actuator coordinates must be " + std::to_string(n) + " finite numbers";
+    result.residual = kInf;
+    result.pose = design_.home;
+    return result;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (design_.legs[static_cast<std::size_t>(i)].kind == LegKind::kUPS && !(q_target(i) > 0.0)) {
+      result.message = "leg lengths must be > 0";
+      result.residual = kInf;
+      result.pose = design_.home;
+      return result;
+    }
+  }
+  Pose start = guess ? *guess : default_fk_start(q_target);
+  if (!start.position.allFinite() || !start.angles.allFinite()) {
+    result.message = "the guess must be finite";
+    result.residual = kInf;
+    result.pose = design_.home;
+    return result;
+  }
+  if (design_.mobility == PlatformMobility::kTranslational) start.angles.setZero();
+
+  // The actuated points and link lengths are fixed by q.
+  Mat3M c(3, n);
+  VecM L(n);
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d ci, dci;
+    actuated_point(i, q_target(i), ci, dci);
+    c.col(i) = ci;
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    L(i) = leg.kind == LegKind::kUPS ? q_target(i) : leg.link_length;
+  }
+  // Levenberg-Marquardt on the closure errors g_i = |P_i - c_i| - L_i over the platform DOF;
+  // the Jacobian of g with respect to the DOF twist is A.
+  auto evaluate = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, VecM& g, MatM& jac) {
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d ri = R * platform_rel_.col(i);
+      const Eigen::Vector3d l = p + ri - c.col(i);
+      const double len = l.norm();
+      g(i) = len - L(i);
+      const Eigen::Vector3d si = len > 0.0 ? Eigen::Vector3d(l / len) : Eigen::Vector3d::Zero();
+      jac.block(i, 0, 1, 3) = si.transpose();
+      if (dof_ == 6) jac.block(i, 3, 1, 3) = ri.cross(si).transpose();
+    }
+  };
+  Eigen::Vector3d p = start.position;
+  Eigen::Matrix3d R = platform_rotation(start);
+  VecM g(n);
+  MatM jac(n, n);
+  evaluate(p, R, g, jac);
+  double cost = g.squaredNorm();
+  double lambda = options.initial_damping;
+  int iterations = 0;
+  bool converged = g.cwiseAbs().maxCoeff() <= options.tolerance;
+  int polish_steps = 0;
+  while (iterations < options.max_iterations) {
+    if (converged) {
+      if (polish_steps >= 2) break;
+      ++polish_steps;
+    }
+    ++iterations;
+    const MatM JtJ = jac.transpose() * jac;
+    const VecM grad = jac.transpose() * g;
+    MatM H = JtJ;
+    const double damping = converged ? 0.0 : lambda;
+    for (int i = 0; i < n; ++i) H(i, i) += damping * (JtJ(i, i) + 1e-12);
+    const VecM step = -H.ldlt().solve(grad);
+    if (!step.allFinite()) {
+      if (converged) break;
+      lambda *= 10.0;
+      if (lambda > 1e16) break;
+      continue;
+    }
+    const Eigen::Vector3d p_trial = p + step.head(3);
+    const Eigen::Matrix3d R_trial =
+        dof_ == 6 ? Eigen::Matrix3d(rotation_from_vector(step.tail(3)) * R) : R;
+    VecM g_trial(n);
+    MatM jac_trial(n, n);
+    evaluate(p_trial, R_trial, g_trial, jac_trial);
+    const double cost_trial = g_trial.squaredNorm();
+    if (std::isfinite(cost_trial) && cost_trial < cost) {
+      p = p_trial;
+      R = R_trial;
+      g = g_trial;
+      jac = jac_trial;
+      cost = cost_trial;
+      lambda = std::max(lambda / 5.0, 1e-15);
+      converged = converged || g.cwiseAbs().maxCoeff() <= options.tolerance;
+    } else {
+      if (converged) break;
+      lambda *= 5.0;
+      if (lambda > 1e16) break;
+    }
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  R = svd.matrixU() * svd.matrixV().transpose();
+  result.pose.position = p;
+  result.pose.angles = dof_ == 6 ? angles_from_rotation(R) : Eigen::Vector3d::Zero();
+  result.iterations = iterations;
+  result.residual = g.cwiseAbs().maxCoeff();
+  result.converged = converged && p.allFinite();
+  if (!result.pose.position.allFinite() || !result.pose.angles.allFinite() ||
+      !std::isfinite(result.residual)) {
+    result.pose = start;
+    result.residual = kInf;
+    result.converged = false;
+  }
+  if (result.converged) {
+    result.message = "converged";
+  } else {
+    std::ostringstream os;
+    os << "did not converge: max leg closure error " << result.residual << " m after " << iterations
+       << " iterations";
+    result.message = os.str();
+  }
+  return result;
+}
+
+Pose LegChainMachine::default_fk_start(const Eigen::VectorXd& q) const {
+  Pose start = design_.home;
+  if (!home_ik_ok_) return start;
+  const Eigen::Matrix3d R = platform_rotation(design_.home);
+  Eigen::Vector3d p = home_leg_offset_;
+  for (int i = 0; i < num_actuators(); ++i) {
+    Eigen::Vector3d c, dc;
+    actuated_point(i, q(i), c, dc);
+    p += (c - R * platform_rel_.col(i)) / num_actuators();
+  }
+  if (p.allFinite()) start.position = p;
+  return start;
+}
+
+std::optional<Eigen::AlignedBox3d> LegChainMachine::workspace_search_box(
+    const std::vector<Eigen::Matrix3d>& orientations) const {
+  // Leg i keeps its platform point P_i within reach of the set of its actuated points:
+  //   UPS: ball of radius q_max about a_i; PUS: within L_i of the guide segment;
+  //   RUS: within r_i + L_i of the pivot. The TCP is P_i - R (b_i - tcp).
+  Eigen::AlignedBox3d united;
+  const int n = num_actuators();
+  for (const Eigen::Matrix3d& R_in : orientations) {
+    const Eigen::Matrix3d R =
+        design_.mobility == PlatformMobility::kTranslational ? Eigen::Matrix3d::Identity() : R_in;
+    Eigen::AlignedBox3d box(Eigen::Vector3d::Constant(-kInf), Eigen::Vector3d::Constant(kInf));
+    for (int i = 0; i < n; ++i) {
+      const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+      const Eigen::Vector3d offset = -R * platform_rel_.col(i);
+      Eigen::AlignedBox3d leg_box;
+      switch (leg.kind) {
+        case LegKind::kUPS: {
+          const Eigen::Vector3d reach = Eigen::Vector3d::Constant(leg.q_max);
+          leg_box = Eigen::AlignedBox3d(leg.base_point - reach, leg.base_point + reach);
+          break;
+        }
+        case LegKind::kPUS: {
+          const Eigen::Vector3d reach = Eigen::Vector3d::Constant(leg.link_length);
+          const Eigen::Vector3d a = leg.base_point + leg.q_min * leg.axis;
+          const Eigen::Vector3d b = leg.base_point + leg.q_max * leg.axis;
+          leg_box = Eigen::AlignedBox3d(a.cwiseMin(b) - reach, a.cwiseMax(b) + reach);
+          break;
+        }
+        case LegKind::kRUS: {
+          const Eigen::Vector3d reach =
+              Eigen::Vector3d::Constant(leg.crank_length + leg.link_length);
+          leg_box = Eigen::AlignedBox3d(leg.base_point - reach, leg.base_point + reach);
+          break;
+        }
+      }
+      leg_box.translate(offset);
+      box = box.intersection(leg_box);
+    }
+    if (!box.isEmpty()) united.extend(box);
+    if (design_.mobility == PlatformMobility::kTranslational) break;
+  }
+  return united;
+}
+
+std::optional<double> LegChainMachine::envelope_volume() const {
+  // Vertical cylinder about the centroid of the actuated points' reach: radius the largest
+  // horizontal distance an actuated point reaches (stroke ends, crank circle), height the z
+  // extent of those points plus the longest link (UPS: max_length).
+  std::vector<Eigen::Vector3d> points;
+  double link = 0.0;
+  for (const LegChainLeg& leg : design_.legs) {
+    switch (leg.kind) {
+      case LegKind::kUPS:
+        points.push_back(leg.base_point);
+        link = std::max(link, leg.q_max);
+        break;
+      case LegKind::kPUS:
+        points.push_back(leg.base_point + leg.q_min * leg.axis);
+        points.push_back(leg.base_point + leg.q_max * leg.axis);
+        link = std::max(link, leg.link_length);
+        break;
+      case LegKind::kRUS: {
+        const Eigen::Vector3d n0 = leg.axis.cross(leg.crank_zero);
+        for (int k = 0; k < 72; ++k) {
+          const double a = 2.0 * kPi * k / 72.0;
+          points.push_back(leg.base_point +
+                           leg.crank_length * (std::cos(a) * leg.crank_zero + std::sin(a) * n0));
+        }
+        link = std::max(link, leg.link_length);
+        break;
+      }
+    }
+  }
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const auto& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  double radius = 0.0, zmin = kInf, zmax = -kInf;
+  for (const auto& p : points) {
+    radius = std::max(radius, (p - centroid).head<2>().norm());
+    zmin = std::min(zmin, p.z());
+    zmax = std::max(zmax, p.z());
+  }
+  return kPi * radius * radius * (zmax - zmin + link);
+}
+
+std::unique_ptr<Machine> make_leg_chain_machine(const LegChainDesign& design) {
+  return std::make_unique<LegChainMachine>(design);
+}
+
+// ------------------------------------------------------------------------------------------
+// Named models.
+
+namespace {
+
+void apply_stiffness(LegChainLeg& leg, const LinkStiffness& k, int rods) {
+  leg.axial_stiffness = k.axial_stiffness;
+  leg.E = k.E;
+  leg.area = k.area;
+  leg.rods = rods;
+  leg.actuator_stiffness = k.actuator_stiffness;
+}
+
+}  // namespace
+
+LegChainDesign delta_design(const DeltaDesign& p) {
+  require(std::isfinite(p.base_radius) && p.base_radius >= 0.0,
+          "base_radius must be a finite number >= 0");
+  require(std::isfinite(p.platform_radius) && p.platform_radius >= 0.0,
+          "platform_radius must be a finite number >= 0");
+  LegChainDesign d;
+  d.model = "delta";
+  d.mobility = PlatformMobility::kTranslational;
+  for (int i = 0; i < 3; ++i) {
+    const double phi = deg_to_rad(-90.0 + 120.0 * i);
+    const Eigen::Vector3d u = radial(phi);
+    LegChainLeg leg;
+    leg.kind = LegKind::kRUS;
+    leg.base_point = p.base_radius * u;
+    leg.crank_zero = u;
+    // n0 = w x d0 must be -z (positive theta lowers the elbow): w = d0 x n0 = u x (-z).
+    leg.axis = u.cross(-Eigen::Vector3d::UnitZ());
+    leg.crank_length = p.upper_arm;
+    leg.link_length = p.rod;
+    leg.platform_point = p.platform_radius * u;
+    leg.q_min = p.theta_min;
+    leg.q_max = p.theta_max;
+    leg.branch = p.branch;
+    apply_stiffness(leg, p.stiffness, 2);
+    leg.base_max_angle = p.elbow_max_angle;
+    leg.platform_max_angle = p.platform_max_angle;
+    leg.base_axis = -Eigen::Vector3d::UnitZ();     // crank frame at theta = 0: down
+    leg.platform_axis = Eigen::Vector3d::UnitZ();  // -s_i points up at the platform
+    d.legs.push_back(leg);
+  }
+  d.tcp = p.tcp;
+  d.characteristic_length = p.characteristic_length;
+  d.actuator_error = p.actuator_error;
+  // Home: the platform straight below with the cranks horizontal (if the rods reach).
+  const double dr = p.base_radius + p.upper_arm - p.platform_radius;
+  const double h2 = p.rod * p.rod - dr * dr;
+  d.home.position = Eigen::Vector3d(0, 0, -(h2 > 0.0 ? std::sqrt(h2) : p.rod)) + p.tcp;
+  return d;
+}
+
+std::unique_ptr<Machine> make_delta(const DeltaDesign& d) {
+  return make_leg_chain_machine(delta_design(d));
+}
+
+LegChainDesign linear_delta_design(const LinearDeltaDesign& p) {
+  require(std::isfinite(p.inclination) && std::abs(p.inclination) < kPi / 2,
+          "the guide inclination must be within (-90, 90) degrees");
+  LegChainDesign d;
+  d.model = "linear_delta";
+  d.mobility = PlatformMobility::kTranslational;
+  for (int i = 0; i < 3; ++i) {
+    const double phi = deg_to_rad(-90.0 + 120.0 * i);
+    const Eigen::Vector3d u = radial(phi);
+    LegChainLeg leg;
+    leg.kind = LegKind::kPUS;
+    leg.base_point = p.guide_radius * u;
+    // Upwards along the guide, leaning towards the centre by the inclination.
+    leg.axis = std::cos(p.inclination) * Eigen::Vector3d::UnitZ() - std::sin(p.inclination) * u;
+    leg.link_length = p.rod;
+    leg.platform_point = p.platform_radius * u;
+    leg.q_min = p.q_min;
+    leg.q_max = p.q_max;
+    leg.branch = -1;  // carriage above the platform point: q > u.d, B_i < 0
+    apply_stiffness(leg, p.stiffness, 2);
+    leg.base_max_angle = p.carriage_max_angle;
+    leg.platform_max_angle = p.platform_max_angle;
+    leg.base_axis = -Eigen::Vector3d::UnitZ();
+    leg.platform_axis = Eigen::Vector3d::UnitZ();
+    d.legs.push_back(leg);
+  }
+  d.tcp = p.tcp;
+  d.characteristic_length = p.characteristic_length;
+  d.actuator_error = p.actuator_error;
+  // Home: the carriages at mid-stroke, platform straight below them.
+  const double qm = 0.5 * (p.q_min + p.q_max);
+  const Eigen::Vector3d carriage = d.legs[0].base_point + qm * d.legs[0].axis;
+  const double dr = carriage.head<2>().norm() - p.platform_radius;
+  const double h2 = p.rod * p.rod - dr * dr;
+  d.home.position =
+      Eigen::Vector3d(0, 0, carriage.z() - (h2 > 0.0 ? std::sqrt(h2) : p.rod)) + p.tcp;
+  return d;
+}
+
+std::unique_ptr<Machine> make_linear_delta(const LinearDeltaDesign& d) {
+  return make_leg_chain_machine(linear_delta_design(d));
+}
+
+HexaglideDesign::HexaglideDesign()
+    : platform_joints(Eigen::AngleAxisd(kPi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                      semi_regular_platform_joints(0.25, 20.0 * kDegToRad)) {
+  for (int i = 0; i < 6; ++i) {
+    const double y = platform_joints(1, i);
+    guide_y[static_cast<std::size_t>(i)] = y + (y >= 0.0 ? 0.3 : -0.3);
+  }
+}
+
+LegChainDesign hexaglide_design(const HexaglideDesign& p) {
+  require(std::isfinite(p.inclination) && std::abs(p.inclination) < kPi / 2,
+          "the guide inclination must be within (-90, 90) degrees");
+  LegChainDesign d;
+  d.model = "hexaglide";
+  d.mobility = PlatformMobility::kSixDof;
+  const Eigen::Vector3d u(std::cos(p.inclination), 0.0, std::sin(p.inclination));
+  for (int i = 0; i < 6; ++i) {
+    LegChainLeg leg;
+    leg.kind = LegKind::kPUS;
+    leg.base_point = Eigen::Vector3d(0.0, p.guide_y[static_cast<std::size_t>(i)],
+                                     p.guide_z[static_cast<std::size_t>(i)]);
+    leg.axis = u;
+    leg.link_length = p.strut;
+    leg.platform_point = p.platform_joints.col(i);
+    leg.q_min = p.q_min;
+    leg.q_max = p.q_max;
+    // Carriage on the far side of its platform joint: x_c < x_P (q < u.d, B > 0) for b.x < 0.
+    leg.branch = p.platform_joints(0, i) < 0.0 ? 1 : -1;
+    apply_stiffness(leg, p.stiffness, 1);
+    leg.base_max_angle = p.carriage_max_angle;
+    leg.platform_max_angle = p.platform_max_angle;
+    leg.base_axis = Eigen::Vector3d::UnitZ();
+    leg.platform_axis = -Eigen::Vector3d::UnitZ();
+    d.legs.push_back(leg);
+  }
+  d.tcp = p.tcp;
+  d.characteristic_length = p.characteristic_length;
+  d.actuator_error = p.actuator_error;
+  d.home.position = Eigen::Vector3d(0, 0, p.home_height);
+  return d;
+}
+
+std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d) {
+  return make_leg_chain_machine(hexaglide_design(d));
+}
+
+}  // namespace pkmopt

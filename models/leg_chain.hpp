@@ -1,0 +1,293 @@
+// The leg-chain family of parallel machines, and its named members (delta, linear_delta,
+// hexaglide).
+//
+// Every leg closes one distance constraint between an actuated point c_i(q_i) on the base side
+// and a platform point P_i = p + R (b_i - tcp) (p, R: the TCP pose; b_i in the platform frame):
+//     |P_i - c_i(q_i)| = L_i(q_i)
+// with the leg kinds
+//   UPS  fixed base joint c_i = a_i, variable length L_i = q_i (m)             (hexapod legs);
+//   PUS  carriage on a guide line c_i = g_i + q_i u_i (m), constant strut L_i  (PUU: the same);
+//   RUS  crank of length r_i turning about the axis w_i through the pivot o_i,
+//        elbow c_i = o_i + r_i (cos q_i d_i + sin q_i (w_i x d_i)) (q_i in rad), constant rod L_i.
+// Unit leg vector s_i = (P_i - c_i) / |P_i - c_i| (from the actuated side to the platform).
+//
+// Platform mobility (the m platform degrees of freedom, m = number of legs):
+//   kSixDof        6 legs, the platform moves freely; DOF twist [v; omega] (base axes, at the TCP).
+//   kTranslational 3 legs, the orientation is held at R = I by parallelogram rods (deltas,
+//                  linear deltas); DOF twist v. A pose with a rotation is not reachable.
+// The full twist is T xi with T = I (6-DOF) or T = [I; 0] (translational).
+//
+// Velocity equations: differentiating the constraints,  A xi = B q_dot  with
+//   A (m x m): row i = [s_i^T, (r_i x s_i)^T] T,  r_i = R (b_i - tcp);
+//   B = diag(B_i): B_i = 1 (UPS), s_i . u_i (PUS), s_i . (w_i x (c_i - o_i)) (RUS),
+// and the inverse Jacobian J = B^-1 A (q_dot = J xi). det B = 0 is a serial singularity (a leg's
+// actuator cannot move the platform point along its rod, e.g. a delta's arm and rod aligned);
+// det A = 0 a parallel singularity (the platform gains a motion with the actuators locked).
+//
+// IK is closed form per leg. The two solutions of PUS and RUS legs are told apart by the sign of
+// B_i: branch +1 takes B_i > 0, branch -1 takes B_i < 0 (B_i = 0 is the serial singularity
+// between them). For the delta (CONVENTIONS.md) branch +1 is the elbow-out solution.
+//
+// Metrics (same names and meanings as the hexapod, CONVENTIONS.md):
+//   q_i: m (UPS, PUS), rad (RUS; degrees in files).
+//   tau: J^T tau = T^T w, the actuator forces (N) / torques (N*m) balancing the wrench w at the
+//     TCP; for 3-DOF platforms only the components of w along the platform DOF load the
+//     actuators (the rest is taken by the passive constraints). Equivalently the rod forces are
+//     f = A^-T T^T w (tension positive) and tau_i = B_i f_i.
+//   Axial stiffness of leg i, seen at the platform point along s_i:
+//     k_i = 1 / (B_i^2 / k_act_i + 1 / k_link_i),
+//     k_act_i the actuator stiffness (N/m, or N*m/rad for RUS; 0 = rigid), k_link_i the link's
+//     axial stiffness: axial_stiffness, or E * area * rods / length (length q_i for UPS, the
+//     constant strut/rod length otherwise; `rods` = 2 for a parallelogram pair).
+//     K = A^T diag(k) A on the platform DOF; C = K^-1; C_tt the translational 3x3 block of
+//     T C T^T; stiffness_min = 1 / lambda_max(C_tt) (N/m).
+//   singularity_margin = 1 / cond(J_h), J_h = J diag(1 for translations, 1/L for rotations),
+//     0 at a serial or a parallel singularity.
+//   det_j = det J.
+//   tcp_error_max: max over |dq_i| <= actuator_error of |(T J^-1 dq)_position| (at a vertex).
+//   Reachable: every leg's IK exists on its branch, q_i within [q_min, q_max] (the crank range
+//     for RUS), every joint angle within its limit, and (translational platforms) no rotation.
+//     Base-side joint angle: angle(s_i, base_axis_i), base_axis_i fixed in the base for UPS and
+//     PUS and carried by the crank for RUS (given at q = 0); platform joint angle:
+//     angle(-s_i, R platform_axis_i).
+//   At a singular pose (serial: |B_i| < 1e-7 scale_i with scale_i = 1 for UPS/PUS and r_i for
+//   RUS; parallel: 1/cond(A_h) < kSingularRcond; or a leg that cannot close):
+//     singularity_margin = 0, stiffness_min = 0, tau_i = tcp_error_max = +inf. Never NaN.
+//
+// Units: metres, radians, newtons, N/m, N*m/rad inside the code.
+//
+// Example:
+//   pkmopt::DeltaDesign d;           // an ABB IRB 360-like delta, see DeltaDesign
+//   auto machine = pkmopt::make_delta(d);
+//   auto data = machine->make_data();
+//   pkmopt::PoseMetrics m;
+//   machine->analyze(*data, pkmopt::Pose{{0, 0, -0.9}, {0, 0, 0}}, pkmopt::Wrench::Zero(), m);
+//   // m.q: drive angles (rad), m.tau: torques (N*m)
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/machine.hpp"
+#include "models/pose.hpp"
+
+namespace pkmopt {
+
+enum class LegKind { kUPS, kPUS, kRUS };
+enum class PlatformMobility { kSixDof, kTranslational };
+
+/// One leg of a leg-chain machine. Units: m, rad, N/m, Pa, m^2.
+struct LegChainLeg {
+  LegKind kind = LegKind::kUPS;
+  /// UPS: the base joint a_i; PUS: the guide point g_i (carriage joint at q = 0); RUS: the crank
+  /// pivot o_i. Base frame.
+  Eigen::Vector3d base_point = Eigen::Vector3d::Zero();
+  /// PUS: guide direction u_i; RUS: crank axis w_i. Normalised by the machine.
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  /// RUS: crank direction d_i at q = 0 (made orthogonal to the axis and normalised).
+  Eigen::Vector3d crank_zero = Eigen::Vector3d::UnitX();
+  double crank_length = 0.0;  ///< RUS: r_i (m)
+  double link_length = 0.0;   ///< PUS, RUS: constant strut / rod length L_i (m)
+  Eigen::Vector3d platform_point = Eigen::Vector3d::Zero();  ///< b_i, platform frame (m)
+  double q_min = 0.0;  ///< actuator range: leg length (UPS), carriage travel (PUS), angle (RUS)
+  double q_max = 0.0;
+  int branch = 1;  ///< +1: the IK solution with B_i > 0; -1: B_i < 0 (PUS, RUS)
+
+  // Stiffness: link axial stiffness (axial_stiffness > 0, else E * area * rods / length) in
+  // series with the actuator (0 = rigid actuator; N/m, or N*m/rad for RUS).
+  double axial_stiffness = 0.0;
+  double E = 0.0;
+  double area = 0.0;
+  int rods = 1;  ///< parallel rods of the link (2 for a parallelogram pair)
+  double actuator_stiffness = 0.0;
+
+  // Joint limits (+inf: unlimited). base_axis: base frame (UPS, PUS), crank frame at q = 0 (RUS).
+  double base_max_angle = std::numeric_limits<double>::infinity();
+  double platform_max_angle = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d base_axis = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d platform_axis = -Eigen::Vector3d::UnitZ();
+};
+
+/// Everything that defines a leg-chain machine. Validated by the LegChainMachine constructor.
+struct LegChainDesign {
+  std::string model = "leg_chain";  ///< reported by Machine::model()
+  PlatformMobility mobility = PlatformMobility::kSixDof;
+  std::vector<LegChainLeg> legs;                  ///< 6 (kSixDof) or 3 (kTranslational)
+  Eigen::Vector3d tcp = Eigen::Vector3d::Zero();  ///< TCP in the platform frame (m)
+  /// L in J_h; when empty, the mean distance from the TCP to the platform points.
+  std::optional<double> characteristic_length;
+  /// Half-width of the actuator error box (m, or rad for RUS legs).
+  double actuator_error = 1e-5;
+  /// Default FK start (and the pose the named models are built around).
+  Pose home;
+};
+
+/// Per-thread scratch space and the last results of a leg-chain machine.
+class LegChainData : public MachineData {
+ public:
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> s;  ///< unit leg vectors, base frame
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> r;  ///< R (b_i - tcp)
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> c;  ///< actuated points c_i(q_i)
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> q;  ///< actuator coordinates
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> B;  ///< diag of B
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> A;  ///< m x m
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> k;               ///< axial leg stiffness (N/m)
+  bool ik_ok = true;                                                 ///< every leg's IK exists
+  bool serial_singular = false;                                      ///< some |B_i| numerically 0
+  bool parallel_singular = false;                                    ///< A numerically singular
+  double det_a = 0.0;
+  double det_b = 0.0;
+};
+
+/// A leg-chain machine. Immutable; share it between threads, give each a LegChainData.
+class LegChainMachine final : public Machine {
+ public:
+  /// Validates the design; throws std::invalid_argument naming the offending field.
+  explicit LegChainMachine(const LegChainDesign& design);
+
+  const LegChainDesign& design() const { return design_; }
+  int dof() const { return dof_; }
+  double characteristic_length() const { return characteristic_length_; }
+
+  std::string_view model() const override { return design_.model; }
+  int num_actuators() const override { return static_cast<int>(design_.legs.size()); }
+  bool revolute_actuators() const override { return revolute_; }
+  std::unique_ptr<MachineData> make_data() const override;
+  void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
+               PoseMetrics& out) const override;
+  bool reachable(MachineData& data, const Pose& pose) const override;
+  FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
+                              const FkOptions& options = {}) const override;
+  std::optional<Eigen::AlignedBox3d> workspace_search_box(
+      const std::vector<Eigen::Matrix3d>& orientations) const override;
+  std::optional<double> envelope_volume() const override;
+
+  /// Closed-form IK of every leg on its branch; nullopt when a leg cannot close.
+  std::optional<Eigen::VectorXd> inverse_kinematics(const Pose& pose) const;
+  /// The actuated point c_i(q) and its derivative dc_i/dq.
+  void actuated_point(int leg, double q, Eigen::Vector3d& c, Eigen::Vector3d& dc) const;
+  /// Kinematics at a pose into data (q by IK, s, r, c, A, B, singularity flags); returns the
+  /// platform rotation used. Joint limits and ranges are not checked.
+  void compute_kinematics(LegChainData& data, const Pose& pose) const;
+  /// The m x m matrices A and B = diag(B_i) and J = B^-1 A at a pose (empty J if det B = 0).
+  void jacobians(const Pose& pose, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
+                 Eigen::MatrixXd& J) const;
+  /// Reachability from computed kinematics (ranges, IK existence, joint limits, orientation).
+  bool reachable_from_kinematics(const LegChainData& data, const Pose& pose) const;
+  /// Base-side and platform joint angles (rad) of every leg at a pose.
+  void joint_angles(const Pose& pose, Eigen::VectorXd& base_angles,
+                    Eigen::VectorXd& platform_angles) const;
+
+ private:
+  Eigen::Matrix3d platform_rotation(const Pose& pose) const;
+  /// The home pose moved by the mean displacement of the actuated points from home to q.
+  Pose default_fk_start(const Eigen::VectorXd& q) const;
+  double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
+
+  LegChainDesign design_;
+  int dof_ = 6;
+  bool revolute_ = false;
+  double characteristic_length_ = 1.0;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> platform_rel_;  // b_i - tcp
+  Eigen::Vector3d home_leg_offset_ = Eigen::Vector3d::Zero();
+  bool home_ik_ok_ = false;
+};
+
+/// Builds the machine of a design (a factory for design studies). Throws std::invalid_argument.
+std::unique_ptr<Machine> make_leg_chain_machine(const LegChainDesign& design);
+
+// ---------------------------------------------------------------------------------------------
+// Named models. Each parametric struct documents its parameters; `*_design` turns it into a
+// LegChainDesign, `make_*` into a machine. docs/machines.md has sketches.
+
+/// Stiffness data shared by the named models.
+struct LinkStiffness {
+  double axial_stiffness = 0.0;     ///< N/m per link (used when > 0)
+  double E = 2.1e11;                ///< Pa
+  double area = 1.0e-4;             ///< m^2 per rod
+  double actuator_stiffness = 0.0;  ///< N/m (prismatic) or N*m/rad (revolute); 0 = rigid
+};
+
+/// Rotary (Clavel) delta, CONVENTIONS.md: pivots at base_radius, azimuth -90 + 120 (i - 1) deg,
+/// cranks of length upper_arm in the vertical plane through the centre, theta = 0 horizontal
+/// outwards, positive theta lowers the elbow; parallelogram rods of length rod to platform
+/// points at platform_radius on the same azimuth; platform below the base (z < 0).
+/// The defaults are the ABB IRB 360 dimensions used by R. L. Williams II, "The Delta Parallel
+/// Robot: Kinematics Solutions" (2015): wB = 0.164, uP = 0.044, L = 0.524, l = 1.244 m.
+struct DeltaDesign {
+  double base_radius = 0.164;            ///< m, centre to each drive pivot
+  double platform_radius = 0.044;        ///< m, TCP to each rod-pair centre on the platform
+  double upper_arm = 0.524;              ///< m, crank length
+  double rod = 1.244;                    ///< m, parallelogram rod length
+  double theta_min = -60.0 * kDegToRad;  ///< rad, drive range
+  double theta_max = 100.0 * kDegToRad;
+  int branch = 1;                                     ///< +1 elbow-out (default), -1 elbow-in
+  LinkStiffness stiffness{0.0, 7.0e10, 5.0e-5, 0.0};  ///< rods: 2 per parallelogram
+  double elbow_max_angle = std::numeric_limits<double>::infinity();     ///< rad
+  double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
+  Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
+  std::optional<double> characteristic_length;
+  double actuator_error = 1e-3 * kDegToRad;  ///< rad
+};
+LegChainDesign delta_design(const DeltaDesign& d);
+std::unique_ptr<Machine> make_delta(const DeltaDesign& d);
+
+/// Linear delta: three carriages on guides at azimuths -90 + 120 (i - 1) deg, each guide in the
+/// vertical plane through the centre, passing through (guide_radius, azimuth, 0) and inclined
+/// by `inclination` from the vertical towards the centre (0 = vertical guides, a Kossel-type
+/// printer); q_i = carriage travel along the guide (m, upwards positive from z = 0).
+/// Parallelogram rods of length rod join each carriage to the platform at platform_radius;
+/// the platform hangs below the carriages.
+struct LinearDeltaDesign {
+  double guide_radius = 0.25;     ///< m
+  double platform_radius = 0.04;  ///< m
+  double rod = 0.35;              ///< m
+  double inclination = 0.0;       ///< rad, guide tilt towards the centre
+  double q_min = 0.0;             ///< m, carriage stroke
+  double q_max = 0.6;
+  LinkStiffness stiffness{0.0, 7.0e10, 3.0e-5, 2.0e7};
+  double carriage_max_angle = std::numeric_limits<double>::infinity();  ///< rad
+  double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
+  Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
+  std::optional<double> characteristic_length;
+  double actuator_error = 1e-5;  ///< m
+};
+LegChainDesign linear_delta_design(const LinearDeltaDesign& d);
+std::unique_ptr<Machine> make_linear_delta(const LinearDeltaDesign& d);
+
+/// Hexaglide (6-PUS): six carriages on guides parallel to the base x axis (optionally inclined
+/// by `inclination` about the y axis), guide i at lateral position guide_y[i], height
+/// guide_z[i]; struts of length strut join carriage i to platform joint b_i. Carriage i sits on
+/// the -x side of its platform joint for b_i.x < 0 and on the +x side otherwise (splayed
+/// struts). q_i = carriage position along the guide (m, from x = 0).
+/// Defaults: b_i = the semi-regular hexagon of CONVENTIONS.md (radius 0.25, pair separation
+/// 20 deg) turned by 90 deg about z (three joints on each side of x = 0), guide_y[i] =
+/// b_i.y +- 0.3 (outwards). (Guides with guide_y proportional to b_i.y are singular: a turn about
+/// x with a y translation keeps every strut length.)
+struct HexaglideDesign {
+  std::array<double, 6> guide_y{};
+  std::array<double, 6> guide_z{0, 0, 0, 0, 0, 0};
+  double inclination = 0.0;  ///< rad
+  double strut = 0.8;        ///< m
+  Eigen::Matrix<double, 3, 6> platform_joints;
+  double q_min = -1.2;  ///< m
+  double q_max = 1.2;
+  LinkStiffness stiffness{0.0, 2.1e11, 3.0e-4, 2.0e8};
+  double carriage_max_angle = std::numeric_limits<double>::infinity();  ///< rad
+  double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
+  Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
+  std::optional<double> characteristic_length;
+  double actuator_error = 1e-5;  ///< m
+  double home_height = 0.6;      ///< m, z of the home pose (FK start)
+  HexaglideDesign();
+};
+LegChainDesign hexaglide_design(const HexaglideDesign& d);
+std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d);
+
+}  // namespace pkmopt

@@ -1,0 +1,678 @@
+// Tests of models/leg_chain: the family's formulas against finite differences, IK/FK round
+// trips, equilibrium by virtual work, serial and parallel singularities, and the delta against
+// published numbers and an independent implementation of published equations.
+#include "models/leg_chain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "models/workspace/workspace.hpp"
+
+namespace pkmopt {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double wrap_angle_for_test(double a) { return std::remainder(a, 2.0 * kPi); }
+
+// A seeded uniform stream (splitmix64), bit-reproducible.
+class Uniform {
+ public:
+  explicit Uniform(std::uint64_t seed) : state_(seed) {}
+  double operator()(double lo, double hi) {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+// The pose moved by h along platform DOF j: translation along base axis j (j < 3) or rotation
+// by h about base axis j - 3 through the TCP (R <- exp(h e) R).
+Pose moved(const Pose& pose, int j, double h) {
+  Pose out = pose;
+  if (j < 3) {
+    out.position(j) += h;
+  } else {
+    const Eigen::Matrix3d R =
+        rotation_from_vector(h * Eigen::Vector3d::Unit(j - 3)) * rotation_zyx<double>(pose.angles);
+    out.angles = angles_from_rotation(R);
+  }
+  return out;
+}
+
+// Closure error of leg i: |P_i(pose) - c_i(q)| - L_i(q).
+double closure(const LegChainMachine& m, int i, const Pose& pose, double q) {
+  const LegChainLeg& leg = m.design().legs[static_cast<std::size_t>(i)];
+  const Eigen::Matrix3d R =
+      m.dof() == 6 ? rotation_zyx<double>(pose.angles) : Eigen::Matrix3d::Identity();
+  const Eigen::Vector3d P = pose.position + R * (leg.platform_point - m.design().tcp);
+  Eigen::Vector3d c, dc;
+  m.actuated_point(i, q, c, dc);
+  const double L = leg.kind == LegKind::kUPS ? q : leg.link_length;
+  return (P - c).norm() - L;
+}
+
+// Random poses around the home pose that the machine reaches (IK exists, not singular).
+std::vector<Pose> sample_poses(const LegChainMachine& m, std::uint64_t seed, int count, double dx,
+                               double dangle) {
+  Uniform u(seed);
+  std::vector<Pose> poses;
+  auto data = m.make_data();
+  PoseMetrics metrics;
+  for (int tries = 0; tries < 100 * count && static_cast<int>(poses.size()) < count; ++tries) {
+    Pose p = m.design().home;
+    for (int k = 0; k < 3; ++k) p.position(k) += u(-dx, dx);
+    if (m.dof() == 6) {
+      for (int k = 0; k < 3; ++k) p.angles(k) = u(-dangle, dangle);
+    }
+    m.analyze(*data, p, Wrench::Zero(), metrics);
+    if (m.inverse_kinematics(p) && !metrics.singular && metrics.singularity_margin > 1e-3) {
+      poses.push_back(p);
+    }
+  }
+  return poses;
+}
+
+struct Named {
+  const char* name;
+  std::unique_ptr<LegChainMachine> machine;
+  double dx, dangle;
+};
+
+std::vector<Named> named_models() {
+  std::vector<Named> v;
+  v.push_back({"delta", std::make_unique<LegChainMachine>(delta_design(DeltaDesign{})), 0.3, 0});
+  v.push_back({"linear_delta",
+               std::make_unique<LegChainMachine>(linear_delta_design(LinearDeltaDesign{})), 0.1,
+               0});
+  LinearDeltaDesign inclined;
+  inclined.inclination = deg_to_rad(20);
+  inclined.guide_radius = 0.35;
+  v.push_back({"linear_delta_inclined",
+               std::make_unique<LegChainMachine>(linear_delta_design(inclined)), 0.1, 0});
+  v.push_back({"hexaglide", std::make_unique<LegChainMachine>(hexaglide_design(HexaglideDesign{})),
+               0.1, 0.15});
+  HexaglideDesign inclined_glide;
+  inclined_glide.inclination = deg_to_rad(15);
+  v.push_back({"hexaglide_inclined",
+               std::make_unique<LegChainMachine>(hexaglide_design(inclined_glide)), 0.1, 0.15});
+  return v;
+}
+
+// ------------------------------------------------------------------------------------------
+// Published delta numbers.
+
+// R. L. Williams II, "The Delta Parallel Robot: Kinematics Solutions", Ohio University, 2015
+// (www.ohio.edu/people/williar4/html/pdf/DeltaKin.pdf), examples for the ABB FlexPicker
+// IRB 360 dimensions sB = 0.567, sP = 0.076, L = 0.524, l = 1.244 m, i.e. wB = sB sqrt(3)/6 =
+// 0.164 m (centre to the drive pivots) and uP = sP sqrt(3)/3 = 0.044 m (TCP to the rod-pair
+// centres). Williams' frame and angles are ours: pivot B1 = (0, -wB, 0) (azimuth -90 deg), B2 at
+// 30 deg, B3 at 150 deg, z up, theta_i = 0 with the arm horizontal outwards and the elbow at
+// z = -L sin(theta_i), i.e. positive theta lowers the elbow; the published IPK solutions are
+// the elbow-out ones. Published (rounded to 0.1 deg):
+//   IPK  P = (0, 0, -0.9) m      ->  theta = (-20.5, -20.5, -20.5) deg
+//   IPK  P = (0.3, 0.5, -1.1) m  ->  theta = (47.5, -11.6, 21.4) deg
+DeltaDesign williams_irb360() {
+  DeltaDesign d;
+  d.base_radius = 0.567 * std::sqrt(3.0) / 6.0;
+  d.platform_radius = 0.076 * std::sqrt(3.0) / 3.0;
+  d.upper_arm = 0.524;
+  d.rod = 1.244;
+  return d;
+}
+
+TEST(Delta, InverseKinematicsMatchesWilliamsPublishedExamples) {
+  const LegChainMachine delta(delta_design(williams_irb360()));
+  const struct {
+    Eigen::Vector3d p;
+    Eigen::Vector3d theta_deg;
+  } cases[] = {{{0, 0, -0.9}, {-20.5, -20.5, -20.5}}, {{0.3, 0.5, -1.1}, {47.5, -11.6, 21.4}}};
+  for (const auto& c : cases) {
+    const auto q = delta.inverse_kinematics(Pose{c.p, Eigen::Vector3d::Zero()});
+    ASSERT_TRUE(q.has_value());
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(rad_to_deg((*q)(i)), c.theta_deg(i), 0.05) << "leg " << i + 1;  // rounding
+    }
+  }
+}
+
+// FK of the published (rounded) angles must give the published position back, to within what
+// the 0.05 deg rounding moves it: |dx| <= |J^-1| * 0.05 deg * sqrt(3).
+TEST(Delta, ForwardKinematicsMatchesWilliamsPublishedExamples) {
+  const LegChainMachine delta(delta_design(williams_irb360()));
+  const struct {
+    Eigen::Vector3d p;
+    Eigen::Vector3d theta_deg;
+  } cases[] = {{{0, 0, -0.9}, {-20.5, -20.5, -20.5}}, {{0.3, 0.5, -1.1}, {47.5, -11.6, 21.4}}};
+  for (const auto& c : cases) {
+    const Eigen::VectorXd q = deg_to_rad(c.theta_deg);
+    const FkResult r = delta.forward_kinematics(q, std::nullopt);
+    ASSERT_TRUE(r.converged) << r.message;
+    Eigen::MatrixXd A, B, J;
+    delta.jacobians(Pose{c.p, Eigen::Vector3d::Zero()}, A, B, J);
+    const double bound = J.inverse().norm() * deg_to_rad(0.05) * std::sqrt(3.0);
+    EXPECT_LT((r.pose.position - c.p).norm(), bound);
+    EXPECT_LT(bound, 5e-3);  // the check is meaningful: a few mm at most
+    EXPECT_EQ(r.pose.angles, Eigen::Vector3d::Zero());
+  }
+}
+
+// The Trossen Robotics tutorial "Delta robot kinematics" (M. Zavatsky, 2009,
+// forums.trossenrobotics.com/tutorials/introduction-129/delta-robot-kinematics-3276) publishes
+// closed-form IK (delta_calcAngleYZ) and FK (delta_calcForward) in C for the sample geometry
+// e = 115, f = 457.3, re = 232, rf = 112 (mm): f and e are the sides of the base and effector
+// triangles, so base_radius = f / (2 sqrt 3), platform_radius = e / (2 sqrt 3); rf is the arm,
+// re the rod. Its frame and angles are ours (leg 1 in the YZ plane at y < 0, theta > 0 lowers
+// the elbow; legs 2 and 3 at +-120 deg). Re-implemented here from the tutorial, in mm.
+bool trossen_angle_yz(double x0, double y0, double z0, double& theta) {
+  const double e = 115.0, f = 457.3, re = 232.0, rf = 112.0;
+  const double tan30 = 1.0 / std::sqrt(3.0);
+  const double y1 = -0.5 * tan30 * f;
+  y0 -= 0.5 * tan30 * e;
+  const double a = (x0 * x0 + y0 * y0 + z0 * z0 + rf * rf - re * re - y1 * y1) / (2 * z0);
+  const double b = (y1 - y0) / z0;
+  const double d = -(a + b * y1) * (a + b * y1) + rf * (b * b * rf + rf);
+  if (d < 0) return false;
+  const double yj = (y1 - a * b - std::sqrt(d)) / (b * b + 1);
+  const double zj = a + b * yj;
+  theta = std::atan(-zj / (y1 - yj)) + ((yj > y1) ? kPi : 0.0);
+  return true;
+}
+
+bool trossen_inverse(const Eigen::Vector3d& p, Eigen::Vector3d& theta) {
+  const double c120 = -0.5, s120 = std::sqrt(3.0) / 2.0;
+  const double x = p.x(), y = p.y(), z = p.z();
+  return trossen_angle_yz(x, y, z, theta(0)) &&
+         trossen_angle_yz(x * c120 + y * s120, y * c120 - x * s120, z, theta(1)) &&
+         trossen_angle_yz(x * c120 - y * s120, y * c120 + x * s120, z, theta(2));
+}
+
+bool trossen_forward(const Eigen::Vector3d& theta, Eigen::Vector3d& p) {
+  const double e = 115.0, f = 457.3, re = 232.0, rf = 112.0;
+  const double tan30 = 1.0 / std::sqrt(3.0), tan60 = std::sqrt(3.0), sin30 = 0.5;
+  const double t = (f - e) * tan30 / 2;
+  const double y1 = -(t + rf * std::cos(theta(0))), z1 = -rf * std::sin(theta(0));
+  const double y2 = (t + rf * std::cos(theta(1))) * sin30, x2 = y2 * tan60,
+               z2 = -rf * std::sin(theta(1));
+  const double y3 = (t + rf * std::cos(theta(2))) * sin30, x3 = -y3 * tan60,
+               z3 = -rf * std::sin(theta(2));
+  const double dnm = (y2 - y1) * x3 - (y3 - y1) * x2;
+  const double w1 = y1 * y1 + z1 * z1, w2 = x2 * x2 + y2 * y2 + z2 * z2,
+               w3 = x3 * x3 + y3 * y3 + z3 * z3;
+  const double a1 = (z2 - z1) * (y3 - y1) - (z3 - z1) * (y2 - y1);
+  const double b1 = -((w2 - w1) * (y3 - y1) - (w3 - w1) * (y2 - y1)) / 2.0;
+  const double a2 = -(z2 - z1) * x3 + (z3 - z1) * x2;
+  const double b2 = ((w2 - w1) * x3 - (w3 - w1) * x2) / 2.0;
+  const double a = a1 * a1 + a2 * a2 + dnm * dnm;
+  const double b = 2 * (a1 * b1 + a2 * (b2 - y1 * dnm) - z1 * dnm * dnm);
+  const double c = (b2 - y1 * dnm) * (b2 - y1 * dnm) + b1 * b1 + dnm * dnm * (z1 * z1 - re * re);
+  const double d = b * b - 4.0 * a * c;
+  if (d < 0) return false;
+  const double z0 = -0.5 * (b + std::sqrt(d)) / a;
+  p = Eigen::Vector3d((a1 * z0 + b1) / dnm, (a2 * z0 + b2) / dnm, z0);
+  return true;
+}
+
+TEST(Delta, AgreesWithTheTrossenTutorialEquations) {
+  DeltaDesign d;
+  d.base_radius = 457.3e-3 / (2.0 * std::sqrt(3.0));
+  d.platform_radius = 115e-3 / (2.0 * std::sqrt(3.0));
+  d.upper_arm = 112e-3;
+  d.rod = 232e-3;
+  d.theta_min = -kPi;
+  d.theta_max = kPi;
+  const LegChainMachine delta(delta_design(d));
+  Uniform u(7);
+  int compared = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d p(u(-0.12, 0.12), u(-0.12, 0.12), u(-0.30, -0.12));
+    Eigen::Vector3d theta;
+    const bool published_ok = trossen_inverse(p * 1e3, theta);
+    const auto q = delta.inverse_kinematics(Pose{p, Eigen::Vector3d::Zero()});
+    EXPECT_EQ(published_ok, q.has_value()) << p.transpose();
+    if (!published_ok || !q) continue;
+    ++compared;
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(wrap_angle_for_test((*q)(i)-theta(i)), 0.0, 1e-12);
+    Eigen::Vector3d p_published;
+    ASSERT_TRUE(trossen_forward(theta, p_published));
+    const FkResult r = delta.forward_kinematics(*q, std::nullopt);
+    ASSERT_TRUE(r.converged) << r.message;
+    EXPECT_NEAR((r.pose.position - p_published * 1e-3).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((r.pose.position - p).norm(), 0.0, 1e-12);
+  }
+  EXPECT_GT(compared, 100);
+}
+
+// ------------------------------------------------------------------------------------------
+// The family on every named model.
+
+TEST(LegChain, ConstraintJacobiansMatchFiniteDifferences) {
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    const int n = m.num_actuators();
+    const auto poses = sample_poses(m, 11, 8, nm.dx, nm.dangle);
+    ASSERT_EQ(poses.size(), 8u) << nm.name;
+    const double h = 1e-6;
+    for (const Pose& pose : poses) {
+      Eigen::MatrixXd A, B, J;
+      m.jacobians(pose, A, B, J);
+      const Eigen::VectorXd q = *m.inverse_kinematics(pose);
+      for (int i = 0; i < n; ++i) {
+        // A = d closure / d twist at fixed q; B = -d closure / dq at a fixed pose.
+        for (int j = 0; j < n; ++j) {
+          const double fd =
+              (closure(m, i, moved(pose, j, h), q(i)) - closure(m, i, moved(pose, j, -h), q(i))) /
+              (2 * h);
+          EXPECT_NEAR(A(i, j), fd, 1e-7) << nm.name << " A(" << i << "," << j << ")";
+        }
+        const double fdq =
+            -(closure(m, i, pose, q(i) + h) - closure(m, i, pose, q(i) - h)) / (2 * h);
+        EXPECT_NEAR(B(i, i), fdq, 1e-7) << nm.name << " B(" << i << ")";
+      }
+      // J = dq / d twist from the closed-form IK.
+      for (int j = 0; j < n; ++j) {
+        const Eigen::VectorXd fd =
+            (*m.inverse_kinematics(moved(pose, j, h)) - *m.inverse_kinematics(moved(pose, j, -h))) /
+            (2 * h);
+        for (int i = 0; i < n; ++i) {
+          EXPECT_NEAR(J(i, j), fd(i), 1e-6 * (1.0 + std::abs(J(i, j)))) << nm.name;
+        }
+      }
+    }
+  }
+}
+
+TEST(LegChain, InverseThenForwardKinematicsRoundTrips) {
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    for (const Pose& pose : sample_poses(m, 12, 20, nm.dx, nm.dangle)) {
+      const Eigen::VectorXd q = *m.inverse_kinematics(pose);
+      const FkResult r = m.forward_kinematics(q, std::nullopt);
+      ASSERT_TRUE(r.converged) << nm.name << ": " << r.message;
+      EXPECT_LE(r.residual, 1e-12);
+      EXPECT_NEAR((r.pose.position - pose.position).norm(), 0.0, 1e-9) << nm.name;
+      const Eigen::Matrix3d dR =
+          rotation_zyx<double>(r.pose.angles).transpose() * rotation_zyx<double>(pose.angles);
+      EXPECT_NEAR(rotation_vector(dR).norm(), 0.0, 1e-9) << nm.name;
+      // IK of the FK pose reproduces q.
+      EXPECT_NEAR((*m.inverse_kinematics(r.pose) - q).cwiseAbs().maxCoeff(), 0.0, 1e-9);
+    }
+  }
+}
+
+// J^T tau = T^T w, and by virtual work tau . dq = w . (T dxi) for a small motion dxi, with dq from
+// the closed-form IK (central differences).
+TEST(LegChain, ActuatorForcesBalanceTheWrenchByVirtualWork) {
+  Uniform u(13);
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    const int n = m.num_actuators();
+    auto data = m.make_data();
+    for (const Pose& pose : sample_poses(m, 14, 6, nm.dx, nm.dangle)) {
+      Wrench w;
+      for (int k = 0; k < 6; ++k) w(k) = u(-100, 100);
+      PoseMetrics metrics;
+      m.analyze(*data, pose, w, metrics);
+      ASSERT_FALSE(metrics.singular);
+      Eigen::MatrixXd A, B, J;
+      m.jacobians(pose, A, B, J);
+      const Eigen::VectorXd w_dof = w.head(n);
+      EXPECT_NEAR((J.transpose() * metrics.tau - w_dof).norm(), 0.0, 1e-9 * (1 + w.norm()));
+      const double h = 1e-6;
+      for (int j = 0; j < n; ++j) {
+        const Eigen::VectorXd dq =
+            (*m.inverse_kinematics(moved(pose, j, h)) - *m.inverse_kinematics(moved(pose, j, -h))) /
+            2.0;
+        EXPECT_NEAR(metrics.tau.dot(dq), w_dof(j) * h, 1e-6 * h * (1 + metrics.tau.norm()))
+            << nm.name;
+      }
+      // Rod forces: tension positive; a pull on the platform away from a leg's actuated point
+      // along s_i stretches it.
+      EXPECT_TRUE(metrics.tau.allFinite());
+    }
+  }
+}
+
+// The stiffness chain built physically: a force f at the TCP loads the links with f_l = A^-T f,
+// they stretch by f_l / k_link, the actuators give dq = B f_l / k_act, and the platform moves by
+// A^-1 (B dq + stretch). stiffness_min is the smallest f.dx / |f|^2 over force directions, i.e.
+// 1 / the largest eigenvalue of that compliance.
+TEST(LegChain, StiffnessMinMatchesTheSeriesChain) {
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    const int n = m.num_actuators();
+    auto data = m.make_data();
+    for (const Pose& pose : sample_poses(m, 15, 4, nm.dx, nm.dangle)) {
+      PoseMetrics metrics;
+      m.analyze(*data, pose, Wrench::Zero(), metrics);
+      Eigen::MatrixXd A, B, J;
+      m.jacobians(pose, A, B, J);
+      const Eigen::VectorXd q = *m.inverse_kinematics(pose);
+      Eigen::Matrix3d C;
+      for (int k = 0; k < 3; ++k) {
+        Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+        f(k) = 1.0;
+        const Eigen::VectorXd f_link = A.transpose().inverse() * f;
+        Eigen::VectorXd dq(n), stretch(n);
+        for (int i = 0; i < n; ++i) {
+          const LegChainLeg& leg = m.design().legs[static_cast<std::size_t>(i)];
+          const double length = leg.kind == LegKind::kUPS ? q(i) : leg.link_length;
+          const double k_link =
+              leg.axial_stiffness > 0 ? leg.axial_stiffness : leg.E * leg.area * leg.rods / length;
+          stretch(i) = f_link(i) / k_link;
+          const double tau = B(i, i) * f_link(i);
+          dq(i) = leg.actuator_stiffness > 0 ? tau / leg.actuator_stiffness : 0.0;
+        }
+        const Eigen::VectorXd dx = A.inverse() * (B * dq + stretch);
+        C.col(k) = dx.head(3);
+      }
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (C + C.transpose()));
+      EXPECT_NEAR(metrics.stiffness_min, 1.0 / eig.eigenvalues()(2), 1e-9 * metrics.stiffness_min)
+          << nm.name;
+      EXPECT_NEAR((C - C.transpose()).norm(), 0.0, 1e-9 * C.norm());
+    }
+  }
+}
+
+// tcp_error_max against a brute force over the box vertices of dx = J^-1 dq.
+TEST(LegChain, TcpErrorMaxIsTheWorstBoxVertex) {
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    const int n = m.num_actuators();
+    auto data = m.make_data();
+    for (const Pose& pose : sample_poses(m, 16, 3, nm.dx, nm.dangle)) {
+      PoseMetrics metrics;
+      m.analyze(*data, pose, Wrench::Zero(), metrics);
+      Eigen::MatrixXd A, B, J;
+      m.jacobians(pose, A, B, J);
+      const Eigen::MatrixXd Jinv = J.inverse();
+      double best = 0;
+      for (int v = 0; v < (1 << n); ++v) {
+        Eigen::VectorXd dq(n);
+        for (int i = 0; i < n; ++i) dq(i) = (v >> i & 1 ? 1.0 : -1.0) * m.design().actuator_error;
+        best = std::max(best, (Jinv * dq).head(3).norm());
+      }
+      EXPECT_NEAR(metrics.tcp_error_max, best, 1e-12 * best) << nm.name;
+      // singularity_margin = 1 / cond(J_h).
+      Eigen::MatrixXd Jh = J;
+      if (n == 6) Jh.rightCols(3) /= m.characteristic_length();
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jh);
+      const auto& sv = svd.singularValues();
+      EXPECT_NEAR(metrics.singularity_margin, sv(n - 1) / sv(0), 1e-9);
+      EXPECT_NEAR(metrics.det_j, J.determinant(), 1e-9 * std::abs(J.determinant()));
+    }
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+// Singularities.
+
+// Serial: leg 1's arm and rod aligned (the platform point on the extension of the crank).
+TEST(Delta, SerialSingularityWhenArmAndRodAlign) {
+  const DeltaDesign d;
+  const LegChainMachine delta(delta_design(d));
+  // The crank points down and inwards so that legs 2 and 3 reach the platform too.
+  const double theta = deg_to_rad(100);
+  const Eigen::Vector3d u(0, -1, 0);  // leg 1's azimuth -90 deg
+  const Eigen::Vector3d crank_dir =
+      std::cos(theta) * u - std::sin(theta) * Eigen::Vector3d::UnitZ();
+  auto pose_at = [&](double extra) {
+    // Platform point at distance upper_arm + rod - extra from the pivot along the crank
+    // direction: the elbow bends by about sqrt(extra) out of the alignment.
+    const Eigen::Vector3d P = d.base_radius * u + (d.upper_arm + d.rod - extra) * crank_dir;
+    return Pose{P - d.platform_radius * u, Eigen::Vector3d::Zero()};
+  };
+  auto data = delta.make_data();
+  auto& ld = static_cast<LegChainData&>(*data);
+  PoseMetrics m;
+  // Approaching the alignment the margin falls to 0 continuously.
+  double previous = 1.0;
+  for (double extra : {1e-2, 1e-4, 1e-6, 1e-9}) {
+    delta.analyze(*data, pose_at(extra), Wrench::Zero(), m);
+    ASSERT_TRUE(ld.ik_ok) << extra;
+    EXPECT_FALSE(ld.serial_singular) << extra;
+    EXPECT_LT(m.singularity_margin, previous);
+    previous = m.singularity_margin;
+  }
+  EXPECT_LT(previous, 1e-3);
+  delta.analyze(*data, pose_at(0.0), Wrench(Wrench::Constant(1.0)), m);
+  EXPECT_TRUE(ld.serial_singular);
+  EXPECT_FALSE(ld.parallel_singular);
+  EXPECT_TRUE(m.singular);
+  EXPECT_EQ(m.singularity_margin, 0.0);
+  EXPECT_EQ(m.stiffness_min, 0.0);
+  EXPECT_TRUE(std::isinf(m.tcp_error_max));
+  EXPECT_TRUE(std::isinf(m.tau(0)));
+  EXPECT_TRUE(m.q.allFinite());
+  EXPECT_NEAR(m.q(0), theta, 1e-6);
+}
+
+// Parallel: the three rods parallel (all vertical): the platform can move sideways with the
+// drives locked, det A = 0.
+TEST(Delta, ParallelSingularityWhenRodsAreParallel) {
+  DeltaDesign d;
+  const double theta = deg_to_rad(40);
+  d.platform_radius = d.base_radius + d.upper_arm * std::cos(theta);
+  const LegChainMachine delta(delta_design(d));
+  const Pose pose{{0, 0, -d.upper_arm * std::sin(theta) - d.rod}, Eigen::Vector3d::Zero()};
+  auto data = delta.make_data();
+  auto& ld = static_cast<LegChainData&>(*data);
+  PoseMetrics m;
+  delta.analyze(*data, pose, Wrench(Wrench::Constant(1.0)), m);
+  EXPECT_TRUE(ld.parallel_singular);
+  EXPECT_FALSE(ld.serial_singular);
+  EXPECT_TRUE(m.singular);
+  EXPECT_EQ(m.singularity_margin, 0.0);
+  EXPECT_EQ(m.stiffness_min, 0.0);
+  EXPECT_TRUE(std::isinf(m.tau(1)));
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(m.q(i), theta, 1e-9);
+  // Off the singularity the margin is positive and grows.
+  delta.analyze(*data, Pose{{0, 0, pose.position.z() + 0.05}, Eigen::Vector3d::Zero()},
+                Wrench::Zero(), m);
+  EXPECT_GT(m.singularity_margin, 1e-3);
+}
+
+// Linear delta: a rod perpendicular to its vertical guide is a serial singularity (the carriage
+// moves the rod end sideways only).
+TEST(LinearDelta, SerialSingularityWhenARodIsHorizontal) {
+  const LinearDeltaDesign d;
+  const LegChainMachine m(linear_delta_design(d));
+  // Leg 1 (azimuth -90): carriage at (0, -guide_radius, q); rod horizontal towards the centre.
+  const double q1 = 0.3;
+  const Eigen::Vector3d P1(0, -d.guide_radius + d.rod, q1);
+  const Pose pose{P1 - d.platform_radius * Eigen::Vector3d(0, -1, 0), Eigen::Vector3d::Zero()};
+  auto data = m.make_data();
+  auto& ld = static_cast<LegChainData&>(*data);
+  PoseMetrics metrics;
+  m.analyze(*data, pose, Wrench::Zero(), metrics);
+  EXPECT_TRUE(ld.serial_singular);
+  EXPECT_EQ(metrics.singularity_margin, 0.0);
+  EXPECT_NEAR(metrics.q(0), q1, 1e-6);
+}
+
+// Hexaglide: every strut in the plane of the guides and of the platform joints (platform level
+// with the guides) - the platform can move out of that plane with the carriages locked.
+TEST(Hexaglide, ParallelSingularityWhenAllStrutsAreCoplanar) {
+  const HexaglideDesign d;
+  const LegChainMachine m(hexaglide_design(d));
+  auto data = m.make_data();
+  auto& ld = static_cast<LegChainData&>(*data);
+  PoseMetrics metrics;
+  m.analyze(*data, Pose{{0, 0, 0}, Eigen::Vector3d::Zero()}, Wrench::Zero(), metrics);
+  ASSERT_TRUE(ld.ik_ok);
+  EXPECT_TRUE(ld.parallel_singular);
+  EXPECT_EQ(metrics.singularity_margin, 0.0);
+  EXPECT_TRUE(std::isinf(metrics.tcp_error_max));
+  m.analyze(*data, Pose{{0, 0, d.home_height}, Eigen::Vector3d::Zero()}, Wrench::Zero(), metrics);
+  EXPECT_FALSE(metrics.singular);
+}
+
+// ------------------------------------------------------------------------------------------
+// Robustness.
+
+TEST(LegChain, OutputsAreNeverNaN) {
+  Uniform u(17);
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    auto data = m.make_data();
+    PoseMetrics metrics;
+    for (int k = 0; k < 300; ++k) {
+      Pose p = m.design().home;
+      for (int j = 0; j < 3; ++j) p.position(j) += u(-2, 2);
+      for (int j = 0; j < 3; ++j) p.angles(j) = u(-1, 1);
+      Wrench w;
+      for (int j = 0; j < 6; ++j) w(j) = u(-10, 10);
+      m.analyze(*data, p, w, metrics);
+      EXPECT_TRUE(metrics.q.allFinite()) << nm.name;
+      EXPECT_FALSE(metrics.tau.hasNaN());
+      EXPECT_FALSE(std::isnan(metrics.stiffness_min) || std::isnan(metrics.singularity_margin) ||
+                   std::isnan(metrics.det_j) || std::isnan(metrics.tcp_error_max));
+      EXPECT_GE(metrics.singularity_margin, 0.0);
+      EXPECT_LE(metrics.singularity_margin, 1.0);
+      if (!m.inverse_kinematics(p)) {
+        EXPECT_FALSE(metrics.reachable);
+      }
+      if (m.dof() == 3) {
+        EXPECT_FALSE(metrics.reachable);  // rotated poses
+      }
+    }
+  }
+}
+
+TEST(LegChain, ForwardKinematicsFailsCleanly) {
+  DeltaDesign short_rods;
+  short_rods.rod = 0.3;
+  const LegChainMachine delta(delta_design(short_rods));
+  // Horizontal cranks: the elbows are 1.19 m apart, the rods (0.3 m) cannot meet.
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(3);
+  FkOptions options;
+  options.max_iterations = 50;
+  const FkResult r = delta.forward_kinematics(q, std::nullopt, options);
+  EXPECT_FALSE(r.converged);
+  EXPECT_TRUE(r.pose.position.allFinite());
+  EXPECT_FALSE(std::isnan(r.residual));
+  EXPECT_FALSE(r.message.empty());
+  EXPECT_FALSE(delta.forward_kinematics(Eigen::VectorXd::Constant(2, 0.1), std::nullopt).converged);
+  Eigen::VectorXd nan_q = Eigen::VectorXd::Constant(3, std::nan(""));
+  EXPECT_FALSE(delta.forward_kinematics(nan_q, std::nullopt).converged);
+}
+
+TEST(LegChain, ReachabilityChecksRangesAndJointLimits) {
+  DeltaDesign d;
+  d.theta_min = deg_to_rad(-10);
+  d.theta_max = deg_to_rad(80);
+  const LegChainMachine delta(delta_design(d));
+  auto data = delta.make_data();
+  // (0, 0, -0.9) needs theta = -20.5 deg: outside the drive range.
+  EXPECT_FALSE(delta.reachable(*data, Pose{{0, 0, -0.9}, Eigen::Vector3d::Zero()}));
+  EXPECT_TRUE(delta.reachable(*data, Pose{{0, 0, -1.2}, Eigen::Vector3d::Zero()}));
+  EXPECT_FALSE(delta.reachable(*data, Pose{{0, 0, -1.2}, {0.01, 0, 0}}));             // rotation
+  EXPECT_FALSE(delta.reachable(*data, Pose{{0, 0, -3.0}, Eigen::Vector3d::Zero()}));  // too far
+  // Joint limits: the platform joint angle at (0.5, 0, -1.2) against a limit just below/above.
+  Eigen::VectorXd base_angles, platform_angles;
+  const Pose side{{0.5, 0, -1.2}, Eigen::Vector3d::Zero()};
+  delta.joint_angles(side, base_angles, platform_angles);
+  const double worst = platform_angles.maxCoeff();
+  DeltaDesign tight = d, loose = d;
+  tight.platform_max_angle = worst - 1e-6;
+  loose.platform_max_angle = worst + 1e-6;
+  const LegChainMachine tight_m(delta_design(tight)), loose_m(delta_design(loose));
+  EXPECT_FALSE(tight_m.reachable(*tight_m.make_data(), side));
+  EXPECT_TRUE(loose_m.reachable(*loose_m.make_data(), side));
+  // The platform joint angle is the angle between the rod (pointing up from the platform) and
+  // the platform's +z: for leg 2 at y = 0 ... check one leg by hand.
+  const auto q = *delta.inverse_kinematics(side);
+  Eigen::Vector3d c, dc;
+  delta.actuated_point(0, q(0), c, dc);
+  const Eigen::Vector3d up =
+      (c - (side.position + d.platform_radius * Eigen::Vector3d(0, -1, 0))).normalized();
+  EXPECT_NEAR(platform_angles(0), std::acos(up.z()), 1e-12);
+}
+
+TEST(LegChain, InvalidDesignsAreRejected) {
+  DeltaDesign d;
+  d.rod = -1;
+  EXPECT_THROW(make_delta(d), std::invalid_argument);
+  d = DeltaDesign{};
+  d.theta_min = d.theta_max;
+  EXPECT_THROW(make_delta(d), std::invalid_argument);
+  d = DeltaDesign{};
+  d.upper_arm = std::nan("");
+  EXPECT_THROW(make_delta(d), std::invalid_argument);
+  LegChainDesign six = hexaglide_design(HexaglideDesign{});
+  six.legs.pop_back();
+  EXPECT_THROW(make_leg_chain_machine(six), std::invalid_argument);
+  LegChainDesign mixed = delta_design(DeltaDesign{});
+  mixed.legs[0].kind = LegKind::kPUS;
+  EXPECT_THROW(make_leg_chain_machine(mixed), std::invalid_argument);
+}
+
+// A 6-UPS member of the family reproduces the hexapod's leg lengths and Jacobian.
+TEST(LegChain, UpsLegsGiveTheHexapodKinematics) {
+  LegChainDesign d;
+  d.model = "ups";
+  const double r_b = 0.6, r_p = 0.25;
+  for (int i = 0; i < 6; ++i) {
+    const int k = i / 2;
+    const double ab = deg_to_rad(120.0 * k + (i % 2 == 0 ? -10.0 : 10.0));
+    const double ap = deg_to_rad(i % 2 == 0 ? 120.0 * k - 60.0 + 10.0 : 120.0 * k + 60.0 - 10.0);
+    LegChainLeg leg;
+    leg.kind = LegKind::kUPS;
+    leg.base_point = Eigen::Vector3d(r_b * std::cos(ab), r_b * std::sin(ab), 0);
+    leg.platform_point = Eigen::Vector3d(r_p * std::cos(ap), r_p * std::sin(ap), 0);
+    leg.q_min = 0.7;
+    leg.q_max = 1.15;
+    leg.E = 2.1e11;
+    leg.area = 3e-4;
+    d.legs.push_back(leg);
+  }
+  d.tcp = Eigen::Vector3d(0, 0, -0.1);
+  d.home.position = Eigen::Vector3d(0, 0, 0.8);
+  const LegChainMachine m(d);
+  const Pose pose{{0.02, -0.03, 0.85}, deg_to_rad(Eigen::Vector3d(3, -2, 5))};
+  const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+  Eigen::MatrixXd A, B, J;
+  m.jacobians(pose, A, B, J);
+  const Eigen::VectorXd q = *m.inverse_kinematics(pose);
+  for (int i = 0; i < 6; ++i) {
+    const LegChainLeg& leg = d.legs[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d ri = R * (leg.platform_point - d.tcp);
+    const Eigen::Vector3d l = pose.position + ri - leg.base_point;
+    EXPECT_NEAR(q(i), l.norm(), 1e-15);
+    const Eigen::Vector3d s = l.normalized();
+    EXPECT_NEAR((J.row(i).head(3).transpose() - s).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((J.row(i).tail(3).transpose() - ri.cross(s)).norm(), 0.0, 1e-15);
+    EXPECT_EQ(B(i, i), 1.0);
+  }
+}
+
+TEST(LegChain, WorkspaceOfTheDeltaUsesItsSearchBox) {
+  const LegChainMachine delta(delta_design(williams_irb360()));
+  const auto box = delta.workspace_search_box({Eigen::Matrix3d::Identity()});
+  ASSERT_TRUE(box.has_value());
+  ASSERT_FALSE(box->isEmpty());
+  EXPECT_TRUE(box->contains(Eigen::Vector3d(0, 0, -0.9)));
+  EXPECT_TRUE(delta.envelope_volume().has_value());
+  WorkspaceOptions options;
+  options.resolution = 0.1;
+  options.compute_maps = false;
+  options.compute_hull = false;
+  const WorkspaceResult ws = compute_workspace(delta, options);
+  EXPECT_GT(ws.volume, 0.05);
+  EXPECT_FALSE(ws.touches_search_box);
+}
+
+}  // namespace
+}  // namespace pkmopt
