@@ -10,6 +10,7 @@ void add_analyze_command(CLI::App& app);
 void add_fk_command(CLI::App& app);
 void add_describe_command(CLI::App& app);
 void add_run_command(CLI::App& app);
+void add_validate_command(CLI::App& app);
 void add_calibrate_command(CLI::App& app);
 void add_simulate_measurements_command(CLI::App& app);
 void add_calibration_poses_command(CLI::App& app);

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   pkmopt::cli::add_fk_command(app);
   pkmopt::cli::add_describe_command(app);
   pkmopt::cli::add_run_command(app);
+  pkmopt::cli::add_validate_command(app);
   pkmopt::cli::add_calibrate_command(app);
   pkmopt::cli::add_simulate_measurements_command(app);
   pkmopt::cli::add_calibration_poses_command(app);

@@ -176,6 +176,57 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
   return spec;
 }
 
+std::string optimizer_section_yaml(const OptimizerSpec& spec) {
+  std::vector<std::string> items{
+      "algorithm: " +
+          (spec.algorithm.starts_with("nlopt:") ? "\"" + spec.algorithm + "\"" : spec.algorithm),
+      fmt::format("seed: {}", spec.seed)};
+  auto add = [&](std::string_view key, const std::string& value) {
+    items.push_back(fmt::format("{}: {}", key, value));
+  };
+  auto add_start = [&] {
+    if (spec.start.empty()) return;
+    std::string list;
+    for (double v : spec.start) list += (list.empty() ? "" : ", ") + format_number(v);
+    add("start", "[" + list + "]");
+  };
+  if (spec.algorithm == "nsga2" || spec.algorithm == "hybrid") {
+    const Nsga2Options& o = spec.nsga2;
+    add("population", std::to_string(o.population));
+    add("generations", std::to_string(o.generations));
+    add("crossover_probability", format_number(o.crossover_probability));
+    add("crossover_eta", format_number(o.crossover_eta));
+    add("mutation_probability", format_number(o.mutation_probability));
+    add("mutation_eta", format_number(o.mutation_eta));
+    if (spec.algorithm == "hybrid")
+      add("polish_iterations", std::to_string(spec.hybrid.ipopt.max_iterations));
+  } else if (spec.algorithm == "epsilon_constraint" || spec.algorithm == "nbi") {
+    const bool epsilon = spec.algorithm == "epsilon_constraint";
+    add("points", std::to_string(epsilon ? spec.epsilon_constraint.points : spec.nbi.points));
+    if (epsilon)
+      add("primary_objective", std::to_string(spec.epsilon_constraint.primary_objective + 1));
+    else
+      add("equality_form", spec.nbi.equality_form ? "true" : "false");
+    add("max_iterations", std::to_string(spec.ipopt.max_iterations));
+    add("tolerance", format_number(spec.ipopt.tolerance));
+    add_start();
+  } else if (spec.algorithm == "ipopt") {
+    add("max_iterations", std::to_string(spec.ipopt.max_iterations));
+    add("tolerance", format_number(spec.ipopt.tolerance));
+    add_start();
+  } else if (spec.algorithm.starts_with("nlopt:")) {
+    add("max_evaluations", std::to_string(spec.nlopt.max_evaluations));
+    if (spec.nlopt.relative_tolerance_x > 0.0)
+      add("tolerance", format_number(spec.nlopt.relative_tolerance_x));
+    if (spec.nlopt.population > 0) add("population", std::to_string(spec.nlopt.population));
+    add("local_algorithm", spec.nlopt.local_algorithm);
+    add_start();
+  }
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return "{" + text + "}";
+}
+
 std::vector<double> read_indicators_section(const YamlValue& section, std::size_t num_objectives) {
   section.check_keys({"reference_point"});
   if (auto v = section.optional("reference_point"))
@@ -193,6 +244,23 @@ BenchmarkStudy load_benchmark_study(const std::string& path) {
   study.optimizer = read_optimizer_section(root.required("optimizer"), *study.problem);
   if (auto v = root.optional("indicators"))
     study.reference_point = read_indicators_section(*v, study.problem->num_objectives());
+  // study.resolved.yaml: the problem section as written, the optimizer with every default.
+  std::string resolved = fmt::format("study: {}\n", nlohmann::json(study.name).dump());
+  if (auto v = root.optional("description"))
+    resolved += fmt::format("description: {}\n", nlohmann::json(v->as_string()).dump());
+  const YamlValue problem = root.required("problem");
+  resolved += fmt::format("problem: {{benchmark: {}", problem.required("benchmark").as_string());
+  if (auto v = problem.optional("variables"))
+    resolved += fmt::format(", variables: {}", v->as_int());
+  if (auto v = problem.optional("objectives"))
+    resolved += fmt::format(", objectives: {}", v->as_int());
+  resolved += "}\noptimizer: " + optimizer_section_yaml(study.optimizer) + "\n";
+  if (!study.reference_point.empty()) {
+    std::string list;
+    for (double r : study.reference_point) list += (list.empty() ? "" : ", ") + format_number(r);
+    resolved += "indicators: {reference_point: [" + list + "]}\n";
+  }
+  study.resolved_yaml = resolved;
   return study;
 }
 
@@ -247,7 +315,7 @@ nlohmann::json finite_or_null(double value) {
 void write_run_outputs(const std::string& directory, const std::string& study_name,
                        const Problem& problem, const OptimizerSpec& spec, const RunOutcome& outcome,
                        int threads, const std::vector<double>& reference_point,
-                       const ObjectiveSet& reference_front) {
+                       const ObjectiveSet& reference_front, const nlohmann::json& extra_summary) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory))
@@ -310,6 +378,7 @@ void write_run_outputs(const std::string& directory, const std::string& study_na
       summary["iterations"] = outcome.single->iterations;
     }
   }
+  for (const auto& [key, value] : extra_summary.items()) summary[key] = value;
   const std::filesystem::path dir(directory);
   write_file_atomically((dir / "pareto.csv").string(), csv.str());
   write_file_atomically((dir / "summary.json").string(), summary.dump(2) + "\n");

@@ -28,6 +28,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +72,8 @@ struct BenchmarkStudy {
   std::unique_ptr<BenchmarkProblem> problem;
   OptimizerSpec optimizer;
   std::vector<double> reference_point;  ///< empty: chosen by write_run_outputs
+  /// The study with every optimizer default filled in (study.resolved.yaml; a valid study file).
+  std::string resolved_yaml;
 };
 
 /// The `problem:` section of benchmark kind: keys benchmark (name), variables, objectives.
@@ -78,6 +81,10 @@ std::unique_ptr<BenchmarkProblem> read_benchmark_problem(const YamlValue& proble
 
 /// The `optimizer:` section for a given problem (checks that the algorithm can take it).
 OptimizerSpec read_optimizer_section(const YamlValue& optimizer_section, const Problem& problem);
+
+/// The resolved `optimizer:` section as a YAML flow map (every option of the algorithm with its
+/// value; reading it back gives the same OptimizerSpec).
+std::string optimizer_section_yaml(const OptimizerSpec& spec);
 
 /// The optional `indicators:` section: reference_point with one value per objective.
 std::vector<double> read_indicators_section(const YamlValue& indicators_section,
@@ -89,12 +96,14 @@ BenchmarkStudy load_benchmark_study(const std::string& path);
 /// Runs the optimizer of `spec` on `problem` (`threads` = 0: OpenMP's default).
 RunOutcome run_optimizer(const Problem& problem, const OptimizerSpec& spec, int threads);
 
-/// Writes DIR/pareto.csv and DIR/summary.json (creating DIR), each atomically.
+/// Writes DIR/pareto.csv and DIR/summary.json (creating DIR), each atomically; the keys of
+/// `extra_summary` are added to summary.json.
 /// `reference_point` empty: nadir + 10% of the range of `reference_front` if given, else of
 /// the front found. `reference_front` may be empty (no IGD+ then).
 void write_run_outputs(const std::string& directory, const std::string& study_name,
                        const Problem& problem, const OptimizerSpec& spec, const RunOutcome& outcome,
                        int threads, const std::vector<double>& reference_point,
-                       const ObjectiveSet& reference_front);
+                       const ObjectiveSet& reference_front,
+                       const nlohmann::json& extra_summary = nlohmann::json::object());
 
 }  // namespace pkmopt

@@ -38,24 +38,47 @@
 // nsga2 uses the aggregate (derivative-free) formulation; every other algorithm the smooth one
 // (see problems/hexapod_design.hpp).
 //
-// Outputs in DIR: pareto.csv (id, free parameters in file units, objectives in user sign and
-// units, constraint values, feasible, failure), summary.json (as for benchmark studies, with
-// objective names), designs/<id>.yaml (machine files for `pkmopt analyze`).
+// Outputs in DIR (docs/design-studies.md lists every column and unit): study.resolved.yaml
+// (this schema with every default filled in; it loads to the same problem), journal.txt and
+// evaluations.csv (every evaluation as it happens, app/study_journal.hpp), pareto.csv and
+// pareto.json (the front; pareto.json follows the pkmopt-pareto-1 format), summary.json, and
+// designs/<id>.yaml (machine files for `pkmopt analyze` and `pkmopt workspace`).
+//
+// Example:
+//   DesignStudy study = load_design_study("studies/hexapod-quick.yaml");
+//   JournalOptions journal = design_journal_options(study);
+//   journal.directory = "out";
+//   journal.study_hash = study_hash(study.resolved_yaml);
+//   JournaledProblem journaled(*study.problem, journal);
+//   RunOutcome outcome = run_optimizer(journaled, study.optimizer, 0);
+//   write_design_outputs("out", study, outcome, {.threads = 0});
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "app/study_benchmark.hpp"
+#include "app/study_journal.hpp"
 #include "problems/hexapod_design.hpp"
 
 namespace pkmopt {
 
 struct DesignStudy {
   std::string name;
+  std::string description;
   std::unique_ptr<HexapodDesignProblem> problem;
   OptimizerSpec optimizer;
   bool write_designs = true;
+  /// Each parameter's [min, max] in file units (m, degrees for *_deg); min == max when fixed.
+  std::array<std::pair<double, double>, kNumDesignParameters> parameter_ranges{};
+  std::array<double, 3> task_centre{};  ///< m, before the home_height lift
+  double task_tilt_deg = 0.0;
+  double task_yaw_deg = 0.0;
+  std::size_t task_positions = 0;  ///< positions of the region (times orientations = poses)
+  /// study.resolved.yaml: the study with every default filled in (a valid study file).
+  std::string resolved_yaml;
 };
 
 /// True when the file's root map has a `machine:` key (throws InputError for a bad file).
@@ -64,8 +87,23 @@ bool is_design_study_file(const std::string& path);
 /// Loads and validates a design study (throws InputError naming file, line, column and key).
 DesignStudy load_design_study(const std::string& path);
 
-/// Writes pareto.csv, summary.json and designs/<id>.yaml into `directory`.
+/// The unit of a metric in outputs ("N/m", "m^3", "" for the dimensionless ones).
+std::string_view design_metric_unit(DesignMetric metric);
+
+/// Journal options for a design study: the evaluator with failure reasons and the
+/// evaluations.csv header and rows (directory, hash and progress are left to the caller).
+JournalOptions design_journal_options(const DesignStudy& study);
+
+/// Extra facts for summary.json.
+struct DesignRunFacts {
+  int threads = 0;
+  double wall_seconds = 0.0;
+  bool resumed = false;
+  const JournaledProblem* journal = nullptr;  ///< evaluation counts (may be null)
+};
+
+/// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`.
 void write_design_outputs(const std::string& directory, const DesignStudy& study,
-                          const RunOutcome& outcome, int threads);
+                          const RunOutcome& outcome, const DesignRunFacts& facts);
 
 }  // namespace pkmopt

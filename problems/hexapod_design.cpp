@@ -151,9 +151,11 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
                                               where, design_metric_name(c.metric)));
     needed_[static_cast<int>(c.metric)] = true;
   }
-  if (needed_[static_cast<int>(DesignMetric::workspace_volume)]) {
+  if (needed_[static_cast<int>(DesignMetric::workspace_volume)] ||
+      needed_[static_cast<int>(DesignMetric::conditioning_index)]) {
     WorkspaceOptions& w = spec_.task.workspace;
-    w.compute_maps = false;
+    // Maps (a metric evaluation at every inside node) only for the conditioning index.
+    w.compute_maps = needed_[static_cast<int>(DesignMetric::conditioning_index)];
     w.compute_hull = false;
     w.keep_points = false;
     const std::string message = validate(w);
@@ -346,13 +348,12 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   }
   auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
   if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
-      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) ||
-      need(DesignMetric::conditioning_index)) {
+      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max)) {
     HexapodData data(*hexapod);
     PoseMetrics m;
     double stiffness = std::numeric_limits<double>::infinity();
     double margin = std::numeric_limits<double>::infinity();
-    double force = 0.0, error = 0.0, margin_sum = 0.0;
+    double force = 0.0, error = 0.0;
     for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
       Pose pose = spec_.task.poses[k];
       pose.position.z() += p[kHomeHeight];
@@ -362,7 +363,6 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
                                  pose.position.x(), pose.position.y(), pose.position.z());
       stiffness = std::min(stiffness, m.stiffness_min);
       margin = std::min(margin, m.singularity_margin);
-      margin_sum += m.singularity_margin;
       force = std::max(force, m.tau.cwiseAbs().maxCoeff());
       error = std::max(error, m.tcp_error_max);
     }
@@ -370,10 +370,20 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     metric(DesignMetric::singularity_margin) = margin;
     metric(DesignMetric::leg_force_max) = force;
     metric(DesignMetric::tcp_error_max) = error;
-    metric(DesignMetric::conditioning_index) =
-        margin_sum / static_cast<double>(spec_.task.poses.size());
   }
-  if (need(DesignMetric::workspace_volume)) {
+  if (need(DesignMetric::conditioning_index)) {
+    // Global conditioning index: mean singularity margin over the inside workspace nodes.
+    try {
+      const WorkspaceResult workspace = compute_workspace(*hexapod, spec_.task.workspace);
+      metric(DesignMetric::conditioning_index) = workspace.maps.global_conditioning_index;
+      if (need(DesignMetric::workspace_volume))
+        metric(DesignMetric::workspace_volume) = workspace.volume;
+      if (workspace.maps.points == 0 && ev.failure.empty())
+        ev.failure = "conditioning index: the workspace has no inside grid node";
+    } catch (const std::exception& error) {
+      if (ev.failure.empty()) ev.failure = fmt::format("workspace: {}", error.what());
+    }
+  } else if (need(DesignMetric::workspace_volume)) {
     try {
       metric(DesignMetric::workspace_volume) = workspace_volume(*hexapod, spec_.task.workspace);
     } catch (const std::exception& error) {

@@ -20,7 +20,10 @@
 //   tcp_error_max       max_k tcp_error_max(pose k)                    m
 //   workspace_volume    workspace_volume(hexapod, task.workspace)     m^3 (constant orientation
 //                       set of task.workspace; coarse resolution for speed)
-//   conditioning_index  mean_k singularity_margin(pose k)              0..1 (over the task poses)
+//   conditioning_index  global conditioning index: the mean singularity margin over the inside
+//                       grid nodes of the workspace (compute_workspace with maps, task.workspace
+//                       orientations and resolution; each node's margin is the worst over
+//                       the orientations)                              0..1
 //   machine_size        pi r_b^2 max_length: the envelope cylinder of machine_envelope_volume
 //                       (planar base joints)                           m^3
 // An objective is minimised as f = metric, maximised as f = -metric. A constraint
@@ -126,7 +129,8 @@ struct DesignConstraint {
 struct DesignTask {
   std::vector<Pose> poses;         ///< TCP poses before the home_height lift (rad)
   Wrench wrench = Wrench::Zero();  ///< at the TCP, base axes (N, N*m)
-  WorkspaceOptions workspace;      ///< for workspace_volume (maps and hull are switched off)
+  /// For workspace_volume and conditioning_index (hull off; maps only for the index).
+  WorkspaceOptions workspace;
 };
 
 /// Positions on an n_x x n_y x n_z grid of the box centre +- half_extents (a count of 1 puts the

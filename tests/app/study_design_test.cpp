@@ -2,13 +2,17 @@
 #include "app/study_design.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
+#include "app/csv.hpp"
 #include "app/input_error.hpp"
 #include "app/machine_file.hpp"
 
@@ -57,6 +61,13 @@ std::string load_error(const std::string& name, const std::string& text) {
   return "no error";
 }
 
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
@@ -78,6 +89,72 @@ TEST(DesignStudy, LoadsTheProblemItDescribes) {
   EXPECT_EQ(problem.spec().task.poses.size(), 4u * 8u);
   EXPECT_EQ(problem.spec().formulation, DesignFormulation::aggregate);
   EXPECT_EQ(study.optimizer.seed, 5u);
+}
+
+TEST(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
+  const std::string catalog = std::string(PKMOPT_SOURCE_DIR) + "/studies/catalogs/sew-cms.yaml";
+  std::string text = replaced(kStudy, "  - {metric: leg_force_max, max: 10500}\n",
+                              "  - {actuator: CMS71L/350, catalog: " + catalog + "}\n");
+  text = replaced(text, "    base_radius: {min: 0.5, max: 0.7}\n",
+                  "    base_radius: {min: 0.5, max: 0.7}\n    stroke: {min: 0.30, max: 0.45}\n");
+  const fs::path dir = write_study("actuator", text);
+  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const HexapodDesignSpec& spec = study.problem->spec();
+  ASSERT_EQ(spec.constraints.size(), 1u);
+  EXPECT_EQ(spec.constraints[0].metric, DesignMetric::leg_force_max);
+  EXPECT_EQ(spec.constraints[0].bound, 17000.0);  // CMS71L/350: 17 kN
+  int stroke = -1;
+  for (int i = 0; i < kNumDesignParameters; ++i)
+    if (design_parameter_name(i) == "stroke") stroke = i;
+  EXPECT_EQ(spec.parameters[static_cast<std::size_t>(stroke)].lower, 0.30);
+  EXPECT_EQ(spec.parameters[static_cast<std::size_t>(stroke)].upper, 0.35);  // capped
+  // The resolved study (absolute catalog path) loads to the same problem.
+  const fs::path again = write_study("actuator_resolved", study.resolved_yaml);
+  const DesignStudy reloaded = load_design_study((again / "study.yaml").string());
+  EXPECT_EQ(reloaded.resolved_yaml, study.resolved_yaml);
+  EXPECT_EQ(reloaded.problem->spec().constraints[0].bound, 17000.0);
+
+  // A catalog relative to the study file, an unknown entry, a too-short actuator.
+  const std::string relative = replaced(text, catalog, "cat.yaml");
+  EXPECT_NE(load_error("actuator_rel", relative).find("(no such file)"), std::string::npos);
+  const fs::path rel_dir = write_study("actuator_rel2", relative);
+  fs::copy_file(catalog, rel_dir / "cat.yaml", fs::copy_options::overwrite_existing);
+  EXPECT_NO_THROW(load_design_study((rel_dir / "study.yaml").string()));
+  const std::string unknown = load_error("actuator_unknown", replaced(text, "CMS71L/350", "CMS99"));
+  EXPECT_NE(unknown.find("constraints[1].actuator: expected an entry of catalog 'sew-cms' "
+                         "(CMS50S/70, CMS50S/150"),
+            std::string::npos)
+      << unknown;
+  EXPECT_NE(unknown.find("found 'CMS99'"), std::string::npos) << unknown;
+  const std::string short_stroke =
+      load_error("actuator_short", replaced(text, "CMS71L/350", "CMS63S/200"));
+  EXPECT_NE(short_stroke.find("constraints[1].actuator: expected an actuator with a stroke of at "
+                              "least machine.parameters.stroke (0.3 m), found 'CMS63S/200' with "
+                              "0.2 m"),
+            std::string::npos)
+      << short_stroke;
+}
+
+TEST(DesignStudy, WrenchFromTheMillingModel) {
+  const std::string text =
+      replaced(kStudy, "  wrench: [0, 0, -3000, 0, 0, 0]\n",
+               "  wrench:\n"
+               "    milling: {cutter_diameter_mm: 63, teeth: 5, cutting_speed: 200,\n"
+               "              feed_per_tooth_mm: 0.15, width_mm: 63, depth_mm: 3, k_c1: 1700}\n"
+               "    factor: 2\n");
+  const fs::path dir = write_study("milling", text);
+  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  // Full slot: F_t = a_p a_e f_z z k_c / (pi D), k_c = 1700 (2 f_z / pi)^-0.25; times 2.
+  const double k_c = 1700.0 * std::pow(2.0 * 0.15 / M_PI, -0.25);
+  const double F_t = 3.0 * 63.0 * 0.15 * 5 * k_c / (M_PI * 63.0);
+  const Wrench& w = study.problem->spec().task.wrench;
+  EXPECT_NEAR(w(0), -2.0 * F_t, 1e-9 * F_t);
+  EXPECT_NEAR(w(1), 2.0 * 0.3 * F_t, 1e-9 * F_t);
+  EXPECT_NEAR(w(5), -2.0 * F_t * 0.0315, 1e-9 * F_t);
+  EXPECT_NE(study.resolved_yaml.find("# wrench from the cutting model: milling:"),
+            std::string::npos);
+  const fs::path again = write_study("milling_resolved", study.resolved_yaml);
+  EXPECT_EQ(load_design_study((again / "study.yaml").string()).problem->spec().task.wrench, w);
 }
 
 TEST(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
@@ -118,7 +195,7 @@ TEST(DesignStudy, SmallStudyEndToEnd) {
   std::string header, row;
   std::getline(csv, header);
   EXPECT_EQ(header,
-            "id,base_radius,platform_pair_separation_deg,stiffness_min,machine_size,"
+            "id,base_radius,platform_pair_separation_deg,home_height,stiffness_min,machine_size,"
             "g_leg_force_max_max,g_task_reachable,feasible,failure");
   int rows = 0;
   while (std::getline(csv, row)) {
@@ -131,6 +208,113 @@ TEST(DesignStudy, SmallStudyEndToEnd) {
   }
   EXPECT_GT(rows, 0);
   EXPECT_TRUE(fs::exists(dir / "out" / "summary.json"));
+
+  // pareto.json: the pkmopt-pareto-1 format, one design per pareto.csv row.
+  const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
+  EXPECT_EQ(pareto["format"], "pkmopt-pareto-1");
+  EXPECT_EQ(pareto["study"], "tiny");
+  ASSERT_EQ(pareto["designs"].size(), static_cast<std::size_t>(rows));
+  EXPECT_EQ(pareto["parameters"][0]["name"], "base_radius");
+  EXPECT_EQ(pareto["parameters"][0]["min"], 0.5);
+  EXPECT_EQ(pareto["fixed_parameters"]["home_height"], 0.0);
+  EXPECT_EQ(pareto["constraints"][0]["name"], "g_leg_force_max_max");
+  EXPECT_EQ(pareto["constraints"][0]["bound"], 10500.0);
+  EXPECT_EQ(pareto["constraints"][1]["kind"], "reachable");
+  EXPECT_EQ(pareto["objectives"][0]["unit"], "N/m");
+  const nlohmann::json& first = pareto["designs"][0];
+  EXPECT_EQ(first["id"], "d0000");
+  EXPECT_EQ(first["home_height"], 0.0);
+  EXPECT_EQ(first["machine_file"], "designs/d0000.yaml");
+  EXPECT_TRUE(first["feasible"].get<bool>());
+  EXPECT_GT(first["objectives"]["stiffness_min"].get<double>(), 0.0);
+  EXPECT_TRUE(pareto["knee"].is_string());
+
+  // summary.json: user-sign hypervolume with its reference point; counts of evaluations.
+  const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary["evaluations"], 12 * 5);
+  EXPECT_EQ(summary["evaluations_from_cache"].get<long long>() +
+                summary["evaluations_distinct"].get<long long>(),
+            12 * 5);
+  EXPECT_EQ(summary["seed"], 5);
+  ASSERT_EQ(summary["reference_point"].size(), 2u);
+  // maximize stiffness: the reference lies below the front's smallest stiffness.
+  double smallest_stiffness = 1e300;
+  for (const auto& d : pareto["designs"])
+    smallest_stiffness =
+        std::min(smallest_stiffness, d["objectives"]["stiffness_min"].get<double>());
+  EXPECT_LT(summary["reference_point"][0].get<double>(), smallest_stiffness);
+  EXPECT_TRUE(summary["hypervolume"].is_number());
+
+  // evaluations.csv: one row per distinct evaluation.
+  std::ifstream evaluations(dir / "out" / "evaluations.csv");
+  std::getline(evaluations, header);
+  EXPECT_EQ(header,
+            "index,base_radius,platform_pair_separation_deg,stiffness_min,machine_size,"
+            "g_leg_force_max_max,g_task_reachable,feasible,failure");
+  long long evaluation_rows = 0;
+  while (std::getline(evaluations, row)) ++evaluation_rows;
+  EXPECT_EQ(evaluation_rows, summary["evaluations_distinct"].get<long long>());
+
+  // A second run into the same folder is refused without --resume or --force.
+  const std::string again = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
+                            " --out " + (dir / "out").string() + " > /dev/null 2>&1";
+  const int status = std::system(again.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+TEST(DesignStudy, ResolvedStudyLoadsToTheSameProblem) {
+  const fs::path dir = write_study("resolved", kStudy);
+  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  std::ofstream(dir / "resolved.yaml") << study.resolved_yaml;
+  const DesignStudy again = load_design_study((dir / "resolved.yaml").string());
+  EXPECT_EQ(again.resolved_yaml, study.resolved_yaml);  // a fixed point: nothing left to fill in
+  const HexapodDesignProblem& a = *study.problem;
+  const HexapodDesignProblem& b = *again.problem;
+  EXPECT_EQ(a.bounds().lower, b.bounds().lower);
+  EXPECT_EQ(a.bounds().upper, b.bounds().upper);
+  EXPECT_EQ(a.free_parameters(), b.free_parameters());
+  ASSERT_EQ(a.spec().task.poses.size(), b.spec().task.poses.size());
+  for (std::size_t k = 0; k < a.spec().task.poses.size(); ++k) {
+    EXPECT_EQ(a.spec().task.poses[k].position, b.spec().task.poses[k].position);
+    EXPECT_EQ(a.spec().task.poses[k].angles, b.spec().task.poses[k].angles);
+  }
+  EXPECT_EQ(a.spec().task.wrench, b.spec().task.wrench);
+  EXPECT_EQ(again.optimizer.nsga2.population, 12u);
+  EXPECT_EQ(again.optimizer.nsga2.crossover_eta, study.optimizer.nsga2.crossover_eta);
+  const std::vector<double> x = {0.6, deg_to_rad(25)};
+  EXPECT_EQ(a.fitness(x), b.fitness(x));
+}
+
+TEST(DesignStudy, EvaluationRowsRecordFailuresWithoutNumbers) {
+  const fs::path dir = write_study("rows", kStudy);
+  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const JournalOptions options = design_journal_options(study);
+  EXPECT_EQ(options.csv_header,
+            "index,base_radius,platform_pair_separation_deg,stiffness_min,machine_size,"
+            "g_leg_force_max_max,g_task_reachable,feasible,failure");
+  // A successful design: objectives in user sign (stiffness positive), the g values as rows.
+  JournalEntry good = options.evaluate({0.6, deg_to_rad(25)});
+  good.x = {0.6, deg_to_rad(25)};  // the journal sets x after the evaluation
+  EXPECT_TRUE(good.note.empty());
+  const DesignEvaluation ev = study.problem->evaluate({0.6, deg_to_rad(25)});
+  const std::string row = options.csv_row(3, good);
+  EXPECT_EQ(row.substr(0, row.find(',', row.find(',', 2) + 1)),
+            "3,0.6," + format_number(rad_to_deg(deg_to_rad(25))));
+  EXPECT_NE(row.find("," + format_number(ev.metrics[0]) + ","), std::string::npos) << row;
+  // A failed design: empty objective and constraint cells, feasible 0, the quoted reason.
+  JournalEntry failed = good;
+  for (double& f : failed.fitness) f = kFailurePenalty;
+  failed.note = "singular at task pose 2 (x 0.1, y 0, z 0.9 m)";
+  EXPECT_EQ(options.csv_row(4, failed),
+            "4,0.6," + format_number(rad_to_deg(deg_to_rad(25))) +
+                ",,,,,0,\"singular at task pose 2 (x 0.1, y 0, z 0.9 m)\"");
+}
+
+TEST(DesignStudy, ShippedQuickStudyResolvesToItself) {
+  const DesignStudy study =
+      load_design_study(std::string(PKMOPT_SOURCE_DIR) + "/studies/hexapod-quick.yaml");
+  const fs::path dir = write_study("quick_resolved", study.resolved_yaml);
+  EXPECT_EQ(load_design_study((dir / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
 }
 
 }  // namespace

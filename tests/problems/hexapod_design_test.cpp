@@ -160,6 +160,33 @@ TEST(HexapodDesign, WorkspaceVolumeIsTheWorkspaceModuleFastPath) {
   EXPECT_EQ(f[0], -volume);
 }
 
+TEST(HexapodDesign, ConditioningIndexIsTheMeanMarginOverTheWorkspace) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, 0.0);
+  spec.objectives = {{DesignMetric::conditioning_index, Sense::maximize},
+                     {DesignMetric::workspace_volume, Sense::maximize}};
+  spec.task.workspace.resolution = 0.08;
+  const HexapodDesignProblem problem(spec);
+  const DesignEvaluation ev = problem.evaluate({});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  WorkspaceOptions options = spec.task.workspace;
+  options.compute_maps = true;
+  options.compute_hull = false;
+  const Hexapod hexapod(spec.machine_template);
+  const WorkspaceResult workspace = compute_workspace(hexapod, options);
+  ASSERT_GT(workspace.maps.points, 10);
+  // Mean of the node margins, each in (0, 1].
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::conditioning_index)],
+            workspace.maps.global_conditioning_index);
+  EXPECT_GT(workspace.maps.global_conditioning_index, 0.0);
+  EXPECT_LE(workspace.maps.global_conditioning_index, 1.0);
+  // Sharing the workspace computation gives the fast path's volume.
+  options.compute_maps = false;
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::workspace_volume)],
+            workspace_volume(hexapod, options));
+  const std::vector<double> f = problem.fitness({});
+  EXPECT_EQ(f[0], -workspace.maps.global_conditioning_index);
+}
+
 TEST(HexapodDesign, BatchFitnessInParallelEqualsSerial) {
   HexapodDesignSpec spec;
   spec.task.poses = box_task_poses({0, 0, 0.9}, {0.1, 0.1, 0.05}, {2, 2, 2}, deg_to_rad(10), 0);
@@ -168,6 +195,7 @@ TEST(HexapodDesign, BatchFitnessInParallelEqualsSerial) {
   spec.parameters[kStroke] = {0.3, 0.6};
   spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
                      {DesignMetric::conditioning_index, Sense::maximize}};
+  spec.task.workspace.resolution = 0.1;  // the conditioning index samples the workspace
   const HexapodDesignProblem problem(spec);
   EXPECT_EQ(problem.thread_safety(), ThreadSafety::basic);
   std::vector<std::vector<double>> xs;

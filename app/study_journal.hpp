@@ -1,0 +1,153 @@
+// The evaluation journal of `pkmopt run`: every evaluation recorded as it happens, a cache of
+// identical evaluations, resume after a kill, evaluations.csv and the progress display.
+//
+// JournaledProblem decorates the problem a study optimises. Every fitness request goes through
+// it: a design x seen before (bit-identical) is served from the cache; the others are evaluated
+// (in parallel for batches), appended to DIR/journal.txt and to DIR/evaluations.csv in request
+// order (one write per batch), then returned. Because the optimizers are deterministic for a
+// given seed, re-running a killed study with the journal loaded replays the same requests:
+// everything recorded comes from the cache, the rest is evaluated and appended, and the run ends
+// with the same front as one never killed. Gradients are not journaled (recomputed on resume).
+//
+// DIR/journal.txt (text, append-only, bit-exact):
+//   pkmopt-journal 1 <study hash, 16 hex digits> <n variables> <fitness size>
+//   <x_1> ... <x_n> <f_1> ... <f_m>\t<note>          one line per distinct evaluation
+// Numbers are C99 hexadecimal floats (printf %a: exact), the note is the failure reason (empty
+// when the evaluation succeeded; tabs and newlines replaced by spaces). A last line without its
+// newline (cut by a kill) or with a wrong number count is ignored and cut off on resume.
+//
+// DIR/evaluations.csv: its header and rows come from the caller (`csv_header`, `csv_row`); on
+// resume it is rewritten from the journal, then appended to.
+//
+// Progress (stderr): on a terminal one line redrawn in place (evaluations done / expected,
+// hypervolume of the feasible non-dominated evaluated points, elapsed, remaining); otherwise a
+// plain log line every `log_interval_seconds`. The hypervolume's reference point is the nadir of
+// those points plus 10% of their range (it moves as the front grows).
+//
+// Example:
+//   JournalOptions options;
+//   options.directory = "out"; options.study_hash = study_hash(resolved_yaml_text);
+//   options.resume = true;
+//   JournaledProblem journaled(problem, options);   // throws InputError on a foreign journal
+//   FrontResult front = run_nsga2(journaled, nsga2_options);
+//   journaled.finish();
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "optimizer/problem.hpp"
+
+namespace pkmopt {
+
+/// One recorded evaluation.
+struct JournalEntry {
+  std::vector<double> x;
+  std::vector<double> fitness;
+  std::string note;  ///< failure reason; empty when the evaluation succeeded
+};
+
+/// FNV-1a 64-bit hash of a text (stable across runs and machines).
+std::uint64_t study_hash(std::string_view text);
+
+/// A journal line for an entry (with its newline) and its reader (nullopt-like: false for a bad
+/// line). Exposed for tests.
+std::string journal_line(const JournalEntry& entry);
+bool parse_journal_line(std::string_view line, std::size_t num_variables, std::size_t fitness_size,
+                        JournalEntry& entry);
+
+/// The complete entries of a journal file and the byte length they occupy (a cut last line is
+/// not counted). Throws InputError when the header is missing or does not match.
+struct JournalContents {
+  std::uint64_t study_hash = 0;
+  std::size_t num_variables = 0;
+  std::size_t fitness_size = 0;
+  std::vector<JournalEntry> entries;
+  std::size_t valid_bytes = 0;
+};
+JournalContents read_journal(const std::string& path);
+
+struct JournalOptions {
+  std::string directory;
+  std::uint64_t study_hash = 0;
+  bool resume = false;  ///< load DIR/journal.txt if present (refused if its hash differs)
+  /// evaluations.csv: header line (without newline) and one row (without newline) per entry;
+  /// no evaluations.csv when csv_row is empty.
+  std::string csv_header;
+  std::function<std::string(std::size_t index, const JournalEntry&)> csv_row;
+  /// Evaluates one design with its failure note; default: inner.fitness(x) with an empty note.
+  std::function<JournalEntry(const std::vector<double>& x)> evaluate;
+  /// Progress: expected number of fitness requests (0: unknown), whether to show it.
+  long long expected_requests = 0;
+  bool show_progress = false;
+  double log_interval_seconds = 5.0;
+  int threads = 0;  ///< for the display only; batches use the threads the optimizer passes
+};
+
+class JournaledProblem final : public Problem {
+ public:
+  /// Opens (or, with resume, reloads and truncates to its last complete line) DIR/journal.txt
+  /// and DIR/evaluations.csv. Throws InputError when resuming a journal of another study.
+  JournaledProblem(const Problem& inner, JournalOptions options);
+  ~JournaledProblem() override;
+  JournaledProblem(const JournaledProblem&) = delete;
+  JournaledProblem& operator=(const JournaledProblem&) = delete;
+
+  Bounds bounds() const override { return inner_.bounds(); }
+  std::size_t num_objectives() const override { return inner_.num_objectives(); }
+  std::size_t num_equality() const override { return inner_.num_equality(); }
+  std::size_t num_inequality() const override { return inner_.num_inequality(); }
+  std::vector<double> fitness(const std::vector<double>& x) const override;
+  std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
+                                                 int threads) const override;
+  bool has_gradient() const override { return inner_.has_gradient(); }
+  std::vector<double> gradient(const std::vector<double>& x) const override {
+    return inner_.gradient(x);
+  }
+  SparsityPattern gradient_sparsity() const override { return inner_.gradient_sparsity(); }
+  std::string name() const override { return inner_.name(); }
+  ThreadSafety thread_safety() const override { return inner_.thread_safety(); }
+
+  /// Entries recorded so far (loaded ones first), in journal order.
+  const std::vector<JournalEntry>& entries() const { return entries_; }
+  /// The recorded entry of a design, or nullptr.
+  const JournalEntry* find(const std::vector<double>& x) const;
+  long long requests() const;    ///< fitness requests (cache hits included)
+  long long cache_hits() const;  ///< requests served from the cache
+  std::size_t loaded_entries() const { return loaded_; }  ///< entries read from the journal
+  long long failed() const;  ///< distinct evaluations with a failure note
+  /// Ends the progress line (on a terminal) and prints a last log line.
+  void finish() const;
+
+ private:
+  std::vector<std::vector<double>> serve(std::span<const std::vector<double>> xs,
+                                         int threads) const;
+  void append(std::span<const JournalEntry> fresh) const;
+  void report_progress(bool force) const;
+
+  const Problem& inner_;
+  JournalOptions options_;
+  int journal_fd_ = -1;
+  int csv_fd_ = -1;
+  mutable std::mutex mutex_;
+  mutable std::vector<JournalEntry> entries_;
+  mutable std::unordered_map<std::string, std::size_t> index_;  // bytes of x -> entry
+  mutable long long requests_ = 0;
+  mutable long long cache_hits_ = 0;
+  mutable long long failed_ = 0;
+  std::size_t loaded_ = 0;
+  bool terminal_ = false;
+  std::chrono::steady_clock::time_point start_;
+  mutable std::chrono::steady_clock::time_point last_report_;
+  mutable bool progress_line_open_ = false;
+  mutable std::vector<std::vector<double>> feasible_front_;  // user-independent internal sign
+};
+
+}  // namespace pkmopt
