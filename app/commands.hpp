@@ -15,5 +15,6 @@ void add_calibrate_command(CLI::App& app);
 void add_simulate_measurements_command(CLI::App& app);
 void add_calibration_poses_command(CLI::App& app);
 void add_workspace_command(CLI::App& app);
+void add_export_command(CLI::App& app);
 
 }  // namespace pkmopt::cli

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   pkmopt::cli::add_simulate_measurements_command(app);
   pkmopt::cli::add_calibration_poses_command(app);
   pkmopt::cli::add_workspace_command(app);
+  pkmopt::cli::add_export_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,7 +1,6 @@
 #include "app/workspace_export.hpp"
 
 #include <fmt/format.h>
-#include <png.h>
 
 #include <algorithm>
 #include <array>
@@ -13,64 +12,22 @@
 #include <stdexcept>
 
 #include "app/csv.hpp"
+#include "app/raster_image.hpp"
 
 namespace pkmopt {
 namespace {
 
-struct Rgb {
-  std::uint8_t r = 0, g = 0, b = 0;
-};
+using raster::hex;
+using raster::kGlyphHeight;
+using raster::kInk;
+using raster::kWhite;
+using raster::nice_ticks;
+using raster::Rgb;
+using raster::RgbImage;
+using raster::viridis;
 
 constexpr Rgb kOutsideColour{225, 225, 225};
 constexpr Rgb kInfiniteColour{0, 0, 0};
-constexpr Rgb kWhite{255, 255, 255};
-constexpr Rgb kInk{20, 20, 20};
-
-// Viridis at 9 evenly spaced points (matplotlib's table), interpolated linearly.
-Rgb viridis(double t) {
-  static constexpr std::array<std::array<double, 3>, 9> kTable = {{{0.267, 0.005, 0.329},
-                                                                   {0.279, 0.175, 0.483},
-                                                                   {0.230, 0.322, 0.546},
-                                                                   {0.173, 0.449, 0.558},
-                                                                   {0.128, 0.567, 0.551},
-                                                                   {0.158, 0.684, 0.502},
-                                                                   {0.369, 0.789, 0.383},
-                                                                   {0.678, 0.864, 0.190},
-                                                                   {0.993, 0.906, 0.144}}};
-  t = std::clamp(t, 0.0, 1.0) * 8.0;
-  const int i = std::min(7, static_cast<int>(t));
-  const double f = t - i;
-  Rgb c;
-  auto mix = [&](int k) {
-    const double v = (1 - f) * kTable[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)] +
-                     f * kTable[static_cast<std::size_t>(i + 1)][static_cast<std::size_t>(k)];
-    return static_cast<std::uint8_t>(std::lround(255.0 * v));
-  };
-  c.r = mix(0);
-  c.g = mix(1);
-  c.b = mix(2);
-  return c;
-}
-
-std::string hex(Rgb c) { return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b); }
-
-// Ticks at a "nice" step (1, 2 or 5 times a power of ten) covering [low, high].
-std::vector<double> nice_ticks(double low, double high, int target) {
-  std::vector<double> ticks;
-  const double range = high - low;
-  if (!(range > 0.0)) return {low};
-  const double raw = range / target;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = power;
-  for (double m : {1.0, 2.0, 5.0, 10.0}) {
-    step = m * power;
-    if (step >= raw) break;
-  }
-  for (double t = std::ceil(low / step) * step; t <= high + 1e-9 * step; t += step) {
-    ticks.push_back(std::abs(t) < 1e-9 * step ? 0.0 : t);
-  }
-  return ticks;
-}
 
 std::string short_number(double v) { return fmt::format("{:.3g}", v); }
 
@@ -148,150 +105,6 @@ Rgb pixel_colour(const WorkspaceSlice& slice, const SliceLayout& layout, SliceMe
   // 64 colour levels, as in the colour bar (and long runs of equal colour in the SVG).
   return viridis((std::min(63.0, std::floor(64.0 * t)) + 0.5) / 64.0);
 }
-
-// ---- A 5x7 bitmap font for the PNG labels (rows top to bottom, bit 4 = leftmost column). ----
-const std::map<char, std::array<std::uint8_t, 7>>& font() {
-  static const std::map<char, std::array<std::uint8_t, 7>> glyphs = {
-      {'0', {0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E}},
-      {'1', {0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E}},
-      {'2', {0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F}},
-      {'3', {0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E}},
-      {'4', {0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02}},
-      {'5', {0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E}},
-      {'6', {0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E}},
-      {'7', {0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08}},
-      {'8', {0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E}},
-      {'9', {0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C}},
-      {'-', {0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00}},
-      {'+', {0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00}},
-      {'.', {0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C}},
-      {',', {0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08}},
-      {'=', {0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00}},
-      {'/', {0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00}},
-      {'_', {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F}},
-      {'[', {0x0E, 0x08, 0x08, 0x08, 0x08, 0x08, 0x0E}},
-      {']', {0x0E, 0x02, 0x02, 0x02, 0x02, 0x02, 0x0E}},
-      {'*', {0x00, 0x04, 0x15, 0x0E, 0x15, 0x04, 0x00}},
-      {'a', {0x00, 0x00, 0x0E, 0x01, 0x0F, 0x11, 0x0F}},
-      {'b', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x1E}},
-      {'c', {0x00, 0x00, 0x0E, 0x10, 0x10, 0x11, 0x0E}},
-      {'d', {0x01, 0x01, 0x0D, 0x13, 0x11, 0x11, 0x0F}},
-      {'e', {0x00, 0x00, 0x0E, 0x11, 0x1F, 0x10, 0x0E}},
-      {'f', {0x06, 0x09, 0x08, 0x1C, 0x08, 0x08, 0x08}},
-      {'g', {0x00, 0x0F, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
-      {'h', {0x10, 0x10, 0x16, 0x19, 0x11, 0x11, 0x11}},
-      {'i', {0x04, 0x00, 0x0C, 0x04, 0x04, 0x04, 0x0E}},
-      {'j', {0x02, 0x00, 0x06, 0x02, 0x02, 0x12, 0x0C}},
-      {'k', {0x10, 0x10, 0x12, 0x14, 0x18, 0x14, 0x12}},
-      {'l', {0x0C, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E}},
-      {'m', {0x00, 0x00, 0x1A, 0x15, 0x15, 0x11, 0x11}},
-      {'n', {0x00, 0x00, 0x16, 0x19, 0x11, 0x11, 0x11}},
-      {'o', {0x00, 0x00, 0x0E, 0x11, 0x11, 0x11, 0x0E}},
-      {'p', {0x00, 0x00, 0x1E, 0x11, 0x1E, 0x10, 0x10}},
-      {'q', {0x00, 0x00, 0x0D, 0x13, 0x0F, 0x01, 0x01}},
-      {'r', {0x00, 0x00, 0x16, 0x19, 0x10, 0x10, 0x10}},
-      {'s', {0x00, 0x00, 0x0E, 0x10, 0x0E, 0x01, 0x1E}},
-      {'t', {0x08, 0x08, 0x1C, 0x08, 0x08, 0x09, 0x06}},
-      {'u', {0x00, 0x00, 0x11, 0x11, 0x11, 0x13, 0x0D}},
-      {'v', {0x00, 0x00, 0x11, 0x11, 0x11, 0x0A, 0x04}},
-      {'w', {0x00, 0x00, 0x11, 0x11, 0x15, 0x15, 0x0A}},
-      {'x', {0x00, 0x00, 0x11, 0x0A, 0x04, 0x0A, 0x11}},
-      {'y', {0x00, 0x00, 0x11, 0x11, 0x0F, 0x01, 0x0E}},
-      {'z', {0x00, 0x00, 0x1F, 0x02, 0x04, 0x08, 0x1F}},
-      {'N', {0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11}},
-  };
-  return glyphs;
-}
-
-constexpr int kGlyphScale = 2;
-constexpr int kGlyphAdvance = 6 * kGlyphScale;
-constexpr int kGlyphHeight = 7 * kGlyphScale;
-
-class RgbImage {
- public:
-  RgbImage(int width, int height, Rgb fill)
-      : width_(width), height_(height), pixels_(static_cast<std::size_t>(width) * height, fill) {}
-
-  void set(int x, int y, Rgb c) {
-    if (x >= 0 && y >= 0 && x < width_ && y < height_) {
-      pixels_[static_cast<std::size_t>(y) * width_ + x] = c;
-    }
-  }
-  void fill(int x0, int y0, int x1, int y1, Rgb c) {  // [x0, x1) x [y0, y1)
-    for (int y = y0; y < y1; ++y) {
-      for (int x = x0; x < x1; ++x) set(x, y, c);
-    }
-  }
-  void frame(int x0, int y0, int x1, int y1, Rgb c) {
-    fill(x0, y0, x1, y0 + 1, c);
-    fill(x0, y1 - 1, x1, y1, c);
-    fill(x0, y0, x0 + 1, y1, c);
-    fill(x1 - 1, y0, x1, y1, c);
-  }
-  int text_width(std::string_view text) const {
-    return static_cast<int>(text.size()) * kGlyphAdvance - kGlyphScale;
-  }
-  // Text with its top-left corner at (x, y).
-  void text(int x, int y, std::string_view text, Rgb c) {
-    for (char ch : text) {
-      const auto it = font().find(ch);
-      if (it != font().end()) {
-        for (int row = 0; row < 7; ++row) {
-          for (int col = 0; col < 5; ++col) {
-            if (it->second[static_cast<std::size_t>(row)] & (0x10 >> col)) {
-              fill(x + col * kGlyphScale, y + row * kGlyphScale, x + (col + 1) * kGlyphScale,
-                   y + (row + 1) * kGlyphScale, c);
-            }
-          }
-        }
-      }
-      x += kGlyphAdvance;
-    }
-  }
-
-  std::string encode_png() const {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    if (!png) throw std::runtime_error("libpng: cannot create a write struct");
-    png_infop info = png_create_info_struct(png);
-    if (!info) {
-      png_destroy_write_struct(&png, nullptr);
-      throw std::runtime_error("libpng: cannot create an info struct");
-    }
-    std::string bytes;
-    std::vector<png_bytep> rows(static_cast<std::size_t>(height_));
-    std::vector<std::uint8_t> raw(static_cast<std::size_t>(width_) * height_ * 3);
-    for (std::size_t p = 0; p < pixels_.size(); ++p) {
-      raw[3 * p] = pixels_[p].r;
-      raw[3 * p + 1] = pixels_[p].g;
-      raw[3 * p + 2] = pixels_[p].b;
-    }
-    for (int y = 0; y < height_; ++y) {
-      rows[static_cast<std::size_t>(y)] = raw.data() + static_cast<std::size_t>(y) * width_ * 3;
-    }
-    if (setjmp(png_jmpbuf(png))) {
-      png_destroy_write_struct(&png, &info);
-      throw std::runtime_error("libpng: encoding the slice picture failed");
-    }
-    png_set_write_fn(
-        png, &bytes,
-        [](png_structp p, png_bytep data, png_size_t length) {
-          static_cast<std::string*>(png_get_io_ptr(p))
-              ->append(reinterpret_cast<const char*>(data), length);
-        },
-        nullptr);
-    png_set_IHDR(png, info, static_cast<png_uint_32>(width_), static_cast<png_uint_32>(height_), 8,
-                 PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-                 PNG_FILTER_TYPE_DEFAULT);
-    png_set_rows(png, info, rows.data());
-    png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
-    png_destroy_write_struct(&png, &info);
-    return bytes;
-  }
-
- private:
-  int width_, height_;
-  std::vector<Rgb> pixels_;
-};
 
 void append_float(std::string& out, float value) {
   char bytes[4];
