@@ -11,6 +11,7 @@
 #include <string>
 
 #include "models/linalg.hpp"
+#include "models/pose_solver.hpp"
 
 namespace pkmopt {
 namespace {
@@ -368,56 +369,13 @@ FkResult Hexapod::forward_kinematics(const Eigen::VectorXd& q_target,
       jac.block<1, 3>(i, 3) = ri.cross(si).transpose();
     }
   };
-  Vec6<double> res;
-  Matrix6d J;
-  evaluate(p, R, res, J);
-  double cost = res.squaredNorm();
-  double lambda = options.initial_damping;
-  int iterations = 0;
-  bool converged = res.cwiseAbs().maxCoeff() <= options.tolerance;
-  int polish_steps = 0;
-  while (iterations < options.max_iterations) {
-    if (converged) {
-      // One or two Gauss-Newton steps past the tolerance take the pose to machine precision.
-      if (polish_steps >= 2) break;
-      ++polish_steps;
-    }
-    ++iterations;
-    const Matrix6d JtJ = J.transpose() * J;
-    const Vec6<double> g = J.transpose() * res;
-    Matrix6d A = JtJ;
-    const double damping = converged ? 0.0 : lambda;
-    for (int i = 0; i < 6; ++i) A(i, i) += damping * (JtJ(i, i) + 1e-12);
-    const Vec6<double> step = -A.ldlt().solve(g);
-    if (!step.allFinite()) {
-      if (converged) break;
-      lambda *= 10.0;
-      if (lambda > 1e16) break;
-      continue;
-    }
-    const Eigen::Vector3d p_trial = p + step.head<3>();
-    const Eigen::Matrix3d R_trial = rotation_from_vector(step.tail<3>()) * R;
-    Vec6<double> res_trial;
-    Matrix6d J_trial;
-    evaluate(p_trial, R_trial, res_trial, J_trial);
-    const double cost_trial = res_trial.squaredNorm();
-    if (std::isfinite(cost_trial) && cost_trial < cost) {
-      p = p_trial;
-      R = R_trial;
-      res = res_trial;
-      J = J_trial;
-      cost = cost_trial;
-      lambda = std::max(lambda / 5.0, 1e-15);
-      converged = converged || res.cwiseAbs().maxCoeff() <= options.tolerance;
-    } else {
-      if (converged) break;  // the polish step cannot improve: done
-      lambda *= 5.0;
-      if (lambda > 1e16) break;
-    }
-  }
-  // Re-orthonormalise (the updates keep R a rotation up to rounding).
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  R = svd.matrixU() * svd.matrixV().transpose();
+  const PoseClosureSolve<Vec6<double>> solve =
+      solve_pose_closure<Vec6<double>, Matrix6d>(p, R, true, 6, options, evaluate);
+  p = solve.position;
+  R = solve.rotation;
+  const Vec6<double> res = solve.residual;
+  const int iterations = solve.iterations;
+  const bool converged = solve.converged;
 
   result.pose.position = p;
   result.pose.angles = angles_from_rotation(R);

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "models/hexapod.hpp"  // kSingularRcond, semi_regular_platform_joints
+#include "models/pose_solver.hpp"
 
 namespace pkmopt {
 namespace {
@@ -503,57 +504,13 @@ FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,
       if (dof_ == 6) jac.block(i, 3, 1, 3) = ri.cross(si).transpose();
     }
   };
-  Eigen::Vector3d p = start.position;
-  Eigen::Matrix3d R = platform_rotation(start);
-  VecM g(n);
-  MatM jac(n, n);
-  evaluate(p, R, g, jac);
-  double cost = g.squaredNorm();
-  double lambda = options.initial_damping;
-  int iterations = 0;
-  bool converged = g.cwiseAbs().maxCoeff() <= options.tolerance;
-  int polish_steps = 0;
-  while (iterations < options.max_iterations) {
-    if (converged) {
-      if (polish_steps >= 2) break;
-      ++polish_steps;
-    }
-    ++iterations;
-    const MatM JtJ = jac.transpose() * jac;
-    const VecM grad = jac.transpose() * g;
-    MatM H = JtJ;
-    const double damping = converged ? 0.0 : lambda;
-    for (int i = 0; i < n; ++i) H(i, i) += damping * (JtJ(i, i) + 1e-12);
-    const VecM step = -H.ldlt().solve(grad);
-    if (!step.allFinite()) {
-      if (converged) break;
-      lambda *= 10.0;
-      if (lambda > 1e16) break;
-      continue;
-    }
-    const Eigen::Vector3d p_trial = p + step.head(3);
-    const Eigen::Matrix3d R_trial =
-        dof_ == 6 ? Eigen::Matrix3d(rotation_from_vector(step.tail(3)) * R) : R;
-    VecM g_trial(n);
-    MatM jac_trial(n, n);
-    evaluate(p_trial, R_trial, g_trial, jac_trial);
-    const double cost_trial = g_trial.squaredNorm();
-    if (std::isfinite(cost_trial) && cost_trial < cost) {
-      p = p_trial;
-      R = R_trial;
-      g = g_trial;
-      jac = jac_trial;
-      cost = cost_trial;
-      lambda = std::max(lambda / 5.0, 1e-15);
-      converged = converged || g.cwiseAbs().maxCoeff() <= options.tolerance;
-    } else {
-      if (converged) break;
-      lambda *= 5.0;
-      if (lambda > 1e16) break;
-    }
-  }
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  R = svd.matrixU() * svd.matrixV().transpose();
+  const PoseClosureSolve<VecM> solve = solve_pose_closure<VecM, MatM>(
+      start.position, platform_rotation(start), dof_ == 6, n, options, evaluate);
+  const Eigen::Vector3d p = solve.position;
+  const Eigen::Matrix3d R = solve.rotation;
+  const VecM g = solve.residual;
+  const int iterations = solve.iterations;
+  const bool converged = solve.converged;
   result.pose.position = p;
   result.pose.angles = dof_ == 6 ? angles_from_rotation(R) : Eigen::Vector3d::Zero();
   result.iterations = iterations;
