@@ -8,12 +8,6 @@
 namespace pkmopt {
 namespace {
 
-double positive_number(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v > 0.0)) value.fail("a number > 0", value.describe());
-  return v;
-}
-
 // [min, max] with 0 < min <= max.
 std::pair<double, double> read_range(const YamlValue& value) {
   const std::vector<double> range = value.as_doubles(2);
@@ -31,12 +25,12 @@ ActuatorEntry read_entry(const YamlValue& value) {
   entry.name = name.as_string();
   if (entry.name.empty()) name.fail("a non-empty name", "''");
   entry.type = value.required("type").as_string();
-  entry.max_force = positive_number(value.required("max_force"));
-  entry.stroke = positive_number(value.required("stroke"));
-  entry.max_speed = positive_number(value.required("max_speed"));
-  if (const auto v = value.optional("accuracy")) entry.accuracy = positive_number(*v);
-  if (const auto v = value.optional("stiffness")) entry.stiffness = positive_number(*v);
-  if (const auto v = value.optional("cost")) entry.cost = positive_number(*v);
+  entry.max_force = value.required("max_force").as_positive();
+  entry.stroke = value.required("stroke").as_positive();
+  entry.max_speed = value.required("max_speed").as_positive();
+  if (const auto v = value.optional("accuracy")) entry.accuracy = v->as_positive();
+  if (const auto v = value.optional("stiffness")) entry.stiffness = v->as_positive();
+  if (const auto v = value.optional("cost")) entry.cost = v->as_positive();
   return entry;
 }
 

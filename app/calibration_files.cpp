@@ -23,12 +23,6 @@ std::string resolve_path(const std::string& base_file, const std::string& path) 
   return (std::filesystem::path(base_file).parent_path() / p).lexically_normal().string();
 }
 
-double positive_number(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v > 0.0)) value.fail("a number > 0", value.describe());
-  return v;
-}
-
 Pose read_frame(const YamlValue& value) {
   value.check_keys({"position", "angles_deg"});
   Pose pose;
@@ -168,9 +162,9 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   } else if (setup.unit == "mm") {
     setup.unit_scale = 1e-3;
   } else if (setup.unit == "rev") {
-    setup.unit_scale = positive_number(actuators.required("lead"));
+    setup.unit_scale = actuators.required("lead").as_positive();
   } else if (setup.unit == "counts") {
-    setup.unit_scale = 1.0 / positive_number(actuators.required("counts_per_metre"));
+    setup.unit_scale = 1.0 / actuators.required("counts_per_metre").as_positive();
   } else {
     unit.fail("one of m, mm, rev, counts", unit.describe());
   }
@@ -194,9 +188,9 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   // Noise.
   const YamlValue noise = root.required("noise");
   noise.check_keys({"position", "orientation_deg", "actuator"});
-  setup.options.sigma_position = positive_number(noise.required("position"));
-  setup.options.sigma_orientation = deg_to_rad(positive_number(noise.required("orientation_deg")));
-  setup.options.sigma_actuator = positive_number(noise.required("actuator")) * setup.unit_scale;
+  setup.options.sigma_position = noise.required("position").as_positive();
+  setup.options.sigma_orientation = deg_to_rad(noise.required("orientation_deg").as_positive());
+  setup.options.sigma_actuator = noise.required("actuator").as_positive() * setup.unit_scale;
 
   // Free parameters.
   if (auto model = root.optional("model")) {
@@ -245,10 +239,9 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
     } else {
       type.fail("huber, cauchy or none", type.describe());
     }
-    if (auto scale = loss->optional("scale")) setup.options.loss_scale = positive_number(*scale);
+    if (auto scale = loss->optional("scale")) setup.options.loss_scale = scale->as_positive();
   }
-  if (auto chi2 = root.optional("outlier_chi2"))
-    setup.options.outlier_chi2 = positive_number(*chi2);
+  if (auto chi2 = root.optional("outlier_chi2")) setup.options.outlier_chi2 = chi2->as_positive();
   if (auto iterations = root.optional("max_iterations")) {
     const long long n = iterations->as_int();
     if (n < 1 || n > 100000) iterations->fail("an integer in 1..100000", iterations->describe());
@@ -263,10 +256,10 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   if (auto scale = root.optional("parameter_scale")) {
     scale->check_keys({"length", "gain", "frame_position", "frame_angle_deg"});
     double length = 1e-3, gain = 2e-4, frame_position = 5e-3, frame_angle = 1e-3;
-    if (auto v = scale->optional("length")) length = positive_number(*v);
-    if (auto v = scale->optional("gain")) gain = positive_number(*v);
-    if (auto v = scale->optional("frame_position")) frame_position = positive_number(*v);
-    if (auto v = scale->optional("frame_angle_deg")) frame_angle = deg_to_rad(positive_number(*v));
+    if (auto v = scale->optional("length")) length = v->as_positive();
+    if (auto v = scale->optional("gain")) gain = v->as_positive();
+    if (auto v = scale->optional("frame_position")) frame_position = v->as_positive();
+    if (auto v = scale->optional("frame_angle_deg")) frame_angle = deg_to_rad(v->as_positive());
     setup.options.parameter_scale =
         calibration_parameter_scale(length, gain, frame_position, frame_angle);
   }

@@ -26,18 +26,6 @@ Eigen::Vector3d read_vector3(const YamlValue& value) {
   return {v[0], v[1], v[2]};
 }
 
-double positive(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v > 0.0)) value.fail("a number > 0", value.describe());
-  return v;
-}
-
-double non_negative(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v >= 0.0)) value.fail("a number >= 0", value.describe());
-  return v;
-}
-
 double angle_limit(const YamlValue& value) {
   const double v = value.as_double();
   if (!(v > 0.0 && v <= 180.0)) value.fail("an angle in degrees in (0, 180]", value.describe());
@@ -47,7 +35,7 @@ double angle_limit(const YamlValue& value) {
 // Semi-regular hexagon {radius, pair_separation_deg}; `platform` selects the platform form.
 Eigen::Matrix<double, 3, 6> read_hexagon(const YamlValue& value, bool platform) {
   value.check_keys({"radius", "pair_separation_deg"});
-  const double radius = positive(value.required("radius"));
+  const double radius = value.required("radius").as_positive();
   const YamlValue sep_value = value.required("pair_separation_deg");
   const double sep = sep_value.as_double();
   if (!(sep >= 0.0 && sep <= 120.0)) {
@@ -84,9 +72,9 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   const YamlValue legs = root.required("legs");
   legs.check_keys(
       {"min_length", "max_length", "axial_stiffness", "E", "area", "actuator_stiffness"});
-  design.min_length = positive(legs.required("min_length"));
+  design.min_length = legs.required("min_length").as_positive();
   const YamlValue max_value = legs.required("max_length");
-  design.max_length = positive(max_value);
+  design.max_length = max_value.as_positive();
   if (!(design.max_length > design.min_length)) {
     max_value.fail(fmt::format("a number > legs.min_length ({})", format_number(design.min_length)),
                    max_value.describe());
@@ -98,15 +86,15 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
     legs.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
   }
   if (has_axial) {
-    design.stiffness.axial_stiffness = positive(legs.required("axial_stiffness"));
+    design.stiffness.axial_stiffness = legs.required("axial_stiffness").as_positive();
   } else if (has_e || has_area) {
-    design.stiffness.E = positive(legs.required("E"));
-    design.stiffness.area = positive(legs.required("area"));
+    design.stiffness.E = legs.required("E").as_positive();
+    design.stiffness.area = legs.required("area").as_positive();
   } else {
     legs.fail("missing the leg stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
   }
   if (auto v = legs.optional("actuator_stiffness")) {
-    design.stiffness.actuator_stiffness = positive(*v);
+    design.stiffness.actuator_stiffness = v->as_positive();
   }
 
   if (auto joints = root.optional("joints")) {
@@ -131,8 +119,9 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
     tool->check_keys({"tcp"});
     if (auto v = tool->optional("tcp")) design.tcp = read_vector3(*v);
   }
-  if (auto v = root.optional("characteristic_length")) design.characteristic_length = positive(*v);
-  if (auto v = root.optional("actuator_error")) design.actuator_error = non_negative(*v);
+  if (auto v = root.optional("characteristic_length"))
+    design.characteristic_length = v->as_positive();
+  if (auto v = root.optional("actuator_error")) design.actuator_error = v->as_non_negative();
 
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)

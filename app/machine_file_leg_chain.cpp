@@ -12,18 +12,6 @@
 namespace pkmopt {
 namespace {
 
-double positive(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v > 0.0)) value.fail("a number > 0", value.describe());
-  return v;
-}
-
-double non_negative(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v >= 0.0)) value.fail("a number >= 0", value.describe());
-  return v;
-}
-
 double angle_limit(const YamlValue& value) {
   const double v = value.as_double();
   if (!(v > 0.0 && v <= 180.0)) value.fail("an angle in degrees in (0, 180]", value.describe());
@@ -60,13 +48,13 @@ void read_link_stiffness(const YamlValue& section, LinkStiffness& k) {
     section.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
   }
   if (has_axial) {
-    k.axial_stiffness = positive(section.required("axial_stiffness"));
+    k.axial_stiffness = section.required("axial_stiffness").as_positive();
     k.E = 0.0;
     k.area = 0.0;
   } else if (has_e || has_area) {
     k.axial_stiffness = 0.0;
-    k.E = positive(section.required("E"));
-    k.area = positive(section.required("area"));
+    k.E = section.required("E").as_positive();
+    k.area = section.required("area").as_positive();
   } else {
     section.fail(
         "missing the link stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
@@ -79,7 +67,7 @@ void read_common(const YamlValue& root, Eigen::Vector3d& tcp,
     tool->check_keys({"tcp"});
     if (auto v = tool->optional("tcp")) tcp = read_vector3(*v);
   }
-  if (auto v = root.optional("characteristic_length")) characteristic_length = positive(*v);
+  if (auto v = root.optional("characteristic_length")) characteristic_length = v->as_positive();
 }
 
 void read_joint_limits(const YamlValue& root, const char* base_key, double& base_limit,
@@ -108,10 +96,10 @@ DeltaDesign read_delta_design(const YamlValue& root) {
                    "rod", "drive_range_deg", "branch", "rods", "drive_stiffness", "joints", "tool",
                    "characteristic_length", "actuator_error_deg"});
   DeltaDesign d;
-  d.base_radius = positive(root.required("base_radius"));
-  d.platform_radius = non_negative(root.required("platform_radius"));
-  d.upper_arm = positive(root.required("upper_arm"));
-  d.rod = positive(root.required("rod"));
+  d.base_radius = root.required("base_radius").as_positive();
+  d.platform_radius = root.required("platform_radius").as_non_negative();
+  d.upper_arm = root.required("upper_arm").as_positive();
+  d.rod = root.required("rod").as_positive();
   const auto range = read_range(root.required("drive_range_deg"), -180.0, 180.0, "deg");
   d.theta_min = deg_to_rad(range.first);
   d.theta_max = deg_to_rad(range.second);
@@ -127,10 +115,11 @@ DeltaDesign read_delta_design(const YamlValue& root) {
   }
   read_link_stiffness(root.required("rods"), d.stiffness);
   d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("drive_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  if (auto v = root.optional("drive_stiffness")) d.stiffness.actuator_stiffness = v->as_positive();
   read_joint_limits(root, "elbow_max_angle_deg", d.elbow_max_angle, d.platform_max_angle);
   read_common(root, d.tcp, d.characteristic_length);
-  if (auto v = root.optional("actuator_error_deg")) d.actuator_error = deg_to_rad(non_negative(*v));
+  if (auto v = root.optional("actuator_error_deg"))
+    d.actuator_error = deg_to_rad(v->as_non_negative());
   validate(root, d, make_delta);
   return d;
 }
@@ -140,9 +129,9 @@ LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
                    "inclination_deg", "stroke", "rods", "carriage_stiffness", "joints", "tool",
                    "characteristic_length", "actuator_error"});
   LinearDeltaDesign d;
-  d.guide_radius = positive(root.required("guide_radius"));
-  d.platform_radius = non_negative(root.required("platform_radius"));
-  d.rod = positive(root.required("rod"));
+  d.guide_radius = root.required("guide_radius").as_positive();
+  d.platform_radius = root.required("platform_radius").as_non_negative();
+  d.rod = root.required("rod").as_positive();
   if (auto v = root.optional("inclination_deg")) {
     const double a = v->as_double();
     if (!(a > -90.0 && a < 90.0)) v->fail("an angle in degrees in (-90, 90)", v->describe());
@@ -154,10 +143,11 @@ LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
   d.q_max = stroke.second;
   read_link_stiffness(root.required("rods"), d.stiffness);
   d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("carriage_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  if (auto v = root.optional("carriage_stiffness"))
+    d.stiffness.actuator_stiffness = v->as_positive();
   read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
   read_common(root, d.tcp, d.characteristic_length);
-  if (auto v = root.optional("actuator_error")) d.actuator_error = non_negative(*v);
+  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
   validate(root, d, make_linear_delta);
   return d;
 }
@@ -182,7 +172,7 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
     if (!(a > -90.0 && a < 90.0)) v->fail("an angle in degrees in (-90, 90)", v->describe());
     d.inclination = deg_to_rad(a);
   }
-  d.strut = positive(root.required("strut"));
+  d.strut = root.required("strut").as_positive();
   const bool has_form = root.has("platform");
   const bool has_list = root.has("platform_joints");
   if (has_form && has_list) {
@@ -192,7 +182,7 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
   if (has_form) {
     const YamlValue p = root.required("platform");
     p.check_keys({"radius", "pair_separation_deg", "rotation_deg"});
-    const double radius = positive(p.required("radius"));
+    const double radius = p.required("radius").as_positive();
     const YamlValue sep_value = p.required("pair_separation_deg");
     const double sep = sep_value.as_double();
     if (!(sep >= 0.0 && sep <= 120.0)) {
@@ -213,10 +203,11 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
   d.q_max = stroke.second;
   read_link_stiffness(root.required("struts"), d.stiffness);
   d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("carriage_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  if (auto v = root.optional("carriage_stiffness"))
+    d.stiffness.actuator_stiffness = v->as_positive();
   read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
   read_common(root, d.tcp, d.characteristic_length);
-  if (auto v = root.optional("actuator_error")) d.actuator_error = non_negative(*v);
+  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
   if (auto v = root.optional("home_height")) d.home_height = v->as_double();
   validate(root, d, make_hexaglide);
   return d;

@@ -22,12 +22,6 @@
 namespace pkmopt {
 namespace {
 
-double positive(const YamlValue& v) {
-  const double value = v.as_double();
-  if (!(value > 0.0)) v.fail("a number > 0", v.describe());
-  return value;
-}
-
 int positive_int(const YamlValue& v) {
   const long long value = v.as_int();
   if (value < 1 || value > 1000) v.fail("an integer in 1..1000", v.describe());
@@ -105,12 +99,13 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
   if (auto v = legs.optional("axial_stiffness")) {
     if (legs.has("E") || legs.has("area"))
       v->fail("either axial_stiffness or E and area, not both");
-    d.stiffness.axial_stiffness = positive(*v);
+    d.stiffness.axial_stiffness = v->as_positive();
   } else {
-    d.stiffness.E = positive(legs.required("E"));
-    d.stiffness.area = positive(legs.required("area"));
+    d.stiffness.E = legs.required("E").as_positive();
+    d.stiffness.area = legs.required("area").as_positive();
   }
-  if (auto v = legs.optional("actuator_stiffness")) d.stiffness.actuator_stiffness = positive(*v);
+  if (auto v = legs.optional("actuator_stiffness"))
+    d.stiffness.actuator_stiffness = v->as_positive();
   d.joints = HexapodJointLimits{};
   double base_deg = 0.0, platform_deg = 0.0;
   if (auto joints = machine.optional("joints")) {
@@ -126,7 +121,7 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
     const std::vector<double> tcp = tool->required("tcp").as_doubles(3);
     d.tcp = Eigen::Vector3d(tcp[0], tcp[1], tcp[2]);
   }
-  if (auto v = machine.optional("actuator_error")) d.actuator_error = positive(*v);
+  if (auto v = machine.optional("actuator_error")) d.actuator_error = v->as_positive();
 
   yaml += "machine:\n  model: hexapod\n  parameters:\n";
   for (int i = 0; i < kNumDesignParameters; ++i) {
@@ -232,7 +227,7 @@ void read_task(const YamlValue& task, HexapodDesignSpec& spec, DesignStudy& stud
   double resolution = 0.05, ws_tilt = 0.0, ws_yaw = 0.0, ws_step = 5.0;
   if (auto w = task.optional("workspace")) {
     w->check_keys({"resolution", "tilt_deg", "yaw_deg", "step_deg"});
-    if (auto v = w->optional("resolution")) resolution = positive(*v);
+    if (auto v = w->optional("resolution")) resolution = v->as_positive();
     if (auto v = w->optional("tilt_deg")) angle_deg_kept(*v, 0, 89, ws_tilt);
     if (auto v = w->optional("yaw_deg")) angle_deg_kept(*v, 0, 179, ws_yaw);
     if (auto v = w->optional("step_deg")) angle_deg_kept(*v, 0.5, 90, ws_step);

@@ -176,6 +176,18 @@ double YamlValue::as_double() const {
   return value;
 }
 
+double YamlValue::as_positive() const {
+  const double v = as_double();
+  if (!(v > 0.0)) fail("a number > 0", describe());
+  return v;
+}
+
+double YamlValue::as_non_negative() const {
+  const double v = as_double();
+  if (!(v >= 0.0)) fail("a number >= 0", describe());
+  return v;
+}
+
 long long YamlValue::as_int() const {
   if (!node_.IsScalar()) fail("an integer", describe());
   const std::string& text = node_.Scalar();

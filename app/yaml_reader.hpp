@@ -61,7 +61,9 @@ class YamlValue {
   /// Elements of a sequence (throws unless a sequence; `count` >= 0 checks the length).
   std::vector<YamlValue> elements(int count = -1) const;
 
-  double as_double() const;  ///< finite number
+  double as_double() const;        ///< finite number
+  double as_positive() const;      ///< finite number > 0 ("expected a number > 0")
+  double as_non_negative() const;  ///< finite number >= 0 ("expected a number >= 0")
   long long as_int() const;
   bool as_bool() const;
   std::string as_string() const;
