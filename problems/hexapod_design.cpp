@@ -28,7 +28,9 @@ constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
     "stiffness_min",    "singularity_margin", "leg_force_max", "tcp_error_max",
     "workspace_volume", "conditioning_index", "machine_size"};
 
-using DesignJet = ceres::Jet<double, kNumDesignParameters>;
+// Derivatives with respect to the 7 parameters, then the (at most 2) epigraph variables.
+constexpr int kMaxEpigraph = 2;
+using DesignJet = ceres::Jet<double, kNumDesignParameters + kMaxEpigraph>;
 
 // Semi-regular joints (CONVENTIONS.md) for any scalar type.
 template <typename T>
@@ -175,26 +177,48 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     if (o.metric == DesignMetric::leg_force_max && o.sense == Sense::minimize) {
       epigraph_objectives_.push_back(k);
       num_inequality_ += 12 * poses;
+    } else if (o.metric == DesignMetric::stiffness_min && o.sense == Sense::maximize) {
+      epigraph_objectives_.push_back(k);
+      num_inequality_ += kStiffnessRowsPerPose * poses;
     } else if (o.metric != DesignMetric::machine_size) {
       throw std::invalid_argument(fmt::format(
           "{}: objective {} {} has no smooth formulation (smooth: minimize leg_force_max, "
-          "machine_size); use an evolutionary optimizer (aggregate formulation)",
+          "maximize stiffness_min, machine_size); use an evolutionary optimizer (aggregate "
+          "formulation)",
           where, o.sense == Sense::minimize ? "minimize" : "maximize",
           design_metric_name(o.metric)));
     }
   }
+  for (std::size_t a = 0; a < epigraph_objectives_.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (spec_.objectives[epigraph_objectives_[a]].metric ==
+          spec_.objectives[epigraph_objectives_[b]].metric)
+        throw std::invalid_argument(
+            fmt::format("{}: objective {} is listed twice", where,
+                        design_metric_name(spec_.objectives[epigraph_objectives_[a]].metric)));
   for (const DesignConstraint& c : spec_.constraints) {
     if (c.metric == DesignMetric::leg_force_max && c.relation == Relation::less_equal) {
       num_inequality_ += 12 * poses;
+    } else if (c.metric == DesignMetric::stiffness_min && c.relation == Relation::greater_equal) {
+      num_inequality_ += kStiffnessRowsPerPose * poses;
     } else if (c.metric == DesignMetric::machine_size) {
       num_inequality_ += 1;
     } else {
       throw std::invalid_argument(fmt::format(
           "{}: constraint {} {} has no smooth formulation (smooth: leg_force_max <=, "
-          "machine_size <= or >=); use an evolutionary optimizer (aggregate formulation)",
+          "stiffness_min >=, machine_size <= or >=); use an evolutionary optimizer (aggregate "
+          "formulation)",
           where, design_metric_name(c.metric), c.relation == Relation::less_equal ? "<=" : ">="));
     }
   }
+  // Upper bound of the stiffness epigraph variable: stiffness_min <= lambda_max(K_tt) <=
+  // sum k_i <= 6 k(q) at the shortest leg a reachable design can have.
+  const LegStiffness& k = spec_.machine_template.stiffness;
+  const double q_short = std::max(spec_.parameters[kMinLength].lower, 1e-3);
+  double compliance = k.axial_stiffness > 0.0 ? 1.0 / k.axial_stiffness : q_short / (k.E * k.area);
+  if (k.actuator_stiffness > 0.0) compliance += 1.0 / k.actuator_stiffness;
+  stiffness_upper_ = 6.0 / compliance / kEpigraphStiffnessUnit;
+  if (!std::isfinite(stiffness_upper_) || stiffness_upper_ <= 0.0) stiffness_upper_ = 1e6;
   if (spec_.require_reachable) num_inequality_ += reach_per_pose * poses;
 }
 
@@ -204,9 +228,11 @@ Bounds HexapodDesignProblem::bounds() const {
     b.lower.push_back(spec_.parameters[i].lower);
     b.upper.push_back(spec_.parameters[i].upper);
   }
-  for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e) {
+  for (std::size_t objective : epigraph_objectives_) {
     b.lower.push_back(0.0);
-    b.upper.push_back(kEpigraphForceUpper);
+    b.upper.push_back(spec_.objectives[objective].metric == DesignMetric::leg_force_max
+                          ? kEpigraphForceUpper / kEpigraphForceUnit
+                          : stiffness_upper_);
   }
   return b;
 }
@@ -283,48 +309,105 @@ void HexapodDesignProblem::smooth_rows(const std::array<T, kNumDesignParameters>
   for (const DesignObjective& o : spec_.objectives) {
     if (o.metric == DesignMetric::machine_size)
       rows.push_back(metric_sign(o.sense) * machine_size);
+    else if (o.metric == DesignMetric::leg_force_max)
+      rows.push_back(epigraph[e++] * kEpigraphForceUnit);  // N
     else
-      rows.push_back(epigraph[e++]);
+      rows.push_back(-epigraph[e++] * kEpigraphStiffnessUnit);  // -stiffness bound, N/m
   }
-  // Leg forces at every pose: J^T tau = w.
-  std::vector<Vec6<T>> tau;
-  bool need_tau = !epigraph_objectives_.empty();
-  for (const DesignConstraint& c : spec_.constraints)
+  // Statics at every pose from one LU of J^T: tau = J^-T w and P^T = J^-T [e_1 e_2 e_3], the
+  // translational rows of J^-1, so C_tt = P diag(1/k) P^T (as Hexapod::compute_metrics).
+  bool need_tau = false, need_compliance = false;
+  for (std::size_t objective : epigraph_objectives_) {
+    need_tau = need_tau || spec_.objectives[objective].metric == DesignMetric::leg_force_max;
+    need_compliance =
+        need_compliance || spec_.objectives[objective].metric == DesignMetric::stiffness_min;
+  }
+  for (const DesignConstraint& c : spec_.constraints) {
     need_tau = need_tau || c.metric == DesignMetric::leg_force_max;
-  if (need_tau) {
+    need_compliance = need_compliance || c.metric == DesignMetric::stiffness_min;
+  }
+  std::vector<Vec6<T>> tau;
+  std::vector<Mat3<T>> compliance_tt;
+  if (need_tau || need_compliance) {
     const Eigen::Matrix<T, 3, 6> base =
         semi_regular_joints<T>(p[kBaseRadius], p[kBasePairSeparation], false);
     Eigen::Matrix<T, 3, 6> platform_rel =
         semi_regular_joints<T>(p[kPlatformRadius], p[kPlatformPairSeparation], true);
     for (int i = 0; i < 6; ++i)
       for (int a = 0; a < 3; ++a) platform_rel(a, i) -= spec_.machine_template.tcp(a);
-    const Vec6<T> wrench = spec_.task.wrench.cast<T>();
+    Eigen::Matrix<T, 6, 4> rhs = Eigen::Matrix<T, 6, 4>::Zero();
+    rhs(0, 0) = rhs(1, 1) = rhs(2, 2) = T(1.0);
+    rhs.col(3) = spec_.task.wrench.cast<T>();
+    const LegStiffness& k = spec_.machine_template.stiffness;
     for (const Pose& pose : spec_.task.poses) {
       Vec3<T> position = pose.position.cast<T>();
       position(2) += p[kHomeHeight];
       Vec6<T> q;
       Mat6<T> J;
       hexapod_legs<T>(base, platform_rel, position, pose.angles.cast<T>(), &q, &J);
-      tau.push_back(Eigen::PartialPivLU<Mat6<T>>(J.transpose()).solve(wrench));
+      const Eigen::Matrix<T, 6, 4> solution =
+          Eigen::PartialPivLU<Mat6<T>>(J.transpose()).solve(rhs);
+      if (need_tau) tau.push_back(solution.col(3));
+      if (need_compliance) {
+        Mat3<T> ctt;
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b <= a; ++b) {
+            T sum(0.0);
+            for (int i = 0; i < 6; ++i) {
+              T leg = k.axial_stiffness > 0.0 ? T(1.0 / k.axial_stiffness) : q(i) / (k.E * k.area);
+              if (k.actuator_stiffness > 0.0) leg += 1.0 / k.actuator_stiffness;
+              sum += solution(i, a) * leg * solution(i, b);
+            }
+            ctt(a, b) = ctt(b, a) = sum;
+          }
+        compliance_tt.push_back(ctt);
+      }
     }
   }
+  // Force rows in kN: (+-tau_i - limit) / kEpigraphForceUnit.
   auto add_force_rows = [&](const T& limit) {
     for (const Vec6<T>& t : tau)
       for (int i = 0; i < 6; ++i) {
-        rows.push_back(t(i) - limit);
-        rows.push_back(-t(i) - limit);
+        rows.push_back((t(i) - limit) / kEpigraphForceUnit);
+        rows.push_back((-t(i) - limit) / kEpigraphForceUnit);
       }
   };
-  for (std::size_t k = 0; k < epigraph_objectives_.size(); ++k) add_force_rows(epigraph[k]);
+  // stiffness_min >= s  <=>  lambda_max(C_tt) <= 1/s  <=>  M = I - s C_tt is positive
+  // semidefinite  <=>  its 7 principal minors are >= 0: rows -minor <= 0 (dimensionless).
+  auto add_stiffness_rows = [&](const T& stiffness) {
+    for (const Mat3<T>& c : compliance_tt) {
+      const Mat3<T> m = Mat3<T>::Identity() - stiffness * c;
+      rows.push_back(-m(0, 0));
+      rows.push_back(-m(1, 1));
+      rows.push_back(-m(2, 2));
+      rows.push_back(-(m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0)));
+      rows.push_back(-(m(0, 0) * m(2, 2) - m(0, 2) * m(2, 0)));
+      rows.push_back(-(m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)));
+      rows.push_back(-(m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) -
+                       m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+                       m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))));
+    }
+  };
+  for (std::size_t k = 0; k < epigraph_objectives_.size(); ++k) {
+    if (spec_.objectives[epigraph_objectives_[k]].metric == DesignMetric::leg_force_max)
+      add_force_rows(epigraph[k] * kEpigraphForceUnit);
+    else
+      add_stiffness_rows(epigraph[k] * kEpigraphStiffnessUnit);
+  }
   for (const DesignConstraint& c : spec_.constraints) {
     if (c.metric == DesignMetric::leg_force_max) {
       add_force_rows(T(c.bound));
+    } else if (c.metric == DesignMetric::stiffness_min) {
+      add_stiffness_rows(T(c.bound));
     } else {  // machine_size
       rows.push_back(c.relation == Relation::less_equal ? machine_size - c.bound
                                                         : T(c.bound) - machine_size);
     }
   }
   if (spec_.require_reachable) reach_rows<T>(p, &rows);
+  // Tighten every inequality row by kSmoothRowMargin (rows are O(1)), so that a point a solver
+  // accepts within its constraint tolerance passes the strict aggregate check g <= 0.
+  for (std::size_t r = spec_.objectives.size(); r < rows.size(); ++r) rows[r] += kSmoothRowMargin;
 }
 
 DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) const {
@@ -435,26 +518,21 @@ std::vector<double> HexapodDesignProblem::gradient(const std::vector<double>& x)
   for (int i = 0; i < kNumDesignParameters; ++i) pj[i] = DesignJet(p[i], i);
   const std::size_t n_free = free_.size();
   const std::size_t n = n_free + epigraph_objectives_.size();
-  // Epigraph variables enter linearly with coefficient 1 or -1: track them as constants here and
-  // set their derivatives below from the row layout.
   std::vector<DesignJet> epigraph;
   for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e)
-    epigraph.emplace_back(x[n_free + e]);
+    epigraph.emplace_back(x[n_free + e], kNumDesignParameters + static_cast<int>(e));
   std::vector<DesignJet> rows;
   smooth_rows<DesignJet>(pj, epigraph, rows);
   std::vector<double> jacobian(rows.size() * n, 0.0);
-  for (std::size_t r = 0; r < rows.size(); ++r)
+  for (std::size_t r = 0; r < rows.size(); ++r) {
     for (std::size_t j = 0; j < n_free; ++j) {
       const double v = rows[r].v(free_[j]);
       jacobian[r * n + j] = std::isfinite(v) ? v : 0.0;
     }
-  // Objective rows of the epigraph variables, then their 12 N force rows each (+-tau - t).
-  const std::size_t m = spec_.objectives.size();
-  const std::size_t per_epigraph = 12 * spec_.task.poses.size();
-  for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e) {
-    jacobian[epigraph_objectives_[e] * n + n_free + e] = 1.0;
-    for (std::size_t r = 0; r < per_epigraph; ++r)
-      jacobian[(m + e * per_epigraph + r) * n + n_free + e] = -1.0;
+    for (std::size_t e = 0; e < epigraph_objectives_.size(); ++e) {
+      const double v = rows[r].v(kNumDesignParameters + static_cast<int>(e));
+      jacobian[r * n + n_free + e] = std::isfinite(v) ? v : 0.0;
+    }
   }
   return jacobian;
 }

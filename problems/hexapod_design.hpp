@@ -35,14 +35,26 @@
 //
 // Formulations:
 //   aggregate (derivative-free, for NSGA-II): rows as above, one per objective and constraint.
-//   smooth (gradient solvers: Ipopt, NLopt, epsilon-constraint, NBI): worst cases become
-//     per-pose rows. Variables = free design parameters + one epigraph variable t per
-//     leg_force_max objective, 0 <= t <= kEpigraphForceUpper (minimise t with
-//     +-tau_i(pose k) - t <= 0 for all i, k).
-//     Constraints: leg_force_max <= b gives +-tau_i(pose k) - b <= 0; machine_size <= / >= b
-//     one row; reachability: the terms of g_reach, each its own row. Only leg_force_max
-//     (minimised, or bounded above) and machine_size are smooth; other metrics are refused with
-//     a message. Gradients come from hexapod_legs<ceres::Jet> (forward-mode autodiff).
+//   smooth (gradient solvers: Ipopt, NLopt, epsilon-constraint, NBI, hybrid): worst cases
+//     become per-pose rows, every row scaled to O(1). Variables = free design parameters + one
+//     epigraph variable per epigraph objective, in objective order:
+//       minimize leg_force_max: t in kN (kEpigraphForceUnit), 0 <= t <= kEpigraphForceUpper;
+//         objective row 1000 t (N); rows (+-tau_i(pose k) - 1000 t) / 1000 <= 0 (kN).
+//       maximize stiffness_min: s in N/um (kEpigraphStiffnessUnit = 1e6 N/m),
+//         0 <= s <= 6 k(min_length lower bound) (an upper bound of any stiffness_min);
+//         objective row -1e6 s (N/m, the maximised metric's minimised sign); rows: with
+//         M_k = I - 1e6 s C_tt(pose k) (C = K^-1, K = J^T diag(k) J), the 7 principal minors
+//         of M_k (3 diagonal entries, 3 2x2 minors, det), each as -minor <= 0. Exact:
+//         lambda_max(C_tt) <= 1/s_Nm <=> M_k is positive semidefinite <=> all principal
+//         minors >= 0, and smooth where lambda_max is not (repeated top eigenvalues).
+//     Constraints: leg_force_max <= b gives (+-tau_i(pose k) - b) / 1000 <= 0 (kN);
+//     stiffness_min >= b the 7 minor rows of I - b C_tt(pose k) per pose; machine_size <= / >= b
+//     one row; reachability: the terms of g_reach, each its own row. Only these metrics are
+//     smooth; other metrics are refused with a message. Gradients come from
+//     hexapod_legs<ceres::Jet> and an LU solve of J^T in Jet arithmetic (forward-mode
+//     autodiff over the 7 parameters and the epigraph variables). Every inequality row is
+//     tightened by kSmoothRowMargin (1e-6 in its unit) so that solutions feasible to a solver's
+//     tolerance are feasible in the aggregate metrics.
 //
 // Failures: a design the Hexapod constructor rejects, a singular task pose or any non-finite
 // metric makes the evaluation fail: `DesignEvaluation::failure` says why, and every objective and
@@ -63,6 +75,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -164,9 +177,19 @@ struct HexapodDesignSpec {
   HexapodDesignSpec();
 };
 
-/// Upper bound (N) of the epigraph variables of the smooth formulation: finite so that
+/// Upper bound (N) of the leg-force epigraph variable of the smooth formulation: finite so that
 /// multi-start solvers can sample it; far above any actuator force.
 inline constexpr double kEpigraphForceUpper = 1e8;
+/// Unit of the leg-force epigraph variable and of the force rows (N per unit: kN).
+inline constexpr double kEpigraphForceUnit = 1e3;
+/// Unit of the stiffness epigraph variable (N/m per unit: N/um).
+inline constexpr double kEpigraphStiffnessUnit = 1e6;
+/// Every inequality row of the smooth formulation is g + kSmoothRowMargin <= 0 (rows in their
+/// O(1) units: kN, m, cosines, dimensionless minors, m^3): solvers accept a constraint
+/// violation of about 1e-8, and their solutions must pass the aggregate check g <= 0.
+inline constexpr double kSmoothRowMargin = 1e-6;
+/// Rows per task pose of a smooth stiffness_min objective or constraint (principal minors).
+inline constexpr std::size_t kStiffnessRowsPerPose = 7;
 
 /// Objective and constraint rows of a failed design (finite: never NaN in outputs).
 inline constexpr double kFailurePenalty = 1e20;
@@ -200,7 +223,8 @@ class HexapodDesignProblem final : public Problem {
   const HexapodDesignSpec& spec() const { return spec_; }
   /// Indices of the free parameters, in variable order.
   const std::vector<int>& free_parameters() const { return free_; }
-  /// Number of epigraph variables (smooth formulation), after the free parameters.
+  /// Number of epigraph variables (smooth formulation), after the free parameters (one per
+  /// minimize leg_force_max / maximize stiffness_min objective, in objective order).
   std::size_t num_epigraph() const { return epigraph_objectives_.size(); }
   /// All parameters (internal units) for a variable vector.
   std::array<double, kNumDesignParameters> parameters_of(const std::vector<double>& x) const;
@@ -223,6 +247,7 @@ class HexapodDesignProblem final : public Problem {
   std::vector<std::size_t> epigraph_objectives_;  // objective indices with an epigraph variable
   std::size_t num_inequality_ = 0;
   std::array<bool, kNumDesignMetrics> needed_{};
+  double stiffness_upper_ = 0.0;  // bound of the stiffness epigraph variable (N/um)
 };
 
 }  // namespace pkmopt
