@@ -38,9 +38,9 @@ struct FrontResult {
 
 /// Builds a FrontResult from candidates: keeps those with constraint violation <= tolerance
 /// (equalities within `equality_tolerance`) and finite objectives, then the non-dominated ones,
-/// sorted by objective vector.
+/// sorted by objective vector. The default tolerances agree with SolveResult::usable() (1e-6).
 FrontResult make_front(const Problem& problem, const std::vector<std::vector<double>>& xs,
                        const std::vector<std::vector<double>>& fitness,
-                       double equality_tolerance = 1e-6, double inequality_tolerance = 1e-8);
+                       double equality_tolerance = 1e-6, double inequality_tolerance = 1e-6);
 
 }  // namespace pkmopt

@@ -50,7 +50,7 @@ FrontResult run_hybrid(const Problem& problem, const HybridOptions& options) {
       fitness.push_back(checked_fitness(counted, polished.x));
     }
   }
-  FrontResult front = make_front(problem, xs, fitness, options.nsga2.equality_tolerance, 1e-8);
+  FrontResult front = make_front(problem, xs, fitness, options.nsga2.equality_tolerance, 1e-6);
   front.algorithm = "hybrid";
   front.subproblems = explored.x.size();
   front.failed_subproblems = failed;
