@@ -267,8 +267,10 @@ std::string ipopt_status_text(Ipopt::ApplicationReturnStatus status) {
 bool set_option(Ipopt::IpoptApplication& app, const std::string& name, const std::string& value) {
   std::istringstream as_integer(value);
   long long integer = 0;
-  if (as_integer >> integer && as_integer.eof())
-    return app.Options()->SetIntegerValue(name, static_cast<Index>(integer));
+  // An integer text may name a real option ("0" for bound_relax_factor): try both.
+  if (as_integer >> integer && as_integer.eof() &&
+      app.Options()->SetIntegerValue(name, static_cast<Index>(integer)))
+    return true;
   std::istringstream as_number(value);
   double number = 0.0;
   if (as_number >> number && as_number.eof()) return app.Options()->SetNumericValue(name, number);
@@ -353,6 +355,9 @@ SolveResult solve_with_ipopt(const Problem& problem, const std::vector<double>& 
   options_ok &= app->Options()->SetNumericValue("tol", options.tolerance);
   options_ok &= app->Options()->SetNumericValue("acceptable_tol", options.acceptable_tolerance);
   options_ok &= app->Options()->SetNumericValue("constr_viol_tol", options.constraint_tolerance);
+  // No relaxation of the bounds (Ipopt's default 1e-8 lets inequality rows end at about +1e-8:
+  // results must satisfy g <= 0 as the problem states it).
+  options_ok &= app->Options()->SetNumericValue("bound_relax_factor", 0.0);
   if (options.max_seconds > 0.0)
     options_ok &= app->Options()->SetNumericValue("max_cpu_time", options.max_seconds);
   std::string rejected;
