@@ -1,0 +1,40 @@
+// Design-study benchmarks: the cost of one design evaluation (aggregate formulation: every
+// task pose's metrics, reductions, reachability; and the workspace volume when the study asks
+// for it), for the shipped studies. One thread.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "app/study_design.hpp"
+
+namespace {
+
+void evaluate_study_design(benchmark::State& state, const std::string& study_file) {
+  const pkmopt::DesignStudy study =
+      pkmopt::load_design_study(std::string(PKMOPT_SOURCE_DIR) + "/" + study_file);
+  const pkmopt::Bounds bounds = study.problem->bounds();
+  // The centre of the design box (a mid-range machine).
+  std::vector<double> x(bounds.lower.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = 0.5 * (bounds.lower[i] + bounds.upper[i]);
+  for (auto _ : state) {
+    std::vector<double> f = study.problem->fitness(x);
+    benchmark::DoNotOptimize(f.data());
+  }
+  state.counters["task_poses"] = static_cast<double>(study.problem->spec().task.poses.size());
+  state.SetItemsProcessed(state.iterations());
+}
+
+// hexapod-quick: 64 task poses, stiffness, leg forces, machine size, reachability.
+void BM_DesignEvaluationHexapodQuick(benchmark::State& state) {
+  evaluate_study_design(state, "studies/hexapod-quick.yaml");
+}
+BENCHMARK(BM_DesignEvaluationHexapodQuick)->Unit(benchmark::kMillisecond);
+
+// hexapod-milling (the default study): 64 task poses plus a 50 mm workspace volume.
+void BM_DesignEvaluationHexapodMilling(benchmark::State& state) {
+  evaluate_study_design(state, "studies/hexapod-milling.yaml");
+}
+BENCHMARK(BM_DesignEvaluationHexapodMilling)->Unit(benchmark::kMillisecond);
+
+}  // namespace
