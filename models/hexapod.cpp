@@ -371,31 +371,7 @@ FkResult Hexapod::forward_kinematics(const Eigen::VectorXd& q_target,
   };
   const PoseClosureSolve<Vec6<double>> solve =
       solve_pose_closure<Vec6<double>, Matrix6d>(p, R, true, 6, options, evaluate);
-  p = solve.position;
-  R = solve.rotation;
-  const Vec6<double> res = solve.residual;
-  const int iterations = solve.iterations;
-  const bool converged = solve.converged;
-
-  result.pose.position = p;
-  result.pose.angles = angles_from_rotation(R);
-  result.iterations = iterations;
-  result.residual = res.cwiseAbs().maxCoeff();
-  result.converged = converged && result.pose.position.allFinite();
-  if (!result.pose.position.allFinite() || !result.pose.angles.allFinite()) {
-    result.pose = start;
-    result.residual = kInf;
-    result.converged = false;
-  }
-  if (result.converged) {
-    result.message = "converged";
-  } else {
-    std::ostringstream os;
-    os << "did not converge: max leg length error " << result.residual << " m after " << iterations
-       << " iterations";
-    result.message = os.str();
-  }
-  return result;
+  return fk_result(solve, start, true, "leg length error");
 }
 
 std::optional<Eigen::AlignedBox3d> Hexapod::workspace_search_box(

@@ -506,31 +506,7 @@ FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,
   };
   const PoseClosureSolve<VecM> solve = solve_pose_closure<VecM, MatM>(
       start.position, platform_rotation(start), dof_ == 6, n, options, evaluate);
-  const Eigen::Vector3d p = solve.position;
-  const Eigen::Matrix3d R = solve.rotation;
-  const VecM g = solve.residual;
-  const int iterations = solve.iterations;
-  const bool converged = solve.converged;
-  result.pose.position = p;
-  result.pose.angles = dof_ == 6 ? angles_from_rotation(R) : Eigen::Vector3d::Zero();
-  result.iterations = iterations;
-  result.residual = g.cwiseAbs().maxCoeff();
-  result.converged = converged && p.allFinite();
-  if (!result.pose.position.allFinite() || !result.pose.angles.allFinite() ||
-      !std::isfinite(result.residual)) {
-    result.pose = start;
-    result.residual = kInf;
-    result.converged = false;
-  }
-  if (result.converged) {
-    result.message = "converged";
-  } else {
-    std::ostringstream os;
-    os << "did not converge: max leg closure error " << result.residual << " m after " << iterations
-       << " iterations";
-    result.message = os.str();
-  }
-  return result;
+  return fk_result(solve, start, dof_ == 6, "leg closure error");
 }
 
 Pose LegChainMachine::default_fk_start(const Eigen::VectorXd& q) const {

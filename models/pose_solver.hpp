@@ -19,6 +19,9 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
 
 #include "models/machine.hpp"
 #include "models/pose.hpp"
@@ -99,6 +102,35 @@ PoseClosureSolve<Vec> solve_pose_closure(const Eigen::Vector3d& start_position,
   result.residual = g;
   result.iterations = iterations;
   result.converged = converged;
+  return result;
+}
+
+/// The FkResult of a solve: the pose (angles zero when the platform does not rotate), the
+/// largest residual, and "converged" or "did not converge: max <what> <residual> m after <n>
+/// iterations". A non-finite pose or residual gives back `start`, residual inf, not converged.
+template <typename Vec>
+FkResult fk_result(const PoseClosureSolve<Vec>& solve, const Pose& start, bool rotates,
+                   const std::string& what) {
+  FkResult result;
+  result.pose.position = solve.position;
+  result.pose.angles = rotates ? angles_from_rotation(solve.rotation) : Eigen::Vector3d::Zero();
+  result.iterations = solve.iterations;
+  result.residual = solve.residual.cwiseAbs().maxCoeff();
+  result.converged = solve.converged && solve.position.allFinite();
+  if (!result.pose.position.allFinite() || !result.pose.angles.allFinite() ||
+      !std::isfinite(result.residual)) {
+    result.pose = start;
+    result.residual = std::numeric_limits<double>::infinity();
+    result.converged = false;
+  }
+  if (result.converged) {
+    result.message = "converged";
+  } else {
+    std::ostringstream os;
+    os << "did not converge: max " << what << " " << result.residual << " m after "
+       << solve.iterations << " iterations";
+    result.message = os.str();
+  }
   return result;
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "models/workspace/workspace.hpp"
+#include "tests/sample_machines.hpp"
 
 namespace pkmopt {
 namespace {
@@ -22,21 +23,7 @@ constexpr double kPi = std::numbers::pi;
 
 double wrap_angle_for_test(double a) { return std::remainder(a, 2.0 * kPi); }
 
-// A seeded uniform stream (splitmix64), bit-reproducible.
-class Uniform {
- public:
-  explicit Uniform(std::uint64_t seed) : state_(seed) {}
-  double operator()(double lo, double hi) {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-
- private:
-  std::uint64_t state_;
-};
+using sample_machines::Uniform;  // seeded splitmix64, bit-reproducible
 
 // The pose moved by h along platform DOF j: translation along base axis j (j < 3) or rotation
 // by h about base axis j - 3 through the TCP (R <- exp(h e) R).
