@@ -38,8 +38,8 @@ namespace pkmopt {
 struct Nsga2Options {
   std::size_t population = 100;        ///< even, >= 4
   std::size_t generations = 250;       ///< >= 0
-  double crossover_probability = 0.9;  ///< per pair, in [0, 1]
-  double crossover_eta = 15.0;         ///< SBX distribution index, > 0
+  double crossover_probability = 1.0;  ///< per pair, in [0, 1]
+  double crossover_eta = 20.0;         ///< SBX distribution index, > 0 (Deb et al. 2002)
   double mutation_probability = 0.0;   ///< per variable in [0, 1]; 0 means 1/n
   double mutation_eta = 20.0;          ///< polynomial mutation distribution index, > 0
   double equality_tolerance = 1e-4;    ///< |h| below this counts as satisfied
