@@ -126,4 +126,26 @@ AnchorSet compute_anchors(const Problem& problem, const std::vector<double>& sta
   return set;
 }
 
+std::vector<std::vector<double>> segment_starts(const std::vector<double>& a,
+                                                const std::vector<double>& b) {
+  std::vector<std::vector<double>> starts;
+  for (double lambda : {0.25, 0.5, 0.75}) {
+    std::vector<double> between(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) between[i] = (1.0 - lambda) * a[i] + lambda * b[i];
+    starts.push_back(std::move(between));
+  }
+  return starts;
+}
+
+bool continuation_jumped(const AnchorSet& anchors, const std::vector<double>& previous,
+                         const std::vector<double>& f, double step, double max_steps) {
+  if (previous.empty()) return false;
+  double squared = 0.0;
+  for (std::size_t j = 0; j < anchors.range.size(); ++j) {  // the objectives only
+    const double d = (f[j] - previous[j]) / anchors.range[j];
+    squared += d * d;
+  }
+  return std::sqrt(squared) > max_steps * step;
+}
+
 }  // namespace pkmopt

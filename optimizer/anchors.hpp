@@ -45,6 +45,17 @@ std::vector<std::vector<double>> latin_hypercube(const Problem& problem, std::si
                                                  std::uint64_t seed,
                                                  const std::vector<double>& start);
 
+/// The points 1/4, 1/2 and 3/4 of the way from a to b (design space): restart points for a
+/// front builder whose continuation jumped from a to b over a piece of the front.
+std::vector<std::vector<double>> segment_starts(const std::vector<double>& a,
+                                                const std::vector<double>& b);
+
+/// True when f lies more than `max_steps` steps (of size `step`, in objective space normalised
+/// by the anchors' ranges; fitness rows, only their objective entries count) from `previous`:
+/// the continuation jumped. False for an empty `previous`.
+bool continuation_jumped(const AnchorSet& anchors, const std::vector<double>& previous,
+                         const std::vector<double>& f, double step, double max_steps = 3.0);
+
 /// Anchors of a multi-objective problem from `start` (see header comment). Never throws for
 /// solver failure: a failed anchor has ok = false; if every anchor failed, failed == m and
 /// range is left empty.

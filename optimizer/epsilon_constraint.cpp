@@ -172,13 +172,7 @@ FrontResult run_epsilon_constraint(const Problem& problem,
     // objectives scaled by their ranges), as when the front has a gap here, or when the local
     // solver skipped over a piece of a disconnected front.
     auto jumped = [&](const std::vector<double>& f) {
-      if (warm_f.empty()) return false;
-      double squared = 0.0;
-      for (std::size_t j = 0; j < m; ++j) {
-        const double d = (f[j] - warm_f[j]) / anchors.range[j];
-        squared += d * d;
-      }
-      return std::sqrt(squared) > 3.0 * grid_step;
+      return continuation_jumped(anchors, warm_f, f, grid_step);
     };
     for (Slot& slot : slots) {
       const ScalarizedProblem sub(counted, weights, slot.bounds);
@@ -201,13 +195,8 @@ FrontResult run_epsilon_constraint(const Problem& problem,
         bool bridged = false;
         auto bridge = [&]() {
           bridged = true;
-          const std::vector<double> end = solved.x;
-          for (double lambda : {0.25, 0.5, 0.75}) {
-            std::vector<double> between(warm.size());
-            for (std::size_t i = 0; i < warm.size(); ++i)
-              between[i] = (1.0 - lambda) * warm[i] + lambda * end[i];
+          for (const std::vector<double>& between : segment_starts(warm, solved.x))
             try_from(between, true);
-          }
         };
         if (solved.usable()) bridge();
         for (const Start& from : fallback) try_from(from.x, from.short_run);

@@ -161,12 +161,7 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
     // (1 / divisions, in objectives scaled by their ranges), as when the front has a gap here,
     // or when the local solver skipped over a piece of a disconnected front.
     auto jumped = [&](const std::vector<double>& f) {
-      double squared = 0.0;
-      for (std::size_t j = 0; j < m; ++j) {
-        const double d = (f[j] - warm_f[j]) / anchors.range[j];
-        squared += d * d;
-      }
-      return std::sqrt(squared) > 3.0 / static_cast<double>(divisions);
+      return continuation_jumped(anchors, warm_f, f, 3.0 / static_cast<double>(divisions), 1.0);
     };
     for (Slot& slot : slots) {
       const NbiProblem sub = subproblem(slot);
@@ -199,13 +194,8 @@ FrontResult run_nbi(const Problem& problem, const NbiOptions& options) {
         bool bridged = false;
         auto bridge = [&]() {
           bridged = true;
-          const std::vector<double> end = solved.x;
-          for (double lambda : {0.25, 0.5, 0.75}) {
-            std::vector<double> between(warm.size());
-            for (std::size_t i = 0; i < warm.size(); ++i)
-              between[i] = (1.0 - lambda) * warm[i] + lambda * end[i];
+          for (const std::vector<double>& between : segment_starts(warm, solved.x))
             try_from(between, checked_fitness(counted, between), true);
-          }
         };
         if (solved.usable()) bridge();
         std::vector<std::size_t> order(m);

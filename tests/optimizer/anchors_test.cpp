@@ -29,3 +29,26 @@ TEST(Anchors, DefaultStartIsInside) {
 
 }  // namespace
 }  // namespace pkmopt
+
+namespace pkmopt {
+namespace {
+
+TEST(FrontBuilderHelpers, SegmentStartsAreQuarterPoints) {
+  const auto starts = segment_starts({0.0, 4.0}, {4.0, 0.0});
+  ASSERT_EQ(starts.size(), 3u);
+  EXPECT_EQ(starts[0], (std::vector<double>{1.0, 3.0}));
+  EXPECT_EQ(starts[1], (std::vector<double>{2.0, 2.0}));
+  EXPECT_EQ(starts[2], (std::vector<double>{3.0, 1.0}));
+}
+
+TEST(FrontBuilderHelpers, JumpIsMeasuredInNormalisedObjectivesOnly) {
+  AnchorSet anchors;
+  anchors.range = {2.0, 4.0};  // two objectives; a third fitness entry is a constraint
+  // Normalised distance of (0,0) -> (0.6, 0.8): sqrt(0.3^2 + 0.2^2) = 0.3606.
+  EXPECT_FALSE(continuation_jumped(anchors, {0.0, 0.0, 0.0}, {0.6, 0.8, 100.0}, 0.121));
+  EXPECT_TRUE(continuation_jumped(anchors, {0.0, 0.0, 0.0}, {0.6, 0.8, 100.0}, 0.12));
+  EXPECT_FALSE(continuation_jumped(anchors, {}, {0.6, 0.8}, 1e-9));
+}
+
+}  // namespace
+}  // namespace pkmopt
