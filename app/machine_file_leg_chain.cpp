@@ -18,6 +18,13 @@ double angle_limit(const YamlValue& value) {
   return deg_to_rad(v);
 }
 
+// A guide inclination in degrees, (-90, 90), returned in rad.
+double read_inclination(const YamlValue& value) {
+  const double a = value.as_double();
+  if (!(a > -90.0 && a < 90.0)) value.fail("an angle in degrees in (-90, 90)", value.describe());
+  return deg_to_rad(a);
+}
+
 Eigen::Vector3d read_vector3(const YamlValue& value) {
   const auto v = value.as_doubles(3);
   return {v[0], v[1], v[2]};
@@ -132,11 +139,7 @@ LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
   d.guide_radius = root.required("guide_radius").as_positive();
   d.platform_radius = root.required("platform_radius").as_non_negative();
   d.rod = root.required("rod").as_positive();
-  if (auto v = root.optional("inclination_deg")) {
-    const double a = v->as_double();
-    if (!(a > -90.0 && a < 90.0)) v->fail("an angle in degrees in (-90, 90)", v->describe());
-    d.inclination = deg_to_rad(a);
-  }
+  if (auto v = root.optional("inclination_deg")) d.inclination = read_inclination(*v);
   const double inf = std::numeric_limits<double>::infinity();
   const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
   d.q_min = stroke.first;
@@ -167,11 +170,7 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
     for (int i = 0; i < 6; ++i)
       d.guide_z[static_cast<std::size_t>(i)] = zs[static_cast<std::size_t>(i)];
   }
-  if (auto v = guides.optional("inclination_deg")) {
-    const double a = v->as_double();
-    if (!(a > -90.0 && a < 90.0)) v->fail("an angle in degrees in (-90, 90)", v->describe());
-    d.inclination = deg_to_rad(a);
-  }
+  if (auto v = guides.optional("inclination_deg")) d.inclination = read_inclination(*v);
   d.strut = root.required("strut").as_positive();
   const bool has_form = root.has("platform");
   const bool has_list = root.has("platform_joints");
