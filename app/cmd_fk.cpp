@@ -27,9 +27,9 @@ void run_fk(const FkCommandOptions& opt) {
   Eigen::VectorXd q(na);
   const double q_scale = machine->revolute_actuators() ? kDegToRad : 1.0;
   for (int i = 0; i < na; ++i) q(i) = q_values[static_cast<std::size_t>(i)] * q_scale;
-  // Only hexapod legs are lengths; carriage positions (hexaglide, linear delta) may be <= 0.
-  if (machine->model() == "hexapod" && (q.array() <= 0.0).any()) {
-    throw InputError(fmt::format("--q: expected {} leg lengths > 0 (m), found '{}'", na, opt.q));
+  if (const std::string expected = machine->actuator_coordinates_requirement(q);
+      !expected.empty()) {
+    throw InputError(fmt::format("--q: expected {}, found '{}'", expected, opt.q));
   }
   std::optional<Pose> guess;
   if (!opt.guess.empty()) {

@@ -410,4 +410,9 @@ std::optional<double> Hexapod::envelope_volume() const {
   return std::numbers::pi * radius * radius * height;
 }
 
+std::string Hexapod::actuator_coordinates_requirement(const Eigen::VectorXd& q) const {
+  if ((q.array() > 0.0).all()) return {};
+  return "6 leg lengths > 0 (m)";
+}
+
 }  // namespace pkmopt

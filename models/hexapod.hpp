@@ -39,6 +39,7 @@
 #include <Eigen/Core>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "models/machine.hpp"
 #include "models/pose.hpp"
@@ -161,6 +162,7 @@ class Hexapod final : public Machine {
   /// horizontal distance of a base joint from that axis and whose height is the z extent of the
   /// base joints plus max_length (the legs standing straight up at full stroke).
   std::optional<double> envelope_volume() const override;
+  std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
 
   /// Leg lengths at a pose.
   Vec6<double> inverse_kinematics(const Pose& pose) const;

@@ -760,4 +760,13 @@ std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d) {
   return make_leg_chain_machine(hexaglide_design(d));
 }
 
+std::string LegChainMachine::actuator_coordinates_requirement(const Eigen::VectorXd& q) const {
+  // Carriage positions and crank angles may take any sign; UPS legs are lengths.
+  for (int i = 0; i < num_actuators() && i < q.size(); ++i) {
+    if (design_.legs[static_cast<std::size_t>(i)].kind == LegKind::kUPS && !(q(i) > 0.0))
+      return "leg lengths > 0 (m) for the UPS legs";
+  }
+  return {};
+}
+
 }  // namespace pkmopt

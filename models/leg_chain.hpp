@@ -167,6 +167,7 @@ class LegChainMachine final : public Machine {
   std::optional<Eigen::AlignedBox3d> workspace_search_box(
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::optional<double> envelope_volume() const override;
+  std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
 
   /// Closed-form IK of every leg on its branch; nullopt when a leg cannot close.
   std::optional<Eigen::VectorXd> inverse_kinematics(const Pose& pose) const;

@@ -100,6 +100,13 @@ class Machine {
   }
   /// The volume of the machine's envelope (m^3, see the model's header); nullopt if unknown.
   virtual std::optional<double> envelope_volume() const { return std::nullopt; }
+
+  /// Empty when q (size num_actuators(), internal units) can be actuator coordinates of this
+  /// machine; otherwise what is expected ("6 leg lengths > 0 (m)"). Range limits do not count:
+  /// this only rejects values that mean nothing (a leg length <= 0).
+  virtual std::string actuator_coordinates_requirement(const Eigen::VectorXd& /*q*/) const {
+    return {};
+  }
 };
 
 }  // namespace pkmopt

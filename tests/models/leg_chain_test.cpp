@@ -643,6 +643,13 @@ TEST(LegChain, UpsLegsGiveTheHexapodKinematics) {
     EXPECT_NEAR((J.row(i).tail(3).transpose() - ri.cross(s)).norm(), 0.0, 1e-15);
     EXPECT_EQ(B(i, i), 1.0);
   }
+  // UPS coordinates are lengths: a leg length <= 0 means nothing (carriages may be negative).
+  EXPECT_EQ(m.actuator_coordinates_requirement(q), "");
+  Eigen::VectorXd bad = q;
+  bad(3) = 0.0;
+  EXPECT_EQ(m.actuator_coordinates_requirement(bad), "leg lengths > 0 (m) for the UPS legs");
+  const LegChainMachine delta(delta_design(williams_irb360()));
+  EXPECT_EQ(delta.actuator_coordinates_requirement(Eigen::Vector3d(-0.5, 0.0, -1.0)), "");
 }
 
 TEST(LegChain, WorkspaceOfTheDeltaUsesItsSearchBox) {
