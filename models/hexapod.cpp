@@ -288,6 +288,13 @@ Matrix6d Hexapod::inverse_jacobian(const Pose& pose) const {
   return J;
 }
 
+bool Hexapod::twist_jacobian(MachineData& /*data*/, const Pose& pose, Eigen::MatrixXd& J) const {
+  const Matrix6d Jp = inverse_jacobian(pose);
+  if (!Jp.allFinite()) return false;
+  J = Jp;
+  return true;
+}
+
 Matrix6d Hexapod::stiffness_matrix(const Pose& pose) const {
   Vec6<double> q;
   Matrix6d J;

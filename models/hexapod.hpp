@@ -163,6 +163,7 @@ class Hexapod final : public Machine {
   /// base joints plus max_length (the legs standing straight up at full stroke).
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
 
   /// Leg lengths at a pose.
   Vec6<double> inverse_kinematics(const Pose& pose) const;

@@ -189,6 +189,20 @@ std::unique_ptr<MachineData> LegChainMachine::make_data() const {
   return d;
 }
 
+bool LegChainMachine::twist_jacobian(MachineData& data, const Pose& pose,
+                                     Eigen::MatrixXd& J) const {
+  auto& d = static_cast<LegChainData&>(data);
+  compute_kinematics(d, pose);
+  const int n = num_actuators();
+  if (!d.ik_ok || (d.B.array() == 0.0).any()) return false;
+  J.resize(n, 6);
+  for (int i = 0; i < n; ++i) {
+    J.row(i).head<3>() = d.s.col(i).transpose() / d.B(i);
+    J.row(i).tail<3>() = d.r.col(i).cross(d.s.col(i)).transpose() / d.B(i);
+  }
+  return J.allFinite();
+}
+
 void LegChainMachine::actuated_point(int i, double q, Eigen::Vector3d& c,
                                      Eigen::Vector3d& dc) const {
   const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];

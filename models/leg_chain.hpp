@@ -168,6 +168,8 @@ class LegChainMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  /// Row i: [s_i^T, (r_i x s_i)^T] / B_i (false when a leg cannot close or some B_i = 0).
+  bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
 
   /// Closed-form IK of every leg on its branch; nullopt when a leg cannot close.
   std::optional<Eigen::VectorXd> inverse_kinematics(const Pose& pose) const;

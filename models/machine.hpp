@@ -107,6 +107,16 @@ class Machine {
   virtual std::string actuator_coordinates_requirement(const Eigen::VectorXd& /*q*/) const {
     return {};
   }
+
+  /// The inverse Jacobian on the full TCP twist at a pose: q_dot = J xi with xi = [v; omega]
+  /// (m/s, rad/s; base axes, at the TCP) and J of size num_actuators x 6 (rows in m or rad per
+  /// unit twist). For platforms with fewer than six degrees of freedom only the twists the
+  /// platform can make are meaningful. Returns false (J untouched) when a leg cannot close at
+  /// the pose or J is unbounded (a serial singularity) or the model does not provide it.
+  virtual bool twist_jacobian(MachineData& /*data*/, const Pose& /*pose*/,
+                              Eigen::MatrixXd& /*J*/) const {
+    return false;
+  }
 };
 
 }  // namespace pkmopt

@@ -80,6 +80,11 @@ TEST(Hexapod, InverseJacobianMatchesFiniteDifferences) {
     for (int k = 0; k < 5; ++k) {
       const Pose pose = sample_machines::random_pose(u);
       const Matrix6d J = hexapod.inverse_jacobian(pose);
+      // The Machine interface gives the same matrix.
+      auto data = hexapod.make_data();
+      Eigen::MatrixXd J_machine;
+      ASSERT_TRUE(static_cast<const Machine&>(hexapod).twist_jacobian(*data, pose, J_machine));
+      EXPECT_EQ((J_machine - J).cwiseAbs().maxCoeff(), 0.0);
       const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
       for (int j = 0; j < 6; ++j) {
         Eigen::Vector3d dp = Eigen::Vector3d::Zero(), dw = Eigen::Vector3d::Zero();

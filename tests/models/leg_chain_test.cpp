@@ -281,6 +281,29 @@ TEST(LegChain, ConstraintJacobiansMatchFiniteDifferences) {
   }
 }
 
+TEST(LegChain, TwistJacobianMatchesFiniteDifferencesOfTheInverseKinematics) {
+  for (const Named& nm : named_models()) {
+    const LegChainMachine& m = *nm.machine;
+    auto data = m.make_data();
+    const double h = 1e-6;
+    for (const Pose& pose : sample_poses(m, 12, 4, nm.dx, nm.dangle)) {
+      Eigen::MatrixXd J;
+      ASSERT_TRUE(m.twist_jacobian(*data, pose, J)) << nm.name;
+      ASSERT_EQ(J.rows(), m.num_actuators());
+      ASSERT_EQ(J.cols(), 6);
+      // Every twist the platform can make: translations, and rotations for 6-DOF platforms.
+      for (int j = 0; j < (m.dof() == 6 ? 6 : 3); ++j) {
+        const Eigen::VectorXd fd =
+            (*m.inverse_kinematics(moved(pose, j, h)) - *m.inverse_kinematics(moved(pose, j, -h))) /
+            (2 * h);
+        for (int i = 0; i < m.num_actuators(); ++i) {
+          EXPECT_NEAR(J(i, j), fd(i), 1e-6 * (1.0 + std::abs(J(i, j)))) << nm.name;
+        }
+      }
+    }
+  }
+}
+
 TEST(LegChain, InverseThenForwardKinematicsRoundTrips) {
   for (const Named& nm : named_models()) {
     const LegChainMachine& m = *nm.machine;
