@@ -57,9 +57,9 @@ constexpr int kBfgsIterations = 30;
 // it stopped with the rest of the budget. An update type the caller set explicitly is kept.
 SolveResult solve_stage1(const Problem& stage1, const std::vector<double>& x0,
                          const IpoptOptions& options) {
-  const bool caller_chose = std::any_of(
-      options.extra_options.begin(), options.extra_options.end(),
-      [](const auto& option) { return option.first == "limited_memory_update_type"; });
+  const bool caller_chose =
+      std::any_of(options.extra_options.begin(), options.extra_options.end(),
+                  [](const auto& option) { return option.first == "limited_memory_update_type"; });
   if (caller_chose || options.max_iterations <= kBfgsIterations) {
     return solve_with_ipopt(stage1, x0, options);
   }
