@@ -1,0 +1,234 @@
+#include "models/trajectory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace pkmopt {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void check_times(const std::vector<double>& times, const char* what) {
+  if (times.size() < 2) {
+    throw std::invalid_argument(std::string(what) + ": at least 2 times needed, found " +
+                                std::to_string(times.size()));
+  }
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (!std::isfinite(times[k])) {
+      throw std::invalid_argument(std::string(what) + ": time " + std::to_string(k) +
+                                  " is not finite");
+    }
+    if (k > 0 && !(times[k] > times[k - 1])) {
+      throw std::invalid_argument(std::string(what) + ": times must increase strictly (time " +
+                                  std::to_string(k) + ")");
+    }
+  }
+}
+
+// The sign of det_j at a regular pose: +1, -1, or 0 at a singular pose.
+int det_sign(const PoseMetrics& m) {
+  if (m.singular || m.det_j == 0.0) return 0;
+  return m.det_j > 0.0 ? 1 : -1;
+}
+
+}  // namespace
+
+Eigen::Matrix3d angular_velocity_map(const Eigen::Vector3d& angles) {
+  const double cy = std::cos(angles(1)), sy = std::sin(angles(1));
+  const double cz = std::cos(angles(2)), sz = std::sin(angles(2));
+  Eigen::Matrix3d E;
+  E << cz * cy, -sz, 0.0,  //
+      sz * cy, cz, 0.0,    //
+      -sy, 0.0, 1.0;
+  return E;
+}
+
+Vector6d twist_from_pose_rate(const PathPoint& point) {
+  Vector6d twist;
+  twist.head<3>() = point.pose_rate.head<3>();
+  twist.tail<3>() = angular_velocity_map(point.pose.angles) * point.pose_rate.tail<3>();
+  return twist;
+}
+
+PathPoint HelixPath::at(double t) const {
+  const HelixParameters& p = parameters;
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  const double w = p.angular_frequency;
+  const double phi = w * t;
+  const double c = std::cos(phi), s = std::sin(phi);
+  const double amp = p.radius_start + p.radius_growth * phi / kTwoPi;
+  const double amp_rate = p.radius_growth / kTwoPi;  // d amp / d phi
+  PathPoint out;
+  out.pose.position =
+      p.centre + Eigen::Vector3d(amp * c, amp * s,
+                                 p.height_start + p.height_growth * phi * phi / (kTwoPi * kTwoPi));
+  const Eigen::Vector3d& a = p.angle_amplitudes;
+  out.pose.angles =
+      p.nominal_angles + Eigen::Vector3d(a(0) * s, a(1) * c, a(2) * std::sin(2 * phi));
+  out.pose_rate << amp_rate * c - amp * s, amp_rate * s + amp * c,
+      2.0 * p.height_growth * phi / (kTwoPi * kTwoPi), a(0) * c, -a(1) * s,
+      2.0 * a(2) * std::cos(2 * phi);
+  out.pose_rate *= w;
+  return out;
+}
+
+std::vector<Eigen::VectorXd> central_difference_rates(const std::vector<double>& times,
+                                                      const std::vector<Eigen::VectorXd>& values) {
+  check_times(times, "central_difference_rates");
+  if (values.size() != times.size()) {
+    throw std::invalid_argument("central_difference_rates: " + std::to_string(values.size()) +
+                                " values for " + std::to_string(times.size()) + " times");
+  }
+  const std::size_t n = times.size();
+  std::vector<Eigen::VectorXd> rates(n);
+  rates[0] = (values[1] - values[0]) / (times[1] - times[0]);
+  rates[n - 1] = (values[n - 1] - values[n - 2]) / (times[n - 1] - times[n - 2]);
+  for (std::size_t k = 1; k + 1 < n; ++k) {
+    // Derivative of the parabola through the three samples, at the middle one.
+    const double h1 = times[k] - times[k - 1], h2 = times[k + 1] - times[k];
+    rates[k] = -h2 / (h1 * (h1 + h2)) * values[k - 1] + (h2 - h1) / (h1 * h2) * values[k] +
+               h1 / (h2 * (h1 + h2)) * values[k + 1];
+  }
+  return rates;
+}
+
+SampledPath::SampledPath(std::vector<double> times, std::vector<Pose> poses)
+    : times_(std::move(times)), poses_(std::move(poses)) {
+  check_times(times_, "SampledPath");
+  if (poses_.size() != times_.size()) {
+    throw std::invalid_argument("SampledPath: " + std::to_string(poses_.size()) + " poses for " +
+                                std::to_string(times_.size()) + " times");
+  }
+  std::vector<Eigen::VectorXd> values(poses_.size(), Eigen::VectorXd(6));
+  for (std::size_t k = 0; k < poses_.size(); ++k) {
+    values[k] << poses_[k].position, poses_[k].angles;
+  }
+  const std::vector<Eigen::VectorXd> rates = central_difference_rates(times_, values);
+  rates_.resize(rates.size());
+  for (std::size_t k = 0; k < rates.size(); ++k) rates_[k] = rates[k];
+}
+
+PathPoint SampledPath::at(double t) const {
+  // The interval [times_[k], times_[k + 1]] holding t (clamped to the ends).
+  const auto upper = std::upper_bound(times_.begin(), times_.end(), t);
+  std::size_t k =
+      upper == times_.begin() ? 0 : static_cast<std::size_t>(upper - times_.begin()) - 1;
+  k = std::min(k, times_.size() - 2);
+  const double u = std::clamp((t - times_[k]) / (times_[k + 1] - times_[k]), 0.0, 1.0);
+  PathPoint out;
+  out.pose.position = (1.0 - u) * poses_[k].position + u * poses_[k + 1].position;
+  out.pose.angles = (1.0 - u) * poses_[k].angles + u * poses_[k + 1].angles;
+  out.pose_rate = (1.0 - u) * rates_[k] + u * rates_[k + 1];
+  return out;
+}
+
+std::vector<double> uniform_times(double t_start, double t_end, int count) {
+  if (count < 2) throw std::invalid_argument("uniform_times: count must be >= 2");
+  std::vector<double> times(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    times[static_cast<std::size_t>(k)] =
+        k == count - 1 ? t_end : t_start + (t_end - t_start) * k / (count - 1);
+  }
+  return times;
+}
+
+TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path,
+                                     const std::vector<double>& times) {
+  check_times(times, "evaluate_trajectory");
+  const int na = machine.num_actuators();
+  const std::unique_ptr<MachineData> data = machine.make_data();
+  TrajectoryResult result;
+  result.samples.resize(times.size());
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    TrajectorySample& s = result.samples[k];
+    s.t = times[k];
+    const PathPoint point = path.at(s.t);
+    s.pose = point.pose;
+    s.twist = twist_from_pose_rate(point);
+    machine.analyze(*data, s.pose, Wrench::Zero(), s.metrics);
+    s.jacobian_ok = machine.twist_jacobian(*data, s.pose, s.J);
+    if (s.jacobian_ok) {
+      s.q_dot = s.J * s.twist;
+    } else {
+      s.J.resize(0, 0);
+      s.q_dot = Eigen::VectorXd::Constant(na, kInf);
+    }
+  }
+
+  // The check: q_dot from the IK coordinates at the neighbouring samples.
+  std::vector<Eigen::VectorXd> q(times.size());
+  for (std::size_t k = 0; k < times.size(); ++k) q[k] = result.samples[k].metrics.q;
+  const std::vector<Eigen::VectorXd> q_rate = central_difference_rates(times, q);
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    Eigen::VectorXd fd = q_rate[k];
+    for (int i = 0; i < na; ++i) {
+      if (!std::isfinite(fd(i))) fd(i) = kInf;
+    }
+    result.samples[k].q_dot_fd = fd;
+  }
+
+  // Singular poses: singular samples, and det_j sign changes between regular samples.
+  PoseMetrics m;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const TrajectorySample& s = result.samples[k];
+    if (s.metrics.singular) {
+      SingularPose p;
+      p.kind = SingularPose::Kind::kSample;
+      p.t = s.t;
+      p.pose = s.pose;
+      p.singularity_margin = s.metrics.singularity_margin;
+      p.det_j_before = k > 0 ? result.samples[k - 1].metrics.det_j : s.metrics.det_j;
+      p.det_j_after = k + 1 < times.size() ? result.samples[k + 1].metrics.det_j : s.metrics.det_j;
+      result.singular_poses.push_back(p);
+      continue;
+    }
+    if (k + 1 == times.size()) continue;
+    const TrajectorySample& next = result.samples[k + 1];
+    const int sign_lo = det_sign(s.metrics), sign_hi = det_sign(next.metrics);
+    if (sign_lo == 0 || sign_hi == 0 || sign_lo == sign_hi) continue;
+    // Bisection on t: keep det_j(lo) with the sign of the left sample, det_j(hi) the other.
+    double lo = s.t, hi = next.t;
+    double det_lo = s.metrics.det_j, det_hi = next.metrics.det_j;
+    double margin_at = s.metrics.singularity_margin;
+    double t_singular = 0.5 * (lo + hi);
+    bool hit = false;
+    for (int iteration = 0; iteration < 200; ++iteration) {
+      const double mid = 0.5 * (lo + hi);
+      if (!(mid > lo && mid < hi)) break;  // the interval cannot shrink any further
+      machine.analyze(*data, path.at(mid).pose, Wrench::Zero(), m);
+      const int sign_mid = det_sign(m);
+      if (sign_mid == 0) {  // landed on the singular pose itself
+        t_singular = mid;
+        margin_at = m.singularity_margin;
+        hit = true;
+        break;
+      }
+      if (sign_mid == sign_lo) {
+        lo = mid;
+        det_lo = m.det_j;
+      } else {
+        hi = mid;
+        det_hi = m.det_j;
+      }
+    }
+    if (!hit) {
+      t_singular = 0.5 * (lo + hi);
+      machine.analyze(*data, path.at(t_singular).pose, Wrench::Zero(), m);
+      margin_at = m.singularity_margin;
+    }
+    SingularPose p;
+    p.kind = SingularPose::Kind::kDetSignChange;
+    p.t = t_singular;
+    p.pose = path.at(t_singular).pose;
+    p.singularity_margin = margin_at;
+    p.det_j_before = det_lo;
+    p.det_j_after = det_hi;
+    result.singular_poses.push_back(p);
+  }
+  return result;
+}
+
+}  // namespace pkmopt

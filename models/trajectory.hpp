@@ -1,0 +1,163 @@
+// TCP trajectories: a path pose(t) with its time derivative, the actuator coordinates and rates
+// a machine needs to follow it, and the singular poses it crosses.
+//
+// Pose rate and twist. A path gives the TCP pose (p, a) at time t (a = (rx, ry, rz), radians,
+// R = Rz(rz) Ry(ry) Rx(rx), CONVENTIONS.md) and its derivative (p_dot, a_dot). The twist a
+// machine's inverse Jacobian takes is [v; omega] with omega the angular velocity in base axes,
+// NOT the Euler angle rates:
+//     omega = E(a) a_dot,   E(a) = [ cz*cy  -sz  0 ]
+//                                  [ sz*cy   cz  0 ]
+//                                  [  -sy     0  1 ]
+// (omega = rz_dot e_z + ry_dot Rz e_y + rx_dot Rz Ry e_x; cy = cos ry, sz = sin rz, ...).
+// The actuator rates are then q_dot = J(pose) [v; omega] (Machine::twist_jacobian).
+//
+// The seeds' helix (HelixPath), with the phase phi = w t (w in rad/s, 1 by default):
+//     amp(phi) = r0 + r1 phi / (2 pi)
+//     x = cx + amp cos phi,   y = cy + amp sin phi,   z = cz + z0 + z1 phi^2 / (4 pi^2)
+//     rx = ox + ax sin phi,   ry = oy + ay cos phi,   rz = oz + az sin 2 phi
+// (r0 = 0.01 m, r1 = 0.02 m, z0 = 0.01 m, z1 = 0.01 m as in the seeds; the harmonic angle
+// form and its amplitudes a are this project's choice, the seeds do not give them exactly).
+//
+// A sampled path (SampledPath) interpolates given poses linearly in t; its rate at a sample is
+// the three-point central difference for uneven spacing (one-sided at the two ends), linearly
+// interpolated between samples. Angles must be continuous (no jump of 360 deg).
+//
+// evaluate_trajectory runs the machine along a path at given times: the pose, the twist, every
+// metric of Machine::analyze (q, reachable, singularity_margin, det_j, singular), J, q_dot = J
+// xi, and, as an independent check, q_dot_fd: the central difference of the IK coordinates q at
+// the neighbouring samples (agrees with q_dot to O(dt^2)). Singular poses are reported where
+// they occur: at a sample that is singular (PoseMetrics::singular: singularity_margin 0, or for
+// leg chains a leg that cannot close), and between two regular samples whose det_j have
+// opposite signs, located by bisection on t down to the last bit of t.
+//
+// Units: m, rad, s inside the code (files show degrees).
+//
+// Example:
+//   pkmopt::HelixPath helix;                       // the seeds' helix about the origin
+//   helix.parameters.centre = {0, 0, 0.9};
+//   std::vector<double> times = pkmopt::uniform_times(helix.t_start(), helix.t_end(), 201);
+//   pkmopt::TrajectoryResult run = pkmopt::evaluate_trajectory(machine, helix, times);
+//   for (const auto& s : run.samples) std::cout << s.t << " " << s.q_dot.transpose() << "\n";
+//   for (const auto& p : run.singular_poses) std::cout << "singular at t = " << p.t << "\n";
+#pragma once
+
+#include <Eigen/Core>
+#include <numbers>
+#include <vector>
+
+#include "models/machine.hpp"
+#include "models/pose.hpp"
+
+namespace pkmopt {
+
+/// omega = E(angles) * angle_rates for R = Rz(rz) Ry(ry) Rx(rx) (angles in rad, base axes).
+Eigen::Matrix3d angular_velocity_map(const Eigen::Vector3d& angles);
+
+/// A pose and its time derivative [x_dot, y_dot, z_dot, rx_dot, ry_dot, rz_dot] (m/s, rad/s).
+struct PathPoint {
+  Pose pose;
+  Vector6d pose_rate = Vector6d::Zero();
+};
+
+/// The TCP twist [v; omega] (m/s; rad/s, base axes) of a pose moving at pose_rate.
+Vector6d twist_from_pose_rate(const PathPoint& point);
+
+/// A TCP path over the time interval [t_start, t_end] (s).
+class TcpPath {
+ public:
+  virtual ~TcpPath() = default;
+  virtual double t_start() const = 0;
+  virtual double t_end() const = 0;
+  /// The pose at t and its time derivative.
+  virtual PathPoint at(double t) const = 0;
+};
+
+/// Parameters of the seeds' helix (see the header comment). Lengths in m, angles in rad.
+struct HelixParameters {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();            ///< (cx, cy, cz), m
+  double radius_start = 0.01;                                  ///< r0, m
+  double radius_growth = 0.02;                                 ///< r1, m per turn
+  double height_start = 0.01;                                  ///< z0, m
+  double height_growth = 0.01;                                 ///< z1, m after one turn (quadratic)
+  Eigen::Vector3d nominal_angles = Eigen::Vector3d::Zero();    ///< (ox, oy, oz), rad
+  Eigen::Vector3d angle_amplitudes = Eigen::Vector3d::Zero();  ///< (ax, ay, az), rad
+  double angular_frequency = 1.0;                              ///< w, rad/s (phase = w t)
+  double t_start = 0.0;                                        ///< s
+  double t_end = 2.0 * std::numbers::pi;                       ///< s (one turn at w = 1)
+};
+
+/// The seeds' helix with analytic derivatives.
+class HelixPath final : public TcpPath {
+ public:
+  HelixPath() = default;
+  explicit HelixPath(const HelixParameters& p) : parameters(p) {}
+  double t_start() const override { return parameters.t_start; }
+  double t_end() const override { return parameters.t_end; }
+  PathPoint at(double t) const override;
+
+  HelixParameters parameters;
+};
+
+/// Poses given at strictly increasing times (at least 2), linearly interpolated.
+class SampledPath final : public TcpPath {
+ public:
+  /// Throws std::invalid_argument when fewer than 2 samples, sizes differ or the times do not
+  /// increase strictly.
+  SampledPath(std::vector<double> times, std::vector<Pose> poses);
+  double t_start() const override { return times_.front(); }
+  double t_end() const override { return times_.back(); }
+  PathPoint at(double t) const override;
+  const std::vector<double>& times() const { return times_; }
+
+ private:
+  std::vector<double> times_;
+  std::vector<Pose> poses_;
+  std::vector<Vector6d> rates_;  // central differences at the samples
+};
+
+/// count >= 2 times evenly spaced from t_start to t_end (both included).
+std::vector<double> uniform_times(double t_start, double t_end, int count);
+
+/// d values / dt at every time by the three-point central difference for uneven spacing
+/// (second order), one-sided first differences at the two ends. values[k] belongs to times[k];
+/// needs at least 2 strictly increasing times.
+std::vector<Eigen::VectorXd> central_difference_rates(const std::vector<double>& times,
+                                                      const std::vector<Eigen::VectorXd>& values);
+
+/// Everything at one sample of a trajectory.
+struct TrajectorySample {
+  double t = 0.0;                     ///< s
+  Pose pose;                          ///< m, rad
+  Vector6d twist = Vector6d::Zero();  ///< [v; omega], m/s and rad/s, base axes
+  PoseMetrics metrics;                ///< Machine::analyze at the pose (zero wrench)
+  bool jacobian_ok = false;           ///< Machine::twist_jacobian succeeded
+  Eigen::MatrixXd J;                  ///< num_actuators x 6 (empty when !jacobian_ok)
+  Eigen::VectorXd q_dot;              ///< J twist (m/s or rad/s); +inf when !jacobian_ok
+  Eigen::VectorXd q_dot_fd;           ///< central difference of metrics.q over the samples
+};
+
+/// A singular pose on the path.
+struct SingularPose {
+  enum class Kind {
+    kSample,         ///< a sample whose singularity_margin is 0
+    kDetSignChange,  ///< det_j changes sign between two regular samples; located by bisection
+  };
+  Kind kind = Kind::kSample;
+  double t = 0.0;  ///< s
+  Pose pose;
+  double singularity_margin = 0.0;  ///< at t (0 when the bisection closed in on the singularity)
+  double det_j_before = 0.0;        ///< det_j at the sample (or bisection end) before t
+  double det_j_after = 0.0;         ///< det_j at the sample (or bisection end) after t
+};
+
+struct TrajectoryResult {
+  std::vector<TrajectorySample> samples;
+  std::vector<SingularPose> singular_poses;  ///< in increasing t
+};
+
+/// Runs the machine along the path at the given strictly increasing times (at least 2).
+/// Throws std::invalid_argument for fewer than 2 or non-increasing times.
+TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path,
+                                     const std::vector<double>& times);
+
+}  // namespace pkmopt

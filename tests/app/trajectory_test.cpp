@@ -1,0 +1,401 @@
+// Tests of trajectories (models/trajectory.hpp) and `pkmopt trajectory`: the angular velocity map
+// against the derivative of the rotation, the helix formula and its derivative, q_dot = J xi
+// against finite differences of the IK (hexapod and delta), singular poses located where they
+// are (Fichter's 90 deg yaw singularity, architecturally singular hexapods), the hexapod-450
+// study in its reduced form through the CLI, and bad input.
+#include "models/trajectory.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "app/csv.hpp"
+#include "app/machine_file.hpp"
+#include "models/hexapod.hpp"
+#include "tests/cli_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace pkmopt;
+using cli_runner::CliRun;
+
+constexpr double kPi = std::numbers::pi;
+
+std::string source_path(const std::string& relative) {
+  return (fs::path(PKMOPT_SOURCE_DIR) / relative).string();
+}
+
+// omega from the derivative of R: [omega]x = R_dot R^T, R_dot by central differences.
+TEST(Trajectory, AngularVelocityMapMatchesTheDerivativeOfTheRotation) {
+  const std::vector<Eigen::Vector3d> angle_set = {
+      {0.3, -0.4, 1.1}, {-1.2, 0.9, -2.5}, {0.0, 1.3, 0.4}, {2.0, -0.1, 3.0}};
+  const Eigen::Vector3d rates(0.7, -1.3, 0.4);
+  const double h = 1e-6;
+  for (const Eigen::Vector3d& a : angle_set) {
+    const Eigen::Matrix3d R_dot =
+        (rotation_zyx<double>(a + h * rates) - rotation_zyx<double>(a - h * rates)) / (2 * h);
+    const Eigen::Matrix3d W = R_dot * rotation_zyx<double>(a).transpose();
+    const Eigen::Vector3d omega_fd(W(2, 1), W(0, 2), W(1, 0));
+    EXPECT_LT((angular_velocity_map(a) * rates - omega_fd).norm(), 1e-8) << a.transpose();
+    EXPECT_LT((W + W.transpose()).norm(), 1e-8);  // skew: R_dot R^T is a cross-product matrix
+  }
+}
+
+HelixParameters seeds_helix() {
+  HelixParameters h;
+  h.centre = {0.0, 0.0, 0.70};
+  h.angle_amplitudes = deg_to_rad(Eigen::Vector3d(5, 5, 5));
+  return h;
+}
+
+// amp = 0.01 + 0.02 t/2pi, x = amp cos t, y = amp sin t, z = 0.01 + 0.01 t^2/4pi^2 (seeds).
+TEST(Trajectory, HelixFormulaAtPinnedTimes) {
+  const HelixPath helix(seeds_helix());
+  const struct {
+    double t;
+    Eigen::Vector3d offset;
+  } cases[] = {
+      {0.0, {0.01, 0.0, 0.01}},
+      {kPi / 2, {0.0, 0.015, 0.01 + 0.01 / 16}},
+      {kPi, {-0.02, 0.0, 0.0125}},
+      {2 * kPi, {0.03, 0.0, 0.02}},
+  };
+  for (const auto& c : cases) {
+    const PathPoint p = helix.at(c.t);
+    EXPECT_LT((p.pose.position - Eigen::Vector3d(0, 0, 0.70) - c.offset).norm(), 1e-15) << c.t;
+  }
+  // rx = 5 sin t, ry = 5 cos t, rz = 5 sin 2t (deg) at t = pi/4: 5/sqrt2, 5/sqrt2, 5.
+  const Eigen::Vector3d a = rad_to_deg(helix.at(kPi / 4).pose.angles);
+  EXPECT_NEAR(a(0), 5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(a(1), 5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(a(2), 5.0, 1e-12);
+  // The analytic rate against central differences, at w = 1 and w = 3.
+  for (double w : {1.0, 3.0}) {
+    HelixParameters hp = seeds_helix();
+    hp.angular_frequency = w;
+    const HelixPath path(hp);
+    for (double t = 0.05; t < 6.3; t += 0.37) {
+      const double h = 1e-6;
+      const PathPoint p = path.at(t), plus = path.at(t + h), minus = path.at(t - h);
+      Vector6d fd;
+      fd << (plus.pose.position - minus.pose.position) / (2 * h),
+          (plus.pose.angles - minus.pose.angles) / (2 * h);
+      EXPECT_LT((p.pose_rate - fd).cwiseAbs().maxCoeff(), 1e-8) << "t " << t << " w " << w;
+    }
+  }
+}
+
+// Second-order differences are exact for quadratics, on uneven spacing too.
+TEST(Trajectory, CentralDifferencesAreExactForQuadratics) {
+  const std::vector<double> times = {0.0, 0.1, 0.35, 0.4, 0.9};
+  std::vector<Eigen::VectorXd> values;
+  for (double t : times) values.push_back(Eigen::Vector2d(3 * t * t - t + 2, -t * t));
+  const auto rates = central_difference_rates(times, values);
+  for (std::size_t k = 1; k + 1 < times.size(); ++k) {
+    EXPECT_NEAR(rates[k](0), 6 * times[k] - 1, 1e-12);
+    EXPECT_NEAR(rates[k](1), -2 * times[k], 1e-12);
+  }
+  EXPECT_THROW(central_difference_rates({0.0, 0.0}, {values[0], values[1]}), std::invalid_argument);
+}
+
+// q_dot = J xi against the central difference of the IK along the path (h = 1e-6 s), and the
+// q_dot_fd column (neighbouring samples) against q_dot to O(dt^2).
+void expect_rates_match_ik(const Machine& machine, const TcpPath& path, int samples,
+                           double fd_tolerance, double sample_tolerance) {
+  const std::vector<double> times = uniform_times(path.t_start(), path.t_end(), samples);
+  const TrajectoryResult run = evaluate_trajectory(machine, path, times);
+  ASSERT_EQ(run.samples.size(), times.size());
+  const auto data = machine.make_data();
+  PoseMetrics plus, minus;
+  int checked = 0;
+  for (std::size_t k = 0; k < run.samples.size(); ++k) {
+    const TrajectorySample& s = run.samples[k];
+    ASSERT_TRUE(s.jacobian_ok) << "t " << s.t;
+    ASSERT_FALSE(s.metrics.singular) << "t " << s.t;
+    const double h = 1e-6;
+    machine.analyze(*data, path.at(s.t + h).pose, Wrench::Zero(), plus);
+    machine.analyze(*data, path.at(s.t - h).pose, Wrench::Zero(), minus);
+    const Eigen::VectorXd fd = (plus.q - minus.q) / (2 * h);
+    const double scale = std::max(1e-3, fd.cwiseAbs().maxCoeff());
+    EXPECT_LT((s.q_dot - fd).cwiseAbs().maxCoeff(), fd_tolerance * scale) << "t " << s.t;
+    if (k > 0 && k + 1 < run.samples.size()) {
+      EXPECT_LT((s.q_dot - s.q_dot_fd).cwiseAbs().maxCoeff(), sample_tolerance * scale)
+          << "t " << s.t;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, samples);
+}
+
+TEST(Trajectory, HexapodLegRatesMatchDifferencesOfTheIkAlongTheHelix) {
+  const auto machine = load_machine_file(source_path("studies/hexapod-450/hexapod-450.yaml"));
+  HelixParameters hp = seeds_helix();
+  hp.angle_amplitudes = deg_to_rad(Eigen::Vector3d(15, 10, 20));  // large angles: E(a) matters
+  expect_rates_match_ik(*machine, HelixPath(hp), 401, 1e-7, 2e-3);
+  // Leaving out E(a) (omega = angle rates) would be wrong by far more than the tolerance.
+  const HelixPath helix(hp);
+  const auto data = machine->make_data();
+  Eigen::MatrixXd J;
+  const PathPoint p = helix.at(1.0);
+  ASSERT_TRUE(machine->twist_jacobian(*data, p.pose, J));
+  Vector6d naive = p.pose_rate;
+  const double h = 1e-6;
+  PoseMetrics plus, minus;
+  machine->analyze(*data, helix.at(1.0 + h).pose, Wrench::Zero(), plus);
+  machine->analyze(*data, helix.at(1.0 - h).pose, Wrench::Zero(), minus);
+  const Eigen::VectorXd fd = (plus.q - minus.q) / (2 * h);
+  EXPECT_GT((J * naive - fd).cwiseAbs().maxCoeff(), 1e-3 * fd.cwiseAbs().maxCoeff());
+}
+
+TEST(Trajectory, DeltaDriveRatesMatchDifferencesOfTheIkAlongATranslationalHelix) {
+  const auto machine = load_machine_file(source_path("examples/delta.yaml"));
+  HelixParameters hp;
+  hp.centre = {0.05, -0.03, -1.0};
+  hp.radius_start = 0.1;
+  hp.radius_growth = 0.1;
+  hp.height_growth = 0.2;
+  expect_rates_match_ik(*machine, HelixPath(hp), 81, 1e-7, 5e-3);
+}
+
+// A sampled path's rates are central differences: q_dot from them converges to the IK
+// differences as the samples get denser.
+TEST(Trajectory, SampledPathFollowsTheHelix) {
+  const auto machine = load_machine_file(source_path("studies/hexapod-450/hexapod-450.yaml"));
+  const HelixPath helix(seeds_helix());
+  const std::vector<double> times = uniform_times(0.0, 2 * kPi, 401);
+  std::vector<Pose> poses;
+  for (double t : times) poses.push_back(helix.at(t).pose);
+  const SampledPath sampled(times, poses);
+  const TrajectoryResult a = evaluate_trajectory(*machine, helix, times);
+  const TrajectoryResult b = evaluate_trajectory(*machine, sampled, times);
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t k = 1; k + 1 < times.size(); ++k) {
+    EXPECT_EQ(a.samples[k].metrics.q, b.samples[k].metrics.q);
+    worst = std::max(worst, (a.samples[k].q_dot - b.samples[k].q_dot).cwiseAbs().maxCoeff());
+    scale = std::max(scale, a.samples[k].q_dot.cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-3 * scale);
+  EXPECT_GT(scale, 1e-3);  // the legs do move (m/s)
+  // Between samples the pose is interpolated linearly.
+  const PathPoint mid = sampled.at(0.5 * (times[10] + times[11]));
+  EXPECT_LT((mid.pose.position - 0.5 * (poses[10].position + poses[11].position)).norm(), 1e-15);
+  EXPECT_THROW(SampledPath({0.0, 1.0, 1.0}, {poses[0], poses[1], poses[2]}), std::invalid_argument);
+}
+
+HexapodDesign fichter_design() {
+  HexapodDesign d = semi_regular_hexapod(0.6, deg_to_rad(20), 0.3, deg_to_rad(20));
+  d.min_length = 0.2;
+  d.max_length = 2.0;
+  d.stiffness.axial_stiffness = 1e8;
+  return d;
+}
+
+// Fichter (1986, IJRR 5(2)): a semi-regular hexapod at its central position is singular when
+// turned 90 deg about the vertical; det J changes sign there. A helix of zero radius turning
+// rz = 90 + 10 sin 2t deg crosses it at t = pi/2, pi, 3pi/2; none of them is a sample.
+TEST(Trajectory, FichterYawSingularityIsLocatedByBisection) {
+  const Hexapod hexapod(fichter_design());
+  HelixParameters hp;
+  hp.centre = {0, 0, 0.8};
+  hp.radius_start = hp.radius_growth = 0.0;
+  hp.height_growth = 0.1;
+  hp.nominal_angles = {0, 0, deg_to_rad(90)};
+  hp.angle_amplitudes = {0, 0, deg_to_rad(10)};
+  hp.t_start = 0.1;
+  hp.t_end = 6.0;
+  const TrajectoryResult run =
+      evaluate_trajectory(hexapod, HelixPath(hp), uniform_times(hp.t_start, hp.t_end, 60));
+  ASSERT_EQ(run.singular_poses.size(), 3u);
+  const double expected[] = {kPi / 2, kPi, 3 * kPi / 2};
+  for (int i = 0; i < 3; ++i) {
+    const SingularPose& p = run.singular_poses[static_cast<std::size_t>(i)];
+    EXPECT_EQ(p.kind, SingularPose::Kind::kDetSignChange);
+    EXPECT_NEAR(p.t, expected[i], 1e-9);
+    EXPECT_NEAR(rad_to_deg(p.pose.angles(2)), 90.0, 1e-7);
+    EXPECT_EQ(p.singularity_margin, 0.0);
+    EXPECT_LT(p.det_j_before * p.det_j_after, 0.0);
+  }
+  // No sample is singular, and away from 90 deg the margin is clearly positive.
+  for (const TrajectorySample& s : run.samples) EXPECT_FALSE(s.metrics.singular) << s.t;
+
+  // A sample exactly at the singular pose is reported as such, once.
+  const std::vector<double> times = {0.0, 0.25, 0.5, 0.8, 1.0};
+  std::vector<Pose> poses;
+  for (double t : times) poses.push_back(Pose{{0, 0, 0.8}, {0, 0, deg_to_rad(80 + 20 * t)}});
+  const TrajectoryResult at_sample = evaluate_trajectory(hexapod, SampledPath(times, poses), times);
+  ASSERT_EQ(at_sample.singular_poses.size(), 1u);
+  EXPECT_EQ(at_sample.singular_poses[0].kind, SingularPose::Kind::kSample);
+  EXPECT_EQ(at_sample.singular_poses[0].t, 0.5);
+  EXPECT_TRUE(at_sample.samples[2].metrics.singular);
+}
+
+// Similar base and platform hexagons are singular everywhere (Ma & Angeles 1991): every sample.
+TEST(Trajectory, ArchitecturallySingularHexapodIsSingularAtEverySample) {
+  HexapodDesign d = semi_regular_hexapod(0.6, deg_to_rad(20), 0.3, deg_to_rad(100));
+  d.min_length = 0.2;
+  d.max_length = 2.0;
+  d.stiffness.axial_stiffness = 1e8;
+  const Hexapod hexapod(d);
+  HelixParameters hp = seeds_helix();
+  hp.centre = {0, 0, 0.8};
+  const TrajectoryResult run =
+      evaluate_trajectory(hexapod, HelixPath(hp), uniform_times(0, 2 * kPi, 11));
+  ASSERT_EQ(run.singular_poses.size(), 11u);
+  for (const SingularPose& p : run.singular_poses) {
+    EXPECT_EQ(p.kind, SingularPose::Kind::kSample);
+  }
+}
+
+class TrajectoryCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pkmopt_trajectory_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    machine_ = source_path("studies/hexapod-450/hexapod-450.yaml");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, args); }
+
+  void expect_input_error(const std::string& args, const std::string& fragment) {
+    const fs::path out = dir_ / "out.csv";
+    const CliRun r = run("trajectory " + args + " --out " + out.string());
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\nstderr: " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+
+  fs::path dir_;
+  std::string machine_;
+};
+
+// The study in its reduced form: studies/hexapod-450/run.sh with 20 mm workspaces and 61 helix
+// samples. Every helix pose reachable and regular, the file's q columns equal to the IK, and
+// the study's numbers pinned (README.md of the study quotes them at full resolution).
+TEST_F(TrajectoryCli, Hexapod450StudyReducedForm) {
+  const fs::path out = dir_ / "study";
+  const std::string command = "PKMOPT=" + std::string(PKMOPT_CLI) + " bash " +
+                              source_path("studies/hexapod-450/run.sh") + " " + out.string() +
+                              " 0.02 61 >" + (dir_ / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << cli_runner::read_text(dir_ / "log.txt");
+  const std::string level_summary = cli_runner::read_text(out / "helix-level.txt");
+  EXPECT_NE(level_summary.find("61 reachable"), std::string::npos) << level_summary;
+  EXPECT_NE(level_summary.find("singular poses: 0"), std::string::npos) << level_summary;
+
+  const CsvTable table = read_csv_file((out / "helix-level.csv").string());
+  ASSERT_EQ(table.rows.size(), 61u);
+  EXPECT_EQ(table.header.size(), 15u + 3 * 6 + 2 + 36);
+  EXPECT_EQ(read_csv_file((out / "helix-level-singular.csv").string()).rows.size(), 0u);
+  const Hexapod hexapod(read_hexapod_design(YamlValue::load_file(machine_)));
+  Eigen::VectorXd q_min = Eigen::VectorXd::Constant(6, 1e9), q_max = -q_min;
+  double q_dot_max = 0.0;
+  for (const CsvRow& row : table.rows) {
+    EXPECT_EQ(table.number(row, table.column("reachable")), 1.0);
+    EXPECT_EQ(table.number(row, table.column("singular")), 0.0);
+    Pose pose;
+    pose.position = {table.number(row, 1), table.number(row, 2), table.number(row, 3)};
+    pose.angles = deg_to_rad(
+        Eigen::Vector3d(table.number(row, 4), table.number(row, 5), table.number(row, 6)));
+    const Vec6<double> q = hexapod.inverse_kinematics(pose);
+    for (int i = 0; i < 6; ++i) {
+      const double qi = table.number(row, table.column("q_" + std::to_string(i + 1)));
+      EXPECT_NEAR(qi, q(i), 1e-12);
+      q_min(i) = std::min(q_min(i), qi);
+      q_max(i) = std::max(q_max(i), qi);
+      q_dot_max = std::max(
+          q_dot_max, std::abs(table.number(row, table.column("q_dot_" + std::to_string(i + 1)))));
+    }
+  }
+  // Pinned study numbers (leg lengths along the path, m; largest leg rate, m/s).
+  const double pinned_min[] = {0.8862244946703823, 0.8872466401016851, 0.9048626874035955,
+                               0.8944034026417963, 0.894772376010191,  0.901138047948807};
+  const double pinned_max[] = {0.9493480749070337, 0.9498780705533946, 0.9420710700564493,
+                               0.9553694837455221, 0.9563738753609948, 0.9419858925305947};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(q_min(i), pinned_min[i], 1e-9) << "leg " << i + 1;
+    EXPECT_NEAR(q_max(i), pinned_max[i], 1e-9) << "leg " << i + 1;
+  }
+  EXPECT_NEAR(q_dot_max, 0.04607295905449005, 1e-9);
+
+  // The workspaces (20 mm grid): level and at a constant 40 deg tilt, pinned; the tilted one
+  // far smaller and shifted off the axis; empty with 45 deg platform joints.
+  const CsvTable ws = read_csv_file((out / "workspaces.csv").string());
+  auto value = [&](const std::string& name, const std::string& column) {
+    for (const CsvRow& row : ws.rows) {
+      if (row.cells[0] == name) return ws.number(row, ws.require_column(column));
+    }
+    ADD_FAILURE() << "no workspace " << name;
+    return 0.0;
+  };
+  const double level = value("level", "volume");
+  const double tilted = value("tilt-y40", "volume");
+  EXPECT_NEAR(level, 0.10492625779098329, 1e-9);
+  EXPECT_NEAR(tilted, 0.00024610712626390126, 1e-11);
+  EXPECT_NEAR(value("tilt-x40", "volume"), 0.00036170388042771544, 1e-11);
+  EXPECT_LT(tilted, 0.01 * level);
+  EXPECT_NEAR(value("level", "centroid_x"), 0.0, 1e-3);
+  EXPECT_NEAR(value("tilt-y40", "centroid_x"), 0.1838, 1e-4);
+  EXPECT_NEAR(value("tilt-y40", "centroid_y"), 0.0025, 1e-4);
+  EXPECT_EQ(value("joints-45-45-tilt-y40", "volume"), 0.0);
+  EXPECT_NEAR(value("joints-89-89-tilt-y40", "volume"), 0.03551649237824182, 1e-9);
+}
+
+TEST_F(TrajectoryCli, PathFileGivesTheSameRatesAsTheHelix) {
+  const fs::path path = dir_ / "path.csv", out = dir_ / "out.csv";
+  {
+    const HelixPath helix(seeds_helix());
+    std::string text = "t,x,y,z,rx,ry,rz,label\n";
+    for (double t : uniform_times(0, 2 * kPi, 201)) {
+      const Pose p = helix.at(t).pose;
+      text += format_number(t);
+      for (int k = 0; k < 3; ++k) text += ',' + format_number(p.position(k));
+      for (int k = 0; k < 3; ++k) text += ',' + format_number(rad_to_deg(p.angles(k)));
+      text += ",a\n";
+    }
+    std::ofstream(path) << text;
+  }
+  const CliRun r =
+      run("trajectory " + machine_ + " --path " + path.string() + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const CsvTable table = read_csv_file(out.string());
+  ASSERT_EQ(table.rows.size(), 201u);
+  for (std::size_t k = 1; k + 1 < table.rows.size(); ++k) {
+    for (int i = 1; i <= 6; ++i) {
+      const double q_dot = table.number(table.rows[k], table.column("q_dot_" + std::to_string(i)));
+      const double fd = table.number(table.rows[k], table.column("q_dot_fd_" + std::to_string(i)));
+      EXPECT_NEAR(q_dot, fd, 2e-5) << "row " << k << " leg " << i;
+    }
+  }
+}
+
+TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
+  const fs::path path = dir_ / "path.csv";
+  std::ofstream(path) << "t,x,y,z\n0,0,0,0.7\n0.5,0,0,0.71\n0.4,0,0,0.72\n";
+  expect_input_error(machine_ + " --path " + path.string(),
+                     "path.csv:4: column 1 't': expected a time greater than");
+  expect_input_error(machine_, "expected --path PATH.csv or --helix, found neither");
+  expect_input_error(machine_ + " --helix --path " + path.string(), "found both");
+  expect_input_error(machine_ + " --helix --samples 1", "--samples: expected");
+  expect_input_error(machine_ + " --helix --samples 10 --dt 0.1", "--samples and --dt");
+  expect_input_error(machine_ + " --helix --t-end -1", "--t-end: expected");
+  expect_input_error(machine_ + " --helix --helix-radius 0.01", "--helix-radius: expected 2");
+  expect_input_error(machine_ + " --path " + path.string() + " --samples 5", "only with --helix");
+  expect_input_error(source_path("examples/missing.yaml") + " --helix", "missing.yaml");
+  const fs::path no_t = dir_ / "no_t.csv";
+  std::ofstream(no_t) << "x,y,z\n0,0,0.7\n0,0,0.71\n";
+  expect_input_error(machine_ + " --path " + no_t.string(), "'t'");
+}
+
+}  // namespace
