@@ -970,6 +970,16 @@ std::string report_html(const ParetoFront& front, const WorkspaceSlice* knee_sli
   return out;
 }
 
+std::string html_escape(std::string_view text) { return xml_escape(text); }
+
+std::string objective_axis_label(const ParetoObjective& objective) {
+  return objective_label(objective);
+}
+
+std::string design_table_html(const ParetoFront& front, const ParetoDesign& design) {
+  return knee_table(front, design);
+}
+
 std::string base64(const std::string& bytes) {
   static constexpr char kAlphabet[] =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";

@@ -23,6 +23,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -121,5 +122,13 @@ std::string report_html(const ParetoFront& front, const WorkspaceSlice* knee_sli
 
 /// Base64 (RFC 4648, with padding).
 std::string base64(const std::string& bytes);
+
+/// Helpers shared with other HTML/SVG writers (`pkmopt compare`): text with & < > " escaped for
+/// HTML and XML; an objective's axis label "name [unit] (max|min)"; the HTML table of one
+/// design's free and fixed parameters, objectives and constraints (as in the export report's
+/// knee section).
+std::string html_escape(std::string_view text);
+std::string objective_axis_label(const ParetoObjective& objective);
+std::string design_table_html(const ParetoFront& front, const ParetoDesign& design);
 
 }  // namespace pkmopt
