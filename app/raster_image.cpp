@@ -162,7 +162,10 @@ int RgbImage::text_width(std::string_view text) const {
 
 void RgbImage::text(int x, int y, std::string_view text, Rgb c) {
   for (char ch : text) {
-    const auto it = font().find(ch);
+    auto it = font().find(ch);
+    // Capitals without a glyph of their own are drawn as small letters (labels stay legible).
+    if (it == font().end() && ch >= 'A' && ch <= 'Z')
+      it = font().find(static_cast<char>(ch - 'A' + 'a'));
     if (it != font().end()) {
       for (int row = 0; row < 7; ++row) {
         for (int col = 0; col < 5; ++col) {

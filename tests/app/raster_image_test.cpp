@@ -112,4 +112,14 @@ TEST(RgbImage, TextDrawsGlyphsAndSkipsUnknownCharacters) {
   EXPECT_GT(inked_in_column_range(5 * a, 6 * a), 0);  // N
 }
 
+TEST(RgbImage, CapitalsWithoutAGlyphAreDrawnAsSmallLetters) {
+  pkmopt::raster::RgbImage upper(60, 20, pkmopt::raster::kWhite);
+  pkmopt::raster::RgbImage lower(60, 20, pkmopt::raster::kWhite);
+  upper.text(0, 0, "Hex", pkmopt::raster::kInk);
+  lower.text(0, 0, "hex", pkmopt::raster::kInk);
+  EXPECT_EQ(upper.encode_png(), lower.encode_png());
+  pkmopt::raster::RgbImage blank(60, 20, pkmopt::raster::kWhite);
+  EXPECT_NE(upper.encode_png(), blank.encode_png());
+}
+
 }  // namespace
