@@ -27,6 +27,15 @@ std::pair<int, int> parallel_mobility(const YamlValue& model_value, const std::s
   return it->second;
 }
 
+// Platform mobility of `model: leg_chain` files from their `mobility:` key (already validated).
+std::pair<int, int> leg_chain_mobility(const YamlValue& root) {
+  const std::string mobility = root.required("mobility").as_string();
+  if (mobility == "translational") return {3, 0};
+  if (mobility == "schoenflies") return {3, 1};
+  if (mobility == "planar_legs") return {1, 2};
+  return {3, 3};
+}
+
 struct SerialPart {
   SerialChain chain;
   std::vector<std::string> axes;
@@ -122,7 +131,8 @@ MachineDescription describe_machine_file(const std::string& path) {
     d.details.push_back(fmt::format("parallel: {} ({})", inner.model, module.string()));
   } else {
     const std::unique_ptr<Machine> machine = load_machine(root);
-    const auto [translations, rotations] = parallel_mobility(model_value, d.model);
+    const auto [translations, rotations] =
+        d.model == "leg_chain" ? leg_chain_mobility(root) : parallel_mobility(model_value, d.model);
     d.translations = translations;
     d.rotations = rotations;
     d.parallel_drives = machine->num_actuators();

@@ -212,13 +212,217 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
   return d;
 }
 
+Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
+  root.check_keys({"model", "name", "description", "base_radius", "platform_radius", "strut",
+                   "stroke", "tool_length", "struts", "slide_stiffness", "joints",
+                   "characteristic_length", "actuator_error"});
+  Tripod3PrsDesign d;
+  d.base_radius = root.required("base_radius").as_positive();
+  d.platform_radius = root.required("platform_radius").as_positive();
+  d.strut = root.required("strut").as_positive();
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
+  d.q_min = stroke.first;
+  d.q_max = stroke.second;
+  if (auto v = root.optional("tool_length")) d.tool_length = v->as_double();
+  read_link_stiffness(root.required("struts"), d.stiffness);
+  d.stiffness.actuator_stiffness = 0.0;
+  if (auto v = root.optional("slide_stiffness")) d.stiffness.actuator_stiffness = v->as_positive();
+  read_joint_limits(root, "revolute_max_angle_deg", d.revolute_max_angle, d.platform_max_angle);
+  if (auto v = root.optional("characteristic_length")) d.characteristic_length = v->as_positive();
+  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
+  validate(root, d, make_tripod_3prs);
+  return d;
+}
+
+namespace {
+
+LegKind read_leg_kind(const YamlValue& value) {
+  const std::string kind = value.as_string();
+  if (kind == "UPS") return LegKind::kUPS;
+  if (kind == "PUS" || kind == "PUU") return LegKind::kPUS;
+  if (kind == "RUS") return LegKind::kRUS;
+  value.fail("UPS, PUS, PUU or RUS", quote_found(kind));
+}
+
+LegChainLeg read_leg(const YamlValue& node, PlatformMobility mobility, bool& revolute) {
+  node.expect_map();
+  LegChainLeg leg;
+  leg.kind = read_leg_kind(node.required("kind"));
+  revolute = leg.kind == LegKind::kRUS;
+  std::vector<std::string> keys = {"kind", "base_point", "platform_point",    "range",
+                                   "link", "joints",     "actuator_stiffness"};
+  if (leg.kind != LegKind::kUPS) {
+    for (const char* k : {"axis", "link_length", "branch"}) keys.emplace_back(k);
+  }
+  if (leg.kind == LegKind::kRUS) {
+    for (const char* k : {"crank_zero", "crank_length"}) keys.emplace_back(k);
+  }
+  if (mobility == PlatformMobility::kPlanarLegs) keys.emplace_back("plane_normal");
+  node.check_keys(keys);
+  leg.base_point = read_vector3(node.required("base_point"));
+  leg.platform_point = read_vector3(node.required("platform_point"));
+  const double inf = std::numeric_limits<double>::infinity();
+  if (leg.kind == LegKind::kRUS) {
+    const auto range = read_range(node.required("range"), -180.0, 180.0, "deg");
+    leg.q_min = deg_to_rad(range.first);
+    leg.q_max = deg_to_rad(range.second);
+  } else {
+    const auto range =
+        read_range(node.required("range"), leg.kind == LegKind::kUPS ? 0.0 : -inf, inf, "m");
+    if (leg.kind == LegKind::kUPS && !(range.first > 0.0)) {
+      node.required("range").fail("leg lengths [min, max] with min > 0 (m)",
+                                  node.required("range").describe());
+    }
+    leg.q_min = range.first;
+    leg.q_max = range.second;
+  }
+  if (leg.kind != LegKind::kUPS) {
+    const YamlValue axis = node.required("axis");
+    leg.axis = read_vector3(axis);
+    if (!(leg.axis.norm() > 1e-12)) axis.fail("a non-zero vector", axis.describe());
+    leg.link_length = node.required("link_length").as_positive();
+    if (auto v = node.optional("branch")) {
+      const long long b = v->as_int();
+      if (b != 1 && b != -1) v->fail("1 or -1", v->describe());
+      leg.branch = static_cast<int>(b);
+    }
+  }
+  if (leg.kind == LegKind::kRUS) {
+    leg.crank_zero = read_vector3(node.required("crank_zero"));
+    leg.crank_length = node.required("crank_length").as_positive();
+  }
+  if (mobility == PlatformMobility::kPlanarLegs) {
+    const YamlValue normal = node.required("plane_normal");
+    leg.plane_normal = read_vector3(normal);
+    if (!(leg.plane_normal.norm() > 1e-12)) normal.fail("a non-zero vector", normal.describe());
+  }
+  // link: {E, area, rods} or {axial_stiffness}
+  const YamlValue link = node.required("link");
+  link.check_keys({"E", "area", "axial_stiffness", "rods"});
+  LinkStiffness k;
+  {
+    // read_link_stiffness checks its own keys; give it a view without `rods`.
+    const bool has_axial = link.has("axial_stiffness");
+    const bool has_e = link.has("E") || link.has("area");
+    if (has_axial && has_e) {
+      link.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
+    }
+    if (has_axial) {
+      k.axial_stiffness = link.required("axial_stiffness").as_positive();
+      k.E = 0.0;
+      k.area = 0.0;
+    } else if (has_e) {
+      k.E = link.required("E").as_positive();
+      k.area = link.required("area").as_positive();
+    } else {
+      link.fail("missing the link stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
+    }
+  }
+  leg.axial_stiffness = k.axial_stiffness;
+  leg.E = k.E;
+  leg.area = k.area;
+  if (auto v = link.optional("rods")) {
+    const long long rods = v->as_int();
+    if (rods < 1 || rods > 16) v->fail("an integer in [1, 16]", v->describe());
+    leg.rods = static_cast<int>(rods);
+  }
+  if (auto v = node.optional("actuator_stiffness")) leg.actuator_stiffness = v->as_positive();
+  if (auto joints = node.optional("joints")) {
+    joints->check_keys(
+        {"base_max_angle_deg", "platform_max_angle_deg", "base_axis", "platform_axis"});
+    if (auto v = joints->optional("base_max_angle_deg")) leg.base_max_angle = angle_limit(*v);
+    if (auto v = joints->optional("platform_max_angle_deg"))
+      leg.platform_max_angle = angle_limit(*v);
+    for (const char* key : {"base_axis", "platform_axis"}) {
+      if (auto v = joints->optional(key)) {
+        const Eigen::Vector3d a = read_vector3(*v);
+        if (!(a.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
+        (std::string(key) == "base_axis" ? leg.base_axis : leg.platform_axis) = a;
+      }
+    }
+  }
+  return leg;
+}
+
+}  // namespace
+
+LegChainDesign read_leg_chain_design(const YamlValue& root) {
+  root.check_keys({"model", "name", "description", "mobility", "rotation_axis", "legs", "tool",
+                   "characteristic_length", "actuator_error", "actuator_error_deg", "home"});
+  LegChainDesign d;
+  d.model = "leg_chain";
+  const YamlValue mobility = root.required("mobility");
+  const std::string m = mobility.as_string();
+  int expected_legs = 0;
+  if (m == "six_dof") {
+    d.mobility = PlatformMobility::kSixDof;
+    expected_legs = 6;
+  } else if (m == "translational") {
+    d.mobility = PlatformMobility::kTranslational;
+    expected_legs = 3;
+  } else if (m == "schoenflies") {
+    d.mobility = PlatformMobility::kSchoenflies;
+    expected_legs = 4;
+  } else if (m == "planar_legs") {
+    d.mobility = PlatformMobility::kPlanarLegs;
+    expected_legs = 3;
+  } else {
+    mobility.fail("six_dof, translational, schoenflies or planar_legs", quote_found(m));
+  }
+  if (auto v = root.optional("rotation_axis")) {
+    if (d.mobility != PlatformMobility::kSchoenflies) {
+      v->fail("no rotation_axis (it is for mobility: schoenflies)", v->describe());
+    }
+    d.rotation_axis = read_vector3(*v);
+    if (!(d.rotation_axis.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
+  }
+  const auto legs = root.required("legs").elements(expected_legs);
+  int revolute = 0;
+  for (const YamlValue& node : legs) {
+    bool is_revolute = false;
+    d.legs.push_back(read_leg(node, d.mobility, is_revolute));
+    revolute += is_revolute ? 1 : 0;
+  }
+  if (revolute != 0 && revolute != expected_legs) {
+    root.required("legs").fail(
+        "legs that are all RUS or all prismatic (UPS, PUS)",
+        std::to_string(revolute) + " RUS legs of " + std::to_string(expected_legs));
+  }
+  read_common(root, d.tcp, d.characteristic_length);
+  if (revolute > 0) {
+    if (auto v = root.optional("actuator_error")) {
+      v->fail("actuator_error_deg (the legs are revolute)", v->describe());
+    }
+    d.actuator_error = deg_to_rad(1e-3);
+    if (auto v = root.optional("actuator_error_deg"))
+      d.actuator_error = deg_to_rad(v->as_non_negative());
+  } else {
+    if (auto v = root.optional("actuator_error_deg")) {
+      v->fail("actuator_error in m (the legs are prismatic)", v->describe());
+    }
+    if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
+  }
+  if (auto home = root.optional("home")) {
+    home->check_keys({"position", "angles_deg"});
+    d.home.position = read_vector3(home->required("position"));
+    if (auto v = home->optional("angles_deg")) d.home.angles = deg_to_rad(read_vector3(*v));
+  }
+  validate(root, d, make_leg_chain_machine);
+  return d;
+}
+
 std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std::string& model) {
   if (model == "delta") return make_delta(read_delta_design(root));
   if (model == "linear_delta") return make_linear_delta(read_linear_delta_design(root));
   if (model == "hexaglide") return make_hexaglide(read_hexaglide_design(root));
+  if (model == "tripod_3prs") return make_tripod_3prs(read_tripod_3prs_design(root));
+  if (model == "leg_chain") return make_leg_chain_machine(read_leg_chain_design(root));
   return nullptr;
 }
 
-const char* leg_chain_model_names() { return "delta, linear_delta, hexaglide"; }
+const char* leg_chain_model_names() {
+  return "delta, linear_delta, hexaglide, tripod_3prs, leg_chain";
+}
 
 }  // namespace pkmopt

@@ -1,4 +1,5 @@
-// Machine files (YAML) of the leg-chain models: delta, linear_delta, hexaglide.
+// Machine files (YAML) of the leg-chain models: delta, linear_delta, hexaglide, tripod_3prs,
+// and the generic form `model: leg_chain` (any mobility, an explicit list of legs).
 //
 // Strict like the hexapod reader (app/machine_file.hpp): unknown keys, missing required keys,
 // wrong counts, non-finite numbers and impossible values throw InputError naming file, line,
@@ -29,6 +30,10 @@ namespace pkmopt {
 DeltaDesign read_delta_design(const YamlValue& root);
 LinearDeltaDesign read_linear_delta_design(const YamlValue& root);
 HexaglideDesign read_hexaglide_design(const YamlValue& root);
+Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root);
+/// The generic form `model: leg_chain` (mobility, rotation_axis, tool, legs list; see
+/// docs/machines.md).
+LegChainDesign read_leg_chain_design(const YamlValue& root);
 
 /// The machine of a leg-chain model file (`model` is the value of `model:`); nullptr when the
 /// model is not a leg-chain model. Throws InputError.

@@ -85,4 +85,21 @@ void BM_HexaglideAnalyzeOneThread(benchmark::State& state) {
 }
 BENCHMARK(BM_HexaglideAnalyzeOneThread);
 
+// A tilted 3-PRS head: the parasitic solve (Newton, 3x3) and T = -G_p^-1 G_d on top of analyze.
+void BM_Tripod3PrsAnalyzeOneThread(benchmark::State& state) {
+  const pkmopt::LegChainMachine tripod(pkmopt::tripod_3prs_design(pkmopt::Tripod3PrsDesign{}));
+  const auto data = tripod.make_data();
+  pkmopt::PoseMetrics m;
+  const pkmopt::Wrench wrench = pkmopt::Wrench::Constant(10);
+  pkmopt::Pose pose;
+  pose.position = {0.0, 0.0, 1.2};
+  pose.angles = {0.3, -0.2, 0.0};
+  for (auto _ : state) {
+    tripod.analyze(*data, pose, wrench, m);
+    benchmark::DoNotOptimize(m.tcp_error_max);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Tripod3PrsAnalyzeOneThread);
+
 }  // namespace

@@ -21,6 +21,8 @@ constexpr double kPi = std::numbers::pi;
 // A leg is serial-singular when |B_i| / scale_i is below this: near a branch point the closed-form
 // IK (a square root of a difference) only gives B_i to about sqrt(eps).
 constexpr double kSerialTolerance = 1e-7;
+// A Schoenflies pose is on the platform's rotation set when R e is within this (rad) of e.
+constexpr double kRotationTolerance = 1e-9;
 
 using MatM = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 using VecM = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
@@ -79,13 +81,33 @@ Eigen::Vector3d radial(double phi) { return {std::cos(phi), std::sin(phi), 0.0};
 
 LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design) {
   const int n = static_cast<int>(design_.legs.size());
-  if (design_.mobility == PlatformMobility::kSixDof) {
-    require(n == 6, "a 6-DOF leg-chain machine needs 6 legs, found " + std::to_string(n));
-    dof_ = 6;
-  } else {
-    require(n == 3,
-            "a 3-DOF translational leg-chain machine needs 3 legs, found " + std::to_string(n));
-    dof_ = 3;
+  switch (design_.mobility) {
+    case PlatformMobility::kSixDof:
+      require(n == 6, "a 6-DOF leg-chain machine needs 6 legs, found " + std::to_string(n));
+      dof_ = 6;
+      first_rotational_dof_ = 3;
+      break;
+    case PlatformMobility::kTranslational:
+      require(n == 3,
+              "a 3-DOF translational leg-chain machine needs 3 legs, found " + std::to_string(n));
+      dof_ = 3;
+      first_rotational_dof_ = 3;
+      break;
+    case PlatformMobility::kSchoenflies:
+      require(n == 4,
+              "a Schoenflies (3T1R) leg-chain machine needs 4 legs, found " + std::to_string(n));
+      require(design_.rotation_axis.allFinite() && design_.rotation_axis.norm() > 1e-12,
+              "rotation_axis must be a non-zero finite vector");
+      design_.rotation_axis.normalize();
+      dof_ = 4;
+      first_rotational_dof_ = 3;
+      break;
+    case PlatformMobility::kPlanarLegs:
+      require(n == 3,
+              "a planar-leg (3-PRS) leg-chain machine needs 3 legs, found " + std::to_string(n));
+      dof_ = 3;
+      first_rotational_dof_ = 1;
+      break;
   }
   require(design_.tcp.allFinite(), "tool.tcp must be finite numbers");
   require(
@@ -140,6 +162,19 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
             name + "joint axes must be non-zero finite vectors");
     leg.base_axis.normalize();
     leg.platform_axis.normalize();
+    if (design_.mobility == PlatformMobility::kPlanarLegs) {
+      require(leg.plane_normal.allFinite() && leg.plane_normal.norm() > 1e-12,
+              name + "plane_normal must be a non-zero finite vector");
+      leg.plane_normal.normalize();
+      // The actuated point must move within the leg's plane.
+      if (leg.kind == LegKind::kPUS) {
+        require(std::abs(leg.plane_normal.dot(leg.axis)) <= 1e-9,
+                name + "the guide axis must lie in the leg's plane (axis . plane_normal = 0)");
+      } else if (leg.kind == LegKind::kRUS) {
+        require(leg.plane_normal.cross(leg.axis).norm() <= 1e-9,
+                name + "the crank axis must be parallel to plane_normal");
+      }
+    }
   }
   require(revolute == 0 || revolute == n, "legs must be all revolute or all prismatic");
   revolute_ = revolute == n;
@@ -150,12 +185,14 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
   }
   // Mean leg vector at the home pose: the default FK start follows the actuated points.
   home_leg_offset_.setZero();
+  Eigen::Vector3d home_p;
+  Eigen::Matrix3d home_R;
+  resolve_pose(design_.home, home_p, home_R);
   if (const auto q_home = inverse_kinematics(design_.home)) {
-    const Eigen::Matrix3d R = platform_rotation(design_.home);
     for (int i = 0; i < n; ++i) {
       Eigen::Vector3d c, dc;
       actuated_point(i, (*q_home)(i), c, dc);
-      home_leg_offset_ += design_.home.position + R * platform_rel_.col(i) - c;
+      home_leg_offset_ += home_p + home_R * platform_rel_.col(i) - c;
     }
     home_leg_offset_ /= n;
     home_ik_ok_ = true;
@@ -167,7 +204,7 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
     characteristic_length_ = L;
   } else {
     characteristic_length_ = platform_rel_.colwise().norm().mean();
-    if (dof_ == 6) {
+    if (first_rotational_dof_ < dof_) {
       require(characteristic_length_ > 0.0,
               "the platform joints all sit at the TCP; give characteristic_length");
     } else if (!(characteristic_length_ > 0.0)) {
@@ -185,6 +222,7 @@ std::unique_ptr<MachineData> LegChainMachine::make_data() const {
   d->q.resize(n);
   d->B.resize(n);
   d->A.resize(n, n);
+  d->T.resize(6, n);
   d->k.resize(n);
   return d;
 }
@@ -266,18 +304,133 @@ double LegChainMachine::leg_ik(int i, const Eigen::Vector3d& P, bool& ok) const 
   return 0.0;
 }
 
-Eigen::Matrix3d LegChainMachine::platform_rotation(const Pose& pose) const {
-  if (design_.mobility == PlatformMobility::kTranslational) return Eigen::Matrix3d::Identity();
-  return rotation_zyx<double>(pose.angles);
+bool LegChainMachine::resolve_pose(const Pose& pose, Eigen::Vector3d& p, Eigen::Matrix3d& R) const {
+  p = pose.position;
+  switch (design_.mobility) {
+    case PlatformMobility::kSixDof:
+      R = rotation_zyx<double>(pose.angles);
+      return true;
+    case PlatformMobility::kTranslational:
+      R.setIdentity();
+      return pose.angles.cwiseAbs().maxCoeff() <= 1e-12;
+    case PlatformMobility::kSchoenflies: {
+      // Swing-twist split of the given rotation: the twist about e is Rot(e, phi) with
+      // phi = 2 atan2(q_vec . e, q_w); the swing turns e to R0 e.
+      const Eigen::Vector3d& e = design_.rotation_axis;
+      const Eigen::Matrix3d R0 = rotation_zyx<double>(pose.angles);
+      const Eigen::Quaterniond quat(R0);
+      const double phi = 2.0 * std::atan2(quat.vec().dot(e), quat.w());
+      R = Eigen::AngleAxisd(std::isfinite(phi) ? phi : 0.0, e).toRotationMatrix();
+      return angle_between(R0 * e, e) <= kRotationTolerance;
+    }
+    case PlatformMobility::kPlanarLegs: {
+      // Parasitic x, y, rz from h_i = n_i . (p + Rz(rz) M rel_i - o_i) = 0, M = Ry(ry) Rx(rx);
+      // Newton from the home pose's x, y, rz.
+      const Eigen::Matrix3d M =
+          rotation_zyx<double>(Eigen::Vector3d(pose.angles(0), pose.angles(1), 0.0));
+      Eigen::Vector3d x(design_.home.position(0), design_.home.position(1), design_.home.angles(2));
+      bool converged = false;
+      double last_residual = std::numeric_limits<double>::infinity(), last_scale = 1.0;
+      for (int iteration = 0; iteration < 50; ++iteration) {
+        const Eigen::Matrix3d Rk = Eigen::AngleAxisd(x(2), Eigen::Vector3d::UnitZ()) * M;
+        const Eigen::Vector3d pk(x(0), x(1), pose.position(2));
+        Eigen::Vector3d h;
+        Eigen::Matrix3d G;
+        double scale = 1.0;
+        for (int i = 0; i < 3; ++i) {
+          const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+          const Eigen::Vector3d ri = Rk * platform_rel_.col(i);
+          h(i) = leg.plane_normal.dot(pk + ri - leg.base_point);
+          G(i, 0) = leg.plane_normal(0);
+          G(i, 1) = leg.plane_normal(1);
+          G(i, 2) = leg.plane_normal.dot(Eigen::Vector3d::UnitZ().cross(ri));
+          scale = std::max(scale, (pk - leg.base_point).norm() + ri.norm());
+        }
+        if (!h.allFinite()) break;
+        last_residual = h.cwiseAbs().maxCoeff();
+        last_scale = scale;
+        if (last_residual <= 1e-15 * scale) {
+          converged = true;
+          break;
+        }
+        const Eigen::FullPivLU<Eigen::Matrix3d> lu(G);
+        if (!lu.isInvertible()) break;
+        const Eigen::Vector3d step = lu.solve(h);
+        if (!step.allFinite()) break;
+        x -= step;
+        if (step.norm() <= 1e-15 * (1.0 + x.norm())) break;  // stalled at rounding level
+      }
+      // Stalled or out of iterations just above the strict tolerance: accept rounding-level
+      // residuals (the last step only reduced them further).
+      if (!converged && last_residual <= 1e-9 * last_scale) converged = true;
+      if (converged && x.allFinite()) {
+        p = Eigen::Vector3d(x(0), x(1), pose.position(2));
+        R = Eigen::AngleAxisd(wrap_angle(x(2)), Eigen::Vector3d::UnitZ()) * M;
+        return true;
+      }
+      R = rotation_zyx<double>(pose.angles);
+      return false;
+    }
+  }
+  R = rotation_zyx<double>(pose.angles);
+  return true;
+}
+
+std::optional<Pose> LegChainMachine::actual_pose(const Pose& pose) const {
+  Eigen::Vector3d p;
+  Eigen::Matrix3d R;
+  const bool ok = resolve_pose(pose, p, R);
+  if (!ok && design_.mobility == PlatformMobility::kPlanarLegs) return std::nullopt;
+  Pose out;
+  out.position = p;
+  out.angles = design_.mobility == PlatformMobility::kTranslational ? Eigen::Vector3d::Zero()
+                                                                    : angles_from_rotation(R);
+  if (design_.mobility == PlatformMobility::kPlanarLegs) {
+    // Keep the given rx, ry exactly (R = Rz(rz) Ry(ry) Rx(rx) by construction).
+    out.angles = Eigen::Vector3d(pose.angles(0), pose.angles(1), angles_from_rotation(R)(2));
+  }
+  return out;
+}
+
+bool LegChainMachine::planar_twist_map(const Eigen::Vector3d& /*p*/, const Eigen::Matrix3d& R,
+                                       Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>& T) const {
+  // G row i = [n_i^T, (r_i x n_i)^T]; parasitic columns (v_x, v_y, w_z), DOF (v_z, w_x, w_y).
+  Eigen::Matrix3d Gp, Gd;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector3d& n = design_.legs[static_cast<std::size_t>(i)].plane_normal;
+    const Eigen::Vector3d rn = (R * platform_rel_.col(i)).cross(n);
+    Gp.row(i) << n(0), n(1), rn(2);
+    Gd.row(i) << n(2), rn(0), rn(1);
+  }
+  T.setZero(6, 3);
+  T(2, 0) = 1.0;
+  T(3, 1) = 1.0;
+  T(4, 2) = 1.0;
+  Eigen::Matrix3d Gp_h = Gp;
+  Gp_h.col(2) /= characteristic_length_;
+  MatM Gp_dyn = Gp_h;
+  if (!(reciprocal_condition(Gp_dyn) >= kSingularRcond)) return false;
+  const Eigen::Matrix3d X = -Gp.partialPivLu().solve(Gd);
+  if (!X.allFinite()) return false;
+  T.row(0) = X.row(0);
+  T.row(1) = X.row(1);
+  T.row(5) = X.row(2);
+  return true;
 }
 
 void LegChainMachine::compute_kinematics(LegChainData& d, const Pose& pose) const {
   const int n = num_actuators();
-  const Eigen::Matrix3d R = platform_rotation(pose);
-  d.ik_ok = true;
+  Eigen::Vector3d position;
+  Eigen::Matrix3d R;
+  d.pose_ok = resolve_pose(pose, position, R);
+  d.position = position;
+  d.rotation = R;
+  d.ik_ok = d.pose_ok || design_.mobility != PlatformMobility::kPlanarLegs;
+  d.constraint_singular = false;
+  Eigen::Matrix<double, Eigen::Dynamic, 6, 0, 6, 6> a_full(n, 6);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d ri = R * platform_rel_.col(i);
-    const Eigen::Vector3d P = pose.position + ri;
+    const Eigen::Vector3d P = position + ri;
     bool ok = true;
     const double qi = leg_ik(i, P, ok);
     d.ik_ok = d.ik_ok && ok;
@@ -293,8 +446,35 @@ void LegChainMachine::compute_kinematics(LegChainData& d, const Pose& pose) cons
     d.s.col(i) = si;
     const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
     d.B(i) = leg.kind == LegKind::kUPS ? 1.0 : si.dot(dc);
-    d.A.block(i, 0, 1, 3) = si.transpose();
-    if (dof_ == 6) d.A.block(i, 3, 1, 3) = ri.cross(si).transpose();
+    a_full.block(i, 0, 1, 3) = si.transpose();
+    a_full.block(i, 3, 1, 3) = ri.cross(si).transpose();
+  }
+  // A = a_full T on the platform DOF.
+  switch (design_.mobility) {
+    case PlatformMobility::kSixDof:
+      d.T.setIdentity(6, 6);
+      d.A = a_full;
+      break;
+    case PlatformMobility::kTranslational:
+      d.T.setZero(6, 3);
+      d.T.topRows(3).setIdentity();
+      d.A = a_full.leftCols(3);
+      break;
+    case PlatformMobility::kSchoenflies:
+      d.T.setZero(6, 4);
+      d.T.topLeftCorner(3, 3).setIdentity();
+      d.T.block(3, 3, 3, 1) = design_.rotation_axis;
+      d.A.leftCols(3) = a_full.leftCols(3);
+      d.A.col(3) = a_full.rightCols(3) * design_.rotation_axis;
+      break;
+    case PlatformMobility::kPlanarLegs:
+      if (!planar_twist_map(position, R, d.T)) {
+        d.constraint_singular = true;
+        d.T.setZero(6, 3);
+        d.T(2, 0) = d.T(3, 1) = d.T(4, 2) = 1.0;
+      }
+      d.A = a_full * d.T;
+      break;
   }
   // Serial singularity: |B_i| small relative to its scale (1 for UPS/PUS, r_i for RUS).
   d.serial_singular = false;
@@ -307,6 +487,13 @@ void LegChainMachine::compute_kinematics(LegChainData& d, const Pose& pose) cons
   }
 }
 
+Eigen::MatrixXd LegChainMachine::twist_map(const Pose& pose) const {
+  const auto data = make_data();
+  auto& d = static_cast<LegChainData&>(*data);
+  compute_kinematics(d, pose);
+  return d.T;
+}
+
 void LegChainMachine::jacobians(const Pose& pose, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                                 Eigen::MatrixXd& J) const {
   LegChainData d;
@@ -317,6 +504,7 @@ void LegChainMachine::jacobians(const Pose& pose, Eigen::MatrixXd& A, Eigen::Mat
   d.q.resize(n);
   d.B.resize(n);
   d.A.resize(n, n);
+  d.T.resize(6, n);
   d.k.resize(n);
   compute_kinematics(d, pose);
   A = d.A;
@@ -328,13 +516,9 @@ void LegChainMachine::jacobians(const Pose& pose, Eigen::MatrixXd& A, Eigen::Mat
   }
 }
 
-bool LegChainMachine::reachable_from_kinematics(const LegChainData& d, const Pose& pose) const {
-  if (!d.ik_ok) return false;
-  if (design_.mobility == PlatformMobility::kTranslational &&
-      !(pose.angles.cwiseAbs().maxCoeff() <= 1e-12)) {
-    return false;
-  }
-  const Eigen::Matrix3d R = platform_rotation(pose);
+bool LegChainMachine::reachable_from_kinematics(const LegChainData& d, const Pose& /*pose*/) const {
+  if (!d.ik_ok || !d.pose_ok) return false;
+  const Eigen::Matrix3d& R = d.rotation;
   for (int i = 0; i < num_actuators(); ++i) {
     const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
     if (!(d.q(i) >= leg.q_min && d.q(i) <= leg.q_max)) return false;
@@ -362,7 +546,7 @@ void LegChainMachine::joint_angles(const Pose& pose, Eigen::VectorXd& base_angle
   const auto data = make_data();
   auto& d = static_cast<LegChainData&>(*data);
   compute_kinematics(d, pose);
-  const Eigen::Matrix3d R = platform_rotation(pose);
+  const Eigen::Matrix3d R = d.rotation;
   const int n = num_actuators();
   base_angles.resize(n);
   platform_angles.resize(n);
@@ -376,11 +560,15 @@ void LegChainMachine::joint_angles(const Pose& pose, Eigen::VectorXd& base_angle
 }
 
 std::optional<Eigen::VectorXd> LegChainMachine::inverse_kinematics(const Pose& pose) const {
-  const Eigen::Matrix3d R = platform_rotation(pose);
+  Eigen::Vector3d p;
+  Eigen::Matrix3d R;
+  if (!resolve_pose(pose, p, R) && design_.mobility == PlatformMobility::kPlanarLegs) {
+    return std::nullopt;
+  }
   Eigen::VectorXd q(num_actuators());
   for (int i = 0; i < num_actuators(); ++i) {
     bool ok = true;
-    q(i) = leg_ik(i, pose.position + R * platform_rel_.col(i), ok);
+    q(i) = leg_ik(i, p + R * platform_rel_.col(i), ok);
     if (!ok) return std::nullopt;
   }
   return q;
@@ -407,11 +595,11 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
   // Parallel singularity from the conditioning of A_h = A diag(1, 1/L) (the part of J_h that
   // does not depend on the actuators).
   MatM Ah = d.A;
-  if (dof_ == 6) Ah.rightCols(3) /= characteristic_length_;
+  Ah.rightCols(n - first_rotational_dof_) /= characteristic_length_;
   const Eigen::PartialPivLU<MatM> lu_a(d.A);
   d.det_a = std::isfinite(lu_a.determinant()) ? lu_a.determinant() : 0.0;
   const double rcond_a = reciprocal_condition(Ah);
-  d.parallel_singular = !(rcond_a >= kSingularRcond) || d.det_a == 0.0;
+  d.parallel_singular = !(rcond_a >= kSingularRcond) || d.det_a == 0.0 || d.constraint_singular;
 
   double rcond = 0.0;
   if (!d.serial_singular && !d.parallel_singular) {
@@ -432,14 +620,25 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
 
   // Generalised force on the platform DOF: T^T w.
   VecM w_dof(n);
-  w_dof = wrench.head(n);
+  if (design_.mobility == PlatformMobility::kSixDof ||
+      design_.mobility == PlatformMobility::kTranslational) {
+    w_dof = wrench.head(n);
+  } else {
+    w_dof = d.T.transpose() * wrench;
+  }
   // Rod forces f = A^-T w_dof; tau_i = B_i f_i.
   const VecM f = lu_a.transpose().solve(w_dof);
   out.tau = d.B.cwiseProduct(f).array() + 0.0;  // + 0.0: no negative zeros in files
 
-  // A^-1: its translational rows P give the TCP displacement per unit axial displacement.
+  // T_t A^-1 (T_t: the translational rows of T) gives the TCP displacement per unit axial
+  // displacement.
   const MatM Ainv = lu_a.inverse();
-  const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> P = Ainv.topRows(3);
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> P(3, n);
+  if (design_.mobility == PlatformMobility::kPlanarLegs) {
+    P = d.T.topRows(3) * Ainv;
+  } else {
+    P = Ainv.topRows(3);
+  }
   const Mat3M Pk = P * d.k.cwiseInverse().asDiagonal();
   Mat3<double> Ctt = Pk * P.transpose();
   Eigen::SelfAdjointEigenSolver<Mat3<double>> eig3;
@@ -493,6 +692,9 @@ FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,
     result.pose = design_.home;
     return result;
   }
+  Eigen::Vector3d start_p;
+  Eigen::Matrix3d start_R;
+  resolve_pose(start, start_p, start_R);
   if (design_.mobility == PlatformMobility::kTranslational) start.angles.setZero();
 
   // The actuated points and link lengths are fixed by q.
@@ -505,9 +707,14 @@ FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,
     const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
     L(i) = leg.kind == LegKind::kUPS ? q_target(i) : leg.link_length;
   }
-  // Levenberg-Marquardt on the closure errors g_i = |P_i - c_i| - L_i over the platform DOF;
-  // the Jacobian of g with respect to the DOF twist is A.
-  auto evaluate = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, VecM& g, MatM& jac) {
+  // Levenberg-Marquardt on the closure errors g_i = |P_i - c_i| - L_i; their Jacobian with
+  // respect to the full twist has rows [s_i^T, (r_i x s_i)^T]. 6-DOF and translational platforms
+  // solve on their DOF directly. Schoenflies and planar-leg platforms solve on the full twist
+  // with the mobility's own equations appended (6 x 6, all in m):
+  //   Schoenflies: L_c e1 . (R e) = 0, L_c e2 . (R e) = 0 (R keeps e; e1, e2 orthogonal to e);
+  //   planar legs: h_i = n_i . (P_i - base_point_i) = 0.
+  auto closure_rows = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, VecM& g, MatM& jac,
+                          bool full) {
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d ri = R * platform_rel_.col(i);
       const Eigen::Vector3d l = p + ri - c.col(i);
@@ -515,18 +722,59 @@ FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,
       g(i) = len - L(i);
       const Eigen::Vector3d si = len > 0.0 ? Eigen::Vector3d(l / len) : Eigen::Vector3d::Zero();
       jac.block(i, 0, 1, 3) = si.transpose();
-      if (dof_ == 6) jac.block(i, 3, 1, 3) = ri.cross(si).transpose();
+      if (full) jac.block(i, 3, 1, 3) = ri.cross(si).transpose();
     }
   };
-  const PoseClosureSolve<VecM> solve = solve_pose_closure<VecM, MatM>(
-      start.position, platform_rotation(start), dof_ == 6, n, options, evaluate);
-  return fk_result(solve, start, dof_ == 6, "leg closure error");
+  if (design_.mobility == PlatformMobility::kSixDof ||
+      design_.mobility == PlatformMobility::kTranslational) {
+    const bool rotates = dof_ == 6;
+    auto evaluate = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, VecM& g, MatM& jac) {
+      closure_rows(p, R, g, jac, rotates);
+    };
+    const PoseClosureSolve<VecM> solve =
+        solve_pose_closure<VecM, MatM>(start_p, start_R, rotates, n, options, evaluate);
+    return fk_result(solve, start, rotates, "leg closure error");
+  }
+  const double Lc = characteristic_length_;
+  const Eigen::Vector3d& e = design_.rotation_axis;
+  const Eigen::Vector3d e1 = e.unitOrthogonal();
+  const Eigen::Vector3d e2 = e.cross(e1);
+  auto evaluate = [&](const Eigen::Vector3d& p, const Eigen::Matrix3d& R, VecM& g, MatM& jac) {
+    jac.setZero();
+    closure_rows(p, R, g, jac, true);
+    if (design_.mobility == PlatformMobility::kSchoenflies) {
+      // d(R e) = omega x (R e): d(e_k . R e) = omega . ((R e) x e_k).
+      const Eigen::Vector3d Re = R * e;
+      g(4) = Lc * e1.dot(Re);
+      g(5) = Lc * e2.dot(Re);
+      jac.block(4, 3, 1, 3) = Lc * Re.cross(e1).transpose();
+      jac.block(5, 3, 1, 3) = Lc * Re.cross(e2).transpose();
+    } else {
+      for (int i = 0; i < 3; ++i) {
+        const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d ri = R * platform_rel_.col(i);
+        g(3 + i) = leg.plane_normal.dot(p + ri - leg.base_point);
+        jac.block(3 + i, 0, 1, 3) = leg.plane_normal.transpose();
+        jac.block(3 + i, 3, 1, 3) = ri.cross(leg.plane_normal).transpose();
+      }
+    }
+  };
+  const PoseClosureSolve<VecM> solve =
+      solve_pose_closure<VecM, MatM>(start_p, start_R, true, 6, options, evaluate);
+  FkResult full = fk_result(solve, start, true, "leg closure error");
+  if (design_.mobility == PlatformMobility::kSchoenflies && full.converged) {
+    // Report the rotation about e exactly (the solve keeps R e = e to its tolerance).
+    if (const auto exact = actual_pose(full.pose)) full.pose.angles = exact->angles;
+  }
+  return full;
 }
 
 Pose LegChainMachine::default_fk_start(const Eigen::VectorXd& q) const {
   Pose start = design_.home;
   if (!home_ik_ok_) return start;
-  const Eigen::Matrix3d R = platform_rotation(design_.home);
+  Eigen::Vector3d home_p;
+  Eigen::Matrix3d R;
+  resolve_pose(design_.home, home_p, R);
   Eigen::Vector3d p = home_leg_offset_;
   for (int i = 0; i < num_actuators(); ++i) {
     Eigen::Vector3d c, dc;
@@ -545,8 +793,13 @@ std::optional<Eigen::AlignedBox3d> LegChainMachine::workspace_search_box(
   Eigen::AlignedBox3d united;
   const int n = num_actuators();
   for (const Eigen::Matrix3d& R_in : orientations) {
-    const Eigen::Matrix3d R =
-        design_.mobility == PlatformMobility::kTranslational ? Eigen::Matrix3d::Identity() : R_in;
+    // The rotation the platform takes for R_in (projected for 3- and 4-DOF platforms).
+    Pose asked{Eigen::Vector3d::Zero(), angles_from_rotation(R_in)};
+    Eigen::Vector3d p_actual;
+    Eigen::Matrix3d R;
+    if (!resolve_pose(asked, p_actual, R) && design_.mobility == PlatformMobility::kPlanarLegs) {
+      continue;
+    }
     Eigen::AlignedBox3d box(Eigen::Vector3d::Constant(-kInf), Eigen::Vector3d::Constant(kInf));
     for (int i = 0; i < n; ++i) {
       const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
@@ -574,6 +827,18 @@ std::optional<Eigen::AlignedBox3d> LegChainMachine::workspace_search_box(
       }
       leg_box.translate(offset);
       box = box.intersection(leg_box);
+    }
+    if (design_.mobility == PlatformMobility::kPlanarLegs && !box.isEmpty()) {
+      // x and y are parasitic (the given ones are ignored): the box is the parasitic x, y at the
+      // ends of the z range (one point for vertical leg planes).
+      Eigen::AlignedBox3d planar;
+      for (const double z : {box.min().z(), box.max().z()}) {
+        asked.position.z() = z;
+        if (resolve_pose(asked, p_actual, R)) planar.extend(p_actual);
+      }
+      if (planar.isEmpty()) continue;
+      box.min().head<2>() = planar.min().head<2>();
+      box.max().head<2>() = planar.max().head<2>();
     }
     if (!box.isEmpty()) united.extend(box);
     if (design_.mobility == PlatformMobility::kTranslational) break;
@@ -772,6 +1037,51 @@ LegChainDesign hexaglide_design(const HexaglideDesign& p) {
 
 std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d) {
   return make_leg_chain_machine(hexaglide_design(d));
+}
+
+LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& p) {
+  require(std::isfinite(p.base_radius) && p.base_radius > 0.0,
+          "base_radius must be a finite number > 0");
+  require(std::isfinite(p.platform_radius) && p.platform_radius > 0.0,
+          "platform_radius must be a finite number > 0");
+  require(std::isfinite(p.tool_length), "tool_length must be a finite number");
+  LegChainDesign d;
+  d.model = "tripod_3prs";
+  d.mobility = PlatformMobility::kPlanarLegs;
+  for (int i = 0; i < 3; ++i) {
+    const double phi = deg_to_rad(-90.0 + 120.0 * i);
+    const Eigen::Vector3d u = radial(phi);
+    LegChainLeg leg;
+    leg.kind = LegKind::kPUS;
+    leg.base_point = p.base_radius * u;
+    leg.axis = Eigen::Vector3d::UnitZ();
+    leg.link_length = p.strut;
+    leg.platform_point = p.platform_radius * u;
+    leg.q_min = p.q_min;
+    leg.q_max = p.q_max;
+    leg.branch = 1;  // platform point on the +z side of the carriage: B_i = s_i . z > 0
+    apply_stiffness(leg, p.stiffness, 1);
+    leg.base_max_angle = p.revolute_max_angle;
+    leg.platform_max_angle = p.platform_max_angle;
+    leg.base_axis = Eigen::Vector3d::UnitZ();
+    leg.platform_axis = -Eigen::Vector3d::UnitZ();
+    leg.plane_normal = Eigen::Vector3d::UnitZ().cross(u);  // tangential
+    d.legs.push_back(leg);
+  }
+  d.tcp = Eigen::Vector3d(0, 0, p.tool_length);
+  d.characteristic_length = p.characteristic_length;
+  d.actuator_error = p.actuator_error;
+  // Home: level platform, carriages at mid-stroke.
+  const double dr = p.base_radius - p.platform_radius;
+  const double h2 = p.strut * p.strut - dr * dr;
+  d.home.position =
+      Eigen::Vector3d(0, 0, 0.5 * (p.q_min + p.q_max) + (h2 > 0.0 ? std::sqrt(h2) : p.strut)) +
+      d.tcp;
+  return d;
+}
+
+std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d) {
+  return make_leg_chain_machine(tripod_3prs_design(d));
 }
 
 std::string LegChainMachine::actuator_coordinates_requirement(const Eigen::VectorXd& q) const {

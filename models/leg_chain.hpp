@@ -1,5 +1,5 @@
 // The leg-chain family of parallel machines, and its named members (delta, linear_delta,
-// hexaglide).
+// hexaglide, tripod_3prs).
 //
 // Every leg closes one distance constraint between an actuated point c_i(q_i) on the base side
 // and a platform point P_i = p + R (b_i - tcp) (p, R: the TCP pose; b_i in the platform frame):
@@ -15,7 +15,25 @@
 //   kSixDof        6 legs, the platform moves freely; DOF twist [v; omega] (base axes, at the TCP).
 //   kTranslational 3 legs, the orientation is held at R = I by parallelogram rods (deltas,
 //                  linear deltas); DOF twist v. A pose with a rotation is not reachable.
-// The full twist is T xi with T = I (6-DOF) or T = [I; 0] (translational).
+//   kSchoenflies   4 legs (3T1R), the platform turns only about the fixed unit axis e
+//                  (`rotation_axis`, base frame): R = Rot(e, phi), the other two rotations held by
+//                  parallelogram strut pairs whose bars are parallel to e. DOF twist (v, omega_e).
+//                  A pose is reachable only if its R is a rotation about e (within 1e-9 rad);
+//                  phi is the twist angle of R about e (swing-twist split), and the metrics of a
+//                  pose off that set are those of R = Rot(e, phi).
+//   kPlanarLegs    3 legs, each kept in a plane by a revolute joint (3-PRS / 3-RPS tripod heads):
+//                  the platform point stays in the plane through base_point with normal
+//                  plane_normal_i (a plane that contains the actuated point's path):
+//                      h_i = n_i . (p + R (b_i - tcp) - base_point_i) = 0.
+//                  DOF (z, rx, ry) of the TCP pose, DOF twist (v_z, omega_x, omega_y); the
+//                  parasitic x, y, rz follow from h = 0 (Newton, from the home pose's x, y, rz).
+//                  The x, y, rz of a given pose are ignored: the machine is at its parasitic ones
+//                  (actual_pose()). The planes must fix x, y, rz (G_p below invertible).
+// The full twist is T xi: T = I (6-DOF), [I; 0] (translational), [I 0; 0 e] (6x4, Schoenflies),
+// and for planar legs, with G (3x6) row i = [n_i^T, (r_i x n_i)^T] the plane constraints' twist
+// Jacobian split into the parasitic columns G_p (v_x, v_y, omega_z) and the DOF columns G_d
+// (v_z, omega_x, omega_y): T = identity on the DOF rows and -G_p^-1 G_d on the parasitic rows.
+// G_p singular is reported as a parallel (constraint) singularity.
 //
 // Velocity equations: differentiating the constraints,  A xi = B q_dot  with
 //   A (m x m): row i = [s_i^T, (r_i x s_i)^T] T,  r_i = R (b_i - tcp);
@@ -27,12 +45,17 @@
 // IK is closed form per leg. The two solutions of PUS and RUS legs are told apart by the sign of
 // B_i: branch +1 takes B_i > 0, branch -1 takes B_i < 0 (B_i = 0 is the serial singularity
 // between them). For the delta (CONVENTIONS.md) branch +1 is the elbow-out solution.
+// FK: Levenberg-Marquardt (models/pose_solver.hpp) on the closure errors |P_i - c_i| - L_i;
+// 6-DOF and translational platforms solve on their DOF; Schoenflies and planar-leg platforms on
+// the full twist with their mobility equations appended (6 x 6, all in m): L e1 . (R e) = 0 and
+// L e2 . (R e) = 0 (e1, e2 orthogonal to e), resp. h_i = 0.
 //
 // Metrics (same names and meanings as the hexapod, CONVENTIONS.md):
 //   q_i: m (UPS, PUS), rad (RUS; degrees in files).
 //   tau: J^T tau = T^T w, the actuator forces (N) / torques (N*m) balancing the wrench w at the
-//     TCP; for 3-DOF platforms only the components of w along the platform DOF load the
-//     actuators (the rest is taken by the passive constraints). Equivalently the rod forces are
+//     TCP; for platforms with fewer than 6 DOF only the components T^T w of w along the platform
+//     DOF load the actuators (the rest is taken by the passive constraints: parallelograms,
+//     the tripod's revolute joints). Equivalently the rod forces are
 //     f = A^-T T^T w (tension positive) and tau_i = B_i f_i.
 //   Axial stiffness of leg i, seen at the platform point along s_i:
 //     k_i = 1 / (B_i^2 / k_act_i + 1 / k_link_i),
@@ -40,13 +63,16 @@
 //     axial stiffness: axial_stiffness, or E * area * rods / length (length q_i for UPS, the
 //     constant strut/rod length otherwise; `rods` = 2 for a parallelogram pair).
 //     K = A^T diag(k) A on the platform DOF; C = K^-1; C_tt the translational 3x3 block of
-//     T C T^T; stiffness_min = 1 / lambda_max(C_tt) (N/m).
-//   singularity_margin = 1 / cond(J_h), J_h = J diag(1 for translations, 1/L for rotations),
-//     0 at a serial or a parallel singularity.
+//     T C T^T; stiffness_min = 1 / lambda_max(C_tt) (N/m). (The passive constraints - parallelogram
+//     bars, the tripod's revolute joints - are taken as rigid.)
+//   singularity_margin = 1 / cond(J_h), J_h = J diag(1 for translational DOF, 1/L for rotational
+//     DOF), 0 at a serial or a parallel singularity.
 //   det_j = det J.
 //   tcp_error_max: max over |dq_i| <= actuator_error of |(T J^-1 dq)_position| (at a vertex).
 //   Reachable: every leg's IK exists on its branch, q_i within [q_min, q_max] (the crank range
-//     for RUS), every joint angle within its limit, and (translational platforms) no rotation.
+//     for RUS), every joint angle within its limit, and the pose's rotation is one the platform
+//     can take (R = I translational, R = Rot(e, phi) Schoenflies; planar legs: the parasitic
+//     solve converged).
 //     Base-side joint angle: angle(s_i, base_axis_i), base_axis_i fixed in the base for UPS and
 //     PUS and carried by the crank for RUS (given at q = 0); platform joint angle:
 //     angle(-s_i, R platform_axis_i).
@@ -56,13 +82,17 @@
 //
 // Units: metres, radians, newtons, N/m, N*m/rad inside the code.
 //
-// Example:
+// Examples:
 //   pkmopt::DeltaDesign d;           // an ABB IRB 360-like delta, see DeltaDesign
 //   auto machine = pkmopt::make_delta(d);
 //   auto data = machine->make_data();
 //   pkmopt::PoseMetrics m;
 //   machine->analyze(*data, pkmopt::Pose{{0, 0, -0.9}, {0, 0, 0}}, pkmopt::Wrench::Zero(), m);
 //   // m.q: drive angles (rad), m.tau: torques (N*m)
+//   auto tripod = pkmopt::make_tripod_3prs(pkmopt::Tripod3PrsDesign{});   // Sprint Z3-like
+//   // pose z = 1.2 m, rx = 30 deg, ry = -20 deg; its x, y, rz are replaced by the parasitic ones
+//   pkmopt::Pose pose{{0, 0, 1.2}, pkmopt::deg_to_rad(Eigen::Vector3d(30, -20, 0))};
+//   tripod->analyze(*tripod->make_data(), pose, pkmopt::Wrench::Zero(), m);   // m.q: slides (m)
 #pragma once
 
 #include <Eigen/Core>
@@ -80,7 +110,7 @@
 namespace pkmopt {
 
 enum class LegKind { kUPS, kPUS, kRUS };
-enum class PlatformMobility { kSixDof, kTranslational };
+enum class PlatformMobility { kSixDof, kTranslational, kSchoenflies, kPlanarLegs };
 
 /// One leg of a leg-chain machine. Units: m, rad, N/m, Pa, m^2.
 struct LegChainLeg {
@@ -112,13 +142,21 @@ struct LegChainLeg {
   double platform_max_angle = std::numeric_limits<double>::infinity();
   Eigen::Vector3d base_axis = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d platform_axis = -Eigen::Vector3d::UnitZ();
+
+  /// kPlanarLegs: normal n_i of the leg's plane (the axis of its passive revolute joint), base
+  /// frame; the plane passes through base_point. Normalised by the machine; the actuated point's
+  /// path must lie in the plane (PUS: axis . n = 0; RUS: crank axis parallel to n).
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitY();
 };
 
 /// Everything that defines a leg-chain machine. Validated by the LegChainMachine constructor.
 struct LegChainDesign {
   std::string model = "leg_chain";  ///< reported by Machine::model()
   PlatformMobility mobility = PlatformMobility::kSixDof;
-  std::vector<LegChainLeg> legs;                  ///< 6 (kSixDof) or 3 (kTranslational)
+  /// 6 (kSixDof), 3 (kTranslational, kPlanarLegs) or 4 (kSchoenflies)
+  std::vector<LegChainLeg> legs;
+  /// kSchoenflies: the platform's rotation axis e, base frame (normalised by the machine).
+  Eigen::Vector3d rotation_axis = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();  ///< TCP in the platform frame (m)
   /// L in J_h; when empty, the mean distance from the TCP to the platform points.
   std::optional<double> characteristic_length;
@@ -137,10 +175,15 @@ class LegChainData : public MachineData {
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> q;  ///< actuator coordinates
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> B;  ///< diag of B
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> A;  ///< m x m
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> k;               ///< axial leg stiffness (N/m)
-  bool ik_ok = true;                                                 ///< every leg's IK exists
-  bool serial_singular = false;                                      ///< some |B_i| numerically 0
-  bool parallel_singular = false;                                    ///< A numerically singular
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> T;     ///< full twist = T * DOF twist (6 x m)
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> k;     ///< axial leg stiffness (N/m)
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();      ///< TCP position actually used
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< platform rotation actually used
+  bool pose_ok = true;  ///< the given rotation is one the platform can take (parasitic solved)
+  bool constraint_singular = false;  ///< planar legs: G_p singular (T undefined)
+  bool ik_ok = true;                 ///< every leg's IK exists
+  bool serial_singular = false;      ///< some |B_i| numerically 0
+  bool parallel_singular = false;    ///< A numerically singular
   double det_a = 0.0;
   double det_b = 0.0;
 };
@@ -168,11 +211,21 @@ class LegChainMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
-  /// Row i: [s_i^T, (r_i x s_i)^T] / B_i (false when a leg cannot close or some B_i = 0).
+  /// Row i: [s_i^T, (r_i x s_i)^T] / B_i at actual_pose(pose) (false when a leg cannot close or
+  /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
 
-  /// Closed-form IK of every leg on its branch; nullopt when a leg cannot close.
+  /// Closed-form IK of every leg on its branch (at actual_pose(pose)); nullopt when a leg cannot
+  /// close or the parasitic motion cannot be solved.
   std::optional<Eigen::VectorXd> inverse_kinematics(const Pose& pose) const;
+  /// The TCP pose the platform takes when asked for `pose`: unchanged (6-DOF), R = I
+  /// (translational), R = Rot(e, phi) with phi the twist of R about e (Schoenflies), the
+  /// parasitic x, y, rz solved from z, rx, ry (planar legs). nullopt when the parasitic solve
+  /// fails.
+  std::optional<Pose> actual_pose(const Pose& pose) const;
+  /// Index of the first rotational platform DOF (DOF twist columns from there on are angular
+  /// velocities): 3 (6-DOF, Schoenflies), dof() (translational: none), 1 (planar legs).
+  int first_rotational_dof() const { return first_rotational_dof_; }
   /// The actuated point c_i(q) and its derivative dc_i/dq.
   void actuated_point(int leg, double q, Eigen::Vector3d& c, Eigen::Vector3d& dc) const;
   /// Kinematics at a pose into data (q by IK, s, r, c, A, B, singularity flags); returns the
@@ -181,6 +234,8 @@ class LegChainMachine final : public Machine {
   /// The m x m matrices A and B = diag(B_i) and J = B^-1 A at a pose (empty J if det B = 0).
   void jacobians(const Pose& pose, Eigen::MatrixXd& A, Eigen::MatrixXd& B,
                  Eigen::MatrixXd& J) const;
+  /// The 6 x m map T from the DOF twist to the full TCP twist at (the actual pose of) a pose.
+  Eigen::MatrixXd twist_map(const Pose& pose) const;
   /// Reachability from computed kinematics (ranges, IK existence, joint limits, orientation).
   bool reachable_from_kinematics(const LegChainData& data, const Pose& pose) const;
   /// Base-side and platform joint angles (rad) of every leg at a pose.
@@ -188,13 +243,20 @@ class LegChainMachine final : public Machine {
                     Eigen::VectorXd& platform_angles) const;
 
  private:
-  Eigen::Matrix3d platform_rotation(const Pose& pose) const;
+  /// The actual TCP position and platform rotation of a pose; false when the pose's rotation is
+  /// not one the platform can take (it is projected) or the parasitic solve failed.
+  bool resolve_pose(const Pose& pose, Eigen::Vector3d& position, Eigen::Matrix3d& R) const;
+  /// Plane constraint residuals h_i and the 6 x m twist map at a platform pose (planar legs);
+  /// false when G_p is singular.
+  bool planar_twist_map(const Eigen::Vector3d& p, const Eigen::Matrix3d& R,
+                        Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>& T) const;
   /// The home pose moved by the mean displacement of the actuated points from home to q.
   Pose default_fk_start(const Eigen::VectorXd& q) const;
   double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
 
   LegChainDesign design_;
   int dof_ = 6;
+  int first_rotational_dof_ = 3;
   bool revolute_ = false;
   double characteristic_length_ = 1.0;
   Eigen::Matrix<double, 3, Eigen::Dynamic> platform_rel_;  // b_i - tcp
@@ -292,5 +354,33 @@ struct HexaglideDesign {
 };
 LegChainDesign hexaglide_design(const HexaglideDesign& d);
 std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d);
+
+/// 3-PRS tripod head like the DS Technologie Sprint Z3: three slides parallel to the head axis
+/// at base_radius, azimuths -90 + 120 (i - 1) deg; each carriage carries a revolute joint whose
+/// axis is horizontal and tangential (n_i = (-sin a_i, cos a_i, 0)), so strut i (constant length
+/// `strut`) stays in the vertical plane through the head axis and slide i; a spherical joint at
+/// platform_radius joins it to the platform. Base frame (CONVENTIONS.md, tripods): z along the
+/// slides from the base towards the platform (for a head hanging from a gantry z points down,
+/// towards the workpiece); q_i = carriage position along +z (m). The platform is on the +z side of
+/// the carriages (branch +1); the TCP is tool_length beyond the platform centre along the
+/// platform's +z (tcp = (0, 0, tool_length)). DOF (z, rx, ry); x, y, rz parasitic
+/// (kPlanarLegs). Defaults: base_radius 0.30, platform_radius 0.15, strut 0.55, stroke
+/// [0, 0.95] m, tool_length 0.20 m - they reach rx, ry within +-40 deg over a Z travel of more
+/// than 670 mm (docs/machines.md gives the figures).
+struct Tripod3PrsDesign {
+  double base_radius = 0.30;      ///< m, head axis to each slide
+  double platform_radius = 0.15;  ///< m, platform centre to each spherical joint
+  double strut = 0.55;            ///< m
+  double q_min = 0.0;             ///< m, slide stroke
+  double q_max = 0.95;
+  double tool_length = 0.20;                            ///< m, TCP beyond the platform centre
+  double revolute_max_angle = 50.0 * kDegToRad;         ///< rad, strut from the slide's +z
+  double platform_max_angle = 70.0 * kDegToRad;         ///< rad, strut from the platform normal
+  LinkStiffness stiffness{0.0, 2.1e11, 6.0e-4, 2.0e8};  ///< struts (steel), ball-screw drives
+  std::optional<double> characteristic_length;
+  double actuator_error = 1e-5;  ///< m
+};
+LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& d);
+std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d);
 
 }  // namespace pkmopt

@@ -1,5 +1,6 @@
 // Tests of the leg-chain machine files (app/machine_file_leg_chain) and of `pkmopt analyze`,
-// `fk` and `workspace` on a delta and a hexaglide: results agree with the library, revolute
+// `fk`, `workspace` and `describe` on a delta, a hexaglide, a Schoenflies machine in the generic
+// `leg_chain` form and the tripod_3prs head: results agree with the library, revolute
 // coordinates are in degrees, bad input exits with status 2 and one message.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/csv.hpp"
 #include "app/input_error.hpp"
 #include "app/machine_file.hpp"
 #include "app/machine_file_leg_chain.hpp"
@@ -190,6 +192,220 @@ TEST_F(LegChainCli, WorkspaceOfTheDelta) {
   EXPECT_TRUE(fs::exists(out / "summary.json"));
   const std::string summary = cli_runner::read_text(out / "summary.json");
   EXPECT_NE(summary.find("\"model\": \"delta\""), std::string::npos);
+}
+
+TEST_F(LegChainCli, SchoenfliesAndTripodExamplesLoad) {
+  const auto schoenflies = load_machine_file(example("schoenflies_4pus.yaml"));
+  EXPECT_EQ(schoenflies->model(), "leg_chain");
+  EXPECT_EQ(schoenflies->num_actuators(), 4);
+  const auto& lc = dynamic_cast<const LegChainMachine&>(*schoenflies);
+  EXPECT_EQ(lc.design().mobility, PlatformMobility::kSchoenflies);
+  EXPECT_EQ(lc.design().rotation_axis, Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(lc.design().legs[1].base_point, Eigen::Vector3d(0.0, 0.4, 0.0));
+  EXPECT_EQ(lc.design().legs[1].rods, 2);
+  EXPECT_EQ(lc.design().legs[1].branch, -1);
+  EXPECT_DOUBLE_EQ(lc.design().legs[1].base_max_angle, deg_to_rad(80));
+  const auto tripod = load_machine_file(example("tripod_3prs.yaml"));
+  EXPECT_EQ(tripod->model(), "tripod_3prs");
+  EXPECT_EQ(tripod->num_actuators(), 3);
+  const Tripod3PrsDesign d =
+      read_tripod_3prs_design(YamlValue::load_file(example("tripod_3prs.yaml")));
+  const Tripod3PrsDesign defaults;
+  EXPECT_EQ(d.base_radius, defaults.base_radius);
+  EXPECT_EQ(d.platform_radius, defaults.platform_radius);
+  EXPECT_EQ(d.strut, defaults.strut);
+  EXPECT_EQ(d.q_min, defaults.q_min);
+  EXPECT_EQ(d.q_max, defaults.q_max);
+  EXPECT_EQ(d.tool_length, defaults.tool_length);
+  EXPECT_DOUBLE_EQ(d.revolute_max_angle, defaults.revolute_max_angle);
+  EXPECT_DOUBLE_EQ(d.platform_max_angle, defaults.platform_max_angle);
+}
+
+// analyze and fk on the Schoenflies example: a pose turned about e = z round-trips; a tilted pose
+// is not reachable.
+TEST_F(LegChainCli, AnalyzeAndFkOnTheSchoenfliesExample) {
+  const std::string poses =
+      write("poses.csv", "x,y,z,rx,ry,rz\n0.03,-0.02,0.05,0,0,15\n0.03,-0.02,0.05,2,0,15\n");
+  const CliRun r = run("analyze " + example("schoenflies_4pus.yaml") + " --poses " + poses +
+                       " --wrench 10,-20,-100,1,2,3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 3u);
+  const auto a = split(rows[1]);
+  ASSERT_EQ(a.size(), 19u);
+  EXPECT_EQ(a[6], "1");
+  EXPECT_EQ(split(rows[2])[6], "0");
+  std::string q;
+  for (int i = 0; i < 4; ++i) q += (i ? "," : "") + a[static_cast<std::size_t>(7 + i)];
+  for (int i = 0; i < 4; ++i)
+    EXPECT_TRUE(std::isfinite(std::stod(a[static_cast<std::size_t>(11 + i)])));
+  const CliRun fk = run("fk " + example("schoenflies_4pus.yaml") + " --q " + q);
+  ASSERT_EQ(fk.status, 0) << fk.err;
+  const auto f = split(lines(fk.out)[1]);
+  const double expected[6] = {0.03, -0.02, 0.05, 0, 0, 15};
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(std::stod(f[static_cast<std::size_t>(k)]), expected[k], 1e-8);
+  const CliRun describe = run("describe " + example("schoenflies_4pus.yaml"));
+  ASSERT_EQ(describe.status, 0) << describe.err;
+  EXPECT_NE(describe.out.find("dof: 4 (3 translations, 1 rotations)"), std::string::npos)
+      << describe.out;
+}
+
+// analyze on the tripod: the given x, y, rz are ignored (parasitic); fk of the computed slide
+// positions returns z, rx, ry and the parasitic x, y, rz; workspace and describe run.
+TEST_F(LegChainCli, AnalyzeFkWorkspaceDescribeOnTheTripod) {
+  const std::string poses =
+      write("poses.csv", "x,y,z,rx,ry,rz\n0,0,1.2,30,-20,0\n0.5,-0.5,1.2,30,-20,7\n");
+  const CliRun r = run("analyze " + example("tripod_3prs.yaml") + " --poses " + poses);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 3u);
+  const auto a = split(rows[1]);
+  const auto b = split(rows[2]);
+  ASSERT_EQ(a.size(), 17u);
+  EXPECT_EQ(a[6], "1");
+  for (std::size_t k = 6; k < a.size(); ++k) EXPECT_EQ(a[k], b[k]) << k;  // same machine pose
+  const CliRun fk =
+      run("fk " + example("tripod_3prs.yaml") + " --q " + a[7] + "," + a[8] + "," + a[9]);
+  ASSERT_EQ(fk.status, 0) << fk.err;
+  const auto f = split(lines(fk.out)[1]);
+  EXPECT_NEAR(std::stod(f[2]), 1.2, 1e-9);
+  EXPECT_NEAR(std::stod(f[3]), 30, 1e-8);
+  EXPECT_NEAR(std::stod(f[4]), -20, 1e-8);
+  const auto machine = load_machine_file(example("tripod_3prs.yaml"));
+  const auto actual = dynamic_cast<const LegChainMachine&>(*machine).actual_pose(
+      Pose{{0, 0, 1.2}, deg_to_rad(Eigen::Vector3d(30, -20, 0))});
+  ASSERT_TRUE(actual.has_value());
+  EXPECT_NEAR(std::stod(f[0]), actual->position.x(), 1e-9);
+  EXPECT_NEAR(std::stod(f[1]), actual->position.y(), 1e-9);
+  EXPECT_NEAR(std::stod(f[5]), rad_to_deg(actual->angles(2)), 1e-8);
+  EXPECT_GT(actual->position.head<2>().norm(), 1e-3);  // parasitic x, y of several mm
+
+  // Workspace of the level head: its bounding box spans the z travel of the level platform,
+  // from the strut drop sqrt(0.55^2 - 0.15^2) plus the tool (0.2 m) to that plus the stroke.
+  const fs::path out = dir_ / "ws";
+  const CliRun ws = run("workspace " + example("tripod_3prs.yaml") + " --resolution 0.05 --out " +
+                        out.string() + " --slice-pixel 0.01");
+  ASSERT_EQ(ws.status, 0) << ws.err;
+  const std::string summary = cli_runner::read_text(out / "summary.json");
+  const auto bbox = summary.find("\"bounding_box\"");
+  ASSERT_NE(bbox, std::string::npos) << summary;
+  // "min": [x, y, z] then "max": [x, y, z]: the third numbers.
+  auto third_number_after = [&](const std::string& key, std::size_t from) {
+    std::size_t at = summary.find(key, from);
+    at = summary.find('[', at);
+    std::string inner = summary.substr(at + 1, summary.find(']', at) - at - 1);
+    const auto parts = split(inner);
+    return std::stod(parts.at(2));
+  };
+  const double drop = std::sqrt(0.55 * 0.55 - 0.15 * 0.15) + 0.2;
+  EXPECT_NEAR(third_number_after("\"min\"", bbox), drop, 1e-3);
+  EXPECT_NEAR(third_number_after("\"max\"", bbox), drop + 0.95, 1e-3);
+  const CliRun describe = run("describe " + example("tripod_3prs.yaml"));
+  ASSERT_EQ(describe.status, 0) << describe.err;
+  EXPECT_NE(describe.out.find("dof: 3 (1 translations, 2 rotations)"), std::string::npos)
+      << describe.out;
+}
+
+// The generic form written from the tripod_3prs design (mobility planar_legs) is the same
+// machine: same actuator coordinates, metrics and parasitic pose.
+TEST_F(LegChainCli, GenericFileReproducesTheTripod) {
+  const LegChainDesign d = tripod_3prs_design(Tripod3PrsDesign{});
+  auto vec = [](const Eigen::Vector3d& v) {
+    return "[" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) +
+           "]";
+  };
+  std::string text = "model: leg_chain\nmobility: planar_legs\ntool: {tcp: " + vec(d.tcp) +
+                     "}\nhome: {position: " + vec(d.home.position) + "}\nlegs:\n";
+  for (const LegChainLeg& leg : d.legs) {
+    text += "  - kind: PUS\n    base_point: " + vec(leg.base_point) +
+            "\n    axis: " + vec(leg.axis) +
+            "\n    link_length: " + format_number(leg.link_length) +
+            "\n    platform_point: " + vec(leg.platform_point) + "\n    range: [" +
+            format_number(leg.q_min) + ", " + format_number(leg.q_max) +
+            "]\n    link: {E: " + format_number(leg.E) + ", area: " + format_number(leg.area) +
+            "}\n    actuator_stiffness: " + format_number(leg.actuator_stiffness) +
+            "\n    joints: {base_max_angle_deg: " + format_number(rad_to_deg(leg.base_max_angle)) +
+            ", platform_max_angle_deg: " + format_number(rad_to_deg(leg.platform_max_angle)) +
+            ", base_axis: " + vec(leg.base_axis) + ", platform_axis: " + vec(leg.platform_axis) +
+            "}\n    plane_normal: " + vec(leg.plane_normal) + "\n";
+  }
+  const auto generic = load_machine_file(write("generic.yaml", text));
+  const auto named = make_tripod_3prs(Tripod3PrsDesign{});
+  auto dg = generic->make_data();
+  auto dn = named->make_data();
+  const Pose pose{{0, 0, 1.1}, deg_to_rad(Eigen::Vector3d(25, -15, 0))};
+  Wrench w;
+  w << 100, -50, -300, 5, 10, -2;
+  PoseMetrics mg, mn;
+  generic->analyze(*dg, pose, w, mg);
+  named->analyze(*dn, pose, w, mn);
+  EXPECT_TRUE(mn.reachable);
+  EXPECT_EQ(mg.reachable, mn.reachable);
+  EXPECT_NEAR((mg.q - mn.q).norm(), 0.0, 1e-14);
+  EXPECT_NEAR((mg.tau - mn.tau).norm(), 0.0, 1e-9 * mn.tau.norm());
+  EXPECT_NEAR(mg.stiffness_min, mn.stiffness_min, 1e-9 * mn.stiffness_min);
+  EXPECT_NEAR(mg.singularity_margin, mn.singularity_margin, 1e-12);
+  const CliRun describe = run("describe " + write("generic2.yaml", text));
+  ASSERT_EQ(describe.status, 0) << describe.err;
+  EXPECT_NE(describe.out.find("dof: 3 (1 translations, 2 rotations)"), std::string::npos);
+}
+
+TEST_F(LegChainCli, BadLegChainAndTripodFilesExitWithStatusTwo) {
+  const std::string leg =
+      "  - kind: PUS\n    base_point: [0.4, 0, 0]\n    axis: [0, 0, 1]\n    link_length: 0.5\n"
+      "    platform_point: [0.06, 0.1, 0]\n    range: [-0.5, 1.0]\n    branch: -1\n"
+      "    link: {E: 7.0e10, area: 3.0e-5, rods: 2}\n";
+  std::string four;
+  for (int k = 0; k < 4; ++k) four += leg;
+  const std::string head = "model: leg_chain\nmobility: schoenflies\nlegs:\n";
+  const std::string tripod =
+      "model: tripod_3prs\nbase_radius: 0.3\nplatform_radius: 0.15\nstruts: {E: 2.1e11, "
+      "area: 6e-4}\n";
+  const std::string poses = write("poses.csv", "x,y,z\n0,0,0\n");
+  const struct {
+    std::string text;
+    std::string fragment;
+  } cases[] = {
+      {"model: leg_chain\nmobility: wobbly\nlegs:\n" + four, "mobility"},
+      {head + leg + leg + leg, "legs"},           // 3 legs, 4 expected
+      {head + four + "  - kind: XYZ\n", "legs"},  // 5 legs
+      {"model: leg_chain\nmobility: schoenflies\nrotation_axis: [0, 0, 0]\nlegs:\n" + four,
+       "rotation_axis"},
+      {"model: leg_chain\nmobility: translational\nrotation_axis: [0, 0, 1]\nlegs:\n" + leg + leg +
+           leg,
+       "rotation_axis"},
+      {head + leg + leg + leg + "  - kind: RUS\n    base_point: [0, 0, 0]\n", "legs[3]"},
+      {head + leg + leg + leg + leg + "    colour: red\n", "colour"},
+      {head + leg + leg + leg +
+           "  - kind: PUS\n    base_point: [0.4, 0, 0]\n    axis: [0, 0, "
+           "1]\n    link_length: 0.5\n    platform_point: [0.06, 0.1, 0]\n    range: [1.0, -0.5]\n"
+           "    link: {E: 7.0e10, area: 3.0e-5}\n",
+       "range"},
+      {head + leg + leg + leg +
+           "  - kind: PUS\n    base_point: [0.4, 0, 0]\n    axis: [0, 0, "
+           "1]\n    link_length: 0.5\n    platform_point: [0.06, 0.1, 0]\n    range: [-0.5, 1.0]\n"
+           "    branch: 2\n    link: {E: 7.0e10, area: 3.0e-5}\n",
+       "branch"},
+      {head + leg + leg + leg +
+           "  - kind: UPS\n    base_point: [0.4, 0, 0]\n"
+           "    platform_point: [0.06, 0.1, 0]\n    range: [0.5, 1.0]\n"
+           "    link: {E: 7.0e10, area: 3.0e-5}\n    link_length: 0.5\n",
+       "link_length"},
+      {tripod + "strut: -0.55\nstroke: [0, 0.95]\n", "strut"},
+      {tripod + "strut: 0.55\nstroke: [0.95, 0]\n", "stroke"},
+      {tripod + "strut: 0.55\n", "stroke"},
+      {tripod + "strut: 0.55\nstroke: [0, 0.95]\njoints: {revolute_max_angle_deg: 200}\n",
+       "revolute_max_angle_deg"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    const std::string machine = write("bad" + std::to_string(k++) + ".yaml", c.text);
+    const fs::path out = dir_ / "out.csv";
+    const CliRun r = run("analyze " + machine + " --poses " + poses + " --out " + out.string());
+    expect_input_error(r, c.fragment);
+    EXPECT_FALSE(fs::exists(out)) << c.text;
+  }
 }
 
 TEST_F(LegChainCli, BadFilesExitWithStatusTwo) {

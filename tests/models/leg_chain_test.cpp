@@ -25,30 +25,58 @@ double wrap_angle_for_test(double a) { return std::remainder(a, 2.0 * kPi); }
 
 using sample_machines::Uniform;  // seeded splitmix64, bit-reproducible
 
-// The pose moved by h along platform DOF j: translation along base axis j (j < 3) or rotation
-// by h about base axis j - 3 through the TCP (R <- exp(h e) R).
-Pose moved(const Pose& pose, int j, double h) {
+// The pose moved by h along platform DOF j: by the full twist h T e_j (T = m.twist_map at the
+// pose): the TCP moves by h T_v e_j, the platform turns by h T_omega e_j about the base axes
+// through the TCP (R <- exp(h T_omega e_j) R).
+Pose moved(const LegChainMachine& m, const Pose& pose, int j, double h) {
+  const Eigen::MatrixXd T = m.twist_map(pose);
   Pose out = pose;
-  if (j < 3) {
-    out.position(j) += h;
-  } else {
-    const Eigen::Matrix3d R =
-        rotation_from_vector(h * Eigen::Vector3d::Unit(j - 3)) * rotation_zyx<double>(pose.angles);
-    out.angles = angles_from_rotation(R);
+  out.position += h * T.block(0, j, 3, 1);
+  const Eigen::Vector3d omega = h * T.block(3, j, 3, 1);
+  if (omega.norm() > 0.0) {
+    out.angles =
+        angles_from_rotation(rotation_from_vector(omega) * rotation_zyx<double>(pose.angles));
   }
   return out;
 }
 
-// Closure error of leg i: |P_i(pose) - c_i(q)| - L_i(q).
+// Closure error of leg i at a platform pose taken as given (no projection): |P_i - c_i(q)| - L_i.
 double closure(const LegChainMachine& m, int i, const Pose& pose, double q) {
   const LegChainLeg& leg = m.design().legs[static_cast<std::size_t>(i)];
-  const Eigen::Matrix3d R =
-      m.dof() == 6 ? rotation_zyx<double>(pose.angles) : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d R = m.design().mobility == PlatformMobility::kTranslational
+                                ? Eigen::Matrix3d::Identity()
+                                : rotation_zyx<double>(pose.angles);
   const Eigen::Vector3d P = pose.position + R * (leg.platform_point - m.design().tcp);
   Eigen::Vector3d c, dc;
   m.actuated_point(i, q, c, dc);
   const double L = leg.kind == LegKind::kUPS ? q : leg.link_length;
   return (P - c).norm() - L;
+}
+
+// A random pose the platform can take near its home pose: position within +-dx, and rotations
+// within +-dangle about the base axes (6-DOF), about e (Schoenflies), or rx, ry with the
+// parasitic x, y, rz (planar legs).
+Pose random_pose(const LegChainMachine& m, Uniform& u, double dx, double dangle) {
+  Pose p = m.design().home;
+  for (int k = 0; k < 3; ++k) p.position(k) += u(-dx, dx);
+  switch (m.design().mobility) {
+    case PlatformMobility::kSixDof:
+      for (int k = 0; k < 3; ++k) p.angles(k) = u(-dangle, dangle);
+      break;
+    case PlatformMobility::kTranslational:
+      break;
+    case PlatformMobility::kSchoenflies:
+      p.angles = angles_from_rotation(
+          Eigen::AngleAxisd(u(-dangle, dangle), m.design().rotation_axis).toRotationMatrix());
+      break;
+    case PlatformMobility::kPlanarLegs: {
+      p.angles = Eigen::Vector3d(u(-dangle, dangle), u(-dangle, dangle), 0.0);
+      const auto actual = m.actual_pose(p);
+      if (actual) p = *actual;
+      break;
+    }
+  }
+  return p;
 }
 
 // Random poses around the home pose that the machine reaches (IK exists, not singular).
@@ -59,17 +87,50 @@ std::vector<Pose> sample_poses(const LegChainMachine& m, std::uint64_t seed, int
   auto data = m.make_data();
   PoseMetrics metrics;
   for (int tries = 0; tries < 100 * count && static_cast<int>(poses.size()) < count; ++tries) {
-    Pose p = m.design().home;
-    for (int k = 0; k < 3; ++k) p.position(k) += u(-dx, dx);
-    if (m.dof() == 6) {
-      for (int k = 0; k < 3; ++k) p.angles(k) = u(-dangle, dangle);
-    }
+    const Pose p = random_pose(m, u, dx, dangle);
     m.analyze(*data, p, Wrench::Zero(), metrics);
     if (m.inverse_kinematics(p) && !metrics.singular && metrics.singularity_margin > 1e-3) {
       poses.push_back(p);
     }
   }
   return poses;
+}
+
+// A Schoenflies (3T1R) test machine: four carriages on vertical guides at azimuths 90 k deg,
+// radius 0.4 m, struts of 0.5 m (parallelogram pairs, bars parallel to e = z) to platform points
+// at radius 0.12 m turned by +offset (even k) or -offset (odd k) from their guides, platform
+// below the carriages. (Equal offsets would be singular at the centre: raising the platform and
+// turning it about z would change the four strut ends alike. Offset 0: no strut has a lever arm
+// about z - a parallel singularity.) Turned as a whole by Q (e = Q z).
+LegChainDesign schoenflies_sample(double offset_deg = 60.0,
+                                  const Eigen::Matrix3d& Q = Eigen::Matrix3d::Identity()) {
+  LegChainDesign d;
+  d.model = "schoenflies_sample";
+  d.mobility = PlatformMobility::kSchoenflies;
+  d.rotation_axis = Q * Eigen::Vector3d::UnitZ();
+  for (int k = 0; k < 4; ++k) {
+    const double a = deg_to_rad(90.0 * k);
+    const double b = a + deg_to_rad(k % 2 == 0 ? offset_deg : -offset_deg);
+    LegChainLeg leg;
+    leg.kind = LegKind::kPUS;
+    leg.base_point = Q * Eigen::Vector3d(0.4 * std::cos(a), 0.4 * std::sin(a), 0.0);
+    leg.axis = Q * Eigen::Vector3d::UnitZ();
+    leg.link_length = 0.5;
+    leg.platform_point = Q * Eigen::Vector3d(0.12 * std::cos(b), 0.12 * std::sin(b), 0.0);
+    leg.q_min = -0.5;
+    leg.q_max = 1.0;
+    leg.branch = -1;  // carriage above its platform point
+    leg.E = 7e10;
+    leg.area = 3e-5;
+    leg.rods = 2;
+    leg.actuator_stiffness = 2e7;
+    leg.base_axis = -leg.axis;
+    leg.platform_axis = leg.axis;
+    d.legs.push_back(leg);
+  }
+  d.tcp = Q * Eigen::Vector3d(0, 0, -0.05);
+  d.home.position = Q * Eigen::Vector3d(0, 0, 0.4 - 0.35 - 0.05);
+  return d;
 }
 
 struct Named {
@@ -95,6 +156,14 @@ std::vector<Named> named_models() {
   inclined_glide.inclination = deg_to_rad(15);
   v.push_back({"hexaglide_inclined",
                std::make_unique<LegChainMachine>(hexaglide_design(inclined_glide)), 0.1, 0.15});
+  v.push_back({"schoenflies", std::make_unique<LegChainMachine>(schoenflies_sample()), 0.08, 0.5});
+  const Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
+  v.push_back({"schoenflies_tilted_axis",
+               std::make_unique<LegChainMachine>(schoenflies_sample(60.0, Q)), 0.08, 0.5});
+  v.push_back({"tripod_3prs",
+               std::make_unique<LegChainMachine>(tripod_3prs_design(Tripod3PrsDesign{})), 0.2,
+               0.6});
   return v;
 }
 
@@ -259,9 +328,9 @@ TEST(LegChain, ConstraintJacobiansMatchFiniteDifferences) {
       for (int i = 0; i < n; ++i) {
         // A = d closure / d twist at fixed q; B = -d closure / dq at a fixed pose.
         for (int j = 0; j < n; ++j) {
-          const double fd =
-              (closure(m, i, moved(pose, j, h), q(i)) - closure(m, i, moved(pose, j, -h), q(i))) /
-              (2 * h);
+          const double fd = (closure(m, i, moved(m, pose, j, h), q(i)) -
+                             closure(m, i, moved(m, pose, j, -h), q(i))) /
+                            (2 * h);
           EXPECT_NEAR(A(i, j), fd, 1e-7) << nm.name << " A(" << i << "," << j << ")";
         }
         const double fdq =
@@ -270,9 +339,9 @@ TEST(LegChain, ConstraintJacobiansMatchFiniteDifferences) {
       }
       // J = dq / d twist from the closed-form IK.
       for (int j = 0; j < n; ++j) {
-        const Eigen::VectorXd fd =
-            (*m.inverse_kinematics(moved(pose, j, h)) - *m.inverse_kinematics(moved(pose, j, -h))) /
-            (2 * h);
+        const Eigen::VectorXd fd = (*m.inverse_kinematics(moved(m, pose, j, h)) -
+                                    *m.inverse_kinematics(moved(m, pose, j, -h))) /
+                                   (2 * h);
         for (int i = 0; i < n; ++i) {
           EXPECT_NEAR(J(i, j), fd(i), 1e-6 * (1.0 + std::abs(J(i, j)))) << nm.name;
         }
@@ -291,13 +360,14 @@ TEST(LegChain, TwistJacobianMatchesFiniteDifferencesOfTheInverseKinematics) {
       ASSERT_TRUE(m.twist_jacobian(*data, pose, J)) << nm.name;
       ASSERT_EQ(J.rows(), m.num_actuators());
       ASSERT_EQ(J.cols(), 6);
-      // Every twist the platform can make: translations, and rotations for 6-DOF platforms.
-      for (int j = 0; j < (m.dof() == 6 ? 6 : 3); ++j) {
-        const Eigen::VectorXd fd =
-            (*m.inverse_kinematics(moved(pose, j, h)) - *m.inverse_kinematics(moved(pose, j, -h))) /
-            (2 * h);
+      // Every twist the platform can make: xi = T e_j for each DOF j.
+      const Eigen::MatrixXd JT = J * m.twist_map(pose);
+      for (int j = 0; j < m.dof(); ++j) {
+        const Eigen::VectorXd fd = (*m.inverse_kinematics(moved(m, pose, j, h)) -
+                                    *m.inverse_kinematics(moved(m, pose, j, -h))) /
+                                   (2 * h);
         for (int i = 0; i < m.num_actuators(); ++i) {
-          EXPECT_NEAR(J(i, j), fd(i), 1e-6 * (1.0 + std::abs(J(i, j)))) << nm.name;
+          EXPECT_NEAR(JT(i, j), fd(i), 1e-6 * (1.0 + std::abs(JT(i, j)))) << nm.name;
         }
       }
     }
@@ -338,13 +408,13 @@ TEST(LegChain, ActuatorForcesBalanceTheWrenchByVirtualWork) {
       ASSERT_FALSE(metrics.singular);
       Eigen::MatrixXd A, B, J;
       m.jacobians(pose, A, B, J);
-      const Eigen::VectorXd w_dof = w.head(n);
+      const Eigen::VectorXd w_dof = m.twist_map(pose).transpose() * w;
       EXPECT_NEAR((J.transpose() * metrics.tau - w_dof).norm(), 0.0, 1e-9 * (1 + w.norm()));
       const double h = 1e-6;
       for (int j = 0; j < n; ++j) {
-        const Eigen::VectorXd dq =
-            (*m.inverse_kinematics(moved(pose, j, h)) - *m.inverse_kinematics(moved(pose, j, -h))) /
-            2.0;
+        const Eigen::VectorXd dq = (*m.inverse_kinematics(moved(m, pose, j, h)) -
+                                    *m.inverse_kinematics(moved(m, pose, j, -h))) /
+                                   2.0;
         EXPECT_NEAR(metrics.tau.dot(dq), w_dof(j) * h, 1e-6 * h * (1 + metrics.tau.norm()))
             << nm.name;
       }
@@ -370,10 +440,11 @@ TEST(LegChain, StiffnessMinMatchesTheSeriesChain) {
       Eigen::MatrixXd A, B, J;
       m.jacobians(pose, A, B, J);
       const Eigen::VectorXd q = *m.inverse_kinematics(pose);
+      const Eigen::MatrixXd T = m.twist_map(pose);
       Eigen::Matrix3d C;
       for (int k = 0; k < 3; ++k) {
-        Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
-        f(k) = 1.0;
+        // A unit force along base axis k at the TCP: its DOF components T^T [e_k; 0].
+        const Eigen::VectorXd f = T.transpose().col(k);
         const Eigen::VectorXd f_link = A.transpose().inverse() * f;
         Eigen::VectorXd dq(n), stretch(n);
         for (int i = 0; i < n; ++i) {
@@ -385,7 +456,7 @@ TEST(LegChain, StiffnessMinMatchesTheSeriesChain) {
           const double tau = B(i, i) * f_link(i);
           dq(i) = leg.actuator_stiffness > 0 ? tau / leg.actuator_stiffness : 0.0;
         }
-        const Eigen::VectorXd dx = A.inverse() * (B * dq + stretch);
+        const Eigen::VectorXd dx = T * (A.inverse() * (B * dq + stretch));
         C.col(k) = dx.head(3);
       }
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (C + C.transpose()));
@@ -407,7 +478,7 @@ TEST(LegChain, TcpErrorMaxIsTheWorstBoxVertex) {
       m.analyze(*data, pose, Wrench::Zero(), metrics);
       Eigen::MatrixXd A, B, J;
       m.jacobians(pose, A, B, J);
-      const Eigen::MatrixXd Jinv = J.inverse();
+      const Eigen::MatrixXd Jinv = m.twist_map(pose) * J.inverse();
       double best = 0;
       for (int v = 0; v < (1 << n); ++v) {
         Eigen::VectorXd dq(n);
@@ -417,7 +488,7 @@ TEST(LegChain, TcpErrorMaxIsTheWorstBoxVertex) {
       EXPECT_NEAR(metrics.tcp_error_max, best, 1e-12 * best) << nm.name;
       // singularity_margin = 1 / cond(J_h).
       Eigen::MatrixXd Jh = J;
-      if (n == 6) Jh.rightCols(3) /= m.characteristic_length();
+      Jh.rightCols(n - m.first_rotational_dof()) /= m.characteristic_length();
       Eigen::JacobiSVD<Eigen::MatrixXd> svd(Jh);
       const auto& sv = svd.singularValues();
       EXPECT_NEAR(metrics.singularity_margin, sv(n - 1) / sv(0), 1e-9);
@@ -530,6 +601,256 @@ TEST(Hexaglide, ParallelSingularityWhenAllStrutsAreCoplanar) {
 }
 
 // ------------------------------------------------------------------------------------------
+// Schoenflies (3T1R) platforms.
+
+TEST(Schoenflies, OnlyRotationsAboutTheAxisAreReachable) {
+  const LegChainMachine m(schoenflies_sample());
+  auto data = m.make_data();
+  const Eigen::Vector3d p = m.design().home.position;
+  const Pose turned{p, Eigen::Vector3d(0, 0, deg_to_rad(20))};
+  EXPECT_TRUE(m.reachable(*data, turned));
+  const Pose tilted{p, Eigen::Vector3d(deg_to_rad(1), 0, deg_to_rad(20))};
+  EXPECT_FALSE(m.reachable(*data, tilted));
+  // The tilted pose is analysed at its twist about e: R = Rot(z, phi) with the same turn of x.
+  const auto actual = m.actual_pose(tilted);
+  ASSERT_TRUE(actual.has_value());
+  EXPECT_NEAR(actual->angles(0), 0.0, 1e-15);
+  EXPECT_NEAR(actual->angles(1), 0.0, 1e-15);
+  const Eigen::Matrix3d R_tilted = rotation_zyx<double>(tilted.angles);
+  const Eigen::Matrix3d R_actual = rotation_zyx<double>(actual->angles);
+  // Swing-twist: R_tilted = swing * twist with the swing turning about an axis orthogonal to e.
+  const Eigen::AngleAxisd swing(R_tilted * R_actual.transpose());
+  EXPECT_NEAR(swing.axis().dot(Eigen::Vector3d::UnitZ()) * std::sin(swing.angle()), 0.0, 1e-12);
+  EXPECT_EQ(m.dof(), 4);
+  EXPECT_EQ(m.first_rotational_dof(), 3);
+}
+
+// A machine turned as a whole by Q (e = Q z) has the same actuator coordinates at the turned
+// pose, and the same metrics.
+TEST(Schoenflies, TiltedAxisMachineIsTheTurnedMachine) {
+  const Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
+  const LegChainMachine upright(schoenflies_sample());
+  const LegChainMachine turned(schoenflies_sample(60.0, Q));
+  Uniform u(31);
+  auto d1 = upright.make_data();
+  auto d2 = turned.make_data();
+  for (int k = 0; k < 10; ++k) {
+    const Pose p = random_pose(upright, u, 0.08, 0.5);
+    const Pose pq{Q * p.position,
+                  angles_from_rotation(Q * rotation_zyx<double>(p.angles) * Q.transpose())};
+    Wrench w;
+    for (int j = 0; j < 6; ++j) w(j) = u(-50, 50);
+    Wrench wq;
+    wq << Q * w.head<3>(), Q * w.tail<3>();
+    PoseMetrics m1, m2;
+    upright.analyze(*d1, p, w, m1);
+    turned.analyze(*d2, pq, wq, m2);
+    EXPECT_EQ(m1.reachable, m2.reachable);
+    EXPECT_NEAR((m1.q - m2.q).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((m1.tau - m2.tau).norm(), 0.0, 1e-9 * (1 + m1.tau.norm()));
+    EXPECT_NEAR(m1.stiffness_min, m2.stiffness_min, 1e-8 * m1.stiffness_min);
+    EXPECT_NEAR(m1.singularity_margin, m2.singularity_margin, 1e-9);
+    EXPECT_NEAR(m1.tcp_error_max, m2.tcp_error_max, 1e-9 * m1.tcp_error_max);
+  }
+}
+
+// Struts meeting the platform radially (offset 0): no strut has a moment about e, the platform
+// turns about e with the carriages locked (the A column of omega_e is zero): det A = 0.
+TEST(Schoenflies, ParallelSingularityWhenNoStrutTurnsThePlatform) {
+  const LegChainMachine m(schoenflies_sample(0.0));
+  auto data = m.make_data();
+  auto& ld = static_cast<LegChainData&>(*data);
+  PoseMetrics metrics;
+  m.analyze(*data, m.design().home, Wrench(Wrench::Constant(1.0)), metrics);
+  ASSERT_TRUE(ld.ik_ok);
+  EXPECT_TRUE(ld.parallel_singular);
+  EXPECT_FALSE(ld.serial_singular);
+  EXPECT_NEAR(ld.A.col(3).norm(), 0.0, 1e-15);
+  EXPECT_TRUE(metrics.singular);
+  EXPECT_EQ(metrics.singularity_margin, 0.0);
+  EXPECT_EQ(metrics.stiffness_min, 0.0);
+  EXPECT_TRUE(std::isinf(metrics.tcp_error_max));
+  EXPECT_TRUE(std::isinf(metrics.tau(0)));
+  // With offsets of +-60 deg the same pose is well conditioned.
+  const LegChainMachine offset(schoenflies_sample(60.0));
+  offset.analyze(*data, offset.design().home, Wrench::Zero(), metrics);
+  EXPECT_FALSE(metrics.singular);
+  EXPECT_GT(metrics.singularity_margin, 1e-2);
+}
+
+// ------------------------------------------------------------------------------------------
+// tripod_3prs (planar legs).
+
+// Plane constraint residuals h_i of a pose taken as given.
+Eigen::Vector3d plane_residuals(const LegChainMachine& m, const Pose& pose) {
+  Eigen::Vector3d h;
+  const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+  for (int i = 0; i < 3; ++i) {
+    const LegChainLeg& leg = m.design().legs[static_cast<std::size_t>(i)];
+    h(i) = leg.plane_normal.dot(pose.position + R * (leg.platform_point - m.design().tcp) -
+                                leg.base_point);
+  }
+  return h;
+}
+
+TEST(Tripod3Prs, ParasiticMotionKeepsEveryLegInItsPlane) {
+  const LegChainMachine m(tripod_3prs_design(Tripod3PrsDesign{}));
+  Uniform u(41);
+  double largest_parasitic = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    const Pose asked{Eigen::Vector3d(u(-1, 1), u(-1, 1), u(0.9, 1.5)),
+                     Eigen::Vector3d(u(-0.7, 0.7), u(-0.7, 0.7), u(-1, 1))};
+    const auto actual = m.actual_pose(asked);
+    ASSERT_TRUE(actual.has_value());
+    EXPECT_LT(plane_residuals(m, *actual).cwiseAbs().maxCoeff(), 1e-14);
+    // z, rx, ry are kept; x, y, rz of the request do not matter.
+    EXPECT_EQ(actual->position.z(), asked.position.z());
+    EXPECT_EQ(actual->angles(0), asked.angles(0));
+    EXPECT_EQ(actual->angles(1), asked.angles(1));
+    Pose other = asked;
+    other.position.head<2>() = Eigen::Vector2d(u(-1, 1), u(-1, 1));
+    other.angles(2) = u(-1, 1);
+    const auto actual_other = m.actual_pose(other);
+    ASSERT_TRUE(actual_other.has_value());
+    EXPECT_EQ(actual_other->position, actual->position);
+    EXPECT_EQ(actual_other->angles, actual->angles);
+    largest_parasitic = std::max(largest_parasitic, actual->position.head<2>().norm());
+    // The platform moves along T: h stays 0 to second order.
+    const double h = 1e-5;
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_LT(plane_residuals(m, moved(m, *actual, j, h)).cwiseAbs().maxCoeff(), 1e-8);
+    }
+    // The 3-PRS with legs at 120 deg is a zero-torsion mechanism (Bonev, "Geometric analysis of
+    // parallel mechanisms", PhD thesis, Laval 2002; I. A. Bonev, "Zero-torsion parallel
+    // mechanisms", parallemic.org 2008): with the tool axis k = R z, R is the pure tilt about
+    // z x k (no turn about the tool axis).
+    const Eigen::Matrix3d R = rotation_zyx<double>(actual->angles);
+    const Eigen::Vector3d k_axis = R.col(2);
+    const Eigen::Vector3d tilt_axis = Eigen::Vector3d::UnitZ().cross(k_axis);
+    const Eigen::Matrix3d pure_tilt =
+        Eigen::AngleAxisd(std::atan2(tilt_axis.norm(), k_axis.z()), tilt_axis.normalized())
+            .toRotationMatrix();
+    EXPECT_NEAR((R - pure_tilt).norm(), 0.0, 1e-12);
+  }
+  EXPECT_GT(largest_parasitic, 1e-3);  // the parasitic motion is real (mm), not zero
+}
+
+// Serial singularity: a strut perpendicular to its slide (B_i = s_i . z = 0). With
+// base_radius - platform_radius = strut the struts of a level platform are horizontal; with the
+// strut longer by delta they are inclined by about sqrt(2 delta / strut). There the platform's
+// own DOF (z, tilts) also move the strut ends across the struts only (the rows of A vanish with
+// B), so J = B^-1 A stays bounded but the head loses its stiffness: stiffness_min falls to 0.
+TEST(Tripod3Prs, SerialSingularityWhenAStrutIsPerpendicularToItsSlide) {
+  auto analyze_with = [](double delta, PoseMetrics& metrics, bool& serial) {
+    Tripod3PrsDesign d;
+    d.base_radius = 0.35;
+    d.platform_radius = 0.15;
+    d.strut = 0.20 + delta;
+    d.q_min = -1.0;
+    d.q_max = 1.0;
+    const LegChainMachine m(tripod_3prs_design(d));
+    auto data = m.make_data();
+    const double drop = std::sqrt(d.strut * d.strut - 0.04);  // joint below the carriage
+    m.analyze(*data, Pose{{0, 0, 0.4 + drop + d.tool_length}, Eigen::Vector3d::Zero()},
+              Wrench::Zero(), metrics);
+    serial = static_cast<LegChainData&>(*data).serial_singular;
+    EXPECT_NEAR(metrics.q(0), 0.4, 1e-7);
+  };
+  PoseMetrics metrics;
+  bool serial = false;
+  double previous_stiffness = std::numeric_limits<double>::infinity();
+  for (const double delta : {1e-2, 1e-4, 1e-6}) {
+    analyze_with(delta, metrics, serial);
+    EXPECT_FALSE(serial) << delta;
+    EXPECT_FALSE(metrics.singular) << delta;
+    EXPECT_GT(metrics.singularity_margin, 0.0);
+    EXPECT_LT(metrics.stiffness_min, 0.1 * previous_stiffness);
+    previous_stiffness = metrics.stiffness_min;
+  }
+  analyze_with(0.0, metrics, serial);
+  EXPECT_TRUE(serial);
+  EXPECT_TRUE(metrics.singular);
+  EXPECT_EQ(metrics.singularity_margin, 0.0);
+  EXPECT_EQ(metrics.stiffness_min, 0.0);
+  EXPECT_TRUE(std::isinf(metrics.tcp_error_max));
+  EXPECT_TRUE(metrics.q.allFinite());
+}
+
+// Parallel singularity: tilting the default head about y at z = 1.2 m, det A changes sign near
+// 72 deg (det B stays about 0.77): there the platform gains a motion with the slides locked.
+TEST(Tripod3Prs, ParallelSingularityFoundWhereDetAChangesSign) {
+  const LegChainMachine m(tripod_3prs_design(Tripod3PrsDesign{}));
+  auto data = m.make_data();
+  auto& ld = static_cast<LegChainData&>(*data);
+  PoseMetrics metrics;
+  auto det_a_at = [&](double ry) {
+    m.analyze(*data, Pose{{0, 0, 1.2}, Eigen::Vector3d(0, ry, 0)}, Wrench::Zero(), metrics);
+    return ld.det_a;
+  };
+  double lo = deg_to_rad(60), hi = deg_to_rad(85);
+  ASSERT_GT(det_a_at(lo), 0.0);
+  const double margin_far = metrics.singularity_margin;
+  ASSERT_LT(det_a_at(hi), 0.0);
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (det_a_at(mid) > 0.0 ? lo : hi) = mid;
+  }
+  det_a_at(lo);
+  EXPECT_TRUE(ld.ik_ok);
+  EXPECT_TRUE(ld.parallel_singular);
+  EXPECT_FALSE(ld.serial_singular);
+  EXPECT_GT(std::abs(ld.det_b), 0.5);
+  EXPECT_TRUE(metrics.singular);
+  EXPECT_EQ(metrics.singularity_margin, 0.0);
+  EXPECT_TRUE(std::isinf(metrics.tcp_error_max));
+  EXPECT_NEAR(rad_to_deg(lo), 72.5, 1.0);
+  // The margin falls towards it.
+  det_a_at(lo - deg_to_rad(1));
+  EXPECT_LT(metrics.singularity_margin, margin_far);
+  EXPECT_LT(metrics.singularity_margin, 0.01);
+  EXPECT_GT(metrics.singularity_margin, 0.0);
+}
+
+// The Sprint Z3 figures: A/B tilts within +-40 deg (every tool direction in the 40 deg cone)
+// over a Z travel of at least 670 mm, with the default dimensions (joint limits, stroke and
+// singularity margin included).
+TEST(Tripod3Prs, DefaultsReachFortyDegreeTiltsOverTheZTravel) {
+  const LegChainMachine m(tripod_3prs_design(Tripod3PrsDesign{}));
+  auto data = m.make_data();
+  PoseMetrics metrics;
+  const double tilt = deg_to_rad(40);
+  double z_lo = std::numeric_limits<double>::infinity(), z_hi = -z_lo, margin = 1.0;
+  for (double z = 0.6; z <= 1.7; z += 0.005) {
+    bool all = true;
+    double worst = 1.0;
+    for (int ring = 1; ring <= 4 && all; ++ring) {
+      for (int k = 0; k < 24 && all; ++k) {
+        const double phi = 2 * kPi * k / 24;
+        const Eigen::Matrix3d R =
+            Eigen::AngleAxisd(tilt * ring / 4, Eigen::Vector3d(std::cos(phi), std::sin(phi), 0))
+                .toRotationMatrix();
+        m.analyze(*data, Pose{{0, 0, z}, angles_from_rotation(R)}, Wrench::Zero(), metrics);
+        all = metrics.reachable && !metrics.singular;
+        worst = std::min(worst, metrics.singularity_margin);
+      }
+    }
+    m.analyze(*data, Pose{{0, 0, z}, Eigen::Vector3d::Zero()}, Wrench::Zero(), metrics);
+    if (all && metrics.reachable) {
+      z_lo = std::min(z_lo, z);
+      z_hi = std::max(z_hi, z);
+      margin = std::min(margin, worst);
+    }
+  }
+  EXPECT_GE(z_hi - z_lo, 0.670);
+  EXPECT_GT(margin, 0.1);  // far from singular over that range
+  // Beyond 40 deg the slide stroke and joint limits end it: at 60 deg nothing is reachable.
+  m.analyze(*data, Pose{{0, 0, 1.2}, Eigen::Vector3d(0, deg_to_rad(60), 0)}, Wrench::Zero(),
+            metrics);
+  EXPECT_FALSE(metrics.reachable);
+}
+
+// ------------------------------------------------------------------------------------------
 // Robustness.
 
 TEST(LegChain, OutputsAreNeverNaN) {
@@ -554,8 +875,9 @@ TEST(LegChain, OutputsAreNeverNaN) {
       if (!m.inverse_kinematics(p)) {
         EXPECT_FALSE(metrics.reachable);
       }
-      if (m.dof() == 3) {
-        EXPECT_FALSE(metrics.reachable);  // rotated poses
+      if (m.design().mobility == PlatformMobility::kTranslational ||
+          m.design().mobility == PlatformMobility::kSchoenflies) {
+        EXPECT_FALSE(metrics.reachable);  // rotated poses (about more than e)
       }
     }
   }
@@ -577,6 +899,27 @@ TEST(LegChain, ForwardKinematicsFailsCleanly) {
   EXPECT_FALSE(delta.forward_kinematics(Eigen::VectorXd::Constant(2, 0.1), std::nullopt).converged);
   Eigen::VectorXd nan_q = Eigen::VectorXd::Constant(3, std::nan(""));
   EXPECT_FALSE(delta.forward_kinematics(nan_q, std::nullopt).converged);
+}
+
+// Schoenflies and tripod FK (the 6 x 6 solve with the mobility equations) fail cleanly too:
+// carriages too far apart for the struts.
+TEST(LegChain, ForwardKinematicsOfTheSixBySixSolvesFailsCleanly) {
+  const LegChainMachine schoenflies(schoenflies_sample());
+  const LegChainMachine tripod(tripod_3prs_design(Tripod3PrsDesign{}));
+  for (const LegChainMachine* m : {&schoenflies, &tripod}) {
+    Eigen::VectorXd q = *m->inverse_kinematics(m->design().home);
+    q(0) += 3.0;  // 3 m along its guide: leg 1 cannot reach the others' platform
+    FkOptions options;
+    options.max_iterations = 40;
+    const FkResult r = m->forward_kinematics(q, std::nullopt, options);
+    EXPECT_FALSE(r.converged) << m->model();
+    EXPECT_TRUE(r.pose.position.allFinite() && r.pose.angles.allFinite());
+    EXPECT_FALSE(std::isnan(r.residual));
+    EXPECT_FALSE(r.message.empty());
+    EXPECT_FALSE(m->forward_kinematics(Eigen::VectorXd::Constant(m->num_actuators(), std::nan("")),
+                                       std::nullopt)
+                     .converged);
+  }
 }
 
 TEST(LegChain, ReachabilityChecksRangesAndJointLimits) {
