@@ -111,7 +111,7 @@ void run_study(const RunCommandOptions& opt) {
     const bool resumed = prepare_output_directory(opt);
     JournalOptions options = design_journal_options(design);
     fill_journal_options(options, opt, design.resolved_yaml, design.optimizer);
-    JournaledProblem journaled(*design.problem, options);
+    JournaledProblem journaled(design.optimization_problem(), options);
     write_file_atomically((fs::path(opt.out) / "study.resolved.yaml").string(),
                           design.resolved_yaml);
     const RunOutcome outcome = run_optimizer(journaled, design.optimizer, opt.threads);

@@ -25,30 +25,32 @@ std::string optimizer_text(const OptimizerSpec& spec) {
 void validate_study(const std::string& path) {
   if (is_design_study_file(path)) {
     const DesignStudy study = load_design_study(path);
-    const HexapodDesignProblem& problem = *study.problem;
-    const HexapodDesignSpec& spec = problem.spec();
     std::string text =
-        fmt::format("{}: design study '{}' (model hexapod) is valid\n", path, study.name);
-    text += fmt::format("  free parameters ({}):", problem.free_parameters().size());
-    for (int i : problem.free_parameters()) {
-      const auto [lo, hi] = study.parameter_ranges[i];
-      text += fmt::format(" {} [{}, {}]", design_parameter_name(i), lo, hi);
+        fmt::format("{}: design study '{}' (model {}) is valid\n", path, study.name, study.model);
+    std::string free;
+    std::size_t n_free = 0;
+    for (const StudyParameter& p : study.parameters) {
+      if (!p.free()) continue;
+      ++n_free;
+      free += fmt::format(" {} [{}, {}]", p.name, p.min, p.max);
     }
-    text += fmt::format("\n  objectives ({}):", spec.objectives.size());
-    for (const DesignObjective& o : spec.objectives)
+    text += fmt::format("  free parameters ({}):{}", n_free, free);
+    text += fmt::format("\n  objectives ({}):", study.objectives().size());
+    for (const DesignObjective& o : study.objectives())
       text += fmt::format(" {} {}", o.sense == Sense::maximize ? "maximize" : "minimize",
                           design_metric_name(o.metric));
     text += fmt::format("\n  constraints ({}):",
-                        spec.constraints.size() + (spec.require_reachable ? 1 : 0));
-    if (spec.require_reachable) text += " task_reachable";
-    for (const DesignConstraint& c : spec.constraints)
+                        study.constraints().size() + (study.require_reachable() ? 1 : 0));
+    if (study.require_reachable()) text += " task_reachable";
+    for (const DesignConstraint& c : study.constraints())
       text += fmt::format(" {} {} {}", design_metric_name(c.metric),
                           c.relation == Relation::less_equal ? "<=" : ">=", c.bound);
-    text += fmt::format("\n  task: {} poses ({} positions x {} orientations)\n",
-                        spec.task.poses.size(), study.task_positions,
-                        spec.task.poses.size() / std::max<std::size_t>(1, study.task_positions));
+    const std::size_t poses = study.task().poses.size();
+    text +=
+        fmt::format("\n  task: {} poses ({} positions x {} orientations)\n", poses,
+                    study.task_positions, poses / std::max<std::size_t>(1, study.task_positions));
     text += fmt::format("  optimizer: {}, {} formulation\n", optimizer_text(study.optimizer),
-                        spec.formulation == DesignFormulation::aggregate ? "aggregate" : "smooth");
+                        study.aggregate() ? "aggregate" : "smooth");
     std::cout << text;
     return;
   }

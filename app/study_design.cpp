@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "app/csv.hpp"
 #include "app/input_error.hpp"
 #include "app/machine_file.hpp"
+#include "app/machine_file_leg_chain.hpp"
 #include "app/output_file.hpp"
 #include "app/task_wrench_file.hpp"
 #include "optimizer/indicators.hpp"
@@ -150,7 +152,88 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
   yaml += "  actuator_error: " + num(d.actuator_error) + "\n";
 }
 
-void read_task(const YamlValue& task, HexapodDesignSpec& spec, DesignStudy& study,
+// The design family of a leg-chain model built around a template design (nullopt: not one).
+std::optional<DesignFamily> leg_chain_family(const std::string& model, const YamlValue* machine) {
+  if (model == "delta") return delta_family(machine ? read_delta_design(*machine) : DeltaDesign{});
+  if (model == "linear_delta")
+    return linear_delta_family(machine ? read_linear_delta_design(*machine) : LinearDeltaDesign{});
+  if (model == "hexaglide")
+    return hexaglide_family(machine ? read_hexaglide_design(*machine) : HexaglideDesign{});
+  return std::nullopt;
+}
+
+// The machine section of a leg-chain study: `parameters:` (the family's), and every other key
+// of the model's machine file except those the parameters set. The template design is read by
+// the machine-file reader from the section with the parameter keys filled in from the defaults
+// (so its messages point into the study file).
+void read_leg_chain_machine(const YamlValue& machine, const std::string& model,
+                            MachineDesignSpec& spec, DesignStudy& study, std::string& yaml) {
+  const DesignFamily defaults = *leg_chain_family(model, nullptr);
+  for (const std::string& key : defaults.parameter_keys)
+    if (machine.has(key))
+      machine.required(key).fail(fmt::format(
+          "no '{}' in the machine section of a {} design study: its parameters set it (give "
+          "them under machine.parameters)",
+          key, model));
+  const YAML::Node default_file = YAML::Load(defaults.machine_file(defaults.default_parameters()));
+  YAML::Node merged(YAML::NodeType::Map);
+  for (const auto& entry : machine.node())
+    if (entry.first.as<std::string>() != "parameters") merged[entry.first] = entry.second;
+  for (const std::string& key : defaults.parameter_keys)
+    if (default_file[key]) merged[key] = default_file[key];
+  YamlValue template_section(merged, std::make_shared<const std::string>(machine.file()),
+                             machine.path());
+  template_section.set_location(machine.line(), machine.column());
+  spec.family = *leg_chain_family(model, &template_section);
+  const DesignFamily& family = spec.family;
+  spec.parameters = default_ranges(family);
+  for (const FamilyParameter& p : family.parameters)
+    study.parameters.push_back({p.name, p.unit, p.default_value, p.default_value});
+  if (auto section = machine.optional("parameters")) {
+    std::vector<std::string> names;
+    for (const FamilyParameter& p : family.parameters) names.push_back(p.name);
+    section->check_keys(names);
+    for (std::size_t i = 0; i < family.parameters.size(); ++i) {
+      const FamilyParameter& parameter = family.parameters[i];
+      const auto v = section->optional(parameter.name);
+      if (!v) continue;
+      double lo = 0.0, hi = 0.0;
+      if (v->is_map()) {
+        v->check_keys({"min", "max"});
+        lo = v->required("min").as_double();
+        hi = v->required("max").as_double();
+        if (!(lo < hi)) v->required("max").fail("max > min", v->required("max").describe());
+      } else {
+        lo = hi = v->as_double();
+      }
+      if (!parameter.may_be_negative && (lo < 0.0 || (!parameter.may_be_zero && lo == 0.0)))
+        v->fail(parameter.may_be_zero ? "values >= 0" : "values > 0", v->describe());
+      if (std::abs(lo) > parameter.max_abs || std::abs(hi) > parameter.max_abs)
+        v->fail(
+            fmt::format("values within [-{0}, {0}] {1}", num(parameter.max_abs), parameter.unit),
+            v->describe());
+      study.parameters[i].min = lo;
+      study.parameters[i].max = hi;
+      spec.parameters[i] = {parameter.to_internal(lo), parameter.to_internal(hi)};
+    }
+  }
+  yaml += "machine:\n  model: " + model + "\n  parameters:\n";
+  for (const StudyParameter& p : study.parameters)
+    yaml += fmt::format(
+        "    {}: {}\n", p.name,
+        p.free() ? fmt::format("{{min: {}, max: {}}}", num(p.min), num(p.max)) : num(p.min));
+  // The template's own keys: the machine file of the defaults without the parameter keys.
+  std::istringstream lines(family.machine_file(family.default_parameters()));
+  for (std::string line; std::getline(lines, line);) {
+    const std::string key = line.substr(0, line.find(':'));
+    if (key == "model" || std::find(family.parameter_keys.begin(), family.parameter_keys.end(),
+                                    key) != family.parameter_keys.end())
+      continue;
+    yaml += "  " + line + "\n";
+  }
+}
+
+void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
                std::string& yaml) {
   task.check_keys({"region", "orientations", "wrench", "workspace"});
   double tilt_deg = 0.0, yaw_deg = 0.0, step_deg = 10.0;
@@ -181,7 +264,7 @@ void read_task(const YamlValue& task, HexapodDesignSpec& spec, DesignStudy& stud
       const std::vector<YamlValue> n = v->elements(3);
       for (int a = 0; a < 3; ++a) counts(a) = positive_int(n[a]);
     }
-    spec.task.poses = box_task_poses(centre, 0.5 * Eigen::Vector3d(size[0], size[1], size[2]),
+    task_spec.poses = box_task_poses(centre, 0.5 * Eigen::Vector3d(size[0], size[1], size[2]),
                                      counts, tilt, yaw, step);
     study.task_positions = static_cast<std::size_t>(counts.prod());
     yaml += fmt::format("  region: {{shape: box, centre: {}, size: {}, points: [{}, {}, {}]}}\n",
@@ -199,7 +282,7 @@ void read_task(const YamlValue& task, HexapodDesignSpec& spec, DesignStudy& stud
     }
     if (auto v = region.optional("per_ring")) per_ring = positive_int(*v);
     if (auto v = region.optional("layers")) layers = positive_int(*v);
-    spec.task.poses =
+    task_spec.poses =
         cylinder_task_poses(centre, radius, height, rings, per_ring, layers, tilt, yaw, step);
     study.task_positions = static_cast<std::size_t>((1 + rings * per_ring) * layers);
     yaml += fmt::format(
@@ -209,19 +292,19 @@ void read_task(const YamlValue& task, HexapodDesignSpec& spec, DesignStudy& stud
   } else {
     shape.fail("'box' or 'cylinder'", shape.describe());
   }
-  if (spec.task.poses.size() > 100000)
-    region.fail(fmt::format("at most 100000 task poses, found {}", spec.task.poses.size()));
+  if (task_spec.poses.size() > 100000)
+    region.fail(fmt::format("at most 100000 task poses, found {}", task_spec.poses.size()));
   yaml += fmt::format("  orientations: {{tilt_deg: {}, yaw_deg: {}, step_deg: {}}}\n",
                       num(tilt_deg), num(yaw_deg), num(step_deg));
-  spec.task.wrench.setZero();
+  task_spec.wrench.setZero();
   std::string wrench_origin;
   if (auto v = task.optional("wrench")) {
     const TaskWrench task_wrench = read_task_wrench(*v);  // a list, or a turning/milling model
-    spec.task.wrench = task_wrench.wrench;
+    task_spec.wrench = task_wrench.wrench;
     wrench_origin = task_wrench.origin;
   }
-  const double wrench[6] = {spec.task.wrench(0), spec.task.wrench(1), spec.task.wrench(2),
-                            spec.task.wrench(3), spec.task.wrench(4), spec.task.wrench(5)};
+  const double wrench[6] = {task_spec.wrench(0), task_spec.wrench(1), task_spec.wrench(2),
+                            task_spec.wrench(3), task_spec.wrench(4), task_spec.wrench(5)};
   if (!wrench_origin.empty()) yaml += "  # wrench from the cutting model: " + wrench_origin + "\n";
   yaml += "  wrench: " + triple(wrench, 6) + "\n";
   double resolution = 0.05, ws_tilt = 0.0, ws_yaw = 0.0, ws_step = 5.0;
@@ -232,10 +315,10 @@ void read_task(const YamlValue& task, HexapodDesignSpec& spec, DesignStudy& stud
     if (auto v = w->optional("yaw_deg")) angle_deg_kept(*v, 0, 179, ws_yaw);
     if (auto v = w->optional("step_deg")) angle_deg_kept(*v, 0.5, 90, ws_step);
   }
-  spec.task.workspace.resolution = resolution;
-  spec.task.workspace.orientations.tilt = deg_to_rad(ws_tilt);
-  spec.task.workspace.orientations.yaw_range = deg_to_rad(ws_yaw);
-  spec.task.workspace.orientations.orientation_step = deg_to_rad(ws_step);
+  task_spec.workspace.resolution = resolution;
+  task_spec.workspace.orientations.tilt = deg_to_rad(ws_tilt);
+  task_spec.workspace.orientations.yaw_range = deg_to_rad(ws_yaw);
+  task_spec.workspace.orientations.orientation_step = deg_to_rad(ws_step);
   yaml += fmt::format("  workspace: {{resolution: {}, tilt_deg: {}, yaw_deg: {}, step_deg: {}}}\n",
                       num(resolution), num(ws_tilt), num(ws_yaw), num(ws_step));
 }
@@ -301,6 +384,23 @@ bool is_design_study_file(const std::string& path) {
   return root.is_map() && root.has("machine");
 }
 
+namespace {
+
+// nlopt algorithms that need no gradient (optimizer/nlopt_solver.hpp), by either name.
+bool derivative_free_nlopt(std::string algorithm) {
+  if (!algorithm.starts_with("nlopt:")) return false;
+  algorithm = algorithm.substr(6);
+  std::transform(algorithm.begin(), algorithm.end(), algorithm.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  if (algorithm.starts_with("GN_") || algorithm.starts_with("LN_")) return true;
+  for (const char* name :
+       {"DIRECT_L", "DIRECT", "CRS2", "ESCH", "ISRES", "COBYLA", "BOBYQA", "NELDERMEAD", "SBPLX"})
+    if (algorithm == name) return true;
+  return false;
+}
+
+}  // namespace
+
 DesignStudy load_design_study(const std::string& path) {
   const YamlValue root = YamlValue::load_file(path);
   root.check_keys({"study", "description", "machine", "task", "objectives", "constraints",
@@ -312,10 +412,38 @@ DesignStudy load_design_study(const std::string& path) {
                                  nlohmann::json(study.name).dump(), kVersion);
   yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
   yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
+  const YamlValue machine = root.required("machine");
+  machine.expect_map();
+  const YamlValue model = machine.required("model");
+  study.model = model.as_string();
+  // The hexapod has its own problem (with a smooth formulation); the leg-chain models share the
+  // generic one. Goals and task are read into whichever spec is used.
   HexapodDesignSpec spec;
-  spec.name = study.name;
-  read_machine(root.required("machine"), spec, study, yaml);
-  read_task(root.required("task"), spec, study, yaml);
+  MachineDesignSpec machine_spec;
+  const bool hexapod = study.model == "hexapod";
+  if (hexapod) {
+    spec.name = study.name;
+    read_machine(machine, spec, study, yaml);
+  } else if (leg_chain_family(study.model, nullptr)) {
+    machine_spec.name = study.name;
+    read_leg_chain_machine(machine, study.model, machine_spec, study, yaml);
+  } else {
+    // Models with a design family (the machine-file models may be more: leg_chain_model_names).
+    model.fail("one of hexapod, delta, linear_delta, hexaglide (the models with a design family)",
+               model.describe());
+  }
+  DesignTask& task = hexapod ? spec.task : machine_spec.task;
+  std::vector<DesignObjective>& goals = hexapod ? spec.objectives : machine_spec.objectives;
+  std::vector<DesignConstraint>& limits = hexapod ? spec.constraints : machine_spec.constraints;
+  const YamlValue task_section = root.required("task");
+  read_task(task_section, task, study, yaml);
+  if (!hexapod && machine_spec.family.translational &&
+      (study.task_tilt_deg > 0.0 || study.task_yaw_deg > 0.0))
+    task_section.required("orientations")
+        .fail(fmt::format("tilt_deg: 0 and yaw_deg: 0 (the {} platform keeps its orientation)",
+                          study.model),
+              fmt::format("tilt_deg {}, yaw_deg {}", num(study.task_tilt_deg),
+                          num(study.task_yaw_deg)));
 
   const YamlValue objectives = root.required("objectives");
   const std::vector<YamlValue> objective_list = objectives.elements();
@@ -325,12 +453,12 @@ DesignStudy load_design_study(const std::string& path) {
     o.check_keys({"minimize", "maximize"});
     if (o.keys().size() != 1) o.fail("one of minimize: METRIC or maximize: METRIC", o.describe());
     const bool maximize = o.has("maximize");
-    spec.objectives.push_back({read_metric(o.required(maximize ? "maximize" : "minimize")),
-                               maximize ? Sense::maximize : Sense::minimize});
+    goals.push_back({read_metric(o.required(maximize ? "maximize" : "minimize")),
+                     maximize ? Sense::maximize : Sense::minimize});
     yaml += fmt::format("  - {}: {}\n", maximize ? "maximize" : "minimize",
-                        design_metric_name(spec.objectives.back().metric));
+                        design_metric_name(goals.back().metric));
   }
-  spec.require_reachable = false;
+  bool require_reachable = false;
   std::string constraint_yaml;
   if (auto constraints = root.optional("constraints")) {
     for (const YamlValue& c : constraints->elements()) {
@@ -339,10 +467,16 @@ DesignStudy load_design_study(const std::string& path) {
           c.fail(
               "task_reachable, {metric: NAME, max|min: VALUE} or {actuator: NAME, catalog: FILE}",
               c.describe());
-        spec.require_reachable = true;
+        require_reachable = true;
         continue;
       }
       if (c.has("actuator")) {
+        if (!hexapod)
+          c.required("actuator")
+              .fail(fmt::format("{{metric: NAME, max|min: VALUE}} (actuator catalog constraints "
+                                "size hexapod legs; a {} study bounds leg_force_max instead)",
+                                study.model),
+                    "an actuator constraint");
         constraint_yaml += read_actuator_constraint(c, path, spec, study);
         continue;
       }
@@ -350,25 +484,44 @@ DesignStudy load_design_study(const std::string& path) {
       const DesignMetric metric = read_metric(c.required("metric"));
       if (c.has("max") == c.has("min")) c.fail("exactly one of max and min", c.describe());
       const bool upper = c.has("max");
-      spec.constraints.push_back({metric, upper ? Relation::less_equal : Relation::greater_equal,
-                                  c.required(upper ? "max" : "min").as_double()});
+      limits.push_back({metric, upper ? Relation::less_equal : Relation::greater_equal,
+                        c.required(upper ? "max" : "min").as_double()});
       constraint_yaml += fmt::format("  - {{metric: {}, {}: {}}}\n", design_metric_name(metric),
-                                     upper ? "max" : "min", num(spec.constraints.back().bound));
+                                     upper ? "max" : "min", num(limits.back().bound));
     }
   }
-  if (spec.require_reachable) constraint_yaml = "  - task_reachable\n" + constraint_yaml;
+  spec.require_reachable = machine_spec.require_reachable = require_reachable;
+  if (require_reachable) constraint_yaml = "  - task_reachable\n" + constraint_yaml;
   yaml += constraint_yaml.empty() ? "constraints: []\n" : "constraints:\n" + constraint_yaml;
   const YamlValue optimizer = root.required("optimizer");
   optimizer.expect_map();
-  const std::string algorithm = optimizer.required("algorithm").as_string();
+  const YamlValue algorithm_value = optimizer.required("algorithm");
+  const std::string algorithm = algorithm_value.as_string();
   spec.formulation =
       algorithm == "nsga2" ? DesignFormulation::aggregate : DesignFormulation::smooth;
+  if (!hexapod && algorithm != "nsga2" && !derivative_free_nlopt(algorithm))
+    algorithm_value.fail(
+        fmt::format("nsga2 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, nlopt:BOBYQA, ... for "
+                    "one objective): a {} design study measures worst cases over the task and "
+                    "has no gradients",
+                    study.model),
+        "'" + algorithm + "'");
   try {
-    study.problem = std::make_unique<HexapodDesignProblem>(std::move(spec));
+    if (hexapod)
+      study.problem = std::make_unique<HexapodDesignProblem>(std::move(spec));
+    else
+      study.machine_problem = std::make_unique<MachineDesignProblem>(std::move(machine_spec));
   } catch (const std::invalid_argument& error) {
     root.fail(error.what());
   }
-  study.optimizer = read_optimizer_section(optimizer, *study.problem);
+  if (hexapod) {
+    for (int i = 0; i < kNumDesignParameters; ++i) {
+      const auto [lo, hi] = study.parameter_ranges[static_cast<std::size_t>(i)];
+      study.parameters.push_back({std::string(design_parameter_name(i)),
+                                  design_parameter_in_degrees(i) ? "deg" : "m", lo, hi});
+    }
+  }
+  study.optimizer = read_optimizer_section(optimizer, study.optimization_problem());
   if (auto output = root.optional("output")) {
     output->check_keys({"designs"});
     if (auto v = output->optional("designs")) study.write_designs = v->as_bool();
@@ -377,6 +530,26 @@ DesignStudy load_design_study(const std::string& path) {
   yaml += fmt::format("output: {{designs: {}}}\n", study.write_designs ? "true" : "false");
   study.resolved_yaml = yaml;
   return study;
+}
+
+const Problem& DesignStudy::optimization_problem() const {
+  if (problem) return *problem;
+  return *machine_problem;
+}
+const std::vector<DesignObjective>& DesignStudy::objectives() const {
+  return problem ? problem->spec().objectives : machine_problem->spec().objectives;
+}
+const std::vector<DesignConstraint>& DesignStudy::constraints() const {
+  return problem ? problem->spec().constraints : machine_problem->spec().constraints;
+}
+bool DesignStudy::require_reachable() const {
+  return problem ? problem->spec().require_reachable : machine_problem->spec().require_reachable;
+}
+const DesignTask& DesignStudy::task() const {
+  return problem ? problem->spec().task : machine_problem->spec().task;
+}
+bool DesignStudy::aggregate() const {
+  return !problem || problem->spec().formulation == DesignFormulation::aggregate;
 }
 
 std::string_view design_metric_unit(DesignMetric metric) {
@@ -399,71 +572,122 @@ std::string_view design_metric_unit(DesignMetric metric) {
 
 namespace {
 
-double parameter_in_file_units(int i, double value) {
-  return design_parameter_in_degrees(i) ? rad_to_deg(value) : value;
-}
-
 double sense_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
-std::vector<std::string> constraint_names(const HexapodDesignSpec& spec) {
+std::vector<std::string> constraint_names(const DesignStudy& study) {
   std::vector<std::string> names;
-  for (const DesignConstraint& c : spec.constraints)
+  for (const DesignConstraint& c : study.constraints())
     names.push_back(fmt::format("g_{}_{}", design_metric_name(c.metric),
                                 c.relation == Relation::less_equal ? "max" : "min"));
-  if (spec.require_reachable) names.emplace_back("g_task_reachable");
+  if (study.require_reachable()) names.emplace_back("g_task_reachable");
   return names;
+}
+
+// Indices (into study.parameters) of the variables, in variable order.
+std::vector<int> free_parameter_indices(const DesignStudy& study) {
+  return study.problem ? study.problem->free_parameters()
+                       : study.machine_problem->free_parameters();
+}
+
+// Every parameter of a variable vector in file units (study.parameters order).
+std::vector<double> file_parameters(const DesignStudy& study, const std::vector<double>& x) {
+  std::vector<double> values;
+  if (study.problem) {
+    const std::array<double, kNumDesignParameters> p = study.problem->parameters_of(x);
+    for (int i = 0; i < kNumDesignParameters; ++i)
+      values.push_back(design_parameter_in_degrees(i) ? rad_to_deg(p[i]) : p[i]);
+  } else {
+    const std::vector<double> p = study.machine_problem->parameters_of(x);
+    const DesignFamily& family = study.machine_problem->family();
+    for (std::size_t i = 0; i < p.size(); ++i) values.push_back(family.parameters[i].to_file(p[i]));
+  }
+  return values;
+}
+
+// A design measured for the outputs, whichever problem the study has.
+struct MeasuredDesign {
+  std::vector<double> x;
+  std::vector<double> parameters;  // every parameter, file units (study.parameters order)
+  double home_height = 0.0;        // m
+  DesignMetrics metrics{};
+  std::vector<double> aggregate;  // [objectives internal | constraint rows]
+  std::string failure;
+  std::string machine_file;  // YAML of the machine (when asked for)
+  bool ok() const { return failure.empty(); }
+};
+
+MeasuredDesign measure_design(const DesignStudy& study, const std::vector<double>& x,
+                              bool machine_file) {
+  MeasuredDesign d;
+  d.x = x;
+  d.parameters = file_parameters(study, x);
+  if (study.problem) {
+    const DesignEvaluation ev = study.problem->evaluate(x);
+    d.home_height = ev.parameters[kHomeHeight];
+    d.metrics = ev.metrics;
+    d.aggregate = study.problem->aggregate_fitness(ev);
+    d.failure = ev.failure;
+    if (machine_file && ev.ok())
+      d.machine_file = hexapod_design_to_yaml(study.problem->design_of(ev.parameters));
+  } else {
+    const MachineDesignProblem& problem = *study.machine_problem;
+    const MachineDesignEvaluation ev = problem.evaluate(x);
+    d.home_height = problem.home_height_of(ev.parameters);
+    d.metrics = ev.metrics;
+    d.aggregate = problem.aggregate_fitness(ev);
+    d.failure = ev.failure;
+    if (machine_file && ev.ok()) d.machine_file = problem.family().machine_file(ev.parameters);
+  }
+  return d;
 }
 
 }  // namespace
 
 JournalOptions design_journal_options(const DesignStudy& study) {
-  const HexapodDesignProblem& problem = *study.problem;
-  const HexapodDesignSpec& spec = problem.spec();
-  const bool aggregate = spec.formulation == DesignFormulation::aggregate;
+  const bool aggregate = study.aggregate();
   JournalOptions options;
   std::string header = "index";
-  for (int i : problem.free_parameters()) header += fmt::format(",{}", design_parameter_name(i));
-  for (const DesignObjective& o : spec.objectives)
+  const std::vector<int> free = free_parameter_indices(study);
+  for (int i : free) header += "," + study.parameters[static_cast<std::size_t>(i)].name;
+  for (const DesignObjective& o : study.objectives())
     header += fmt::format(",{}", design_metric_name(o.metric));
   if (aggregate)
-    for (const std::string& name : constraint_names(spec)) header += "," + name;
+    for (const std::string& name : constraint_names(study)) header += "," + name;
   else
     header += ",g_max";
   header += ",feasible,failure";
   options.csv_header = header;
-  const HexapodDesignProblem* p = &problem;
+  const DesignStudy* s = &study;
   if (aggregate)
-    options.evaluate = [p](const std::vector<double>& x) {
-      const DesignEvaluation ev = p->evaluate(x);
+    options.evaluate = [s](const std::vector<double>& x) {
+      const MeasuredDesign d = measure_design(*s, x, false);
       JournalEntry entry;
-      entry.fitness = p->aggregate_fitness(ev);
-      entry.note = ev.failure;
+      entry.fitness = d.aggregate;
+      entry.note = d.failure;
       return entry;
     };
-  options.csv_row = [p, aggregate](std::size_t index, const JournalEntry& e) {
-    const HexapodDesignSpec& s = p->spec();
+  options.csv_row = [s, free, aggregate](std::size_t index, const JournalEntry& e) {
+    const std::vector<DesignObjective>& objectives = s->objectives();
     std::string row = std::to_string(index);
-    const std::array<double, kNumDesignParameters> parameters = p->parameters_of(e.x);
-    for (int i : p->free_parameters())
-      row += "," + format_number(parameter_in_file_units(i, parameters[i]));
+    const std::vector<double> parameters = file_parameters(*s, e.x);
+    for (int i : free) row += "," + format_number(parameters[static_cast<std::size_t>(i)]);
     const bool failed = !e.note.empty();
     bool feasible = !failed;
-    for (std::size_t k = 0; k < s.objectives.size(); ++k) {
+    for (std::size_t k = 0; k < objectives.size(); ++k) {
       const double f = e.fitness[k];
       feasible = feasible && std::isfinite(f);
-      row += failed || !std::isfinite(f)
-                 ? ","
-                 : "," + format_number(sense_sign(s.objectives[k].sense) * f);
+      row += failed || !std::isfinite(f) ? ","
+                                         : "," + format_number(sense_sign(objectives[k].sense) * f);
     }
     double g_max = -std::numeric_limits<double>::infinity();
-    for (std::size_t r = s.objectives.size(); r < e.fitness.size(); ++r) {
+    for (std::size_t r = objectives.size(); r < e.fitness.size(); ++r) {
       const double g = e.fitness[r];
       feasible = feasible && g <= 0.0;
       g_max = std::max(g_max, g);
       if (aggregate) row += failed || !std::isfinite(g) ? "," : "," + format_number(g);
     }
     if (!aggregate)
-      row += e.fitness.size() == s.objectives.size() || !std::isfinite(g_max)
+      row += e.fitness.size() == objectives.size() || !std::isfinite(g_max)
                  ? ","
                  : "," + format_number(g_max);
     row += feasible ? ",1," : ",0,";
@@ -475,12 +699,6 @@ JournalOptions design_journal_options(const DesignStudy& study) {
 
 namespace {
 
-struct FrontDesign {
-  std::vector<double> x;
-  DesignEvaluation evaluation;
-  std::vector<double> aggregate;  // [objectives internal | constraint rows]
-};
-
 nlohmann::json json_number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
@@ -490,61 +708,62 @@ nlohmann::json json_number(double value) {
 void write_design_outputs(const std::string& directory, const DesignStudy& study,
                           const RunOutcome& outcome, const DesignRunFacts& facts) {
   namespace fs = std::filesystem;
-  const HexapodDesignProblem& problem = *study.problem;
-  const HexapodDesignSpec& spec = problem.spec();
-  const std::size_t n_free = problem.free_parameters().size();
-  const std::size_t m = spec.objectives.size();
-  const bool home_free = !spec.parameters[kHomeHeight].fixed();
+  const std::vector<DesignObjective>& objectives_spec = study.objectives();
+  const std::vector<DesignConstraint>& constraints_spec = study.constraints();
+  const std::size_t m = objectives_spec.size();
+  const std::vector<int> free = free_parameter_indices(study);
+  const int home_index = [&] {
+    for (std::size_t i = 0; i < study.parameters.size(); ++i)
+      if (study.parameters[i].name == "home_height") return static_cast<int>(i);
+    return -1;
+  }();
+  const bool home_free =
+      home_index >= 0 && study.parameters[static_cast<std::size_t>(home_index)].free();
 
   // Re-measure the front designs (aggregate metrics in user units for every formulation); a
   // failed design never enters the front.
-  std::vector<FrontDesign> front(outcome.front.x.size());
+  std::vector<MeasuredDesign> front(outcome.front.x.size());
   const long long count = static_cast<long long>(front.size());
 #pragma omp parallel for num_threads(resolve_thread_count(facts.threads)) schedule(dynamic)
-  for (long long k = 0; k < count; ++k) {
-    FrontDesign& d = front[static_cast<std::size_t>(k)];
-    const std::vector<double>& x = outcome.front.x[static_cast<std::size_t>(k)];
-    d.x = x;
-    d.evaluation = problem.evaluate(x);
-    d.aggregate = problem.aggregate_fitness(d.evaluation);
-  }
-  std::erase_if(front, [](const FrontDesign& d) { return !d.evaluation.ok(); });
+  for (long long k = 0; k < count; ++k)
+    front[static_cast<std::size_t>(k)] =
+        measure_design(study, outcome.front.x[static_cast<std::size_t>(k)], study.write_designs);
+  std::erase_if(front, [](const MeasuredDesign& d) { return !d.ok(); });
   ObjectiveSet objectives;  // internal (minimised) sign
-  for (const FrontDesign& d : front)
+  for (const MeasuredDesign& d : front)
     objectives.emplace_back(d.aggregate.begin(),
                             d.aggregate.begin() + static_cast<std::ptrdiff_t>(m));
-  const std::vector<std::string> g_names = constraint_names(spec);
+  const std::vector<std::string> g_names = constraint_names(study);
   auto id_of = [](std::size_t k) { return fmt::format("d{:04}", k); };
 
   // pareto.csv
   std::ostringstream csv;
   csv << "id";
-  for (int i : problem.free_parameters()) csv << ',' << design_parameter_name(i);
+  for (int i : free) csv << ',' << study.parameters[static_cast<std::size_t>(i)].name;
   if (!home_free) csv << ",home_height";
-  for (const DesignObjective& o : spec.objectives) csv << ',' << design_metric_name(o.metric);
+  for (const DesignObjective& o : objectives_spec) csv << ',' << design_metric_name(o.metric);
   for (const std::string& g : g_names) csv << ',' << g;
   csv << ",feasible,failure\n";
   if (study.write_designs) fs::create_directories(fs::path(directory) / "designs");
   nlohmann::json designs = nlohmann::json::array();
   for (std::size_t k = 0; k < front.size(); ++k) {
-    const FrontDesign& d = front[k];
-    const DesignEvaluation& ev = d.evaluation;
+    const MeasuredDesign& d = front[k];
     const std::string id = id_of(k);
     nlohmann::json design;
     design["id"] = id;
     csv << id;
     nlohmann::json parameters = nlohmann::json::object();
-    for (int i : problem.free_parameters()) {
-      const double value = parameter_in_file_units(i, ev.parameters[i]);
+    for (int i : free) {
+      const double value = d.parameters[static_cast<std::size_t>(i)];
       csv << ',' << format_number(value);
-      parameters[std::string(design_parameter_name(i))] = json_number(value);
+      parameters[study.parameters[static_cast<std::size_t>(i)].name] = json_number(value);
     }
-    if (!home_free) csv << ',' << format_number(ev.parameters[kHomeHeight]);
+    if (!home_free) csv << ',' << format_number(d.home_height);
     design["parameters"] = parameters;
-    design["home_height"] = json_number(ev.parameters[kHomeHeight]);
+    design["home_height"] = json_number(d.home_height);
     nlohmann::json objective_values = nlohmann::json::object();
-    for (const DesignObjective& o : spec.objectives) {
-      const double value = ev.metrics[static_cast<int>(o.metric)];
+    for (const DesignObjective& o : objectives_spec) {
+      const double value = d.metrics[static_cast<int>(o.metric)];
       csv << ',' << format_number(value);
       objective_values[std::string(design_metric_name(o.metric))] = json_number(value);
     }
@@ -561,63 +780,57 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
     design["feasible"] = feasible;
     csv << ',' << (feasible ? 1 : 0) << ",\"\"\n";
     if (study.write_designs) {
-      write_file_atomically(directory + "/designs/" + id + ".yaml",
-                            hexapod_design_to_yaml(problem.design_of(ev.parameters)));
+      write_file_atomically(directory + "/designs/" + id + ".yaml", d.machine_file);
       design["machine_file"] = "designs/" + id + ".yaml";
     }
     designs.push_back(design);
   }
-  (void)n_free;
 
-  // pareto.json (pkmopt-pareto-1, /work/helper/PARETO_JSON.md)
+  // pareto.json (pkmopt-pareto-1, docs/design-studies.md)
   nlohmann::json pareto;
   pareto["format"] = "pkmopt-pareto-1";
   pareto["pkmopt_version"] = kVersion;
   pareto["study"] = study.name;
   pareto["description"] = study.description;
-  pareto["model"] = "hexapod";
+  pareto["model"] = study.model;
   nlohmann::json parameter_list = nlohmann::json::array();
   nlohmann::json fixed = nlohmann::json::object();
-  for (int i = 0; i < kNumDesignParameters; ++i) {
-    const auto [lo, hi] = study.parameter_ranges[i];
-    const std::string name(design_parameter_name(i));
-    if (spec.parameters[i].fixed())
-      fixed[name] = lo;
+  for (const StudyParameter& p : study.parameters) {
+    if (!p.free())
+      fixed[p.name] = p.min;
     else
-      parameter_list.push_back({{"name", name},
-                                {"unit", design_parameter_in_degrees(i) ? "deg" : "m"},
-                                {"min", lo},
-                                {"max", hi}});
+      parameter_list.push_back(
+          {{"name", p.name}, {"unit", p.unit}, {"min", p.min}, {"max", p.max}});
   }
   pareto["parameters"] = parameter_list;
   pareto["fixed_parameters"] = fixed;
   nlohmann::json objective_list = nlohmann::json::array();
-  for (const DesignObjective& o : spec.objectives)
+  for (const DesignObjective& o : objectives_spec)
     objective_list.push_back({{"name", design_metric_name(o.metric)},
                               {"sense", o.sense == Sense::maximize ? "maximize" : "minimize"},
                               {"unit", design_metric_unit(o.metric)}});
   pareto["objectives"] = objective_list;
   nlohmann::json constraint_list = nlohmann::json::array();
-  for (std::size_t r = 0; r < spec.constraints.size(); ++r) {
-    const DesignConstraint& c = spec.constraints[r];
+  for (std::size_t r = 0; r < constraints_spec.size(); ++r) {
+    const DesignConstraint& c = constraints_spec[r];
     constraint_list.push_back({{"name", g_names[r]},
                                {"metric", design_metric_name(c.metric)},
                                {"kind", c.relation == Relation::less_equal ? "max" : "min"},
                                {"bound", c.bound},
                                {"unit", design_metric_unit(c.metric)}});
   }
-  if (spec.require_reachable)
+  if (study.require_reachable())
     constraint_list.push_back({{"name", "g_task_reachable"},
                                {"metric", "task_reachable"},
                                {"kind", "reachable"},
                                {"bound", 0},
                                {"unit", ""}});
   pareto["constraints"] = constraint_list;
-  pareto["task"] = {
-      {"centre", study.task_centre},
-      {"wrench", std::vector<double>(spec.task.wrench.data(), spec.task.wrench.data() + 6)},
-      {"tilt_deg", study.task_tilt_deg},
-      {"yaw_deg", study.task_yaw_deg}};
+  const Wrench& wrench = study.task().wrench;
+  pareto["task"] = {{"centre", study.task_centre},
+                    {"wrench", std::vector<double>(wrench.data(), wrench.data() + 6)},
+                    {"tilt_deg", study.task_tilt_deg},
+                    {"yaw_deg", study.task_yaw_deg}};
   pareto["designs"] = designs;
   nlohmann::json knee = nullptr;
   if (!objectives.empty()) knee = id_of(knee_point(objectives));
@@ -627,11 +840,10 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
   nlohmann::json summary;
   summary["study"] = study.name;
   summary["description"] = study.description;
-  summary["model"] = "hexapod";
+  summary["model"] = study.model;
   summary["version"] = kVersion;
   summary["algorithm"] = study.optimizer.algorithm;
-  summary["formulation"] =
-      spec.formulation == DesignFormulation::aggregate ? "aggregate" : "smooth";
+  summary["formulation"] = study.aggregate() ? "aggregate" : "smooth";
   summary["status"] = front.empty() ? std::string("no_feasible_design") : outcome.status;
   summary["message"] = outcome.front.message;
   summary["seed"] = study.optimizer.seed;
@@ -660,7 +872,7 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
     const std::vector<double> reference = reference_point_from(objectives);
     std::vector<double> user_reference(m);
     for (std::size_t i = 0; i < m; ++i)
-      user_reference[i] = sense_sign(spec.objectives[i].sense) * reference[i];
+      user_reference[i] = sense_sign(objectives_spec[i].sense) * reference[i];
     summary["reference_point"] = user_reference;
     summary["reference_point_rule"] =
         "front's worst value of each objective moved 10% of the front's range (1 when the "

@@ -5,7 +5,7 @@
 //   study: hexapod-quick                      # name, required
 //   description: "..."                        # optional
 //   machine:
-//     model: hexapod                          # only hexapod so far
+//     model: hexapod                          # hexapod, delta, linear_delta or hexaglide
 //     parameters:                             # every key optional; a number = fixed,
 //       base_radius: {min: 0.45, max: 0.75}   #   {min, max} = free (m; *_deg in degrees)
 //       platform_radius: 0.25
@@ -38,6 +38,21 @@
 // nsga2 uses the aggregate (derivative-free) formulation; every other algorithm the smooth one
 // (see problems/hexapod_design.hpp).
 //
+// Leg-chain models (delta, linear_delta, hexaglide) load into a MachineDesignProblem
+// (problems/machine_design.hpp): `parameters:` takes the family's parameters (number = fixed,
+// {min, max} = free), and every other key of the model's machine file
+// (app/machine_file_leg_chain.hpp) may follow except the keys the parameters set:
+//   machine:
+//     model: linear_delta
+//     parameters: {guide_radius: {min: 0.3, max: 0.6}, rod: {min: 0.5, max: 1.0}, stroke: 0.6,
+//                  platform_radius: 0.05, inclination_deg: 0, home_height: 0}
+//     rods: {E: 7.0e10, area: 3.0e-5}
+//     carriage_stiffness: 2.0e7
+//     joints: {carriage_max_angle_deg: 40, platform_max_angle_deg: 40}
+// They take nsga2 or a derivative-free nlopt algorithm (aggregate formulation only); actuator
+// catalog constraints are hexapod-only; translational platforms (delta, linear_delta) need a
+// task without tilt or yaw.
+//
 // Outputs in DIR (docs/design-studies.md lists every column and unit): study.resolved.yaml
 // (this schema with every default filled in; it loads to the same problem), journal.txt and
 // evaluations.csv (every evaluation as it happens, app/study_journal.hpp), pareto.csv and
@@ -49,7 +64,7 @@
 //   JournalOptions journal = design_journal_options(study);
 //   journal.directory = "out";
 //   journal.study_hash = study_hash(study.resolved_yaml);
-//   JournaledProblem journaled(*study.problem, journal);
+//   JournaledProblem journaled(study.optimization_problem(), journal);
 //   RunOutcome outcome = run_optimizer(journaled, study.optimizer, 0);
 //   write_design_outputs("out", study, outcome, {.threads = 0});
 #pragma once
@@ -58,17 +73,31 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "app/study_benchmark.hpp"
 #include "app/study_journal.hpp"
 #include "problems/hexapod_design.hpp"
+#include "problems/machine_design.hpp"
 
 namespace pkmopt {
+
+/// One design parameter of a study in file units (m; degrees for *_deg).
+struct StudyParameter {
+  std::string name;
+  std::string unit;  ///< "m" or "deg"
+  double min = 0.0;
+  double max = 0.0;  ///< == min when the parameter is fixed
+  bool free() const { return min < max; }
+};
 
 struct DesignStudy {
   std::string name;
   std::string description;
-  std::unique_ptr<HexapodDesignProblem> problem;
+  /// The machine model: "hexapod" (problem) or a leg-chain model (machine_problem).
+  std::string model = "hexapod";
+  std::unique_ptr<HexapodDesignProblem> problem;          ///< model hexapod, else null
+  std::unique_ptr<MachineDesignProblem> machine_problem;  ///< leg-chain models, else null
   OptimizerSpec optimizer;
   bool write_designs = true;
   /// Each parameter's [min, max] in file units (m, degrees for *_deg); min == max when fixed.
@@ -79,6 +108,17 @@ struct DesignStudy {
   std::size_t task_positions = 0;  ///< positions of the region (times orientations = poses)
   /// study.resolved.yaml: the study with every default filled in (a valid study file).
   std::string resolved_yaml;
+  /// Every parameter of the model in problem order (the free ones are the variables, in order).
+  std::vector<StudyParameter> parameters;
+
+  /// The problem the optimizer runs (whichever of problem / machine_problem is set).
+  const Problem& optimization_problem() const;
+  const std::vector<DesignObjective>& objectives() const;
+  const std::vector<DesignConstraint>& constraints() const;
+  bool require_reachable() const;
+  const DesignTask& task() const;
+  /// True for the aggregate (derivative-free) formulation.
+  bool aggregate() const;
 };
 
 /// True when the file's root map has a `machine:` key (throws InputError for a bad file).

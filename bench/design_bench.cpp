@@ -1,6 +1,6 @@
 // Design-study benchmarks: the cost of one design evaluation (aggregate formulation: every
 // task pose's metrics, reductions, reachability; and the workspace volume when the study asks
-// for it), for the shipped studies. One thread.
+// for it), for the shipped studies (hexapod and leg-chain models). One thread.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -13,15 +13,16 @@ namespace {
 void evaluate_study_design(benchmark::State& state, const std::string& study_file) {
   const pkmopt::DesignStudy study =
       pkmopt::load_design_study(std::string(PKMOPT_SOURCE_DIR) + "/" + study_file);
-  const pkmopt::Bounds bounds = study.problem->bounds();
+  const pkmopt::Problem& problem = study.optimization_problem();
+  const pkmopt::Bounds bounds = problem.bounds();
   // The centre of the design box (a mid-range machine).
   std::vector<double> x(bounds.lower.size());
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = 0.5 * (bounds.lower[i] + bounds.upper[i]);
   for (auto _ : state) {
-    std::vector<double> f = study.problem->fitness(x);
+    std::vector<double> f = problem.fitness(x);
     benchmark::DoNotOptimize(f.data());
   }
-  state.counters["task_poses"] = static_cast<double>(study.problem->spec().task.poses.size());
+  state.counters["task_poses"] = static_cast<double>(study.task().poses.size());
   state.SetItemsProcessed(state.iterations());
 }
 
@@ -36,5 +37,22 @@ void BM_DesignEvaluationHexapodMilling(benchmark::State& state) {
   evaluate_study_design(state, "studies/hexapod-milling.yaml");
 }
 BENCHMARK(BM_DesignEvaluationHexapodMilling)->Unit(benchmark::kMillisecond);
+
+// The comparison studies (studies/compare-300): 27 task poses each, stiffness, machine size,
+// singularity margin, reachability; the leg chains through the generic Machine interface.
+void BM_DesignEvaluationCompareHexapod(benchmark::State& state) {
+  evaluate_study_design(state, "studies/compare-300/hexapod.yaml");
+}
+BENCHMARK(BM_DesignEvaluationCompareHexapod)->Unit(benchmark::kMicrosecond);
+
+void BM_DesignEvaluationCompareHexaglide(benchmark::State& state) {
+  evaluate_study_design(state, "studies/compare-300/hexaglide.yaml");
+}
+BENCHMARK(BM_DesignEvaluationCompareHexaglide)->Unit(benchmark::kMicrosecond);
+
+void BM_DesignEvaluationCompareLinearDelta(benchmark::State& state) {
+  evaluate_study_design(state, "studies/compare-300/linear-delta.yaml");
+}
+BENCHMARK(BM_DesignEvaluationCompareLinearDelta)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -24,10 +24,6 @@ constexpr std::array<std::string_view, kNumDesignParameters> kParameterNames = {
     "stroke",
     "home_height"};
 
-constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
-    "stiffness_min",    "singularity_margin", "leg_force_max", "tcp_error_max",
-    "workspace_volume", "conditioning_index", "machine_size"};
-
 // Derivatives with respect to the 7 parameters, then the (at most 2) epigraph variables.
 constexpr int kMaxEpigraph = 2;
 using DesignJet = ceres::Jet<double, kNumDesignParameters + kMaxEpigraph>;
@@ -63,64 +59,6 @@ std::string_view design_parameter_name(int index) { return kParameterNames.at(in
 bool design_parameter_in_degrees(int index) {
   return index == kBasePairSeparation || index == kPlatformPairSeparation;
 }
-std::string_view design_metric_name(DesignMetric metric) {
-  return kMetricNames.at(static_cast<int>(metric));
-}
-std::optional<DesignMetric> design_metric_from_name(std::string_view name) {
-  for (int m = 0; m < kNumDesignMetrics; ++m)
-    if (kMetricNames[m] == name) return static_cast<DesignMetric>(m);
-  return std::nullopt;
-}
-
-std::vector<Pose> box_task_poses(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_extents,
-                                 const Eigen::Vector3i& counts, double tilt, double yaw,
-                                 double orientation_step) {
-  if ((counts.array() < 1).any()) throw std::invalid_argument("box task: counts must be >= 1");
-  OrientationSet set;
-  set.tilt = tilt;
-  set.yaw_range = yaw;
-  set.orientation_step = orientation_step;
-  const std::vector<Eigen::Matrix3d> rotations = sample_orientations(set);
-  auto coordinate = [&](int axis, int j) {
-    if (counts(axis) == 1) return centre(axis);
-    return centre(axis) - half_extents(axis) + 2.0 * half_extents(axis) * j / (counts(axis) - 1);
-  };
-  std::vector<Pose> poses;
-  for (int iz = 0; iz < counts.z(); ++iz)
-    for (int iy = 0; iy < counts.y(); ++iy)
-      for (int ix = 0; ix < counts.x(); ++ix)
-        for (const Eigen::Matrix3d& R : rotations)
-          poses.push_back(Pose{{coordinate(0, ix), coordinate(1, iy), coordinate(2, iz)},
-                               angles_from_rotation(R)});
-  return poses;
-}
-
-std::vector<Pose> cylinder_task_poses(const Eigen::Vector3d& centre, double radius, double height,
-                                      int rings, int per_ring, int layers, double tilt, double yaw,
-                                      double orientation_step) {
-  if (rings < 0 || per_ring < 1 || layers < 1)
-    throw std::invalid_argument("cylinder task: rings >= 0, per_ring >= 1, layers >= 1");
-  OrientationSet set;
-  set.tilt = tilt;
-  set.yaw_range = yaw;
-  set.orientation_step = orientation_step;
-  const std::vector<Eigen::Matrix3d> rotations = sample_orientations(set);
-  std::vector<Pose> poses;
-  for (int layer = 0; layer < layers; ++layer) {
-    const double z =
-        layers == 1 ? centre.z() : centre.z() - height / 2.0 + height * layer / (layers - 1);
-    std::vector<Eigen::Vector3d> points{{centre.x(), centre.y(), z}};
-    for (int ring = 1; ring <= rings; ++ring)
-      for (int k = 0; k < per_ring; ++k) {
-        const double phi = 2.0 * std::numbers::pi * k / per_ring;
-        const double rr = radius * ring / rings;
-        points.emplace_back(centre.x() + rr * std::cos(phi), centre.y() + rr * std::sin(phi), z);
-      }
-    for (const Eigen::Vector3d& p : points)
-      for (const Eigen::Matrix3d& R : rotations) poses.push_back(Pose{p, angles_from_rotation(R)});
-  }
-  return poses;
-}
 
 HexapodDesignSpec::HexapodDesignSpec() {
   machine_template = sample_machines::conventions_hexapod_design();
@@ -142,27 +80,7 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
                       where, kParameterNames[i], r.lower, r.upper));
     if (!r.fixed()) free_.push_back(i);
   }
-  if (spec_.objectives.empty())
-    throw std::invalid_argument(where + ": expected at least one objective, found none");
-  if (spec_.task.poses.empty())
-    throw std::invalid_argument(where + ": expected at least one task pose, found none");
-  for (const DesignObjective& o : spec_.objectives) needed_[static_cast<int>(o.metric)] = true;
-  for (const DesignConstraint& c : spec_.constraints) {
-    if (!std::isfinite(c.bound))
-      throw std::invalid_argument(fmt::format("{}: constraint on {}: expected a finite bound",
-                                              where, design_metric_name(c.metric)));
-    needed_[static_cast<int>(c.metric)] = true;
-  }
-  if (needed_[static_cast<int>(DesignMetric::workspace_volume)] ||
-      needed_[static_cast<int>(DesignMetric::conditioning_index)]) {
-    WorkspaceOptions& w = spec_.task.workspace;
-    // Maps (a metric evaluation at every inside node) only for the conditioning index.
-    w.compute_maps = needed_[static_cast<int>(DesignMetric::conditioning_index)];
-    w.compute_hull = false;
-    w.keep_points = false;
-    const std::string message = validate(w);
-    if (!message.empty()) throw std::invalid_argument(where + ": task workspace: " + message);
-  }
+  needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
 
   const std::size_t poses = spec_.task.poses.size();
   const HexapodJointLimits& limits = spec_.machine_template.joints;
@@ -434,9 +352,7 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
       need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max)) {
     HexapodData data(*hexapod);
     PoseMetrics m;
-    double stiffness = std::numeric_limits<double>::infinity();
-    double margin = std::numeric_limits<double>::infinity();
-    double force = 0.0, error = 0.0;
+    TaskWorstCase worst;
     for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
       Pose pose = spec_.task.poses[k];
       pose.position.z() += p[kHomeHeight];
@@ -444,58 +360,18 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
       if (m.singular && ev.failure.empty())
         ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
                                  pose.position.x(), pose.position.y(), pose.position.z());
-      stiffness = std::min(stiffness, m.stiffness_min);
-      margin = std::min(margin, m.singularity_margin);
-      force = std::max(force, m.tau.cwiseAbs().maxCoeff());
-      error = std::max(error, m.tcp_error_max);
+      worst.add(m);
     }
-    metric(DesignMetric::stiffness_min) = stiffness;
-    metric(DesignMetric::singularity_margin) = margin;
-    metric(DesignMetric::leg_force_max) = force;
-    metric(DesignMetric::tcp_error_max) = error;
+    worst.store(ev.metrics);
   }
-  if (need(DesignMetric::conditioning_index)) {
-    // Global conditioning index: mean singularity margin over the inside workspace nodes.
-    try {
-      const WorkspaceResult workspace = compute_workspace(*hexapod, spec_.task.workspace);
-      metric(DesignMetric::conditioning_index) = workspace.maps.global_conditioning_index;
-      if (need(DesignMetric::workspace_volume))
-        metric(DesignMetric::workspace_volume) = workspace.volume;
-      if (workspace.maps.points == 0 && ev.failure.empty())
-        ev.failure = "conditioning index: the workspace has no inside grid node";
-    } catch (const std::exception& error) {
-      if (ev.failure.empty()) ev.failure = fmt::format("workspace: {}", error.what());
-    }
-  } else if (need(DesignMetric::workspace_volume)) {
-    try {
-      metric(DesignMetric::workspace_volume) = workspace_volume(*hexapod, spec_.task.workspace);
-    } catch (const std::exception& error) {
-      if (ev.failure.empty()) ev.failure = fmt::format("workspace volume: {}", error.what());
-    }
-  }
-  for (int m = 0; m < kNumDesignMetrics; ++m) {
-    if (needed_[m] && !std::isfinite(ev.metrics[m])) {
-      if (ev.failure.empty()) ev.failure = fmt::format("{} is not finite", kMetricNames[m]);
-      ev.metrics[m] = kFailurePenalty;
-    }
-  }
+  measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
+  check_finite_metrics(needed_, ev.metrics, ev.failure);
   return ev;
 }
 
 std::vector<double> HexapodDesignProblem::aggregate_fitness(const DesignEvaluation& ev) const {
-  std::vector<double> f;
-  f.reserve(fitness_size());
-  const bool failed = !ev.ok();
-  for (const DesignObjective& o : spec_.objectives)
-    f.push_back(failed ? kFailurePenalty
-                       : metric_sign(o.sense) * ev.metrics[static_cast<int>(o.metric)]);
-  for (const DesignConstraint& c : spec_.constraints) {
-    const double value = ev.metrics[static_cast<int>(c.metric)];
-    f.push_back(failed ? kFailurePenalty
-                       : (c.relation == Relation::less_equal ? value - c.bound : c.bound - value));
-  }
-  if (spec_.require_reachable) f.push_back(failed ? kFailurePenalty : ev.reach_violation);
-  return f;
+  return aggregate_design_rows(spec_.objectives, spec_.constraints, spec_.require_reachable,
+                               ev.metrics, ev.reach_violation, !ev.ok());
 }
 
 std::vector<double> HexapodDesignProblem::fitness(const std::vector<double>& x) const {

@@ -61,6 +61,9 @@
 // constraint row of the fitness is kFailurePenalty (finite: the design is infeasible and
 // dominated, never NaN).
 //
+// Metrics, objectives, constraints, the task and its sampling are shared with every design
+// problem (problems/machine_design.hpp).
+//
 // Thread safety: basic. Every fitness call builds its own Hexapod and HexapodData, so
 // batch_fitness evaluates designs in parallel (OpenMP) with one HexapodData per thread.
 //
@@ -84,6 +87,7 @@
 #include "models/hexapod.hpp"
 #include "models/workspace/workspace.hpp"
 #include "optimizer/problem.hpp"
+#include "problems/machine_design.hpp"
 
 namespace pkmopt {
 
@@ -102,62 +106,6 @@ enum DesignParameterIndex : int {
 std::string_view design_parameter_name(int index);
 /// True for the parameters given in degrees in files (the pair separations).
 bool design_parameter_in_degrees(int index);
-
-/// A parameter's range in internal units; fixed when lower == upper.
-struct ParameterRange {
-  double lower = 0.0;
-  double upper = 0.0;
-  bool fixed() const { return lower == upper; }
-};
-
-enum class DesignMetric {
-  stiffness_min,
-  singularity_margin,
-  leg_force_max,
-  tcp_error_max,
-  workspace_volume,
-  conditioning_index,
-  machine_size
-};
-inline constexpr int kNumDesignMetrics = 7;
-std::string_view design_metric_name(DesignMetric metric);
-/// The metric named `name`, nullopt if none is.
-std::optional<DesignMetric> design_metric_from_name(std::string_view name);
-
-enum class Sense { minimize, maximize };
-enum class Relation { less_equal, greater_equal };
-
-struct DesignObjective {
-  DesignMetric metric = DesignMetric::stiffness_min;
-  Sense sense = Sense::minimize;
-};
-
-struct DesignConstraint {
-  DesignMetric metric = DesignMetric::leg_force_max;
-  Relation relation = Relation::less_equal;
-  double bound = 0.0;  ///< in the metric's unit
-};
-
-/// The poses and load the machine must handle.
-struct DesignTask {
-  std::vector<Pose> poses;         ///< TCP poses before the home_height lift (rad)
-  Wrench wrench = Wrench::Zero();  ///< at the TCP, base axes (N, N*m)
-  /// For workspace_volume and conditioning_index (hull off; maps only for the index).
-  WorkspaceOptions workspace;
-};
-
-/// Positions on an n_x x n_y x n_z grid of the box centre +- half_extents (a count of 1 puts the
-/// points on the centre plane), times the orientations of a cone of half-angle `tilt` and a yaw
-/// range +-yaw (rad) sampled with `orientation_step` (sample_orientations, R0 = I).
-std::vector<Pose> box_task_poses(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_extents,
-                                 const Eigen::Vector3i& counts, double tilt, double yaw,
-                                 double orientation_step = 10.0 * kDegToRad);
-/// Positions on a cylinder about the vertical axis through `centre`: the axis point and
-/// `rings` rings (radius radius*j/rings) of `per_ring` points each, on `layers` planes spanning
-/// centre.z +- height/2, times the orientations as in box_task_poses.
-std::vector<Pose> cylinder_task_poses(const Eigen::Vector3d& centre, double radius, double height,
-                                      int rings, int per_ring, int layers, double tilt, double yaw,
-                                      double orientation_step = 10.0 * kDegToRad);
 
 enum class DesignFormulation { aggregate, smooth };
 
@@ -190,9 +138,6 @@ inline constexpr double kEpigraphStiffnessUnit = 1e6;
 inline constexpr double kSmoothRowMargin = 1e-6;
 /// Rows per task pose of a smooth stiffness_min objective or constraint (principal minors).
 inline constexpr std::size_t kStiffnessRowsPerPose = 7;
-
-/// Objective and constraint rows of a failed design (finite: never NaN in outputs).
-inline constexpr double kFailurePenalty = 1e20;
 
 /// Everything an evaluation measured, in user units and signs.
 struct DesignEvaluation {

@@ -15,6 +15,7 @@
 #include "app/csv.hpp"
 #include "app/input_error.hpp"
 #include "app/machine_file.hpp"
+#include "tests/cli_runner.hpp"
 
 namespace pkmopt {
 namespace {
@@ -315,6 +316,194 @@ TEST(DesignStudy, ShippedQuickStudyResolvesToItself) {
       load_design_study(std::string(PKMOPT_SOURCE_DIR) + "/studies/hexapod-quick.yaml");
   const fs::path dir = write_study("quick_resolved", study.resolved_yaml);
   EXPECT_EQ(load_design_study((dir / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Leg-chain design studies (MachineDesignProblem).
+
+const char* const kLinearDeltaStudy =
+    "study: tiny-linear-delta\n"
+    "machine:\n"
+    "  model: linear_delta\n"
+    "  parameters:\n"
+    "    rod: {min: 0.5, max: 0.9}\n"
+    "    stroke: {min: 0.4, max: 0.8}\n"
+    "    inclination_deg: 10\n"
+    "    home_height: {min: -0.1, max: 0.1}\n"
+    "  rods: {E: 2.1e11, area: 1.5e-4}\n"
+    "  carriage_stiffness: 2.0e8\n"
+    "  tool: {tcp: [0, 0, -0.05]}\n"
+    "task:\n"
+    "  region: {shape: box, centre: [0, 0, -0.35], size: [0.2, 0.2, 0.1], points: [2, 2, 2]}\n"
+    "  wrench: [300, 300, -1000, 0, 0, 0]\n"
+    "objectives:\n"
+    "  - maximize: stiffness_min\n"
+    "  - minimize: machine_size\n"
+    "constraints:\n"
+    "  - task_reachable\n"
+    "  - {metric: singularity_margin, min: 0.02}\n"
+    "optimizer: {algorithm: nsga2, population: 12, generations: 4, seed: 3}\n";
+
+TEST(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) {
+  const fs::path dir = write_study("lc_load", kLinearDeltaStudy);
+  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  EXPECT_EQ(study.model, "linear_delta");
+  EXPECT_EQ(study.problem, nullptr);
+  ASSERT_NE(study.machine_problem, nullptr);
+  const MachineDesignProblem& problem = *study.machine_problem;
+  EXPECT_EQ(problem.free_parameters(), (std::vector<int>{2, 3, 5}));  // rod, stroke, home_height
+  EXPECT_EQ(problem.spec().task.poses.size(), 8u);
+  EXPECT_EQ(study.parameters[4].name, "inclination_deg");
+  EXPECT_EQ(study.parameters[4].unit, "deg");
+  EXPECT_EQ(study.parameters[4].min, 10.0);
+  // The template keys reach the machine: the written design file carries them.
+  const std::string file = problem.family().machine_file(problem.parameters_of({0.7, 0.6, 0.0}));
+  EXPECT_NE(file.find("rods: {E: 210000000000, area: 0.00015}"), std::string::npos) << file;
+  EXPECT_NE(file.find("carriage_stiffness: 200000000"), std::string::npos) << file;
+  EXPECT_NE(file.find("tcp: [0, 0, -0.05]"), std::string::npos) << file;
+  EXPECT_NE(file.find("inclination_deg: 10"), std::string::npos) << file;
+  // study.resolved.yaml loads to the same problem.
+  const fs::path again = write_study("lc_load_resolved", study.resolved_yaml);
+  const DesignStudy reloaded = load_design_study((again / "study.yaml").string());
+  EXPECT_EQ(reloaded.resolved_yaml, study.resolved_yaml);
+  EXPECT_EQ(reloaded.machine_problem->fitness({0.7, 0.6, 0.05}), problem.fitness({0.7, 0.6, 0.05}));
+}
+
+TEST(LegChainDesignStudy, SchemaErrors) {
+  const std::string file =
+      (fs::temp_directory_path() / "pkmopt_study_design_test_lc_e1" / "study.yaml").string();
+  EXPECT_EQ(
+      load_error("lc_e1", replaced(kLinearDeltaStudy, "model: linear_delta", "model: tripod")),
+      file +
+          ":3:10: machine.model: expected one of hexapod, delta, linear_delta, hexaglide (the "
+          "models with a design family), found 'tripod'");
+  const std::string file2 =
+      (fs::temp_directory_path() / "pkmopt_study_design_test_lc_e2" / "study.yaml").string();
+  EXPECT_EQ(load_error("lc_e2", replaced(kLinearDeltaStudy, "    rod:", "    rods:")),
+            file2 +
+                ":5:5: machine.parameters.rods: unknown key 'rods'; allowed keys here: "
+                "guide_radius, platform_radius, rod, stroke, inclination_deg, home_height");
+  // A key the parameters set may not appear in the machine section.
+  EXPECT_NE(load_error("lc_e3", replaced(kLinearDeltaStudy, "  carriage_stiffness:",
+                                         "  rod: 0.6\n  carriage_stiffness:"))
+                .find(":10:8: machine.rod: no 'rod' in the machine section"),
+            std::string::npos);
+  // Template errors come from the machine-file reader, located in the study file.
+  const std::string e4 =
+      load_error("lc_e4", replaced(kLinearDeltaStudy, "area: 1.5e-4", "area: -1.5e-4"));
+  EXPECT_NE(e4.find(":9:27: machine.rods.area: expected a number > 0"), std::string::npos) << e4;
+  // Gradient algorithms are refused with a pointer to nsga2.
+  const std::string e5 = load_error("lc_e5", replaced(kLinearDeltaStudy,
+                                                      "algorithm: nsga2, population: 12, "
+                                                      "generations: 4, seed: 3",
+                                                      "algorithm: ipopt"));
+  EXPECT_NE(e5.find("optimizer.algorithm: expected nsga2"), std::string::npos) << e5;
+  EXPECT_NE(e5.find("found 'ipopt'"), std::string::npos) << e5;
+  // A translational platform cannot tilt.
+  const std::string e6 = load_error(
+      "lc_e6",
+      replaced(kLinearDeltaStudy, "  wrench:", "  orientations: {tilt_deg: 10}\n  wrench:"));
+  EXPECT_NE(e6.find("task.orientations: expected tilt_deg: 0 and yaw_deg: 0"), std::string::npos)
+      << e6;
+  // Angles out of their range.
+  const std::string e7 = load_error(
+      "lc_e7", replaced(kLinearDeltaStudy, "inclination_deg: 10", "inclination_deg: 95"));
+  EXPECT_NE(e7.find("machine.parameters.inclination_deg: expected values within [-89, 89] deg"),
+            std::string::npos)
+      << e7;
+  // Through the CLI: exit status 2, nothing written.
+  const fs::path dir = write_study("lc_e8", replaced(kLinearDeltaStudy,
+                                                     "algorithm: nsga2, "
+                                                     "population: 12, "
+                                                     "generations: 4, seed: 3",
+                                                     "algorithm: nlopt:SLSQP"));
+  const cli_runner::CliRun run = cli_runner::run_cli(
+      dir, "run " + (dir / "study.yaml").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(run.status, 2) << run.err;
+  EXPECT_NE(run.err.find("expected nsga2"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "pareto.csv"));
+}
+
+TEST(LegChainDesignStudy, SmallStudyEndToEndThroughTheCli) {
+  const fs::path dir = write_study("lc_run", kLinearDeltaStudy);
+  const std::string study = (dir / "study.yaml").string();
+  const std::string out = (dir / "out").string();
+  const cli_runner::CliRun validate = cli_runner::run_cli(dir, "validate " + study);
+  ASSERT_EQ(validate.status, 0) << validate.err;
+  EXPECT_NE(validate.out.find("(model linear_delta) is valid"), std::string::npos) << validate.out;
+  EXPECT_NE(validate.out.find("free parameters (3): rod [0.5, 0.9]"), std::string::npos)
+      << validate.out;
+
+  const cli_runner::CliRun run =
+      cli_runner::run_cli(dir, "run " + study + " --out " + out + " --threads 2 --no-progress");
+  ASSERT_EQ(run.status, 0) << run.err;
+  std::ifstream csv(dir / "out" / "pareto.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_EQ(header,
+            "id,rod,stroke,home_height,stiffness_min,machine_size,g_singularity_margin_min,"
+            "g_task_reachable,feasible,failure");
+  int rows = 0;
+  while (std::getline(csv, row)) {
+    ++rows;
+    EXPECT_EQ(row.find("nan"), std::string::npos) << row;
+    EXPECT_NE(row.find(",1,\"\""), std::string::npos) << row;  // feasible, no failure
+  }
+  ASSERT_GT(rows, 0);
+
+  const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
+  EXPECT_EQ(pareto["format"], "pkmopt-pareto-1");
+  EXPECT_EQ(pareto["model"], "linear_delta");
+  ASSERT_EQ(pareto["designs"].size(), static_cast<std::size_t>(rows));
+  EXPECT_EQ(pareto["parameters"][0]["name"], "rod");
+  EXPECT_EQ(pareto["parameters"][0]["unit"], "m");
+  EXPECT_EQ(pareto["fixed_parameters"]["inclination_deg"], 10.0);
+  EXPECT_EQ(pareto["constraints"][1]["name"], "g_task_reachable");
+  const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary["model"], "linear_delta");
+  EXPECT_EQ(summary["evaluations"], 12 * 5);
+
+  // Every design file is a machine file `pkmopt analyze` loads, and it is the design evaluated.
+  const DesignStudy loaded = load_design_study(study);
+  for (const auto& d : pareto["designs"]) {
+    const fs::path machine_file = dir / "out" / d["machine_file"].get<std::string>();
+    const auto machine = load_machine_file(machine_file.string());
+    EXPECT_EQ(machine->model(), "linear_delta");
+    const std::vector<double> x = {d["parameters"]["rod"].get<double>(),
+                                   d["parameters"]["stroke"].get<double>(),
+                                   d["home_height"].get<double>()};
+    const MachineDesignEvaluation ev = loaded.machine_problem->evaluate(x);
+    EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::stiffness_min)],
+              d["objectives"]["stiffness_min"].get<double>());
+    EXPECT_NEAR(*machine->envelope_volume(), d["objectives"]["machine_size"].get<double>(), 1e-12);
+  }
+  const std::string first = (dir / "out" / "designs" / "d0000.yaml").string();
+  std::ofstream(dir / "poses.csv") << "x,y,z\n0,0,-0.3\n";
+  const cli_runner::CliRun analyze =
+      cli_runner::run_cli(dir, "analyze " + first + " --poses " + (dir / "poses.csv").string() +
+                                   " --out " + (dir / "analysis.csv").string());
+  EXPECT_EQ(analyze.status, 0) << analyze.err;
+
+  // --resume of a finished run gives the same front; the html report reads it.
+  const std::string before = read_text(dir / "out" / "pareto.csv");
+  const cli_runner::CliRun resumed = cli_runner::run_cli(
+      dir, "run " + study + " --out " + out + " --threads 1 --resume --no-progress");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_EQ(read_text(dir / "out" / "pareto.csv"), before);
+  const cli_runner::CliRun html = cli_runner::run_cli(
+      dir, "export " + out + " --format html --out " + (dir / "report.html").string());
+  EXPECT_EQ(html.status, 0) << html.err;
+  EXPECT_NE(read_text(dir / "report.html").find("linear_delta"), std::string::npos);
+}
+
+TEST(LegChainDesignStudy, ShippedComparisonStudiesResolveToThemselves) {
+  for (const char* name : {"hexapod", "hexaglide", "linear-delta"}) {
+    const DesignStudy study = load_design_study(std::string(PKMOPT_SOURCE_DIR) +
+                                                "/studies/compare-300/" + name + ".yaml");
+    const fs::path dir = write_study(std::string("compare_") + name, study.resolved_yaml);
+    EXPECT_EQ(load_design_study((dir / "study.yaml").string()).resolved_yaml, study.resolved_yaml)
+        << name;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,541 @@
+#include "problems/machine_design.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "models/hexapod.hpp"
+
+namespace pkmopt {
+namespace {
+
+constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
+    "stiffness_min",    "singularity_margin", "leg_force_max", "tcp_error_max",
+    "workspace_volume", "conditioning_index", "machine_size"};
+
+double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
+
+std::vector<Eigen::Matrix3d> task_rotations(double tilt, double yaw, double orientation_step) {
+  OrientationSet set;
+  set.tilt = tilt;
+  set.yaw_range = yaw;
+  set.orientation_step = orientation_step;
+  return sample_orientations(set);
+}
+
+}  // namespace
+
+std::string_view design_metric_name(DesignMetric metric) {
+  return kMetricNames.at(static_cast<int>(metric));
+}
+
+std::optional<DesignMetric> design_metric_from_name(std::string_view name) {
+  for (int m = 0; m < kNumDesignMetrics; ++m)
+    if (kMetricNames[m] == name) return static_cast<DesignMetric>(m);
+  return std::nullopt;
+}
+
+std::vector<Pose> box_task_poses(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_extents,
+                                 const Eigen::Vector3i& counts, double tilt, double yaw,
+                                 double orientation_step) {
+  if ((counts.array() < 1).any()) throw std::invalid_argument("box task: counts must be >= 1");
+  const std::vector<Eigen::Matrix3d> rotations = task_rotations(tilt, yaw, orientation_step);
+  auto coordinate = [&](int axis, int j) {
+    if (counts(axis) == 1) return centre(axis);
+    return centre(axis) - half_extents(axis) + 2.0 * half_extents(axis) * j / (counts(axis) - 1);
+  };
+  std::vector<Pose> poses;
+  for (int iz = 0; iz < counts.z(); ++iz)
+    for (int iy = 0; iy < counts.y(); ++iy)
+      for (int ix = 0; ix < counts.x(); ++ix)
+        for (const Eigen::Matrix3d& R : rotations)
+          poses.push_back(Pose{{coordinate(0, ix), coordinate(1, iy), coordinate(2, iz)},
+                               angles_from_rotation(R)});
+  return poses;
+}
+
+std::vector<Pose> cylinder_task_poses(const Eigen::Vector3d& centre, double radius, double height,
+                                      int rings, int per_ring, int layers, double tilt, double yaw,
+                                      double orientation_step) {
+  if (rings < 0 || per_ring < 1 || layers < 1)
+    throw std::invalid_argument("cylinder task: rings >= 0, per_ring >= 1, layers >= 1");
+  const std::vector<Eigen::Matrix3d> rotations = task_rotations(tilt, yaw, orientation_step);
+  std::vector<Pose> poses;
+  for (int layer = 0; layer < layers; ++layer) {
+    const double z =
+        layers == 1 ? centre.z() : centre.z() - height / 2.0 + height * layer / (layers - 1);
+    std::vector<Eigen::Vector3d> points{{centre.x(), centre.y(), z}};
+    for (int ring = 1; ring <= rings; ++ring)
+      for (int k = 0; k < per_ring; ++k) {
+        const double phi = 2.0 * std::numbers::pi * k / per_ring;
+        const double rr = radius * ring / rings;
+        points.emplace_back(centre.x() + rr * std::cos(phi), centre.y() + rr * std::sin(phi), z);
+      }
+    for (const Eigen::Vector3d& p : points)
+      for (const Eigen::Matrix3d& R : rotations) poses.push_back(Pose{p, angles_from_rotation(R)});
+  }
+  return poses;
+}
+
+NeededMetrics check_design_goals(const std::string& where,
+                                 const std::vector<DesignObjective>& objectives,
+                                 const std::vector<DesignConstraint>& constraints,
+                                 DesignTask& task) {
+  NeededMetrics needed{};
+  if (objectives.empty())
+    throw std::invalid_argument(where + ": expected at least one objective, found none");
+  if (task.poses.empty())
+    throw std::invalid_argument(where + ": expected at least one task pose, found none");
+  for (const DesignObjective& o : objectives) needed[static_cast<int>(o.metric)] = true;
+  for (const DesignConstraint& c : constraints) {
+    if (!std::isfinite(c.bound))
+      throw std::invalid_argument(fmt::format("{}: constraint on {}: expected a finite bound",
+                                              where, design_metric_name(c.metric)));
+    needed[static_cast<int>(c.metric)] = true;
+  }
+  if (needed[static_cast<int>(DesignMetric::workspace_volume)] ||
+      needed[static_cast<int>(DesignMetric::conditioning_index)]) {
+    WorkspaceOptions& w = task.workspace;
+    // Maps (a metric evaluation at every inside node) only for the conditioning index.
+    w.compute_maps = needed[static_cast<int>(DesignMetric::conditioning_index)];
+    w.compute_hull = false;
+    w.keep_points = false;
+    const std::string message = validate(w);
+    if (!message.empty()) throw std::invalid_argument(where + ": task workspace: " + message);
+  }
+  return needed;
+}
+
+void TaskWorstCase::add(const PoseMetrics& m) {
+  stiffness_min = std::min(stiffness_min, m.stiffness_min);
+  singularity_margin = std::min(singularity_margin, m.singularity_margin);
+  leg_force_max = std::max(leg_force_max, m.tau.cwiseAbs().maxCoeff());
+  tcp_error_max = std::max(tcp_error_max, m.tcp_error_max);
+}
+
+void TaskWorstCase::store(DesignMetrics& metrics) const {
+  metrics[static_cast<int>(DesignMetric::stiffness_min)] = stiffness_min;
+  metrics[static_cast<int>(DesignMetric::singularity_margin)] = singularity_margin;
+  metrics[static_cast<int>(DesignMetric::leg_force_max)] = leg_force_max;
+  metrics[static_cast<int>(DesignMetric::tcp_error_max)] = tcp_error_max;
+}
+
+void measure_workspace_metrics(const Machine& machine, const WorkspaceOptions& options,
+                               const NeededMetrics& needed, DesignMetrics& metrics,
+                               std::string& failure) {
+  auto need = [&](DesignMetric m) { return needed[static_cast<int>(m)]; };
+  auto metric = [&](DesignMetric m) -> double& { return metrics[static_cast<int>(m)]; };
+  if (need(DesignMetric::conditioning_index)) {
+    // Global conditioning index: mean singularity margin over the inside workspace nodes.
+    try {
+      const WorkspaceResult workspace = compute_workspace(machine, options);
+      metric(DesignMetric::conditioning_index) = workspace.maps.global_conditioning_index;
+      if (need(DesignMetric::workspace_volume))
+        metric(DesignMetric::workspace_volume) = workspace.volume;
+      if (workspace.maps.points == 0 && failure.empty())
+        failure = "conditioning index: the workspace has no inside grid node";
+    } catch (const std::exception& error) {
+      if (failure.empty()) failure = fmt::format("workspace: {}", error.what());
+    }
+  } else if (need(DesignMetric::workspace_volume)) {
+    try {
+      metric(DesignMetric::workspace_volume) = workspace_volume(machine, options);
+    } catch (const std::exception& error) {
+      if (failure.empty()) failure = fmt::format("workspace volume: {}", error.what());
+    }
+  }
+}
+
+void check_finite_metrics(const NeededMetrics& needed, DesignMetrics& metrics,
+                          std::string& failure) {
+  for (int m = 0; m < kNumDesignMetrics; ++m) {
+    if (needed[m] && !std::isfinite(metrics[m])) {
+      if (failure.empty()) failure = fmt::format("{} is not finite", kMetricNames[m]);
+      metrics[m] = kFailurePenalty;
+    }
+  }
+}
+
+std::vector<double> aggregate_design_rows(const std::vector<DesignObjective>& objectives,
+                                          const std::vector<DesignConstraint>& constraints,
+                                          bool require_reachable, const DesignMetrics& metrics,
+                                          double reach_violation, bool failed) {
+  std::vector<double> f;
+  f.reserve(objectives.size() + constraints.size() + 1);
+  for (const DesignObjective& o : objectives)
+    f.push_back(failed ? kFailurePenalty
+                       : metric_sign(o.sense) * metrics[static_cast<int>(o.metric)]);
+  for (const DesignConstraint& c : constraints) {
+    const double value = metrics[static_cast<int>(c.metric)];
+    f.push_back(failed ? kFailurePenalty
+                       : (c.relation == Relation::less_equal ? value - c.bound : c.bound - value));
+  }
+  if (require_reachable) f.push_back(failed ? kFailurePenalty : reach_violation);
+  return f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Families.
+
+double FamilyParameter::to_internal(double file_value) const {
+  return in_degrees() ? deg_to_rad(file_value) : file_value;
+}
+double FamilyParameter::to_file(double internal_value) const {
+  return in_degrees() ? rad_to_deg(internal_value) : internal_value;
+}
+
+int DesignFamily::index_of(std::string_view name) const {
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<double> DesignFamily::default_parameters() const {
+  std::vector<double> p;
+  for (const FamilyParameter& parameter : parameters)
+    p.push_back(parameter.to_internal(parameter.default_value));
+  return p;
+}
+
+double envelope_machine_size(const Machine& machine, const std::vector<double>& /*parameters*/) {
+  return machine_envelope_volume(machine).value_or(std::numeric_limits<double>::quiet_NaN());
+}
+
+MachineDesignSpec::MachineDesignSpec() {
+  task.workspace.resolution = 0.05;
+  task.workspace.bisection_steps = 4;
+}
+
+std::vector<ParameterRange> default_ranges(const DesignFamily& family) {
+  std::vector<ParameterRange> ranges;
+  for (double value : family.default_parameters()) ranges.push_back({value, value});
+  return ranges;
+}
+
+namespace {
+
+// Machine-file text helpers: numbers in their shortest round-trip form.
+std::string number(double v) { return fmt::format("{}", v); }
+// Degrees of an angle in rad, to 12 significant digits (60, not 59.99999999999999).
+std::string degrees(double rad) { return fmt::format("{:.12g}", rad_to_deg(rad)); }
+std::string vector3(const Eigen::Vector3d& v) {
+  return fmt::format("[{}, {}, {}]", number(v.x()), number(v.y()), number(v.z()));
+}
+
+std::string link_stiffness_yaml(const LinkStiffness& k) {
+  return k.axial_stiffness > 0.0 ? fmt::format("{{axial_stiffness: {}}}", number(k.axial_stiffness))
+                                 : fmt::format("{{E: {}, area: {}}}", number(k.E), number(k.area));
+}
+
+// joints: {<base_key>: deg, platform_max_angle_deg: deg} with the finite limits (or nothing).
+std::string joints_yaml(const char* base_key, double base_limit, double platform_limit) {
+  std::string items;
+  if (std::isfinite(base_limit)) items += fmt::format("{}: {}", base_key, degrees(base_limit));
+  if (std::isfinite(platform_limit))
+    items += fmt::format("{}platform_max_angle_deg: {}", items.empty() ? "" : ", ",
+                         degrees(platform_limit));
+  return items.empty() ? "" : "joints: {" + items + "}\n";
+}
+
+// The keys every leg-chain machine file has after its geometry: link stiffness, actuator
+// stiffness (when not rigid), joint limits, tool, characteristic length.
+std::string links_and_joints_yaml(const char* links_key, const LinkStiffness& k,
+                                  const char* actuator_key, const char* base_joint_key,
+                                  double base_limit, double platform_limit,
+                                  const Eigen::Vector3d& tcp, const std::optional<double>& length) {
+  std::string text = fmt::format("{}: {}\n", links_key, link_stiffness_yaml(k));
+  if (k.actuator_stiffness > 0.0)
+    text += fmt::format("{}: {}\n", actuator_key, number(k.actuator_stiffness));
+  text += joints_yaml(base_joint_key, base_limit, platform_limit);
+  text += "tool: {tcp: " + vector3(tcp) + "}\n";
+  if (length) text += "characteristic_length: " + number(*length) + "\n";
+  return text;
+}
+
+double lift(const std::vector<double>& p, std::size_t home_index) { return p.at(home_index); }
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw std::invalid_argument(message);
+}
+
+}  // namespace
+
+std::string delta_machine_file(const DeltaDesign& d) {
+  std::string text = "model: delta\n";
+  text += fmt::format("base_radius: {}\nplatform_radius: {}\nupper_arm: {}\nrod: {}\n",
+                      number(d.base_radius), number(d.platform_radius), number(d.upper_arm),
+                      number(d.rod));
+  text += fmt::format("drive_range_deg: [{}, {}]\n", degrees(d.theta_min), degrees(d.theta_max));
+  text += fmt::format("branch: {}\n", d.branch > 0 ? "elbow_out" : "elbow_in");
+  text += links_and_joints_yaml("rods", d.stiffness, "drive_stiffness", "elbow_max_angle_deg",
+                                d.elbow_max_angle, d.platform_max_angle, d.tcp,
+                                d.characteristic_length);
+  text += "actuator_error_deg: " + degrees(d.actuator_error) + "\n";
+  return text;
+}
+
+std::string linear_delta_machine_file(const LinearDeltaDesign& d) {
+  std::string text = "model: linear_delta\n";
+  text += fmt::format("guide_radius: {}\nplatform_radius: {}\nrod: {}\ninclination_deg: {}\n",
+                      number(d.guide_radius), number(d.platform_radius), number(d.rod),
+                      degrees(d.inclination));
+  text += fmt::format("stroke: [{}, {}]\n", number(d.q_min), number(d.q_max));
+  text += links_and_joints_yaml("rods", d.stiffness, "carriage_stiffness", "carriage_max_angle_deg",
+                                d.carriage_max_angle, d.platform_max_angle, d.tcp,
+                                d.characteristic_length);
+  text += "actuator_error: " + number(d.actuator_error) + "\n";
+  return text;
+}
+
+std::string hexaglide_machine_file(const HexaglideDesign& d) {
+  std::string text = "model: hexaglide\n";
+  std::string ys, zs, joints;
+  for (int i = 0; i < 6; ++i) {
+    ys += (i ? ", " : "") + number(d.guide_y[static_cast<std::size_t>(i)]);
+    zs += (i ? ", " : "") + number(d.guide_z[static_cast<std::size_t>(i)]);
+    joints += (i ? ", " : "") + vector3(d.platform_joints.col(i));
+  }
+  text += fmt::format("guides: {{y: [{}], z: [{}], inclination_deg: {}}}\n", ys, zs,
+                      degrees(d.inclination));
+  text += "strut: " + number(d.strut) + "\n";
+  text += "platform_joints: [" + joints + "]\n";
+  text += fmt::format("stroke: [{}, {}]\n", number(d.q_min), number(d.q_max));
+  text += links_and_joints_yaml("struts", d.stiffness, "carriage_stiffness",
+                                "carriage_max_angle_deg", d.carriage_max_angle,
+                                d.platform_max_angle, d.tcp, d.characteristic_length);
+  text += "actuator_error: " + number(d.actuator_error) + "\n";
+  text += "home_height: " + number(d.home_height) + "\n";
+  return text;
+}
+
+namespace {
+
+// build = make(design(p)), machine_file = write(design(p)), machine_size = the envelope.
+template <typename FromParameters, typename Make, typename Write>
+void wire_family(DesignFamily& family, FromParameters design, Make make, Write write) {
+  family.build = [design, make](const std::vector<double>& p) { return make(design(p)); };
+  family.machine_file = [design, write](const std::vector<double>& p) { return write(design(p)); };
+  family.machine_size = envelope_machine_size;
+}
+
+}  // namespace
+
+DesignFamily delta_family(const DeltaDesign& t) {
+  DesignFamily family;
+  family.model = "delta";
+  family.translational = true;
+  family.parameters = {{"base_radius", "m", t.base_radius, false, false},
+                       {"platform_radius", "m", t.platform_radius, false, true},
+                       {"upper_arm", "m", t.upper_arm, false, false},
+                       {"rod", "m", t.rod, false, false},
+                       {"drive_min_deg", "deg", rad_to_deg(t.theta_min), true, true, 180.0},
+                       {"drive_max_deg", "deg", rad_to_deg(t.theta_max), true, true, 180.0},
+                       {"home_height", "m", 0.0, true, true}};
+  family.parameter_keys = {"base_radius", "platform_radius", "upper_arm", "rod", "drive_range_deg"};
+  auto design = [t](const std::vector<double>& p) {
+    DeltaDesign d = t;
+    d.base_radius = p.at(0);
+    d.platform_radius = p.at(1);
+    d.upper_arm = p.at(2);
+    d.rod = p.at(3);
+    d.theta_min = p.at(4);
+    d.theta_max = p.at(5);
+    require(d.theta_min < d.theta_max, "drive_min_deg must be below drive_max_deg");
+    return d;
+  };
+  wire_family(family, design, make_delta, delta_machine_file);
+  return family;
+}
+
+DesignFamily linear_delta_family(const LinearDeltaDesign& t) {
+  DesignFamily family;
+  family.model = "linear_delta";
+  family.translational = true;
+  family.parameters = {{"guide_radius", "m", t.guide_radius, false, false},
+                       {"platform_radius", "m", t.platform_radius, false, true},
+                       {"rod", "m", t.rod, false, false},
+                       {"stroke", "m", t.q_max - t.q_min, false, false},
+                       {"inclination_deg", "deg", rad_to_deg(t.inclination), true, true, 89.0},
+                       {"home_height", "m", 0.0, true, true}};
+  family.parameter_keys = {"guide_radius", "platform_radius", "rod", "stroke", "inclination_deg"};
+  auto design = [t](const std::vector<double>& p) {
+    LinearDeltaDesign d = t;
+    d.guide_radius = p.at(0);
+    d.platform_radius = p.at(1);
+    d.rod = p.at(2);
+    d.q_min = 0.0;
+    d.q_max = p.at(3);
+    d.inclination = p.at(4);
+    return d;
+  };
+  wire_family(family, design, make_linear_delta, linear_delta_machine_file);
+  return family;
+}
+
+DesignFamily hexaglide_family(const HexaglideDesign& t) {
+  // Template geometry read back as parameters: the platform radius and pair separation of the
+  // semi-regular form (joint 0 of Rz(90) * semi_regular_platform_joints), the guide offset of
+  // guide 0 from its joint.
+  const Eigen::Vector3d b0 = t.platform_joints.col(0);
+  const double radius = b0.head<2>().norm();
+  // Joint 0 sits at azimuth 90 - 60 + sep/2 = 30 + sep/2 deg (CONVENTIONS.md, turned by 90).
+  const double separation = 2.0 * (rad_to_deg(std::atan2(b0.y(), b0.x())) - 30.0);
+  const double offset = std::abs(t.guide_y[0] - b0.y());
+  DesignFamily family;
+  family.model = "hexaglide";
+  family.parameters = {{"platform_radius", "m", radius, false, false},
+                       {"pair_separation_deg", "deg", separation, false, true, 119.0},
+                       {"guide_offset", "m", offset, false, true},
+                       {"strut", "m", t.strut, false, false},
+                       {"stroke", "m", t.q_max - t.q_min, false, false},
+                       {"inclination_deg", "deg", rad_to_deg(t.inclination), true, true, 89.0},
+                       {"home_height", "m", 0.0, true, true}};
+  family.parameter_keys = {"guides", "strut", "platform", "platform_joints", "stroke"};
+  auto design = [t](const std::vector<double>& p) {
+    HexaglideDesign d = t;
+    require(p.at(1) < deg_to_rad(120.0), "pair_separation_deg must be below 120");
+    d.platform_joints =
+        Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+        semi_regular_platform_joints(p.at(0), p.at(1));
+    for (int i = 0; i < 6; ++i) {
+      const double y = d.platform_joints(1, i);
+      d.guide_y[static_cast<std::size_t>(i)] = y + (y >= 0.0 ? p.at(2) : -p.at(2));
+    }
+    d.strut = p.at(3);
+    d.q_min = -0.5 * p.at(4);
+    d.q_max = 0.5 * p.at(4);
+    d.inclination = p.at(5);
+    d.home_height = t.home_height + p.at(6);
+    return d;
+  };
+  wire_family(family, design, make_hexaglide, hexaglide_machine_file);
+  return family;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The problem.
+
+double pose_reach_violation(const Machine& machine, const Pose& pose) {
+  const auto* leg_chain = dynamic_cast<const LegChainMachine*>(&machine);
+  if (leg_chain == nullptr) return 1.0;
+  const std::optional<Eigen::VectorXd> q = leg_chain->inverse_kinematics(pose);
+  if (!q) return 1.0;
+  Eigen::VectorXd base_angles, platform_angles;
+  leg_chain->joint_angles(pose, base_angles, platform_angles);
+  double excess = 0.0;
+  for (int i = 0; i < leg_chain->num_actuators(); ++i) {
+    const LegChainLeg& leg = leg_chain->design().legs[static_cast<std::size_t>(i)];
+    excess = std::max({excess, leg.q_min - (*q)(i), (*q)(i)-leg.q_max});
+    if (std::isfinite(leg.base_max_angle))
+      excess = std::max(excess, base_angles(i) - leg.base_max_angle);
+    if (std::isfinite(leg.platform_max_angle))
+      excess = std::max(excess, platform_angles(i) - leg.platform_max_angle);
+  }
+  // Unreachable for a reason the terms do not see (a rotation of a translational platform...).
+  if (!(excess > 0.0)) return 1.0;
+  return std::min(1.0, excess);
+}
+
+MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::move(spec)) {
+  const std::string where = fmt::format("{} design problem '{}'", spec_.family.model, spec_.name);
+  const DesignFamily& family = spec_.family;
+  if (!family.build || !family.machine_size || !family.machine_file)
+    throw std::invalid_argument(where +
+                                ": the design family lacks a builder, machine_size or "
+                                "machine-file writer");
+  if (spec_.parameters.size() != family.parameters.size())
+    throw std::invalid_argument(fmt::format("{}: expected {} parameter ranges, found {}", where,
+                                            family.parameters.size(), spec_.parameters.size()));
+  for (std::size_t i = 0; i < spec_.parameters.size(); ++i) {
+    const ParameterRange& r = spec_.parameters[i];
+    if (!std::isfinite(r.lower) || !std::isfinite(r.upper) || r.lower > r.upper)
+      throw std::invalid_argument(
+          fmt::format("{}: parameter {}: expected finite lower <= upper, found [{}, {}]", where,
+                      family.parameters[i].name, r.lower, r.upper));
+    if (!r.fixed()) free_.push_back(static_cast<int>(i));
+  }
+  home_height_ = family.index_of("home_height");
+  needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
+}
+
+Bounds MachineDesignProblem::bounds() const {
+  Bounds b;
+  for (int i : free_) {
+    b.lower.push_back(spec_.parameters[static_cast<std::size_t>(i)].lower);
+    b.upper.push_back(spec_.parameters[static_cast<std::size_t>(i)].upper);
+  }
+  return b;
+}
+
+std::vector<double> MachineDesignProblem::parameters_of(const std::vector<double>& x) const {
+  if (x.size() != free_.size())
+    throw std::invalid_argument(
+        fmt::format("{}: expected {} variables, found {}", spec_.name, free_.size(), x.size()));
+  std::vector<double> p;
+  for (const ParameterRange& r : spec_.parameters) p.push_back(r.lower);
+  for (std::size_t j = 0; j < free_.size(); ++j) p[static_cast<std::size_t>(free_[j])] = x[j];
+  return p;
+}
+
+double MachineDesignProblem::home_height_of(const std::vector<double>& parameters) const {
+  return home_height_ < 0 ? 0.0 : lift(parameters, static_cast<std::size_t>(home_height_));
+}
+
+MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>& x) const {
+  MachineDesignEvaluation ev;
+  ev.parameters = parameters_of(x);
+  ev.metrics.fill(0.0);
+  ev.reach_violation = 1.0;
+  std::unique_ptr<Machine> machine;
+  try {
+    machine = spec_.family.build(ev.parameters);
+  } catch (const std::invalid_argument& error) {
+    ev.failure = fmt::format("invalid machine: {}", error.what());
+    return ev;
+  }
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
+  metric(DesignMetric::machine_size) = spec_.family.machine_size(*machine, ev.parameters);
+
+  // Every pose is analysed (reachability and the per-pose metrics come from one call).
+  const double h = home_height_of(ev.parameters);
+  const std::unique_ptr<MachineData> data = machine->make_data();
+  PoseMetrics m;
+  TaskWorstCase worst;
+  double reach_sum = 0.0;
+  for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
+    Pose pose = spec_.task.poses[k];
+    pose.position.z() += h;
+    machine->analyze(*data, pose, spec_.task.wrench, m);
+    if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
+    if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
+    if (m.singular && ev.failure.empty())
+      ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
+                               pose.position.x(), pose.position.y(), pose.position.z());
+    worst.add(m);
+    ++ev.analysed_poses;
+  }
+  ev.reach_violation = reach_sum / static_cast<double>(spec_.task.poses.size());
+  ev.reachable = reach_sum == 0.0;
+  if (ev.analysed_poses == 0 && ev.failure.empty())
+    ev.failure = "no task pose can be analysed (every pose is unreachable and singular)";
+  worst.store(ev.metrics);
+  measure_workspace_metrics(*machine, spec_.task.workspace, needed_, ev.metrics, ev.failure);
+  check_finite_metrics(needed_, ev.metrics, ev.failure);
+  return ev;
+}
+
+std::vector<double> MachineDesignProblem::aggregate_fitness(
+    const MachineDesignEvaluation& ev) const {
+  return aggregate_design_rows(spec_.objectives, spec_.constraints, spec_.require_reachable,
+                               ev.metrics, ev.reach_violation, !ev.ok());
+}
+
+std::vector<double> MachineDesignProblem::fitness(const std::vector<double>& x) const {
+  return aggregate_fitness(evaluate(x));
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,275 @@
+#include "problems/machine_design.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+
+#include "app/machine_file_leg_chain.hpp"
+#include "app/yaml_reader.hpp"
+#include "models/hexapod.hpp"
+
+namespace pkmopt {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A linear delta problem: rod, stroke and home_height free, a 3 x 3 x 2 box below the base.
+MachineDesignSpec linear_delta_spec() {
+  MachineDesignSpec spec;
+  spec.name = "linear-delta-test";
+  LinearDeltaDesign t;
+  t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  t.carriage_max_angle = deg_to_rad(60);
+  t.platform_max_angle = deg_to_rad(60);
+  spec.family = linear_delta_family(t);
+  spec.parameters = default_ranges(spec.family);
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("rod"))] = {0.4, 0.9};
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("stroke"))] = {0.3, 0.8};
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("home_height"))] = {-0.2, 0.2};
+  spec.task.poses = box_task_poses({0, 0, -0.35}, {0.1, 0.1, 0.05}, {3, 3, 2}, 0, 0);
+  spec.task.wrench << 300, 300, -1000, 0, 0, 0;
+  spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
+                     {DesignMetric::leg_force_max, Sense::minimize},
+                     {DesignMetric::machine_size, Sense::minimize}};
+  spec.constraints = {{DesignMetric::singularity_margin, Relation::greater_equal, 0.05},
+                      {DesignMetric::tcp_error_max, Relation::less_equal, 1e-4}};
+  return spec;
+}
+
+TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
+  const MachineDesignProblem problem(linear_delta_spec());
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation ev = problem.evaluate(x);
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  EXPECT_EQ(ev.analysed_poses, problem.spec().task.poses.size());
+
+  // The same design built directly from the model.
+  LinearDeltaDesign d;
+  d.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  d.carriage_max_angle = d.platform_max_angle = deg_to_rad(60);
+  d.rod = 0.7;
+  d.q_min = 0.0;
+  d.q_max = 0.6;
+  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const auto data = machine->make_data();
+  double stiffness = kInf, margin = kInf, force = 0.0, error = 0.0;
+  int reachable = 0;
+  double reach_sum = 0.0;
+  for (Pose pose : problem.spec().task.poses) {
+    pose.position.z() += 0.1;
+    PoseMetrics m;
+    machine->analyze(*data, pose, problem.spec().task.wrench, m);
+    ASSERT_FALSE(m.singular);
+    stiffness = std::min(stiffness, m.stiffness_min);
+    margin = std::min(margin, m.singularity_margin);
+    for (int i = 0; i < m.tau.size(); ++i) force = std::max(force, std::abs(m.tau(i)));
+    error = std::max(error, m.tcp_error_max);
+    reachable += m.reachable ? 1 : 0;
+    if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
+  }
+  auto metric = [&](DesignMetric m) { return ev.metrics[static_cast<int>(m)]; };
+  EXPECT_EQ(metric(DesignMetric::stiffness_min), stiffness);
+  EXPECT_EQ(metric(DesignMetric::singularity_margin), margin);
+  EXPECT_EQ(metric(DesignMetric::leg_force_max), force);
+  EXPECT_EQ(metric(DesignMetric::tcp_error_max), error);
+  EXPECT_EQ(metric(DesignMetric::machine_size), *machine->envelope_volume());
+  const double poses = static_cast<double>(problem.spec().task.poses.size());
+  EXPECT_EQ(ev.reach_violation, reach_sum / poses);
+  EXPECT_EQ(ev.reachable, reachable == static_cast<int>(poses));
+
+  // Rows: maximised objectives flip sign, constraints follow their relation, then reachability.
+  const std::vector<double> f = problem.fitness(x);
+  ASSERT_EQ(f.size(), 3u + 2u + 1u);
+  EXPECT_EQ(f[0], -stiffness);
+  EXPECT_EQ(f[1], force);
+  EXPECT_EQ(f[2], metric(DesignMetric::machine_size));
+  EXPECT_EQ(f[3], 0.05 - margin);
+  EXPECT_EQ(f[4], error - 1e-4);
+  EXPECT_EQ(f[5], ev.reach_violation);
+}
+
+TEST(MachineDesign, MachineSizeIsTheDocumentedEnvelopeOfEachFamily) {
+  const double pi = std::numbers::pi;
+  {  // linear delta: pi rho^2 (s cos i + l), rho = max(r_g, |r_g - s sin i|)
+    const DesignFamily family = linear_delta_family(LinearDeltaDesign{});
+    for (double inclination_deg : {0.0, 25.0, -15.0}) {
+      const double r = 0.4, rod = 0.8, s = 0.7, i = deg_to_rad(inclination_deg);
+      const std::vector<double> p = {r, 0.05, rod, s, i, 0.0};
+      const double rho = std::max(r, std::abs(r - s * std::sin(i)));
+      EXPECT_NEAR(family.machine_size(*family.build(p), p),
+                  pi * rho * rho * (s * std::cos(i) + rod), 1e-12)
+          << inclination_deg;
+    }
+  }
+  {  // delta: pi (r_b + r_a)^2 (2 r_a + l)
+    const DesignFamily family = delta_family(DeltaDesign{});
+    const std::vector<double> p = {0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0};
+    EXPECT_NEAR(family.machine_size(*family.build(p), p), pi * 0.6 * 0.6 * (0.8 + 0.9), 1e-12);
+  }
+  {  // hexaglide: pi rho^2 (s |sin i| + L), rho = max_i |(s/2 cos i, y_i - mean y)|
+    const DesignFamily family = hexaglide_family(HexaglideDesign{});
+    const double s = 1.2, L = 0.7, incl = deg_to_rad(10), offset = 0.25;
+    const std::vector<double> p = {0.2, deg_to_rad(20), offset, L, s, incl, 0.0};
+    const Eigen::Matrix<double, 3, 6> b =
+        Eigen::AngleAxisd(std::numbers::pi / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+        semi_regular_platform_joints(0.2, deg_to_rad(20));
+    std::array<double, 6> y{};
+    double mean = 0.0;
+    for (int k = 0; k < 6; ++k) {
+      y[static_cast<std::size_t>(k)] = b(1, k) + (b(1, k) >= 0.0 ? offset : -offset);
+      mean += y[static_cast<std::size_t>(k)] / 6.0;
+    }
+    double rho = 0.0;
+    for (double yk : y) rho = std::max(rho, std::hypot(s / 2 * std::cos(incl), yk - mean));
+    EXPECT_NEAR(family.machine_size(*family.build(p), p),
+                pi * rho * rho * (s * std::abs(std::sin(incl)) + L), 1e-12);
+  }
+}
+
+TEST(MachineDesign, FamiliesRecoverTheirTemplateAsDefaults) {
+  // The default parameters rebuild the template machine: same metrics at its home pose.
+  const HexaglideDesign hexaglide;
+  const DesignFamily family = hexaglide_family(hexaglide);
+  const std::unique_ptr<Machine> rebuilt = family.build(family.default_parameters());
+  const std::unique_ptr<Machine> original = make_hexaglide(hexaglide);
+  const Pose pose{{0.05, -0.03, 0.55}, {0.02, -0.01, 0.03}};
+  PoseMetrics a, b;
+  rebuilt->analyze(*rebuilt->make_data(), pose, Wrench::Constant(100.0), a);
+  original->analyze(*original->make_data(), pose, Wrench::Constant(100.0), b);
+  ASSERT_TRUE(b.reachable);
+  EXPECT_NEAR((a.q - b.q).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(a.stiffness_min / b.stiffness_min, 1.0, 1e-12);
+}
+
+TEST(MachineDesign, MachineFilesLoadBackToTheSameMachine) {
+  // The written machine file, read by the machine-file reader, gives the evaluated machine.
+  const std::vector<std::pair<DesignFamily, std::vector<double>>> cases = {
+      {delta_family(DeltaDesign{}), {0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0}},
+      {linear_delta_family(LinearDeltaDesign{}), {0.4, 0.05, 0.8, 0.7, deg_to_rad(12), 0.0}},
+      {hexaglide_family(HexaglideDesign{}),
+       {0.2, deg_to_rad(25), 0.2, 0.9, 1.6, deg_to_rad(5), 0.1}}};
+  const std::vector<Pose> poses = {Pose{{0.02, 0.03, -0.75}, {0, 0, 0}},
+                                   Pose{{0.02, 0.03, -0.55}, {0, 0, 0}},
+                                   Pose{{0.05, -0.02, 0.45}, {0.03, 0.02, -0.01}}};
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const auto& [family, p] = cases[c];
+    const std::string text = family.machine_file(p);
+    const YamlValue root = YamlValue::load_string(text, family.model + ".yaml");
+    const std::unique_ptr<Machine> loaded = load_leg_chain_machine(root, family.model);
+    ASSERT_NE(loaded, nullptr) << text;
+    const std::unique_ptr<Machine> built = family.build(p);
+    EXPECT_EQ(loaded->model(), family.model);
+    EXPECT_NEAR(*loaded->envelope_volume() / *built->envelope_volume(), 1.0, 1e-12);
+    PoseMetrics a, b;
+    loaded->analyze(*loaded->make_data(), poses[c], Wrench::Constant(50.0), a);
+    built->analyze(*built->make_data(), poses[c], Wrench::Constant(50.0), b);
+    ASSERT_FALSE(b.singular) << family.model;
+    EXPECT_EQ(a.reachable, b.reachable) << family.model;
+    EXPECT_NEAR((a.q - b.q).norm(), 0.0, 1e-9) << family.model;
+    EXPECT_NEAR((a.tau - b.tau).norm() / b.tau.norm(), 0.0, 1e-9) << family.model;
+    EXPECT_NEAR(a.stiffness_min / b.stiffness_min, 1.0, 1e-9) << family.model;
+  }
+}
+
+TEST(MachineDesign, FailuresGivePenaltyRowsAndAReason) {
+  {  // an impossible machine: the drive range is empty
+    MachineDesignSpec spec;
+    spec.family = delta_family(DeltaDesign{});
+    spec.parameters = default_ranges(spec.family);
+    spec.parameters[4] = {deg_to_rad(-10), deg_to_rad(50)};  // drive_min_deg free
+    spec.parameters[5] = {deg_to_rad(0), deg_to_rad(0)};     // drive_max_deg fixed at 0
+    spec.task.poses = {Pose{{0, 0, -1.0}, {0, 0, 0}}};
+    spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize}};
+    const MachineDesignProblem problem(spec);
+    const MachineDesignEvaluation ev = problem.evaluate({deg_to_rad(20)});
+    EXPECT_NE(ev.failure.find("invalid machine"), std::string::npos) << ev.failure;
+    for (double v : problem.fitness({deg_to_rad(20)})) EXPECT_EQ(v, kFailurePenalty);
+    EXPECT_TRUE(problem.evaluate({deg_to_rad(-10)}).ok());
+  }
+  {  // a task out of reach of every rod (5 m aside): nothing to analyse
+    MachineDesignSpec spec = linear_delta_spec();
+    spec.task.poses = box_task_poses({5.0, 0, -0.4}, {0.1, 0.1, 0.1}, {2, 2, 2}, 0, 0);
+    const MachineDesignProblem problem(spec);
+    const MachineDesignEvaluation ev = problem.evaluate({0.7, 0.6, 0.0});
+    EXPECT_EQ(ev.analysed_poses, 0u);
+    EXPECT_EQ(ev.reach_violation, 1.0);
+    EXPECT_NE(ev.failure.find("no task pose"), std::string::npos) << ev.failure;
+    for (double v : problem.fitness({0.7, 0.6, 0.0})) EXPECT_EQ(v, kFailurePenalty);
+  }
+  {  // part of the task beyond the stroke: infeasible but measured, g_reach = the fraction
+    MachineDesignSpec spec = linear_delta_spec();
+    const MachineDesignProblem problem(spec);
+    const MachineDesignEvaluation ev = problem.evaluate({0.9, 0.3, -0.2});
+    ASSERT_TRUE(ev.ok()) << ev.failure;
+    EXPECT_GT(ev.reach_violation, 0.0);
+    EXPECT_LT(ev.reach_violation, 1.0);
+    EXPECT_FALSE(ev.reachable);
+    EXPECT_EQ(problem.fitness({0.9, 0.3, -0.2}).back(), ev.reach_violation);
+  }
+}
+
+TEST(MachineDesign, ReachViolationIsTheExcessOverTheStrokeOrJointLimit) {
+  LinearDeltaDesign d;  // vertical guides, stroke [0, 0.6], joints unlimited
+  const Pose pose{{0.05, -0.02, -0.1}, {0, 0, 0}};
+  const auto reference = std::make_unique<LegChainMachine>(linear_delta_design(d));
+  const std::optional<Eigen::VectorXd> q = reference->inverse_kinematics(pose);
+  ASSERT_TRUE(q.has_value());
+  ASSERT_TRUE(reference->reachable(*reference->make_data(), pose));
+  d.q_max = q->maxCoeff() - 0.02;  // the highest carriage now misses by 20 mm
+  EXPECT_NEAR(pose_reach_violation(*make_linear_delta(d), pose), 0.02, 1e-12);
+  d.q_max = q->maxCoeff() - 2.0;  // capped at 1
+  d.q_min = d.q_max - 0.5;
+  EXPECT_EQ(pose_reach_violation(*make_linear_delta(d), pose), 1.0);
+  d = LinearDeltaDesign{};
+  Eigen::VectorXd base_angles, platform_angles;
+  reference->joint_angles(pose, base_angles, platform_angles);
+  d.carriage_max_angle = base_angles.maxCoeff() - 0.01;  // 0.01 rad over the carriage limit
+  EXPECT_NEAR(pose_reach_violation(*make_linear_delta(d), pose), 0.01, 1e-12);
+  // A pose no rod reaches.
+  EXPECT_EQ(pose_reach_violation(*reference, Pose{{5, 0, -0.4}, {0, 0, 0}}), 1.0);
+}
+
+TEST(MachineDesign, SpecErrorsNameTheField) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.parameters.pop_back();
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+  spec = linear_delta_spec();
+  spec.objectives.clear();
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+  spec = linear_delta_spec();
+  spec.parameters[0] = {0.5, 0.4};
+  try {
+    MachineDesignProblem problem(spec);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("guide_radius"), std::string::npos) << e.what();
+  }
+}
+
+TEST(MachineDesign, BatchesAreBitIdenticalOnOneAndTwoThreads) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.objectives.push_back({DesignMetric::workspace_volume, Sense::maximize});
+  spec.task.workspace.resolution = 0.1;
+  const MachineDesignProblem problem(spec);
+  std::mt19937_64 engine(7);
+  const Bounds b = problem.bounds();
+  std::vector<std::vector<double>> xs(6);
+  for (auto& x : xs)
+    for (std::size_t j = 0; j < b.lower.size(); ++j)
+      x.push_back(b.lower[j] +
+                  (b.upper[j] - b.lower[j]) * static_cast<double>(engine() >> 11) * 0x1.0p-53);
+  const auto serial = problem.batch_fitness(xs, 1);
+  const auto parallel = problem.batch_fitness(xs, 2);
+  ASSERT_EQ(serial.size(), parallel.size());
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    EXPECT_EQ(serial[k], parallel[k]) << k;
+    EXPECT_EQ(serial[k], problem.fitness(xs[k])) << k;
+  }
+}
+
+}  // namespace
+}  // namespace pkmopt
