@@ -159,6 +159,8 @@ std::optional<DesignFamily> leg_chain_family(const std::string& model, const Yam
     return linear_delta_family(machine ? read_linear_delta_design(*machine) : LinearDeltaDesign{});
   if (model == "hexaglide")
     return hexaglide_family(machine ? read_hexaglide_design(*machine) : HexaglideDesign{});
+  if (model == "tripod_3prs")
+    return tripod_3prs_family(machine ? read_tripod_3prs_design(*machine) : Tripod3PrsDesign{});
   return std::nullopt;
 }
 
@@ -429,8 +431,10 @@ DesignStudy load_design_study(const std::string& path) {
     read_leg_chain_machine(machine, study.model, machine_spec, study, yaml);
   } else {
     // Models with a design family (the machine-file models may be more: leg_chain_model_names).
-    model.fail("one of hexapod, delta, linear_delta, hexaglide (the models with a design family)",
-               model.describe());
+    model.fail(
+        "one of hexapod, delta, linear_delta, hexaglide, tripod_3prs (the models with a design "
+        "family)",
+        model.describe());
   }
   DesignTask& task = hexapod ? spec.task : machine_spec.task;
   std::vector<DesignObjective>& goals = hexapod ? spec.objectives : machine_spec.objectives;

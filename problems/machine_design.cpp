@@ -312,6 +312,22 @@ std::string hexaglide_machine_file(const HexaglideDesign& d) {
   return text;
 }
 
+std::string tripod_3prs_machine_file(const Tripod3PrsDesign& d) {
+  std::string text = "model: tripod_3prs\n";
+  text += fmt::format("base_radius: {}\nplatform_radius: {}\nstrut: {}\n", number(d.base_radius),
+                      number(d.platform_radius), number(d.strut));
+  text += fmt::format("stroke: [{}, {}]\n", number(d.q_min), number(d.q_max));
+  text += "tool_length: " + number(d.tool_length) + "\n";
+  text += fmt::format("struts: {}\n", link_stiffness_yaml(d.stiffness));
+  if (d.stiffness.actuator_stiffness > 0.0)
+    text += "slide_stiffness: " + number(d.stiffness.actuator_stiffness) + "\n";
+  text += joints_yaml("revolute_max_angle_deg", d.revolute_max_angle, d.platform_max_angle);
+  if (d.characteristic_length)
+    text += "characteristic_length: " + number(*d.characteristic_length) + "\n";
+  text += "actuator_error: " + number(d.actuator_error) + "\n";
+  return text;
+}
+
 namespace {
 
 // build = make(design(p)), machine_file = write(design(p)), machine_size = the envelope.
@@ -413,6 +429,27 @@ DesignFamily hexaglide_family(const HexaglideDesign& t) {
     return d;
   };
   wire_family(family, design, make_hexaglide, hexaglide_machine_file);
+  return family;
+}
+
+DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t) {
+  DesignFamily family;
+  family.model = "tripod_3prs";
+  family.parameters = {{"base_radius", "m", t.base_radius, false, false},
+                       {"platform_radius", "m", t.platform_radius, false, false},
+                       {"strut", "m", t.strut, false, false},
+                       {"stroke", "m", t.q_max - t.q_min, false, false},
+                       {"home_height", "m", 0.0, true, true}};
+  family.parameter_keys = {"base_radius", "platform_radius", "strut", "stroke"};
+  auto design = [t](const std::vector<double>& p) {
+    Tripod3PrsDesign d = t;
+    d.base_radius = p.at(0);
+    d.platform_radius = p.at(1);
+    d.strut = p.at(2);
+    d.q_max = t.q_min + p.at(3);
+    return d;
+  };
+  wire_family(family, design, make_tripod_3prs, tripod_3prs_machine_file);
   return family;
 }
 

@@ -28,6 +28,12 @@
 //                q in [-stroke/2, stroke/2] along x), inclination_deg (deg), home_height (m);
 //                machine_size = envelope_volume = pi rho^2 (s |sin(i)| + L),
 //                rho = max_i sqrt((s/2 cos(i))^2 + (y_i - y_mean)^2), y_i the guide positions.
+//   tripod_3prs  base_radius, platform_radius, strut, stroke (m: slide travel q in
+//                [q_min, q_min + stroke], q_min from the template), home_height (m);
+//                machine_size = envelope_volume (the cylinder about the slides' travel,
+//                extended by a strut length). The head's inputs are z and the two tilts: the
+//                task's x, y and rz are replaced by the parasitic ones (models/leg_chain.hpp),
+//                so a tripod task is a column of z values times a tilt cone.
 // Each is fixed (lower == upper) or free within [lower, upper]; only free ones are variables.
 // Everything else (link stiffness, joint limits, TCP, actuator error, branch) comes from the
 // family's template design.
@@ -249,11 +255,13 @@ double pose_reach_violation(const Machine& machine, const Pose& pose);
 DesignFamily delta_family(const DeltaDesign& design_template);
 DesignFamily linear_delta_family(const LinearDeltaDesign& design_template);
 DesignFamily hexaglide_family(const HexaglideDesign& design_template);
+DesignFamily tripod_3prs_family(const Tripod3PrsDesign& design_template);
 
 /// Machine files (YAML, the keys of app/machine_file_leg_chain.hpp) of leg-chain designs.
 std::string delta_machine_file(const DeltaDesign& design);
 std::string linear_delta_machine_file(const LinearDeltaDesign& design);
 std::string hexaglide_machine_file(const HexaglideDesign& design);
+std::string tripod_3prs_machine_file(const Tripod3PrsDesign& design);
 
 // ---------------------------------------------------------------------------------------------
 // The problem.

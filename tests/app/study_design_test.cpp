@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -375,8 +376,8 @@ TEST(LegChainDesignStudy, SchemaErrors) {
   EXPECT_EQ(
       load_error("lc_e1", replaced(kLinearDeltaStudy, "model: linear_delta", "model: tripod")),
       file +
-          ":3:10: machine.model: expected one of hexapod, delta, linear_delta, hexaglide (the "
-          "models with a design family), found 'tripod'");
+          ":3:10: machine.model: expected one of hexapod, delta, linear_delta, hexaglide, "
+          "tripod_3prs (the models with a design family), found 'tripod'");
   const std::string file2 =
       (fs::temp_directory_path() / "pkmopt_study_design_test_lc_e2" / "study.yaml").string();
   EXPECT_EQ(load_error("lc_e2", replaced(kLinearDeltaStudy, "    rod:", "    rods:")),
@@ -503,6 +504,42 @@ TEST(LegChainDesignStudy, ShippedComparisonStudiesResolveToThemselves) {
     const fs::path dir = write_study(std::string("compare_") + name, study.resolved_yaml);
     EXPECT_EQ(load_design_study((dir / "study.yaml").string()).resolved_yaml, study.resolved_yaml)
         << name;
+  }
+}
+
+TEST(LegChainDesignStudy, TripodStudyRunsReducedThroughTheCli) {
+  std::string text = read_text(fs::path(PKMOPT_SOURCE_DIR) / "studies" / "tripod-z3.yaml");
+  const std::string full = "population: 40, generations: 40";
+  ASSERT_NE(text.find(full), std::string::npos);
+  text.replace(text.find(full), full.size(), "population: 12, generations: 6");
+  const fs::path dir = write_study("tripod_run", text);
+  const cli_runner::CliRun run =
+      cli_runner::run_cli(dir, "run " + (dir / "study.yaml").string() + " --out " +
+                                   (dir / "out").string() + " --no-progress");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
+  EXPECT_EQ(pareto["model"], "tripod_3prs");
+  ASSERT_GT(pareto["designs"].size(), 0u);
+  const DesignStudy loaded = load_design_study((dir / "study.yaml").string());
+  for (const auto& d : pareto["designs"]) {
+    EXPECT_TRUE(d["feasible"].get<bool>());
+    const auto machine =
+        load_machine_file((dir / "out" / d["machine_file"].get<std::string>()).string());
+    EXPECT_EQ(machine->model(), "tripod_3prs");
+    // The written head reaches every task pose (4 heights x the 40 deg cone) at the design's
+    // home height, and its stiffness is the front's value.
+    const double lift = d["home_height"].get<double>();
+    auto data = machine->make_data();
+    PoseMetrics m;
+    double worst = std::numeric_limits<double>::infinity();
+    for (const Pose& task_pose : loaded.machine_problem->spec().task.poses) {
+      Pose pose = task_pose;
+      pose.position.z() += lift;
+      machine->analyze(*data, pose, loaded.machine_problem->spec().task.wrench, m);
+      EXPECT_TRUE(m.reachable);
+      worst = std::min(worst, m.stiffness_min);
+    }
+    EXPECT_NEAR(worst / d["objectives"]["stiffness_min"].get<double>(), 1.0, 1e-12);
   }
 }
 

@@ -145,16 +145,45 @@ TEST(MachineDesign, FamiliesRecoverTheirTemplateAsDefaults) {
   EXPECT_NEAR(a.stiffness_min / b.stiffness_min, 1.0, 1e-12);
 }
 
+TEST(MachineDesign, TripodFamilyRecoversItsTemplateAndSetsItsParameters) {
+  const Tripod3PrsDesign tripod;
+  const DesignFamily family = tripod_3prs_family(tripod);
+  const Pose pose{{0.0, 0.0, 1.1}, {deg_to_rad(20), deg_to_rad(-15), 0.0}};
+  PoseMetrics a, b;
+  const std::unique_ptr<Machine> rebuilt = family.build(family.default_parameters());
+  const std::unique_ptr<Machine> original = make_tripod_3prs(tripod);
+  rebuilt->analyze(*rebuilt->make_data(), pose, Wrench::Constant(100.0), a);
+  original->analyze(*original->make_data(), pose, Wrench::Constant(100.0), b);
+  ASSERT_TRUE(b.reachable);
+  EXPECT_NEAR((a.q - b.q).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(a.stiffness_min / b.stiffness_min, 1.0, 1e-12);
+  // Each parameter lands in its field: the same machine as the design built by hand.
+  Tripod3PrsDesign by_hand = tripod;
+  by_hand.base_radius = 0.33;
+  by_hand.platform_radius = 0.12;
+  by_hand.strut = 0.62;
+  by_hand.q_max = tripod.q_min + 0.8;
+  const std::unique_ptr<Machine> built = family.build({0.33, 0.12, 0.62, 0.8, 0.0});
+  const std::unique_ptr<Machine> expected = make_tripod_3prs(by_hand);
+  built->analyze(*built->make_data(), pose, Wrench::Constant(100.0), a);
+  expected->analyze(*expected->make_data(), pose, Wrench::Constant(100.0), b);
+  EXPECT_EQ(a.reachable, b.reachable);
+  EXPECT_NEAR((a.q - b.q).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(family.machine_size(*built, {0.33, 0.12, 0.62, 0.8, 0.0}),
+              *expected->envelope_volume(), 1e-12);
+}
+
 TEST(MachineDesign, MachineFilesLoadBackToTheSameMachine) {
   // The written machine file, read by the machine-file reader, gives the evaluated machine.
   const std::vector<std::pair<DesignFamily, std::vector<double>>> cases = {
       {delta_family(DeltaDesign{}), {0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0}},
       {linear_delta_family(LinearDeltaDesign{}), {0.4, 0.05, 0.8, 0.7, deg_to_rad(12), 0.0}},
       {hexaglide_family(HexaglideDesign{}),
-       {0.2, deg_to_rad(25), 0.2, 0.9, 1.6, deg_to_rad(5), 0.1}}};
-  const std::vector<Pose> poses = {Pose{{0.02, 0.03, -0.75}, {0, 0, 0}},
-                                   Pose{{0.02, 0.03, -0.55}, {0, 0, 0}},
-                                   Pose{{0.05, -0.02, 0.45}, {0.03, 0.02, -0.01}}};
+       {0.2, deg_to_rad(25), 0.2, 0.9, 1.6, deg_to_rad(5), 0.1}},
+      {tripod_3prs_family(Tripod3PrsDesign{}), {0.32, 0.14, 0.6, 0.9, 0.0}}};
+  const std::vector<Pose> poses = {
+      Pose{{0.02, 0.03, -0.75}, {0, 0, 0}}, Pose{{0.02, 0.03, -0.55}, {0, 0, 0}},
+      Pose{{0.05, -0.02, 0.45}, {0.03, 0.02, -0.01}}, Pose{{0.0, 0.0, 1.0}, {0.2, -0.1, 0.0}}};
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const auto& [family, p] = cases[c];
     const std::string text = family.machine_file(p);
