@@ -1,0 +1,142 @@
+#include "models/hexapod_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define PKMOPT_BATCH_X86 1
+#endif
+
+// Packs of four doubles are passed by value between always-inlined helpers only; the ABI note
+// about 32-byte vectors without AVX does not concern any call that survives inlining.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace pkmopt {
+namespace {
+
+// Poses per block: one AVX register of doubles per pack.
+constexpr int kLanes = 4;
+typedef double v4 __attribute__((vector_size(32)));
+typedef std::int64_t m4 __attribute__((vector_size(32)));  // lane masks: all ones or zero
+
+#define PKMOPT_INLINE inline __attribute__((always_inline))
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+// Jacobi rotates (p, q) in a lane while a_pq^2 > kJacobiTol2 * |a_pp a_qq|.
+constexpr double kJacobiTol2 = kEps * kEps;
+constexpr int kMaxSweeps = 30;
+// Below this 1/cond(J_h) the scalar path (SVD) computes the margin; see hexapod.cpp.
+constexpr double kRcondFast = 1e-2;
+
+// What the kernel needs of the design, as doubles ready to broadcast.
+struct BatchConstants {
+  double base[3][6];      // a_i
+  double platform[3][6];  // b_i - tcp
+  double min_length, max_length;
+  double base_axis[3], platform_axis[3];
+  double cos_base_limit, cos_platform_limit;  // -2: unlimited
+  double inv_characteristic_length;
+  bool constant_stiffness;
+  double constant_compliance;  // 1 / axial_stiffness
+  double EA;                   // E * area
+  bool has_actuator;
+  double actuator_compliance;  // 1 / actuator_stiffness
+  double actuator_error;
+
+  explicit BatchConstants(const Hexapod& hexapod) {
+    const HexapodDesign& d = hexapod.design();
+    for (int c = 0; c < 3; ++c) {
+      for (int i = 0; i < 6; ++i) {
+        base[c][i] = d.base_joints(c, i);
+        platform[c][i] = hexapod.platform_rel_tcp()(c, i);
+      }
+      base_axis[c] = d.joints.base_axis(c);
+      platform_axis[c] = d.joints.platform_axis(c);
+    }
+    min_length = d.min_length;
+    max_length = d.max_length;
+    // As in the Hexapod constructor.
+    cos_base_limit =
+        d.joints.base_max_angle >= std::numbers::pi ? -2.0 : std::cos(d.joints.base_max_angle);
+    cos_platform_limit = d.joints.platform_max_angle >= std::numbers::pi
+                             ? -2.0
+                             : std::cos(d.joints.platform_max_angle);
+    inv_characteristic_length = 1.0 / hexapod.characteristic_length();
+    constant_stiffness = d.stiffness.axial_stiffness > 0.0;
+    constant_compliance = constant_stiffness ? 1.0 / d.stiffness.axial_stiffness : 0.0;
+    EA = d.stiffness.E * d.stiffness.area;
+    has_actuator = d.stiffness.actuator_stiffness > 0.0;
+    actuator_compliance = has_actuator ? 1.0 / d.stiffness.actuator_stiffness : 0.0;
+    actuator_error = d.actuator_error;
+  }
+};
+
+// Results of one block of four poses, lane l = pose l.
+struct BlockResult {
+  v4 q[6], tau[6];
+  v4 stiffness_min, singularity_margin, det_j, tcp_error_max;
+  m4 reachable;
+  m4 fallback;  // lanes to recompute with the scalar path
+};
+
+// The kernel, compiled once for the baseline and once for AVX2 + FMA.
+namespace baseline {
+#include "models/hexapod_batch_kernel.inc"
+}  // namespace baseline
+
+#if defined(PKMOPT_BATCH_X86)
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+#define PKMOPT_BATCH_KERNEL_AVX2 1
+namespace avx2 {
+#include "models/hexapod_batch_kernel.inc"
+}  // namespace avx2
+#undef PKMOPT_BATCH_KERNEL_AVX2
+#pragma GCC pop_options
+#endif
+
+std::size_t run_batch_baseline(const Hexapod& hexapod, const Pose* poses, std::size_t n,
+                               const Wrench& wrench, PoseMetrics* out) {
+  return baseline::run_batch(hexapod, poses, n, wrench, out);
+}
+
+#if defined(PKMOPT_BATCH_X86)
+__attribute__((target("avx2,fma"))) std::size_t run_batch_avx2(const Hexapod& hexapod,
+                                                               const Pose* poses, std::size_t n,
+                                                               const Wrench& wrench,
+                                                               PoseMetrics* out) {
+  return avx2::run_batch(hexapod, poses, n, wrench, out);
+}
+#endif
+
+}  // namespace
+
+bool hexapod_batch_uses_avx2() {
+#if defined(PKMOPT_BATCH_X86)
+  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  return available;
+#else
+  return false;
+#endif
+}
+
+std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,
+                                  const Wrench& wrench, PoseMetrics* out,
+                                  HexapodBatchKernel kernel) {
+  if (kernel == HexapodBatchKernel::baseline) {
+    return run_batch_baseline(hexapod, poses, n, wrench, out);
+  }
+#if defined(PKMOPT_BATCH_X86)
+  if (hexapod_batch_uses_avx2()) return run_batch_avx2(hexapod, poses, n, wrench, out);
+#endif
+  // Without AVX2 the scalar fast path is quicker than the baseline kernel.
+  HexapodData data(hexapod);
+  for (std::size_t i = 0; i < n; ++i) hexapod.analyze(data, poses[i], wrench, out[i]);
+  return n;
+}
+
+}  // namespace pkmopt

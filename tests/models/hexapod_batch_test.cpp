@@ -1,0 +1,336 @@
+// Tests of models/hexapod_batch: the SIMD batch path against an independent reference of the
+// metric set (the rules of the HexapodFastPath harness in hexapod_test.cpp: 1e-10 relative, or
+// 64 eps cond(J) where J is too ill-conditioned for that; within a factor 2 of the singularity
+// threshold either answer) and against Hexapod::analyze, on random general geometries, symmetric
+// poses (repeated eigenvalues), near-singular and singular poses, batch sizes that are not
+// multiples of 4, and for bit-identical results however a batch is split.
+#include "models/hexapod_batch.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "tests/sample_machines.hpp"
+
+namespace pkmopt {
+namespace {
+
+using sample_machines::Uniform;
+
+// ---- An independent reference (as in hexapod_test.cpp) -----------------------------------------
+// JacobiSVD for cond(J_h), FullPivLU for det J, J^-1 and tau, the iterative
+// SelfAdjointEigenSolver for lambda_max(C_tt), all 64 vertices of the error box.
+struct ReferenceMetrics {
+  Vec6<double> q;
+  Vec6<double> tau;
+  double stiffness_min = 0.0;
+  double rcond = 0.0;  // sigma_min / sigma_max of J_h
+  double det_j = 0.0;
+  double tcp_error_max = 0.0;
+  double cond = 0.0;  // cond(J) (2-norm)
+};
+
+ReferenceMetrics reference_metrics(const Hexapod& hexapod, const Pose& pose, const Wrench& w) {
+  const HexapodDesign& d = hexapod.design();
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(pose.angles(2), Eigen::Vector3d::UnitZ()) *
+                             Eigen::AngleAxisd(pose.angles(1), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(pose.angles(0), Eigen::Vector3d::UnitX()))
+                                .toRotationMatrix();
+  ReferenceMetrics ref;
+  Matrix6d J;
+  Vec6<double> k;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d r = R * (d.platform_joints.col(i) - d.tcp);
+    const Eigen::Vector3d l = pose.position + r - d.base_joints.col(i);
+    ref.q(i) = l.norm();
+    const Eigen::Vector3d s = l / ref.q(i);
+    J.block<1, 3>(i, 0) = s.transpose();
+    J.block<1, 3>(i, 3) = r.cross(s).transpose();
+    double compliance = d.stiffness.axial_stiffness > 0.0
+                            ? 1.0 / d.stiffness.axial_stiffness
+                            : ref.q(i) / (d.stiffness.E * d.stiffness.area);
+    if (d.stiffness.actuator_stiffness > 0.0) compliance += 1.0 / d.stiffness.actuator_stiffness;
+    k(i) = 1.0 / compliance;
+  }
+  Matrix6d Jh = J;
+  Jh.rightCols<3>() /= hexapod.characteristic_length();
+  const Vec6<double> sigma_h = Eigen::JacobiSVD<Matrix6d>(Jh).singularValues();
+  ref.rcond = sigma_h(5) / sigma_h(0);
+  const Vec6<double> sigma = Eigen::JacobiSVD<Matrix6d>(J).singularValues();
+  ref.cond = sigma(0) / sigma(5);
+  const Eigen::FullPivLU<Matrix6d> lu(J);
+  ref.det_j = lu.determinant();
+  const Matrix6d Jinv = lu.inverse();
+  ref.tau = J.transpose().fullPivLu().solve(w);
+  const Matrix6d C = Jinv * k.cwiseInverse().asDiagonal() * Jinv.transpose();
+  const Eigen::Matrix3d Ctt = C.topLeftCorner<3, 3>();
+  ref.stiffness_min = 1.0 / Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ctt).eigenvalues()(2);
+  for (int mask = 0; mask < 64; ++mask) {
+    Vec6<double> dq;
+    for (int i = 0; i < 6; ++i) dq(i) = (mask >> i & 1) ? d.actuator_error : -d.actuator_error;
+    ref.tcp_error_max = std::max(ref.tcp_error_max, (Jinv * dq).head<3>().norm());
+  }
+  return ref;
+}
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+void expect_identical(const PoseMetrics& a, const PoseMetrics& b, const std::string& where) {
+  EXPECT_EQ(a.reachable, b.reachable) << where;
+  EXPECT_EQ(a.singular, b.singular) << where;
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_TRUE(same_bits(a.q(i), b.q(i))) << where;
+    EXPECT_TRUE(same_bits(a.tau(i), b.tau(i))) << where;
+  }
+  EXPECT_TRUE(same_bits(a.stiffness_min, b.stiffness_min)) << where;
+  EXPECT_TRUE(same_bits(a.singularity_margin, b.singularity_margin)) << where;
+  EXPECT_TRUE(same_bits(a.det_j, b.det_j)) << where;
+  EXPECT_TRUE(same_bits(a.tcp_error_max, b.tcp_error_max)) << where;
+}
+
+// Checks one batch result against the reference and against analyze. Returns 1 when the pose
+// was checked as non-singular.
+int expect_batch_pose_matches(const Hexapod& hexapod, const Pose& pose, const Wrench& w,
+                              const PoseMetrics& m, const std::string& where) {
+  HexapodData data(hexapod);
+  PoseMetrics scalar;
+  hexapod.analyze(data, pose, w, scalar);
+  const ReferenceMetrics ref = reference_metrics(hexapod, pose, w);
+  EXPECT_EQ(m.reachable, scalar.reachable) << where;
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(m.q(i), ref.q(i), 1e-14 * ref.q(i)) << where;
+  EXPECT_FALSE(std::isnan(m.det_j) || std::isnan(m.stiffness_min) ||
+               std::isnan(m.singularity_margin) || std::isnan(m.tcp_error_max) || m.tau.hasNaN())
+      << where;
+  if (m.singular) {  // singular answers come from the scalar path, unchanged
+    expect_identical(m, scalar, where);
+  }
+  if (ref.rcond < 0.5 * kSingularRcond) {
+    EXPECT_TRUE(m.singular) << where;
+  }
+  if (ref.rcond < 2.0 * kSingularRcond) {  // at the singularity threshold either answer is right
+    if (m.singular) {
+      EXPECT_EQ(m.singularity_margin, 0.0) << where;
+      EXPECT_EQ(m.stiffness_min, 0.0) << where;
+      EXPECT_TRUE(std::isinf(m.tcp_error_max)) << where;
+      for (int i = 0; i < 6; ++i) EXPECT_TRUE(std::isinf(m.tau(i))) << where;
+    }
+    return 0;
+  }
+  EXPECT_FALSE(m.singular) << where << " rcond " << ref.rcond;
+  if (m.singular) return 0;
+  const double tol = std::max(1e-10, 64.0 * std::numeric_limits<double>::epsilon() * ref.cond);
+  EXPECT_NEAR(m.singularity_margin, ref.rcond, tol * ref.rcond) << where;
+  EXPECT_NEAR(m.det_j, ref.det_j, tol * std::abs(ref.det_j)) << where;
+  EXPECT_NEAR(m.stiffness_min, ref.stiffness_min, tol * ref.stiffness_min) << where;
+  EXPECT_NEAR(m.tcp_error_max, ref.tcp_error_max, tol * ref.tcp_error_max) << where;
+  const double tau_scale = ref.tau.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(m.tau(i), ref.tau(i), tol * tau_scale) << where;
+  return 1;
+}
+
+struct BatchCheck {
+  int checked = 0;         // poses checked as non-singular
+  std::size_t scalar = 0;  // poses the batch recomputed with the scalar path
+};
+
+// Runs the batch with every available kernel and checks each pose.
+BatchCheck expect_batch_matches(const Hexapod& hexapod, const std::vector<Pose>& poses,
+                                const Wrench& w, const std::string& where) {
+  BatchCheck result;
+  for (HexapodBatchKernel kernel : {HexapodBatchKernel::automatic, HexapodBatchKernel::baseline}) {
+    std::vector<PoseMetrics> metrics(poses.size());
+    result.scalar =
+        analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data(), kernel);
+    result.checked = 0;
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      result.checked += expect_batch_pose_matches(
+          hexapod, poses[i], w, metrics[i],
+          where + " pose " + std::to_string(i) +
+              (kernel == HexapodBatchKernel::baseline ? " (baseline kernel)" : ""));
+    }
+  }
+  return result;
+}
+
+Wrench random_wrench(Uniform& u) {
+  Wrench w;
+  for (int i = 0; i < 6; ++i) w(i) = u(-1000, 1000);
+  return w;
+}
+
+TEST(HexapodBatch, MatchesReferenceOnRandomGeometriesAndPoses) {
+  Uniform u(31);
+  int checked = 0;
+  std::size_t scalar = 0, total = 0;
+  for (int g = 0; g < 200; ++g) {
+    const Hexapod hexapod(sample_machines::random_hexapod_design(u));
+    std::vector<Pose> poses(11);  // two blocks of four and a partial one
+    for (Pose& p : poses) p = sample_machines::random_pose(u);
+    const BatchCheck c =
+        expect_batch_matches(hexapod, poses, random_wrench(u), "geometry " + std::to_string(g));
+    checked += c.checked;
+    scalar += c.scalar;
+    total += poses.size();
+  }
+  EXPECT_GT(checked, 2150);
+  EXPECT_LT(scalar, total / 20);  // the SIMD kernel answers almost every pose
+}
+
+// Symmetric poses of semi-regular designs: repeated eigenvalues of J_h^T J_h and of C_tt.
+TEST(HexapodBatch, MatchesReferenceAtSymmetricPoses) {
+  Uniform u(32);
+  std::size_t scalar = 0;
+  for (int g = 0; g < 100; ++g) {
+    HexapodDesign d =
+        semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(u(5, 50)), u(0.15, 0.4), deg_to_rad(u(5, 50)));
+    d.min_length = 0.3;
+    d.max_length = 2.0;
+    d.stiffness.axial_stiffness = u(1e7, 1e8);
+    if (g % 2) d.tcp = {0, 0, u(-0.2, 0.0)};
+    if (g % 3 == 0) d.characteristic_length = u(0.1, 0.6);
+    const Hexapod hexapod(d);
+    std::vector<Pose> poses;
+    for (int k = 0; k < 10; ++k) {
+      poses.push_back(Pose{{0, 0, u(0.5, 1.2)}, {0, 0, deg_to_rad(60.0 * (k % 3))}});
+    }
+    scalar +=
+        expect_batch_matches(hexapod, poses, random_wrench(u), "geometry " + std::to_string(g))
+            .scalar;
+  }
+  EXPECT_LT(scalar, 100u);  // repeated eigenvalues are handled by the SIMD Jacobi, not the fallback
+}
+
+// Similar hexagons with joints moved by 1e-9 .. 1e-2 m, and Fichter's 90 deg yaw singularity
+// approached to 1e-10 .. 1e-2 rad.
+TEST(HexapodBatch, MatchesReferenceNearSingularities) {
+  Uniform u(33);
+  std::size_t scalar = 0;
+  for (int g = 0; g < 150; ++g) {
+    const double base_sep = u(10, 60);
+    HexapodDesign d = semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(base_sep), u(0.15, 0.4),
+                                           deg_to_rad(120.0 - base_sep));
+    const double amplitude = std::pow(10.0, u(-9, -2));
+    for (int i = 0; i < 6; ++i) {
+      for (int c = 0; c < 3; ++c) d.platform_joints(c, i) += amplitude * u(-1, 1);
+    }
+    d.min_length = 0.2;
+    d.max_length = 2.0;
+    d.stiffness.E = 2.1e11;
+    d.stiffness.area = 3e-4;
+    d.stiffness.actuator_stiffness = g % 2 ? 2e8 : 0.0;
+    const Hexapod hexapod(d);
+    std::vector<Pose> poses(5);
+    for (Pose& p : poses) p = sample_machines::random_pose(u);
+    scalar += expect_batch_matches(hexapod, poses, random_wrench(u), "similar " + std::to_string(g))
+                  .scalar;
+  }
+  for (int g = 0; g < 60; ++g) {
+    HexapodDesign d =
+        semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(u(5, 50)), u(0.15, 0.4), deg_to_rad(u(5, 50)));
+    d.min_length = 0.2;
+    d.max_length = 2.0;
+    d.stiffness.axial_stiffness = 1e8;
+    const Hexapod hexapod(d);
+    std::vector<Pose> poses;
+    const double z = u(0.5, 1.2);
+    for (int k = 0; k < 7; ++k) {
+      const double offset = (k % 2 ? 1.0 : -1.0) * std::pow(10.0, u(-10, -1));
+      poses.push_back(Pose{{0, 0, z}, {0, 0, deg_to_rad(g % 2 ? 90.0 : -90.0) + offset}});
+    }
+    scalar += expect_batch_matches(hexapod, poses, random_wrench(u), "fichter " + std::to_string(g))
+                  .scalar;
+  }
+  EXPECT_GT(scalar, 200u);  // the ill-conditioned ones went through the scalar path
+}
+
+// Architecturally singular designs: every pose singular, with exactly the scalar outputs.
+TEST(HexapodBatch, SingularPosesGiveTheScalarSingularOutputs) {
+  Uniform u(34);
+  for (double base_sep : {60.0, 20.0, 45.0}) {
+    HexapodDesign d =
+        semi_regular_hexapod(0.6, deg_to_rad(base_sep), 0.3, deg_to_rad(120.0 - base_sep));
+    d.min_length = 0.2;
+    d.max_length = 2.0;
+    d.stiffness.axial_stiffness = 1e8;
+    const Hexapod hexapod(d);
+    std::vector<Pose> poses(9);
+    for (Pose& p : poses) p = sample_machines::random_pose(u);
+    std::vector<PoseMetrics> metrics(poses.size());
+    const Wrench w = Wrench::Constant(10.0);
+    EXPECT_EQ(analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data()),
+              poses.size());
+    HexapodData data(hexapod);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      PoseMetrics scalar;
+      hexapod.analyze(data, poses[i], w, scalar);
+      EXPECT_TRUE(metrics[i].singular);
+      expect_identical(metrics[i], scalar, "pose " + std::to_string(i));
+    }
+  }
+}
+
+// The bench poses of the CONVENTIONS.md hexapod: the SIMD kernel answers every one, and a pose's
+// result does not depend on the batch it is in (blocks padded, never mixed with the scalar path).
+TEST(HexapodBatch, BitIdenticalHoweverTheBatchIsSplit) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  Uniform u(35);
+  std::vector<Pose> poses(203);
+  for (Pose& p : poses) {
+    p = Pose{{u(-0.15, 0.15), u(-0.15, 0.15), u(0.75, 0.95)},
+             deg_to_rad(Eigen::Vector3d(u(-15, 15), u(-15, 15), u(-20, 20)))};
+  }
+  const Wrench w = random_wrench(u);
+  std::vector<PoseMetrics> whole(poses.size());
+  // With AVX2 the SIMD kernel answers every one; without it every pose takes the scalar path.
+  EXPECT_EQ(analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, whole.data()),
+            hexapod_batch_uses_avx2() ? 0u : poses.size());
+  std::vector<PoseMetrics> baseline(poses.size());
+  EXPECT_EQ(analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, baseline.data(),
+                                  HexapodBatchKernel::baseline),
+            0u);
+  for (std::size_t chunk : {1u, 2u, 3u, 5u, 7u, 64u}) {
+    std::vector<PoseMetrics> split(poses.size());
+    for (std::size_t start = 1; start < poses.size(); start += chunk) {  // offset by one pose
+      const std::size_t count = std::min(chunk, poses.size() - start);
+      analyze_hexapod_batch(hexapod, poses.data() + start, count, w, split.data() + start);
+    }
+    analyze_hexapod_batch(hexapod, poses.data(), 1, w, split.data());
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      expect_identical(whole[i], split[i],
+                       "chunk " + std::to_string(chunk) + " pose " + std::to_string(i));
+    }
+  }
+  // The same poses shuffled into other lanes.
+  std::vector<Pose> reversed(poses.rbegin(), poses.rend());
+  std::vector<PoseMetrics> reversed_metrics(poses.size());
+  analyze_hexapod_batch(hexapod, reversed.data(), reversed.size(), w, reversed_metrics.data());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    expect_identical(whole[i], reversed_metrics[poses.size() - 1 - i],
+                     "reversed pose " + std::to_string(i));
+  }
+}
+
+TEST(HexapodBatch, EmptyBatchAndUnsizedOutputs) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  EXPECT_EQ(analyze_hexapod_batch(hexapod, nullptr, 0, Wrench::Zero(), nullptr), 0u);
+  const Pose pose{{0.05, -0.02, 0.85}, deg_to_rad(Eigen::Vector3d(5, -3, 10))};
+  PoseMetrics m;  // q and tau empty: the batch sizes them
+  analyze_hexapod_batch(hexapod, &pose, 1, Wrench::Constant(20.0), &m);
+  ASSERT_EQ(m.q.size(), 6);
+  ASSERT_EQ(m.tau.size(), 6);
+  expect_batch_pose_matches(hexapod, pose, Wrench::Constant(20.0), m, "single pose");
+}
+
+}  // namespace
+}  // namespace pkmopt
