@@ -1,7 +1,6 @@
 // The SIMD batch path of the hexapod metric set (models/hexapod_batch.hpp), on the same poses
 // and wrench as BM_HexapodMetricsOneThread in hexapod_bench.cpp so the two compare directly.
 #include <benchmark/benchmark.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -69,29 +68,6 @@ void BM_HexapodMetricsBatchBaselineOneThread(benchmark::State& state) {
 }
 BENCHMARK(BM_HexapodMetricsBatchBaselineOneThread)->Unit(benchmark::kMicrosecond);
 
-// 1e6 poses with OpenMP, each thread one contiguous slice (like BM_HexapodAnalyzeBatch, whose
-// figure is wall-clock time); Arg = number of threads.
-void BM_HexapodAnalyzeBatchSimd(benchmark::State& state) {
-  const pkmopt::Hexapod hexapod(pkmopt::sample_machines::conventions_hexapod_design());
-  const int threads = static_cast<int>(state.range(0));
-  const std::size_t n = 1000000;
-  const auto poses = bench_poses(n);
-  auto metrics = sized_metrics(n);
-  const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
-  constexpr std::size_t kChunk = 1024;  // poses per task, a multiple of the 4 lanes
-  for (auto _ : state) {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::size_t start = 0; start < n; start += kChunk) {
-      pkmopt::analyze_hexapod_batch(hexapod, poses.data() + start, std::min(kChunk, n - start),
-                                    wrench, metrics.data() + start);
-    }
-    benchmark::DoNotOptimize(metrics.data());
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
-                          static_cast<std::int64_t>(n));
-  state.counters["threads"] = threads;
-}
-BENCHMARK(BM_HexapodAnalyzeBatchSimd)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+// The 1e6-pose batch with OpenMP is BM_HexapodAnalyzeBatch (hexapod_bench.cpp).
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "models/hexapod.hpp"
+#include "models/hexapod_batch.hpp"
 #include "models/sample_machines.hpp"
 
 namespace {
@@ -40,12 +41,47 @@ std::vector<pkmopt::Pose> sample_poses(std::size_t n) {
   return poses;
 }
 
+// What `pkmopt analyze` runs on a hexapod: the SIMD batch path (models/hexapod_batch.hpp) on
+// slices of 1024 poses with OpenMP. Args: {poses, threads (0: all)}; items = poses, real time.
 void BM_HexapodAnalyzeBatch(benchmark::State& state) {
+  const pkmopt::Hexapod hexapod = sample_hexapod();
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : omp_get_max_threads();
+  const std::vector<pkmopt::Pose> poses = sample_poses(n);
+  std::vector<pkmopt::PoseMetrics> metrics(n);
+  for (auto& m : metrics) {  // output storage is allocated once, outside the timed loop
+    m.q.resize(6);
+    m.tau.resize(6);
+  }
+  const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
+  constexpr std::size_t kSlice = 1024;
+  for (auto _ : state) {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (std::size_t start = 0; start < n; start += kSlice) {
+      pkmopt::analyze_hexapod_batch(hexapod, poses.data() + start, std::min(kSlice, n - start),
+                                    wrench, metrics.data() + start);
+    }
+    benchmark::DoNotOptimize(metrics.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(n));
+  state.counters["threads"] = threads;
+  state.counters["avx2"] = pkmopt::hexapod_batch_uses_avx2() ? 1 : 0;
+}
+BENCHMARK(BM_HexapodAnalyzeBatch)
+    ->Args({1000000, 0})
+    ->Args({1000000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The same with the scalar fast path (Hexapod::compute_metrics) pose by pose.
+void BM_HexapodAnalyzeBatchScalar(benchmark::State& state) {
   const pkmopt::Hexapod hexapod = sample_hexapod();
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const std::vector<pkmopt::Pose> poses = sample_poses(n);
   std::vector<pkmopt::PoseMetrics> metrics(n);
-  for (auto& m : metrics) {  // output storage is allocated once, outside the timed loop
+  for (auto& m : metrics) {
     m.q.resize(6);
     m.tau.resize(6);
   }
@@ -65,7 +101,7 @@ void BM_HexapodAnalyzeBatch(benchmark::State& state) {
                           static_cast<std::int64_t>(n));
   state.counters["threads"] = omp_get_max_threads();
 }
-BENCHMARK(BM_HexapodAnalyzeBatch)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_HexapodAnalyzeBatchScalar)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Single-thread cost of each stage, to see where the time goes.
 void BM_HexapodKinematicsOnly(benchmark::State& state) {
