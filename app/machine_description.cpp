@@ -17,11 +17,9 @@ namespace {
 
 // Platform mobility of the parallel models: {translations, rotations}.
 std::pair<int, int> parallel_mobility(const YamlValue& model_value, const std::string& model) {
-  static const std::map<std::string, std::pair<int, int>> kMobility = {{"hexapod", {3, 3}},
-                                                                       {"hexaglide", {3, 3}},
-                                                                       {"delta", {3, 0}},
-                                                                       {"linear_delta", {3, 0}},
-                                                                       {"tripod_3prs", {1, 2}}};
+  static const std::map<std::string, std::pair<int, int>> kMobility = {
+      {"hexapod", {3, 3}},      {"hexaglide", {3, 3}},   {"delta", {3, 0}},
+      {"linear_delta", {3, 0}}, {"tripod_3prs", {1, 2}}, {"lathe_16k20f3", {3, 1}}};
   const auto it = kMobility.find(model);
   if (it == kMobility.end()) model_value.fail("a known model", "'" + model + "'");
   return it->second;

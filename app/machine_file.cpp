@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/csv.hpp"
+#include "app/machine_file_lathe.hpp"
 #include "app/machine_file_leg_chain.hpp"
 
 namespace pkmopt {
@@ -137,8 +138,10 @@ std::unique_ptr<Machine> load_machine(const YamlValue& root) {
   const std::string model = model_value.as_string();
   if (model == "hexapod") return std::make_unique<Hexapod>(read_hexapod_design(root));
   if (auto machine = load_leg_chain_machine(root, model)) return machine;
-  model_value.fail(fmt::format("a known model (hexapod, {})", leg_chain_model_names()),
-                   quote_found(model));
+  if (auto machine = load_lathe_machine(root, model)) return machine;
+  model_value.fail(
+      fmt::format("a known model (hexapod, {}, lathe_16k20f3)", leg_chain_model_names()),
+      quote_found(model));
 }
 
 std::unique_ptr<Machine> load_machine_file(const std::string& path) {

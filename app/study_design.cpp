@@ -15,11 +15,13 @@
 #include "app/csv.hpp"
 #include "app/input_error.hpp"
 #include "app/machine_file.hpp"
+#include "app/machine_file_lathe.hpp"
 #include "app/machine_file_leg_chain.hpp"
 #include "app/output_file.hpp"
 #include "app/task_wrench_file.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
+#include "problems/lathe_design.hpp"
 
 namespace pkmopt {
 namespace {
@@ -161,6 +163,9 @@ std::optional<DesignFamily> leg_chain_family(const std::string& model, const Yam
     return hexaglide_family(machine ? read_hexaglide_design(*machine) : HexaglideDesign{});
   if (model == "tripod_3prs")
     return tripod_3prs_family(machine ? read_tripod_3prs_design(*machine) : Tripod3PrsDesign{});
+  if (model == "lathe_16k20f3")
+    return lathe_16k20f3_family(machine ? read_lathe_16k20f3_design(*machine)
+                                        : Lathe16k20f3Design{});
   return std::nullopt;
 }
 
@@ -432,8 +437,8 @@ DesignStudy load_design_study(const std::string& path) {
   } else {
     // Models with a design family (the machine-file models may be more: leg_chain_model_names).
     model.fail(
-        "one of hexapod, delta, linear_delta, hexaglide, tripod_3prs (the models with a design "
-        "family)",
+        "one of hexapod, delta, linear_delta, hexaglide, tripod_3prs, lathe_16k20f3 (the models "
+        "with a design family)",
         model.describe());
   }
   DesignTask& task = hexapod ? spec.task : machine_spec.task;

@@ -66,6 +66,23 @@ TEST_F(MachineDescriptionTest, HexapodIsP0Z6AndLongAxisHexapodIsP1Z6) {
             std::string::npos);
 }
 
+TEST_F(MachineDescriptionTest, TripodLatheAndSchoenfliesMobilities) {
+  const MachineDescription tripod = describe_machine_file(kExamples + "tripod_3prs.yaml");
+  EXPECT_EQ(tripod.translations, 1);  // z; x, y and rz are parasitic
+  EXPECT_EQ(tripod.rotations, 2);
+  EXPECT_EQ(tripod.structure, "P0З3");
+  const MachineDescription schoenflies = describe_machine_file(kExamples + "schoenflies_4pus.yaml");
+  EXPECT_EQ(schoenflies.translations, 3);
+  EXPECT_EQ(schoenflies.rotations, 1);
+  EXPECT_EQ(schoenflies.structure, "P0З4");
+  const MachineDescription lathe =
+      describe_machine_file(std::string(PKMOPT_SOURCE_DIR) + "/studies/lathe-16k20f3/lathe.yaml");
+  EXPECT_EQ(lathe.translations, 3);  // the turret: x, y, z and the turn about the spindle axis
+  EXPECT_EQ(lathe.rotations, 1);
+  EXPECT_EQ(lathe.parallel_drives, 4);
+  EXPECT_EQ(lathe.structure, "P0З4");
+}
+
 TEST_F(MachineDescriptionTest, GantryOverAParallelHeadCountsBoth) {
   std::filesystem::copy_file(kExamples + "hexapod.yaml", dir_ / "head.yaml");
   const MachineDescription d =

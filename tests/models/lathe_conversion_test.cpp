@@ -1,0 +1,196 @@
+// Tests of models/lathe_conversion: the 16K20F3 lathe conversion (2-PUS + 2-UPS Schoenflies
+// mechanism about the spindle axis x), the seeds' strut-length formula, the task and the minimal
+// strut length.
+#include "models/lathe_conversion.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "problems/cutting_load.hpp"
+
+namespace pkmopt {
+namespace {
+
+// The poses of the test: the task's corners and centre (tool tip, approach angle a0) and a few
+// with the turret turned about x (rx = phi).
+std::vector<Pose> sample_poses() {
+  std::vector<Pose> poses =
+      lathe_task_poses(LatheTask{{-0.5, 0.0, 0.0}, {0.5, 0.4, 0.18}, {2, 2, 2}});
+  poses.push_back(Pose{{0.1, 0.2, 0.09}, Eigen::Vector3d::Zero()});
+  poses.push_back(Pose{{-0.3, 0.15, 0.05}, Eigen::Vector3d(deg_to_rad(5.0), 0.0, 0.0)});
+  poses.push_back(Pose{{0.25, 0.3, 0.12}, Eigen::Vector3d(deg_to_rad(-8.0), 0.0, 0.0)});
+  return poses;
+}
+
+// The seeds' turning case (problems/cutting_load.hpp): 6633 N at the optimal approach angle.
+Wrench turning_wrench() {
+  TurningConditions c;
+  c.diameter_mm = 120;
+  c.depth_mm = 3;
+  c.feed_mm_per_rev = 0.84;
+  c.tool_life_min = 60;
+  c.C_v = 340;
+  c.x_v = 0.15;
+  c.y_v = 0.45;
+  c.m = 0.2;
+  c.K_v = 0.85;
+  c.C_p = 200;
+  c.x_p = 1;
+  c.y_p = 0.75;
+  c.n_p = 0;
+  c.K_p = 1.0 * 0.98 * 1.15;
+  const TurningLoad load = turning_load(c);
+  Wrench w = Wrench::Zero();
+  w.head<3>() = turning_machine_force(load, optimal_approach_angle(load));
+  return w;
+}
+
+TEST(LatheConversion, DesignIsASchoenfliesMachineAboutTheSpindleAxis) {
+  const LegChainDesign design = lathe_16k20f3_design(Lathe16k20f3Design{});
+  EXPECT_EQ(design.model, "lathe_16k20f3");
+  EXPECT_EQ(design.mobility, PlatformMobility::kSchoenflies);
+  EXPECT_EQ(design.rotation_axis, Eigen::Vector3d::UnitX());
+  ASSERT_EQ(design.legs.size(), 4u);
+  EXPECT_EQ(design.legs[0].kind, LegKind::kPUS);
+  EXPECT_EQ(design.legs[1].kind, LegKind::kPUS);
+  EXPECT_EQ(design.legs[2].kind, LegKind::kUPS);
+  EXPECT_EQ(design.legs[3].kind, LegKind::kUPS);
+  EXPECT_EQ(design.legs[0].rods, 2);
+  // The tool tip at tool_reach from the turret centre, pointing at the axis from angle a0.
+  EXPECT_NEAR(design.tcp.norm(), 0.16, 1e-15);
+  EXPECT_NEAR(std::atan2(-design.tcp.z(), -design.tcp.y()), std::atan(0.5), 1e-15);
+}
+
+TEST(LatheConversion, TwistJacobianMatchesFiniteDifferencesOfTheIk) {
+  const Lathe16k20f3Design d;
+  const LegChainMachine machine(lathe_16k20f3_design(d));
+  const auto data = machine.make_data();
+  const double h = 1e-6;
+  for (const Pose& pose : sample_poses()) {
+    Eigen::MatrixXd J;
+    ASSERT_TRUE(machine.twist_jacobian(*data, pose, J));
+    ASSERT_EQ(J.rows(), 4);
+    ASSERT_EQ(J.cols(), 6);
+    // DOF twists: v along x, y, z and omega about x (the platform's only rotation).
+    for (int k = 0; k < 4; ++k) {
+      Pose plus = pose, minus = pose;
+      if (k < 3) {
+        plus.position(k) += h;
+        minus.position(k) -= h;
+      } else {
+        plus.angles(0) += h;
+        minus.angles(0) -= h;
+      }
+      const auto q_plus = machine.inverse_kinematics(plus);
+      const auto q_minus = machine.inverse_kinematics(minus);
+      ASSERT_TRUE(q_plus && q_minus);
+      const Eigen::VectorXd fd = (*q_plus - *q_minus) / (2 * h);
+      const Eigen::VectorXd analytic = J.col(k);
+      EXPECT_LT((fd - analytic).cwiseAbs().maxCoeff(), 1e-7) << "DOF " << k;
+    }
+  }
+}
+
+TEST(LatheConversion, ForwardKinematicsInvertsTheIk) {
+  const LegChainMachine machine(lathe_16k20f3_design(Lathe16k20f3Design{}));
+  for (const Pose& pose : sample_poses()) {
+    const auto q = machine.inverse_kinematics(pose);
+    ASSERT_TRUE(q);
+    // Start 20 mm and 2 deg away.
+    Pose guess = pose;
+    guess.position += Eigen::Vector3d(0.02, -0.02, 0.02);
+    guess.angles(0) += deg_to_rad(2.0);
+    const FkResult fk = machine.forward_kinematics(*q, guess);
+    ASSERT_TRUE(fk.converged) << fk.message;
+    EXPECT_LT((fk.pose.position - pose.position).norm(), 1e-10);
+    EXPECT_NEAR(fk.pose.angles(0), pose.angles(0), 1e-10);
+    EXPECT_NEAR(fk.pose.angles(1), 0.0, 1e-12);
+    EXPECT_NEAR(fk.pose.angles(2), 0.0, 1e-12);
+  }
+}
+
+TEST(LatheConversion, SeedsFormulaIsTheDistanceToTheFarCorner) {
+  // A Pythagorean quadruple: 2^2 + 3^2 + 6^2 = 7^2 (dm).
+  SeedsStrutInputs in;
+  in.X_K = 0.2;
+  in.D_max = 0.32;
+  in.Y_D = 0.05;
+  in.Y_xx = 0.02;
+  in.Y_I = -0.07;  // 0.05 + 0.16 + 0.02 + 0.07 = 0.30
+  in.Z_D = 0.10;
+  in.Z_xx = 0.03;
+  in.Z_I = -0.31;  // 0.10 + 0.16 + 0.03 + 0.31 = 0.60
+  EXPECT_NEAR(seeds_strut_length(in), 0.7, 1e-15);
+  // The study's inputs (README): X_K 0.2, part axis at the origin, D_max 0.32, 20 mm clearance,
+  // hinge line (0.10, -0.175): sqrt(0.2^2 + 0.08^2 + 0.355^2).
+  const SeedsStrutInputs study{0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175};
+  EXPECT_NEAR(seeds_strut_length(study), std::sqrt(0.172425), 1e-15);
+}
+
+TEST(LatheConversion, MinimalStrutLengthReachesTheTaskAndOnePercentLessDoesNot) {
+  const Lathe16k20f3Design d;
+  const std::vector<Pose> task = lathe_task_poses(LatheTask{});
+  const auto l_min = minimal_strut_length(d, task, 0.2, 0.8, 1e-6);
+  ASSERT_TRUE(l_min);
+  Lathe16k20f3Design at = d;
+  at.strut_length = *l_min;
+  EXPECT_TRUE(lathe_reaches(at, task));
+  at.strut_length = 0.99 * *l_min;
+  EXPECT_FALSE(lathe_reaches(at, task));
+  // The seeds' region (tip up to D_max/2 + 20 mm in y and z) needs 0.5277 m (README, step 2),
+  // more than their formula's 0.4152 m: the strut ends at the turret housing, not at the tip.
+  const auto l_seeds = minimal_strut_length(
+      d, lathe_task_poses(LatheTask{{-0.5, 0.0, 0.0}, {0.5, 0.18, 0.18}, {5, 5, 5}}), 0.2, 0.8,
+      1e-6);
+  ASSERT_TRUE(l_seeds);
+  EXPECT_NEAR(*l_seeds, 0.52765, 2e-5);
+  EXPECT_GT(*l_seeds, seeds_strut_length({0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175}));
+  // Too short an upper end: nothing found.
+  EXPECT_FALSE(minimal_strut_length(d, task, 0.1, 0.2, 1e-6));
+}
+
+TEST(LatheConversion, LegForcesBalanceTheTurningLoadByVirtualWork) {
+  const Wrench w = turning_wrench();
+  ASSERT_NEAR(w.head<3>().tail<2>().norm(), 6633.0, 1.0);  // the seeds' 6633 N (y, z plane)
+  const LegChainMachine machine(lathe_16k20f3_design(Lathe16k20f3Design{}));
+  const auto data = machine.make_data();
+  const double h = 1e-6;
+  for (const Pose& pose : sample_poses()) {
+    PoseMetrics m;
+    machine.analyze(*data, pose, w, m);
+    ASSERT_TRUE(m.tau.allFinite());
+    // For each DOF twist xi (finite differences of the IK give q_dot), the actuators' power
+    // tau . q_dot equals the load's power w . (v, omega e).
+    for (int k = 0; k < 4; ++k) {
+      Pose plus = pose, minus = pose;
+      Vector6d twist = Vector6d::Zero();
+      if (k < 3) {
+        plus.position(k) += h;
+        minus.position(k) -= h;
+        twist(k) = 1.0;
+      } else {
+        plus.angles(0) += h;
+        minus.angles(0) -= h;
+        twist(3) = 1.0;
+      }
+      const Eigen::VectorXd q_dot =
+          (*machine.inverse_kinematics(plus) - *machine.inverse_kinematics(minus)) / (2 * h);
+      EXPECT_NEAR(m.tau.dot(q_dot), w.dot(twist), 1e-4 * w.norm()) << "DOF " << k;
+    }
+  }
+}
+
+TEST(LatheConversion, RejectsImpossibleDesigns) {
+  Lathe16k20f3Design d;
+  d.strut_length = 0.0;
+  EXPECT_THROW(lathe_16k20f3_design(d), std::invalid_argument);
+  d = Lathe16k20f3Design{};
+  d.leg_max_length = d.leg_min_length;
+  EXPECT_THROW(lathe_16k20f3_design(d), std::invalid_argument);
+  EXPECT_THROW(lathe_task_poses(LatheTask{{0, 0, 0}, {-1, 0, 0}, {2, 2, 2}}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pkmopt
