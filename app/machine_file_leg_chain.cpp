@@ -68,6 +68,23 @@ void read_link_stiffness(const YamlValue& section, LinkStiffness& k) {
   }
 }
 
+// The links' stiffness under `links_key` and the actuator stiffness under the optional
+// `drive_key` (N/m, or N*m/rad for cranks; absent: a rigid drive).
+void read_links_and_drive(const YamlValue& root, const char* links_key, const char* drive_key,
+                          LinkStiffness& k) {
+  read_link_stiffness(root.required(links_key), k);
+  k.actuator_stiffness = 0.0;
+  if (auto v = root.optional(drive_key)) k.actuator_stiffness = v->as_positive();
+}
+
+// `stroke: [min, max]` (m) into the actuator range.
+void read_stroke(const YamlValue& root, double& q_min, double& q_max) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
+  q_min = stroke.first;
+  q_max = stroke.second;
+}
+
 void read_common(const YamlValue& root, Eigen::Vector3d& tcp,
                  std::optional<double>& characteristic_length) {
   if (auto tool = root.optional("tool")) {
@@ -120,9 +137,7 @@ DeltaDesign read_delta_design(const YamlValue& root) {
       v->fail("elbow_out or elbow_in", quote_found(b));
     }
   }
-  read_link_stiffness(root.required("rods"), d.stiffness);
-  d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("drive_stiffness")) d.stiffness.actuator_stiffness = v->as_positive();
+  read_links_and_drive(root, "rods", "drive_stiffness", d.stiffness);
   read_joint_limits(root, "elbow_max_angle_deg", d.elbow_max_angle, d.platform_max_angle);
   read_common(root, d.tcp, d.characteristic_length);
   if (auto v = root.optional("actuator_error_deg"))
@@ -140,14 +155,8 @@ LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
   d.platform_radius = root.required("platform_radius").as_non_negative();
   d.rod = root.required("rod").as_positive();
   if (auto v = root.optional("inclination_deg")) d.inclination = read_inclination(*v);
-  const double inf = std::numeric_limits<double>::infinity();
-  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
-  d.q_min = stroke.first;
-  d.q_max = stroke.second;
-  read_link_stiffness(root.required("rods"), d.stiffness);
-  d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("carriage_stiffness"))
-    d.stiffness.actuator_stiffness = v->as_positive();
+  read_stroke(root, d.q_min, d.q_max);
+  read_links_and_drive(root, "rods", "carriage_stiffness", d.stiffness);
   read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
   read_common(root, d.tcp, d.characteristic_length);
   if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
@@ -196,14 +205,8 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
     for (int i = 0; i < 6; ++i)
       d.platform_joints.col(i) = read_vector3(rows[static_cast<std::size_t>(i)]);
   }
-  const double inf = std::numeric_limits<double>::infinity();
-  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
-  d.q_min = stroke.first;
-  d.q_max = stroke.second;
-  read_link_stiffness(root.required("struts"), d.stiffness);
-  d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("carriage_stiffness"))
-    d.stiffness.actuator_stiffness = v->as_positive();
+  read_stroke(root, d.q_min, d.q_max);
+  read_links_and_drive(root, "struts", "carriage_stiffness", d.stiffness);
   read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
   read_common(root, d.tcp, d.characteristic_length);
   if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
@@ -220,14 +223,9 @@ Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
   d.base_radius = root.required("base_radius").as_positive();
   d.platform_radius = root.required("platform_radius").as_positive();
   d.strut = root.required("strut").as_positive();
-  const double inf = std::numeric_limits<double>::infinity();
-  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
-  d.q_min = stroke.first;
-  d.q_max = stroke.second;
+  read_stroke(root, d.q_min, d.q_max);
   if (auto v = root.optional("tool_length")) d.tool_length = v->as_double();
-  read_link_stiffness(root.required("struts"), d.stiffness);
-  d.stiffness.actuator_stiffness = 0.0;
-  if (auto v = root.optional("slide_stiffness")) d.stiffness.actuator_stiffness = v->as_positive();
+  read_links_and_drive(root, "struts", "slide_stiffness", d.stiffness);
   read_joint_limits(root, "revolute_max_angle_deg", d.revolute_max_angle, d.platform_max_angle);
   if (auto v = root.optional("characteristic_length")) d.characteristic_length = v->as_positive();
   if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();

@@ -41,6 +41,46 @@ std::vector<pkmopt::Pose> sample_poses(std::size_t n) {
   return poses;
 }
 
+// Output storage for n poses, allocated once, outside the timed loops.
+std::vector<pkmopt::PoseMetrics> sized_metrics(std::size_t n) {
+  std::vector<pkmopt::PoseMetrics> metrics(n);
+  for (auto& m : metrics) {
+    m.q.resize(6);
+    m.tau.resize(6);
+  }
+  return metrics;
+}
+
+// The SIMD batch path (models/hexapod_batch.hpp) on one thread: the 4096 poses of
+// BM_HexapodMetricsOneThread per iteration, items = poses.
+void run_batch_one_thread(benchmark::State& state, pkmopt::HexapodBatchKernel kernel) {
+  const pkmopt::Hexapod hexapod = sample_hexapod();
+  const auto poses = sample_poses(4096);
+  auto metrics = sized_metrics(poses.size());
+  const pkmopt::Wrench wrench = pkmopt::Wrench::Constant(100);
+  std::size_t scalar_poses = 0;
+  for (auto _ : state) {
+    scalar_poses = pkmopt::analyze_hexapod_batch(hexapod, poses.data(), poses.size(), wrench,
+                                                 metrics.data(), kernel);
+    benchmark::DoNotOptimize(metrics.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(poses.size()));
+  state.counters["scalar_poses"] = static_cast<double>(scalar_poses);
+}
+
+void BM_HexapodMetricsBatchSimdOneThread(benchmark::State& state) {
+  run_batch_one_thread(state, pkmopt::HexapodBatchKernel::automatic);
+  state.counters["avx2"] = pkmopt::hexapod_batch_uses_avx2() ? 1 : 0;
+}
+BENCHMARK(BM_HexapodMetricsBatchSimdOneThread)->Unit(benchmark::kMicrosecond);
+
+void BM_HexapodMetricsBatchBaselineOneThread(benchmark::State& state) {
+  run_batch_one_thread(state, pkmopt::HexapodBatchKernel::baseline);
+}
+BENCHMARK(BM_HexapodMetricsBatchBaselineOneThread)->Unit(benchmark::kMicrosecond);
+
 // What `pkmopt analyze` runs on a hexapod: the SIMD batch path (models/hexapod_batch.hpp) on
 // slices of 1024 poses with OpenMP. Args: {poses, threads (0: all)}; items = poses, real time.
 void BM_HexapodAnalyzeBatch(benchmark::State& state) {
@@ -48,11 +88,7 @@ void BM_HexapodAnalyzeBatch(benchmark::State& state) {
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : omp_get_max_threads();
   const std::vector<pkmopt::Pose> poses = sample_poses(n);
-  std::vector<pkmopt::PoseMetrics> metrics(n);
-  for (auto& m : metrics) {  // output storage is allocated once, outside the timed loop
-    m.q.resize(6);
-    m.tau.resize(6);
-  }
+  std::vector<pkmopt::PoseMetrics> metrics = sized_metrics(n);
   const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
   constexpr std::size_t kSlice = 1024;
   for (auto _ : state) {
@@ -80,11 +116,7 @@ void BM_HexapodAnalyzeBatchScalar(benchmark::State& state) {
   const pkmopt::Hexapod hexapod = sample_hexapod();
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const std::vector<pkmopt::Pose> poses = sample_poses(n);
-  std::vector<pkmopt::PoseMetrics> metrics(n);
-  for (auto& m : metrics) {
-    m.q.resize(6);
-    m.tau.resize(6);
-  }
+  std::vector<pkmopt::PoseMetrics> metrics = sized_metrics(n);
   const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
   for (auto _ : state) {
 #pragma omp parallel

@@ -17,6 +17,7 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
+#include "tests/hexapod_reference.hpp"
 #include "tests/sample_machines.hpp"
 
 namespace pkmopt {
@@ -24,13 +25,11 @@ namespace {
 
 using sample_machines::Uniform;
 
+using hexapod_reference::random_wrench;
+using hexapod_reference::reference_metrics;
+using hexapod_reference::ReferenceMetrics;
 // An independent rotation: fixed-axis x, then y, then z.
-Eigen::Matrix3d reference_rotation(const Eigen::Vector3d& a) {
-  return (Eigen::AngleAxisd(a(2), Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(a(1), Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(a(0), Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
-}
+constexpr auto reference_rotation = hexapod_reference::rotation;
 
 // Leg lengths for an explicit platform rotation R (no Euler angles involved).
 Vec6<double> legs_at(const HexapodDesign& d, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {
@@ -559,100 +558,16 @@ TEST(Hexapod, ParallelBatchEqualsSerial) {
 }
 
 // ---- Regression harness of the fast metric path ------------------------------------------------
-// A plain reference of every metric `analyze` writes, with Eigen's general solvers: JacobiSVD
-// for cond(J_h), FullPivLU for det J, J^-1 and the leg forces, the iterative
-// SelfAdjointEigenSolver for lambda_max(C_tt), and all 64 vertices of the error box.
-struct ReferenceMetrics {
-  Vec6<double> q;
-  Vec6<double> tau;
-  double stiffness_min = 0.0;
-  double rcond = 0.0;  // sigma_min / sigma_max of J_h
-  double det_j = 0.0;
-  double tcp_error_max = 0.0;
-  double cond = 0.0;  // cond(J) (2-norm), for the error bound of ill-conditioned poses
-};
-
-ReferenceMetrics reference_metrics(const Hexapod& hexapod, const Pose& pose, const Wrench& w) {
-  const HexapodDesign& d = hexapod.design();
-  const Eigen::Matrix3d R = reference_rotation(pose.angles);
-  ReferenceMetrics ref;
-  Matrix6d J;
-  Vec6<double> k;
-  for (int i = 0; i < 6; ++i) {
-    const Eigen::Vector3d r = R * (d.platform_joints.col(i) - d.tcp);
-    const Eigen::Vector3d l = pose.position + r - d.base_joints.col(i);
-    ref.q(i) = l.norm();
-    const Eigen::Vector3d s = l / ref.q(i);
-    J.block<1, 3>(i, 0) = s.transpose();
-    J.block<1, 3>(i, 3) = r.cross(s).transpose();
-    double compliance = d.stiffness.axial_stiffness > 0.0
-                            ? 1.0 / d.stiffness.axial_stiffness
-                            : ref.q(i) / (d.stiffness.E * d.stiffness.area);
-    if (d.stiffness.actuator_stiffness > 0.0) compliance += 1.0 / d.stiffness.actuator_stiffness;
-    k(i) = 1.0 / compliance;
-  }
-  Matrix6d Jh = J;
-  Jh.rightCols<3>() /= hexapod.characteristic_length();
-  const Vec6<double> sigma_h = Eigen::JacobiSVD<Matrix6d>(Jh).singularValues();
-  ref.rcond = sigma_h(5) / sigma_h(0);
-  const Vec6<double> sigma = Eigen::JacobiSVD<Matrix6d>(J).singularValues();
-  ref.cond = sigma(0) / sigma(5);
-  const Eigen::FullPivLU<Matrix6d> lu(J);
-  ref.det_j = lu.determinant();
-  const Matrix6d Jinv = lu.inverse();
-  ref.tau = J.transpose().fullPivLu().solve(w);
-  const Matrix6d C = Jinv * k.cwiseInverse().asDiagonal() * Jinv.transpose();
-  const Eigen::Matrix3d Ctt = C.topLeftCorner<3, 3>();
-  ref.stiffness_min = 1.0 / Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ctt).eigenvalues()(2);
-  for (int mask = 0; mask < 64; ++mask) {
-    Vec6<double> dq;
-    for (int i = 0; i < 6; ++i) dq(i) = (mask >> i & 1) ? d.actuator_error : -d.actuator_error;
-    ref.tcp_error_max = std::max(ref.tcp_error_max, (Jinv * dq).head<3>().norm());
-  }
-  return ref;
-}
-
-// Compares analyze with the reference; returns the number of poses checked as non-singular.
-// Relative tolerance 1e-10; where cond(J) is so large that no backward-stable method (the
-// reference included) determines the result to 1e-10, the bound is 64 eps cond(J) instead.
+// Compares analyze with the plain reference of tests/hexapod_reference.hpp (Eigen's general
+// solvers; 1e-10 relative, or 64 eps cond(J)); returns 1 when the pose was checked as
+// non-singular.
 int expect_matches_reference(const Hexapod& hexapod, const Pose& pose, const Wrench& w,
                              const std::string& where) {
   HexapodData data(hexapod);
   PoseMetrics m;
   hexapod.analyze(data, pose, w, m);
-  const ReferenceMetrics ref = reference_metrics(hexapod, pose, w);
-  for (int i = 0; i < 6; ++i) EXPECT_NEAR(m.q(i), ref.q(i), 1e-14 * ref.q(i)) << where;
-  EXPECT_FALSE(std::isnan(m.det_j) || std::isnan(m.stiffness_min) ||
-               std::isnan(m.singularity_margin) || std::isnan(m.tcp_error_max) || m.tau.hasNaN())
-      << where;
-  if (ref.rcond < 0.5 * kSingularRcond) {
-    EXPECT_TRUE(m.singular) << where;
-  }
-  if (ref.rcond < 2.0 * kSingularRcond) {  // at the singularity threshold either answer is right
-    if (m.singular) {
-      EXPECT_EQ(m.singularity_margin, 0.0) << where;
-      EXPECT_EQ(m.stiffness_min, 0.0) << where;
-      EXPECT_TRUE(std::isinf(m.tcp_error_max)) << where;
-      for (int i = 0; i < 6; ++i) EXPECT_TRUE(std::isinf(m.tau(i))) << where;
-    }
-    return 0;
-  }
-  EXPECT_FALSE(m.singular) << where << " rcond " << ref.rcond;
-  if (m.singular) return 0;
-  const double tol = std::max(1e-10, 64.0 * std::numeric_limits<double>::epsilon() * ref.cond);
-  EXPECT_NEAR(m.singularity_margin, ref.rcond, tol * ref.rcond) << where;
-  EXPECT_NEAR(m.det_j, ref.det_j, tol * std::abs(ref.det_j)) << where;
-  EXPECT_NEAR(m.stiffness_min, ref.stiffness_min, tol * ref.stiffness_min) << where;
-  EXPECT_NEAR(m.tcp_error_max, ref.tcp_error_max, tol * ref.tcp_error_max) << where;
-  const double tau_scale = ref.tau.cwiseAbs().maxCoeff();
-  for (int i = 0; i < 6; ++i) EXPECT_NEAR(m.tau(i), ref.tau(i), tol * tau_scale) << where;
-  return 1;
-}
-
-Wrench random_wrench(Uniform& u) {
-  Wrench w;
-  for (int i = 0; i < 6; ++i) w(i) = u(-1000, 1000);
-  return w;
+  return hexapod_reference::expect_metrics_match_reference(m, reference_metrics(hexapod, pose, w),
+                                                           where);
 }
 
 TEST(HexapodFastPath, MatchesReferenceOnRandomGeometriesAndPoses) {
