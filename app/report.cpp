@@ -481,6 +481,12 @@ constexpr std::string_view kScript = R"(
       h += section('constraints (g &le; 0 satisfied)');
       data.constraints.forEach(function (c) { h += row(c.name, d.constraints[c.name], c.unit); });
     }
+    if (d.actuator !== undefined) {
+      h += section('actuator');
+      h += d.actuator ? '<tr><th>' + esc(d.actuator.name) + '</th><td>' +
+              num(d.actuator.max_force) + ' N, ' + num(d.actuator.stroke) + ' m</td></tr>'
+                      : '<tr><td colspan="2" class="bad">no entry carries the legs</td></tr>';
+    }
     return h + '</table>';
   }
   function mark(id, on) {
@@ -540,6 +546,20 @@ std::string knee_table(const ParetoFront& front, const ParetoDesign& d) {
     note += std::isfinite(g) && g <= 0.0 ? ", satisfied" : ", <span class=\"bad\">violated</span>";
     row(c.name, g, c.unit, note);
   }
+  if (front.actuator_catalog) {
+    if (d.actuator) {
+      const ParetoActuator& a = *d.actuator;
+      out += fmt::format(
+          "<tr><td>actuator</td><td>{}</td><td></td><td>the cheapest entry of catalog {} that "
+          "carries the legs: {} N, stroke {} m, cost {}, force reserve {}</td></tr>\n",
+          xml_escape(a.name), xml_escape(*front.actuator_catalog), short_number(a.max_force),
+          short_number(a.stroke), short_number(a.cost), html_number(a.force_reserve));
+    } else {
+      out +=
+          "<tr><td>actuator</td><td>-</td><td></td><td><span class=\"bad\">no catalog entry "
+          "carries the legs</span></td></tr>\n";
+    }
+  }
   out += "</table>\n";
   return out;
 }
@@ -554,6 +574,7 @@ std::string designs_table(const ParetoFront& front) {
   for (const auto& o : front.objectives)
     out += fmt::format("<th>{}</th>", xml_escape(objective_label(o)));
   for (const auto& c : front.constraints) out += fmt::format("<th>{}</th>", xml_escape(c.name));
+  if (front.actuator_catalog) out += "<th>actuator</th>";
   out += "<th>feasible</th></tr>\n";
   for (const ParetoDesign& d : front.designs) {
     out += fmt::format("<tr data-id=\"{0}\"><td>{0}{1}</td>", xml_escape(d.id),
@@ -564,6 +585,8 @@ std::string designs_table(const ParetoFront& front) {
     }
     for (double v : d.objectives) out += fmt::format("<td class=\"num\">{}</td>", html_number(v));
     for (double v : d.constraints) out += fmt::format("<td class=\"num\">{}</td>", html_number(v));
+    if (front.actuator_catalog)
+      out += fmt::format("<td>{}</td>", d.actuator ? xml_escape(d.actuator->name) : "-");
     out += fmt::format("<td>{}</td></tr>\n", d.feasible ? "yes" : "<span class=\"bad\">no</span>");
   }
   out += "</table>\n";
@@ -671,6 +694,9 @@ ParetoFront read_pareto_json(const std::string& path) {
   front.task.tilt_deg = r.number(task, "task", "tilt_deg", false);
   front.task.yaw_deg = r.number(task, "task", "yaw_deg", false);
 
+  if (root.contains("actuator_catalog") && !root["actuator_catalog"].is_null())
+    front.actuator_catalog =
+        r.string(r.object(root, "", "actuator_catalog"), "actuator_catalog", "name");
   std::vector<std::string> parameter_names, objective_names, constraint_names;
   for (const auto& p : front.parameters) parameter_names.push_back(p.name);
   for (const auto& o : front.objectives) objective_names.push_back(o.name);
@@ -691,6 +717,16 @@ ParetoFront read_pareto_json(const std::string& path) {
     design.objectives = named_values(r, d, where, "objectives", objective_names);
     design.constraints = named_values(r, d, where, "constraints", constraint_names);
     design.feasible = r.boolean(d, where, "feasible");
+    if (d.contains("actuator") && !d["actuator"].is_null()) {
+      const std::string a = where + ".actuator";
+      const json& actuator = r.object(d, where, "actuator");
+      design.actuator =
+          ParetoActuator{.name = r.string(actuator, a, "name"),
+                         .max_force = r.number(actuator, a, "max_force", false),
+                         .stroke = r.number(actuator, a, "stroke", false),
+                         .cost = r.number(actuator, a, "cost", false),
+                         .force_reserve = r.number(actuator, a, "force_reserve", true)};
+    }
     if (d.contains("machine_file")) {
       const std::string file = r.string(d, where, "machine_file");
       if (file.empty() || std::filesystem::path(file).is_absolute()) {
@@ -718,6 +754,7 @@ std::string pareto_csv(const ParetoFront& front) {
   if (home_column) header.push_back("home_height");
   for (const auto& o : front.objectives) header.push_back(o.name);
   for (const auto& c : front.constraints) header.push_back(c.name);
+  if (front.actuator_catalog) header.push_back("actuator");
   header.push_back("feasible");
   header.push_back("knee");
   std::string out;
@@ -730,6 +767,7 @@ std::string pareto_csv(const ParetoFront& front) {
     if (home_column) out += ',' + cell(d.home_height);
     for (double v : d.objectives) out += ',' + cell(v);
     for (double v : d.constraints) out += ',' + cell(v);
+    if (front.actuator_catalog) out += ',' + (d.actuator ? csv_field(d.actuator->name) : "");
     out += d.feasible ? ",1" : ",0";
     out += front.knee && *front.knee == d.id ? ",1" : ",0";
     out += '\n';
@@ -763,6 +801,7 @@ std::string pareto_json(const ParetoFront& front) {
                                    {"bound", c.bound},
                                    {"unit", c.unit}});
   }
+  if (front.actuator_catalog) root["actuator_catalog"] = {{"name", *front.actuator_catalog}};
   root["task"] = {{"centre", {front.task.centre(0), front.task.centre(1), front.task.centre(2)}},
                   {"wrench", front.task.wrench},
                   {"tilt_deg", front.task.tilt_deg},
@@ -783,6 +822,15 @@ std::string pareto_json(const ParetoFront& front) {
     design["constraints"] = nlohmann::ordered_json::object();
     for (std::size_t k = 0; k < d.constraints.size(); ++k) {
       design["constraints"][front.constraints[k].name] = number_or_null(d.constraints[k]);
+    }
+    if (front.actuator_catalog) {
+      design["actuator"] = nullptr;
+      if (const auto& a = d.actuator)
+        design["actuator"] = {{"name", a->name},
+                              {"max_force", a->max_force},
+                              {"stroke", a->stroke},
+                              {"cost", a->cost},
+                              {"force_reserve", number_or_null(a->force_reserve)}};
     }
     design["feasible"] = d.feasible;
     if (d.machine_file) design["machine_file"] = *d.machine_file;
@@ -964,6 +1012,9 @@ std::string report_html(const ParetoFront& front, const WorkspaceSlice* knee_sli
             : fmt::format("{} {} {}{}", xml_escape(c.metric), c.kind == "max" ? "&le;" : "&ge;",
                           html_number(c.bound), xml_escape(unit_suffix(c.unit))));
   }
+  if (front.actuator_catalog)
+    row("actuators", fmt::format("each design's cheapest entry of catalog {} that carries its legs",
+                                 xml_escape(*front.actuator_catalog)));
   out += "</table>\n";
   out += "<script type=\"application/json\" id=\"report-data\">\n" + data + "</script>\n";
   out += fmt::format("<script>{}</script>\n</body>\n</html>\n", kScript);

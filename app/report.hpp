@@ -57,6 +57,15 @@ struct ParetoTask {
   double tilt_deg = 0.0, yaw_deg = 0.0;
 };
 
+/// The catalog actuator chosen for a design (studies with {actuator: cheapest, catalog: FILE}).
+struct ParetoActuator {
+  std::string name;
+  double max_force = 0.0;      ///< N
+  double stroke = 0.0;         ///< m
+  double cost = 0.0;           ///< relative (the catalog's cost, or the rank by force rating)
+  double force_reserve = 0.0;  ///< max_force / leg_force_max (NaN when the file has null)
+};
+
 struct ParetoDesign {
   std::string id;
   std::vector<double> parameters;   ///< in the order of ParetoFront::parameters
@@ -65,6 +74,7 @@ struct ParetoDesign {
   std::vector<double> constraints;  ///< in the order of ParetoFront::constraints
   bool feasible = false;
   std::optional<std::string> machine_file;  ///< relative to the results folder
+  std::optional<ParetoActuator> actuator;   ///< when the front chose actuators and one carries
 };
 
 /// The contents of a pareto.json file.
@@ -79,6 +89,8 @@ struct ParetoFront {
   ParetoTask task;
   std::vector<ParetoDesign> designs;
   std::optional<std::string> knee;  ///< id of the knee design
+  /// The catalog actuators were chosen from (pareto.json "actuator_catalog"), if any.
+  std::optional<std::string> actuator_catalog;
 
   /// Index of the design with this id, or -1.
   int design_index(const std::string& id) const;
@@ -93,7 +105,8 @@ struct ParetoFront {
 ParetoFront read_pareto_json(const std::string& path);
 
 /// One row per design: id, free parameters, home_height (unless a free parameter), objectives,
-/// constraint values, feasible (0/1), knee (0/1).
+/// constraint values, actuator (when the front chose catalog actuators), feasible (0/1),
+/// knee (0/1).
 std::string pareto_csv(const ParetoFront& front);
 
 /// The front as pareto.json text again, keys in schema order, 2-space indent, numbers that

@@ -26,6 +26,9 @@
 namespace pkmopt {
 namespace {
 
+// {actuator: cheapest, catalog: FILE}: the optimiser chooses the entry.
+constexpr const char* kCheapestActuator = "cheapest";
+
 int positive_int(const YamlValue& v) {
   const long long value = v.as_int();
   if (value < 1 || value > 1000) v.fail("an integer in 1..1000", v.describe());
@@ -335,14 +338,18 @@ DesignMetric read_metric(const YamlValue& v) {
   if (!metric)
     v.fail(
         "one of stiffness_min, singularity_margin, leg_force_max, tcp_error_max, "
-        "workspace_volume, conditioning_index, machine_size",
+        "workspace_volume, conditioning_index, machine_size, actuator_cost, actuator_overload",
         v.describe());
   return *metric;
 }
 
 // {actuator: NAME, catalog: FILE}: the legs are that catalog entry. Adds leg_force_max <= its
-// force rating and caps the stroke parameter at its stroke. Returns the resolved YAML line
-// (catalog path made absolute so that study.resolved.yaml loads from anywhere).
+// force rating and caps the stroke parameter at its stroke.
+// {actuator: cheapest, catalog: FILE}: the optimiser chooses, for every design, the cheapest
+// entry that carries the legs (HexapodDesignSpec::actuator_catalog). Adds actuator_overload <= 0
+// and caps the stroke parameter at the longest entry's stroke.
+// Returns the resolved YAML line (catalog path made absolute so that study.resolved.yaml loads
+// from anywhere).
 std::string read_actuator_constraint(const YamlValue& c, const std::string& study_path,
                                      HexapodDesignSpec& spec, DesignStudy& study) {
   c.check_keys({"actuator", "catalog"});
@@ -357,6 +364,42 @@ std::string read_actuator_constraint(const YamlValue& c, const std::string& stud
   const ActuatorCatalog catalog = load_actuator_catalog(catalog_path.string());
   const YamlValue name_value = c.required("actuator");
   const std::string name = name_value.as_string();
+  int stroke = -1;
+  for (int i = 0; i < kNumDesignParameters; ++i) {
+    if (design_parameter_name(i) == "stroke") stroke = i;
+  }
+  auto& [lo, hi] = study.parameter_ranges[static_cast<std::size_t>(stroke)];
+  if (name == kCheapestActuator) {
+    if (find_actuator(catalog, name) != nullptr)
+      name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for the "
+                                  "cheapest entry)",
+                                  kCheapestActuator),
+                      fmt::format("catalog '{}' with such an entry", catalog.name));
+    if (spec.actuator_catalog)
+      name_value.fail("one {actuator: cheapest, catalog: FILE} constraint per study",
+                      "a second one");
+    try {
+      actuator_costs(catalog);
+    } catch (const std::invalid_argument& error) {
+      catalog_value.fail("a catalog whose entries all have a cost or all have none", error.what());
+    }
+    double longest = 0.0;
+    for (const ActuatorEntry& e : catalog.entries) longest = std::max(longest, e.stroke);
+    if (lo > longest)
+      name_value.fail(
+          fmt::format("a catalog with an entry of stroke at least "
+                      "machine.parameters.stroke ({} m)",
+                      num(lo)),
+          fmt::format("catalog '{}' whose longest stroke is {} m", catalog.name, num(longest)));
+    hi = std::min(hi, longest);
+    spec.parameters[static_cast<std::size_t>(stroke)].upper =
+        std::min(spec.parameters[static_cast<std::size_t>(stroke)].upper, longest);
+    spec.actuator_catalog = catalog;
+    spec.constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
+    return fmt::format(
+        "  - {{actuator: {}, catalog: {}}}  # actuator_overload <= 0, stroke <= {} m\n",
+        kCheapestActuator, nlohmann::json(catalog_path.string()).dump(), num(hi));
+  }
   const ActuatorEntry* entry = find_actuator(catalog, name);
   if (entry == nullptr) {
     std::string names;
@@ -365,11 +408,6 @@ std::string read_actuator_constraint(const YamlValue& c, const std::string& stud
                     "'" + name + "'");
   }
   spec.constraints.push_back({DesignMetric::leg_force_max, Relation::less_equal, entry->max_force});
-  int stroke = -1;
-  for (int i = 0; i < kNumDesignParameters; ++i) {
-    if (design_parameter_name(i) == "stroke") stroke = i;
-  }
-  auto& [lo, hi] = study.parameter_ranges[static_cast<std::size_t>(stroke)];
   if (lo > entry->stroke) {
     name_value.fail(fmt::format("an actuator with a stroke of at least machine.parameters.stroke "
                                 "({} m)",
@@ -454,6 +492,8 @@ DesignStudy load_design_study(const std::string& path) {
               fmt::format("tilt_deg {}, yaw_deg {}", num(study.task_tilt_deg),
                           num(study.task_yaw_deg)));
 
+  // Where an actuator metric is first used (it needs {actuator: cheapest, catalog: FILE}).
+  std::optional<YamlValue> actuator_metric_use;
   const YamlValue objectives = root.required("objectives");
   const std::vector<YamlValue> objective_list = objectives.elements();
   if (objective_list.empty()) objectives.fail("a list of at least one objective", "an empty list");
@@ -462,8 +502,10 @@ DesignStudy load_design_study(const std::string& path) {
     o.check_keys({"minimize", "maximize"});
     if (o.keys().size() != 1) o.fail("one of minimize: METRIC or maximize: METRIC", o.describe());
     const bool maximize = o.has("maximize");
-    goals.push_back({read_metric(o.required(maximize ? "maximize" : "minimize")),
-                     maximize ? Sense::maximize : Sense::minimize});
+    const YamlValue metric_value = o.required(maximize ? "maximize" : "minimize");
+    goals.push_back({read_metric(metric_value), maximize ? Sense::maximize : Sense::minimize});
+    if (is_actuator_metric(goals.back().metric) && !actuator_metric_use)
+      actuator_metric_use = metric_value;
     yaml += fmt::format("  - {}: {}\n", maximize ? "maximize" : "minimize",
                         design_metric_name(goals.back().metric));
   }
@@ -491,6 +533,8 @@ DesignStudy load_design_study(const std::string& path) {
       }
       c.check_keys({"metric", "max", "min"});
       const DesignMetric metric = read_metric(c.required("metric"));
+      if (is_actuator_metric(metric) && !actuator_metric_use)
+        actuator_metric_use = c.required("metric");
       if (c.has("max") == c.has("min")) c.fail("exactly one of max and min", c.describe());
       const bool upper = c.has("max");
       limits.push_back({metric, upper ? Relation::less_equal : Relation::greater_equal,
@@ -499,6 +543,12 @@ DesignStudy load_design_study(const std::string& path) {
                                      upper ? "max" : "min", num(limits.back().bound));
     }
   }
+  if (actuator_metric_use && !spec.actuator_catalog)
+    actuator_metric_use->fail(
+        fmt::format("a metric of this {} study (actuator_cost and actuator_overload need a "
+                    "constraint {{actuator: cheapest, catalog: FILE}} on a hexapod study)",
+                    study.model),
+        actuator_metric_use->describe());
   spec.require_reachable = machine_spec.require_reachable = require_reachable;
   if (require_reachable) constraint_yaml = "  - task_reachable\n" + constraint_yaml;
   yaml += constraint_yaml.empty() ? "constraints: []\n" : "constraints:\n" + constraint_yaml;
@@ -572,8 +622,11 @@ std::string_view design_metric_unit(DesignMetric metric) {
     case DesignMetric::workspace_volume:
     case DesignMetric::machine_size:
       return "m^3";
+    case DesignMetric::actuator_overload:
+      return "N";
     case DesignMetric::singularity_margin:
     case DesignMetric::conditioning_index:
+    case DesignMetric::actuator_cost:
       return "";
   }
   return "";
@@ -622,6 +675,7 @@ struct MeasuredDesign {
   std::vector<double> aggregate;  // [objectives internal | constraint rows]
   std::string failure;
   std::string machine_file;  // YAML of the machine (when asked for)
+  int actuator = -1;         // chosen catalog entry (hexapod studies choosing the cheapest)
   bool ok() const { return failure.empty(); }
 };
 
@@ -636,6 +690,7 @@ MeasuredDesign measure_design(const DesignStudy& study, const std::vector<double
     d.metrics = ev.metrics;
     d.aggregate = study.problem->aggregate_fitness(ev);
     d.failure = ev.failure;
+    d.actuator = ev.actuator;
     if (machine_file && ev.ok())
       d.machine_file = hexapod_design_to_yaml(study.problem->design_of(ev.parameters));
   } else {
@@ -744,6 +799,11 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
                             d.aggregate.begin() + static_cast<std::ptrdiff_t>(m));
   const std::vector<std::string> g_names = constraint_names(study);
   auto id_of = [](std::size_t k) { return fmt::format("d{:04}", k); };
+  // The catalog the optimiser chose actuators from ({actuator: cheapest, catalog: FILE}).
+  const ActuatorCatalog* catalog = study.problem && study.problem->spec().actuator_catalog
+                                       ? &*study.problem->spec().actuator_catalog
+                                       : nullptr;
+  const std::vector<double> costs = catalog ? actuator_costs(*catalog) : std::vector<double>{};
 
   // pareto.csv
   std::ostringstream csv;
@@ -752,6 +812,7 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
   if (!home_free) csv << ",home_height";
   for (const DesignObjective& o : objectives_spec) csv << ',' << design_metric_name(o.metric);
   for (const std::string& g : g_names) csv << ',' << g;
+  if (catalog) csv << ",actuator";
   csv << ",feasible,failure\n";
   if (study.write_designs) fs::create_directories(fs::path(directory) / "designs");
   nlohmann::json designs = nlohmann::json::array();
@@ -786,6 +847,24 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
       feasible = feasible && g <= 0.0;
     }
     design["constraints"] = constraint_values;
+    if (catalog) {
+      if (d.actuator >= 0) {
+        const ActuatorEntry& e = catalog->entries[static_cast<std::size_t>(d.actuator)];
+        const double force = d.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+        csv << ',' << csv_field(e.name);
+        design["actuator"] = {{"name", e.name},
+                              {"type", e.type},
+                              {"max_force", e.max_force},
+                              {"stroke", e.stroke},
+                              {"max_speed", e.max_speed},
+                              {"cost", costs[static_cast<std::size_t>(d.actuator)]},
+                              {"leg_force_max", json_number(force)},
+                              {"force_reserve", json_number(e.max_force / force)}};
+      } else {
+        csv << ",";
+        design["actuator"] = nullptr;
+      }
+    }
     design["feasible"] = feasible;
     csv << ',' << (feasible ? 1 : 0) << ",\"\"\n";
     if (study.write_designs) {
@@ -835,6 +914,12 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
                                {"bound", 0},
                                {"unit", ""}});
   pareto["constraints"] = constraint_list;
+  if (catalog) {
+    pareto["actuator_catalog"] = {
+        {"name", catalog->name},
+        {"entries", catalog->entries.size()},
+        {"cost", catalog->entries.front().cost ? "catalog cost" : "rank by force rating"}};
+  }
   const Wrench& wrench = study.task().wrench;
   pareto["task"] = {{"centre", study.task_centre},
                     {"wrench", std::vector<double>(wrench.data(), wrench.data() + 6)},

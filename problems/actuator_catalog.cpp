@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 namespace pkmopt {
@@ -87,6 +89,35 @@ ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorReq
         need.force, need.stroke, need.speed);
   }
   return choice;
+}
+
+std::vector<double> actuator_costs(const ActuatorCatalog& catalog) {
+  std::size_t with_cost = 0;
+  for (const ActuatorEntry& e : catalog.entries) with_cost += e.cost.has_value() ? 1 : 0;
+  std::vector<double> costs(catalog.entries.size());
+  if (with_cost == catalog.entries.size()) {
+    for (std::size_t i = 0; i < costs.size(); ++i) costs[i] = *catalog.entries[i].cost;
+    return costs;
+  }
+  if (with_cost > 0)
+    throw std::invalid_argument(
+        fmt::format("catalog '{}': expected a cost for every entry or for none, found {} of {}",
+                    catalog.name, with_cost, catalog.entries.size()));
+  std::vector<std::size_t> order(catalog.entries.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return order_key(catalog.entries[a], false) < order_key(catalog.entries[b], false);
+  });
+  for (std::size_t rank = 0; rank < order.size(); ++rank)
+    costs[order[rank]] = static_cast<double>(rank + 1);
+  return costs;
+}
+
+double actuator_force_capacity(const ActuatorCatalog& catalog, double stroke) {
+  double capacity = -std::numeric_limits<double>::infinity();
+  for (const ActuatorEntry& e : catalog.entries)
+    if (e.stroke >= stroke) capacity = std::max(capacity, e.max_force);
+  return capacity;
 }
 
 const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name) {

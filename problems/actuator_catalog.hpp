@@ -70,6 +70,17 @@ bool carries(const ActuatorEntry& entry, const ActuatorRequirement& need);
 /// The cheapest entry that carries `need` (see the header comment for the order).
 ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorRequirement& need);
 
+/// The relative cost of every entry (catalog order) by which a study chooses: the entries'
+/// `cost` when every entry has one; when none has, the rank (1 = cheapest) in the order
+/// choose_actuator uses without costs (force rating, then stroke, then catalog order). Throws
+/// std::invalid_argument when only some entries have a cost (the order would be a guess).
+std::vector<double> actuator_costs(const ActuatorCatalog& catalog);
+
+/// The largest force rating (N) among the entries whose stroke is at least `stroke` (m); -inf
+/// when no entry is that long. A leg needing `force` and `stroke` is carried by some entry exactly
+/// when force <= actuator_force_capacity(catalog, stroke) (speed not considered).
+double actuator_force_capacity(const ActuatorCatalog& catalog, double stroke);
+
 /// The entry named `name`, or null.
 const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name);
 

@@ -81,6 +81,41 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     if (!r.fixed()) free_.push_back(i);
   }
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
+  if (spec_.actuator_catalog) {
+    const ActuatorCatalog& catalog = *spec_.actuator_catalog;
+    if (catalog.entries.empty())
+      throw std::invalid_argument(
+          fmt::format("{}: actuator catalog '{}': expected at least one "
+                      "entry, found none",
+                      where, catalog.name));
+    const std::string problem = check_actuator_catalog(catalog);
+    if (!problem.empty())
+      throw std::invalid_argument(
+          fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
+    try {
+      actuator_costs_ = actuator_costs(catalog);
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument(fmt::format("{}: {}", where, error.what()));
+    }
+    double longest = 0.0;
+    for (const ActuatorEntry& e : catalog.entries) longest = std::max(longest, e.stroke);
+    if (spec_.parameters[kStroke].upper > longest)
+      throw std::invalid_argument(fmt::format(
+          "{}: parameter stroke: expected an upper bound <= {} m (the longest entry of actuator "
+          "catalog '{}'), found {} m",
+          where, longest, catalog.name, spec_.parameters[kStroke].upper));
+    // No entry carries the legs: dearer than every entry (actuator_overload > 0 says why).
+    no_actuator_cost_ = 2.0 * *std::max_element(actuator_costs_.begin(), actuator_costs_.end());
+    if (!catalog.entries.front().cost)
+      no_actuator_cost_ = static_cast<double>(catalog.entries.size() + 1);
+    needed_[static_cast<int>(DesignMetric::leg_force_max)] = true;
+  } else {
+    for (int m = 0; m < kNumDesignMetrics; ++m)
+      if (needed_[m] && is_actuator_metric(static_cast<DesignMetric>(m)))
+        throw std::invalid_argument(
+            fmt::format("{}: {} needs an actuator catalog to choose from, found none", where,
+                        design_metric_name(static_cast<DesignMetric>(m))));
+  }
 
   const std::size_t poses = spec_.task.poses.size();
   const HexapodJointLimits& limits = spec_.machine_template.joints;
@@ -121,6 +156,14 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
       num_inequality_ += kStiffnessRowsPerPose * poses;
     } else if (c.metric == DesignMetric::machine_size) {
       num_inequality_ += 1;
+    } else if (c.metric == DesignMetric::actuator_overload && c.relation == Relation::less_equal) {
+      if (!spec_.parameters[kStroke].fixed())
+        throw std::invalid_argument(fmt::format(
+            "{}: constraint actuator_overload <= has a smooth formulation only with a fixed "
+            "stroke (the catalog's force capacity jumps where the stroke passes an entry's); "
+            "fix the stroke or use an evolutionary optimizer (aggregate formulation)",
+            where));
+      num_inequality_ += 12 * poses;
     } else {
       throw std::invalid_argument(fmt::format(
           "{}: constraint {} {} has no smooth formulation (smooth: leg_force_max <=, "
@@ -241,7 +284,8 @@ void HexapodDesignProblem::smooth_rows(const std::array<T, kNumDesignParameters>
         need_compliance || spec_.objectives[objective].metric == DesignMetric::stiffness_min;
   }
   for (const DesignConstraint& c : spec_.constraints) {
-    need_tau = need_tau || c.metric == DesignMetric::leg_force_max;
+    need_tau = need_tau || c.metric == DesignMetric::leg_force_max ||
+               c.metric == DesignMetric::actuator_overload;
     need_compliance = need_compliance || c.metric == DesignMetric::stiffness_min;
   }
   std::vector<Vec6<T>> tau;
@@ -317,6 +361,9 @@ void HexapodDesignProblem::smooth_rows(const std::array<T, kNumDesignParameters>
       add_force_rows(T(c.bound));
     } else if (c.metric == DesignMetric::stiffness_min) {
       add_stiffness_rows(T(c.bound));
+    } else if (c.metric == DesignMetric::actuator_overload) {  // fixed stroke: a constant capacity
+      add_force_rows(T(c.bound + actuator_force_capacity(*spec_.actuator_catalog,
+                                                         spec_.parameters[kStroke].lower)));
     } else {  // machine_size
       rows.push_back(c.relation == Relation::less_equal ? machine_size - c.bound
                                                         : T(c.bound) - machine_size);
@@ -364,8 +411,22 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     }
     worst.store(ev.metrics);
   }
+  if (spec_.actuator_catalog) {
+    const ActuatorCatalog& catalog = *spec_.actuator_catalog;
+    const double force = metric(DesignMetric::leg_force_max);
+    metric(DesignMetric::actuator_overload) = force - actuator_force_capacity(catalog, p[kStroke]);
+    const ActuatorChoice choice =
+        choose_actuator(catalog, ActuatorRequirement{.force = force, .stroke = p[kStroke]});
+    if (choice.entry != nullptr) {
+      ev.actuator = static_cast<int>(choice.entry - catalog.entries.data());
+      metric(DesignMetric::actuator_cost) = actuator_costs_[static_cast<std::size_t>(ev.actuator)];
+    } else {
+      metric(DesignMetric::actuator_cost) = no_actuator_cost_;
+    }
+  }
   measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);
+  if (!ev.ok()) ev.actuator = -1;
   return ev;
 }
 

@@ -26,6 +26,16 @@
 //                       the orientations)                              0..1
 //   machine_size        pi r_b^2 max_length: the envelope cylinder of machine_envelope_volume
 //                       (planar base joints)                           m^3
+//   actuator_cost       (spec.actuator_catalog set: the optimiser chooses the legs' actuator)
+//                       the relative cost (actuator_costs: the catalog's costs, or the rank by
+//                       force rating when it has none) of choose_actuator(catalog, {force =
+//                       leg_force_max, stroke}), the cheapest entry that carries every leg over
+//                       the task; when none does: twice the dearest entry's cost (a rank
+//                       catalog: entries + 1), and actuator_overload > 0 says so   (relative)
+//   actuator_overload   leg_force_max - actuator_force_capacity(catalog, stroke): the largest
+//                       rating among entries at least as long as the stroke; <= 0 exactly when
+//                       some entry carries the legs (the constraint "actuator_overload <= 0"
+//                       is the catalog choice's feasibility)                N
 // An objective is minimised as f = metric, maximised as f = -metric. A constraint
 // "metric <= b" gives g = metric - b <= 0, "metric >= b" gives g = b - metric <= 0.
 // Task reachability (optional, default on), one row g_reach <= 0 with
@@ -48,6 +58,8 @@
 //         lambda_max(C_tt) <= 1/s_Nm <=> M_k is positive semidefinite <=> all principal
 //         minors >= 0, and smooth where lambda_max is not (repeated top eigenvalues).
 //     Constraints: leg_force_max <= b gives (+-tau_i(pose k) - b) / 1000 <= 0 (kN);
+//     actuator_overload <= b (a fixed stroke only: the capacity F is then a constant) the
+//     same rows with b + F;
 //     stiffness_min >= b the 7 minor rows of I - b C_tt(pose k) per pose; machine_size <= / >= b
 //     one row; reachability: the terms of g_reach, each its own row. Only these metrics are
 //     smooth; other metrics are refused with a message. Gradients come from
@@ -87,6 +99,7 @@
 #include "models/hexapod.hpp"
 #include "models/workspace/workspace.hpp"
 #include "optimizer/problem.hpp"
+#include "problems/actuator_catalog.hpp"
 #include "problems/machine_design.hpp"
 
 namespace pkmopt {
@@ -120,6 +133,9 @@ struct HexapodDesignSpec {
   std::vector<DesignConstraint> constraints;
   bool require_reachable = true;
   DesignFormulation formulation = DesignFormulation::aggregate;
+  /// The actuators to choose the legs from (actuator_cost, actuator_overload and the chosen
+  /// entry of every evaluation); the stroke's upper bound must not exceed the longest entry.
+  std::optional<ActuatorCatalog> actuator_catalog;
 
   /// The CONVENTIONS.md hexapod with every parameter fixed at its value.
   HexapodDesignSpec();
@@ -146,6 +162,9 @@ struct DesignEvaluation {
   bool reachable = false;                                 ///< every task pose reachable
   double reach_violation = 0.0;                           ///< g_reach (<= 0 when reachable)
   std::string failure;                                    ///< empty when the evaluation succeeded
+  /// With an actuator catalog: the index of the chosen entry (the cheapest that carries the
+  /// legs), -1 when none does or the design failed.
+  int actuator = -1;
   bool ok() const { return failure.empty(); }
 };
 
@@ -192,7 +211,9 @@ class HexapodDesignProblem final : public Problem {
   std::vector<std::size_t> epigraph_objectives_;  // objective indices with an epigraph variable
   std::size_t num_inequality_ = 0;
   std::array<bool, kNumDesignMetrics> needed_{};
-  double stiffness_upper_ = 0.0;  // bound of the stiffness epigraph variable (N/um)
+  double stiffness_upper_ = 0.0;        // bound of the stiffness epigraph variable (N/um)
+  std::vector<double> actuator_costs_;  // by catalog entry (actuator_costs)
+  double no_actuator_cost_ = 0.0;       // actuator_cost when no entry carries the legs
 };
 
 }  // namespace pkmopt

@@ -14,8 +14,9 @@ namespace pkmopt {
 namespace {
 
 constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
-    "stiffness_min",    "singularity_margin", "leg_force_max", "tcp_error_max",
-    "workspace_volume", "conditioning_index", "machine_size"};
+    "stiffness_min", "singularity_margin", "leg_force_max",
+    "tcp_error_max", "workspace_volume",   "conditioning_index",
+    "machine_size",  "actuator_cost",      "actuator_overload"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -31,6 +32,10 @@ std::vector<Eigen::Matrix3d> task_rotations(double tilt, double yaw, double orie
 
 std::string_view design_metric_name(DesignMetric metric) {
   return kMetricNames.at(static_cast<int>(metric));
+}
+
+bool is_actuator_metric(DesignMetric metric) {
+  return metric == DesignMetric::actuator_cost || metric == DesignMetric::actuator_overload;
 }
 
 std::optional<DesignMetric> design_metric_from_name(std::string_view name) {
@@ -497,6 +502,12 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
   }
   home_height_ = family.index_of("home_height");
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
+  for (int m = 0; m < kNumDesignMetrics; ++m)
+    if (needed_[m] && is_actuator_metric(static_cast<DesignMetric>(m)))
+      throw std::invalid_argument(fmt::format(
+          "{}: {} needs an actuator catalog to choose from, which only hexapod design problems "
+          "have; bound leg_force_max instead",
+          where, design_metric_name(static_cast<DesignMetric>(m))));
 }
 
 Bounds MachineDesignProblem::bounds() const {

@@ -116,9 +116,17 @@ enum class DesignMetric {
   tcp_error_max,
   workspace_volume,
   conditioning_index,
-  machine_size
+  machine_size,
+  /// The relative cost of the cheapest catalog actuator that carries the legs (hexapod studies
+  /// with an actuator catalog to choose from; see hexapod_design.hpp).
+  actuator_cost,
+  /// leg_force_max minus the largest force rating among the catalog entries whose stroke
+  /// covers the design's stroke (N); <= 0 exactly when some entry carries the legs.
+  actuator_overload
 };
-inline constexpr int kNumDesignMetrics = 7;
+inline constexpr int kNumDesignMetrics = 9;
+/// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
+bool is_actuator_metric(DesignMetric metric);
 std::string_view design_metric_name(DesignMetric metric);
 /// The metric named `name`, nullopt if none is.
 std::optional<DesignMetric> design_metric_from_name(std::string_view name);

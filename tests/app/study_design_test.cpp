@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -137,6 +138,150 @@ TEST(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
       << short_stroke;
 }
 
+// {actuator: cheapest, catalog: FILE}: every design gets the cheapest entry that carries its
+// legs; actuator_cost can be minimised; pareto.csv/json and the report name the entry.
+TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
+  const std::string catalog_path =
+      std::string(PKMOPT_SOURCE_DIR) + "/studies/catalogs/sew-cms.yaml";
+  std::string text = replaced(kStudy, "  - {metric: leg_force_max, max: 10500}\n",
+                              "  - {actuator: cheapest, catalog: " + catalog_path + "}\n");
+  text = replaced(text, "    base_radius: {min: 0.5, max: 0.7}\n",
+                  "    base_radius: {min: 0.5, max: 0.7}\n    stroke: {min: 0.10, max: 0.45}\n"
+                  "    home_height: {min: -0.35, max: 0}\n    min_length: {min: 0.55, max: 0.8}\n");
+  text = replaced(text, "size: [0.2, 0.2, 0.1]", "size: [0.1, 0.1, 0.05]");
+  text = replaced(text, "population: 12, generations: 4", "population: 24, generations: 8");
+  text = replaced(text, "  - minimize: machine_size\n", "  - minimize: actuator_cost\n");
+  text = replaced(text, "wrench: [0, 0, -3000, 0, 0, 0]", "wrench: [2000, 0, -20000, 0, 0, 0]");
+  const fs::path dir = write_study("cheapest", text);
+  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const HexapodDesignSpec& spec = study.problem->spec();
+  ASSERT_TRUE(spec.actuator_catalog.has_value());
+  EXPECT_EQ(spec.actuator_catalog->entries.size(), 7u);
+  ASSERT_EQ(spec.constraints.size(), 1u);
+  EXPECT_EQ(spec.constraints[0].metric, DesignMetric::actuator_overload);
+  EXPECT_EQ(spec.constraints[0].bound, 0.0);
+  EXPECT_EQ(spec.parameters[kStroke].upper, 0.35);  // capped at the longest entry
+  const fs::path again = write_study("cheapest_resolved", study.resolved_yaml);
+  EXPECT_EQ(load_design_study((again / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
+
+  const std::string command = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
+                              " --out " + (dir / "out").string() + " --threads 2 > " +
+                              (dir / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir / "log.txt");
+  std::ifstream csv(dir / "out" / "pareto.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(
+      header,
+      "id,base_radius,platform_pair_separation_deg,min_length,stroke,home_height,stiffness_min,"
+      "actuator_cost,g_actuator_overload_max,g_task_reachable,actuator,feasible,failure");
+  const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
+  EXPECT_EQ(pareto["actuator_catalog"]["name"], "sew-cms");
+  const ActuatorCatalog& catalog = *spec.actuator_catalog;
+  const std::vector<double> ranks = actuator_costs(catalog);
+  ASSERT_GT(pareto["designs"].size(), 0u);
+  std::set<std::string> names;
+  std::string row;
+  for (const nlohmann::json& d : pareto["designs"]) {
+    ASSERT_TRUE(std::getline(csv, row));
+    if (!d["feasible"].get<bool>()) continue;
+    const nlohmann::json& a = d["actuator"];
+    ASSERT_TRUE(a.is_object()) << d.dump();
+    const double force = a["leg_force_max"].get<double>();
+    const double stroke = d["parameters"]["stroke"].get<double>();
+    const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0});
+    ASSERT_NE(choice.entry, nullptr);
+    EXPECT_EQ(a["name"], choice.entry->name);
+    EXPECT_EQ(a["max_force"], choice.entry->max_force);
+    EXPECT_DOUBLE_EQ(a["force_reserve"].get<double>(), choice.entry->max_force / force);
+    const double rank = ranks[static_cast<std::size_t>(choice.entry - catalog.entries.data())];
+    EXPECT_EQ(d["objectives"]["actuator_cost"], rank);
+    EXPECT_EQ(a["cost"], rank);
+    EXPECT_NE(row.find("," + csv_field(choice.entry->name) + ",1,"), std::string::npos) << row;
+    names.insert(choice.entry->name);
+  }
+  EXPECT_FALSE(names.empty());
+  // The report lists the chosen entries.
+  const std::string export_command = std::string(PKMOPT_CLI) + " export " + (dir / "out").string() +
+                                     " --format html > /dev/null 2>&1";
+  ASSERT_EQ(std::system(export_command.c_str()), 0);
+  const std::string report = read_text(dir / "out" / "report.html");
+  EXPECT_NE(report.find("<th>actuator</th>"), std::string::npos);
+  EXPECT_NE(report.find("<td>" + *names.begin() + "</td>"), std::string::npos);
+
+  // Errors: an actuator metric without the choice; a catalog with some prices; the word
+  // 'cheapest' as an entry name.
+  const std::string no_choice =
+      load_error("cheapest_none",
+                 replaced(text, "  - {actuator: cheapest, catalog: " + catalog_path + "}\n", ""));
+  EXPECT_NE(no_choice.find("objectives[1].minimize: expected a metric of this hexapod study "
+                           "(actuator_cost and actuator_overload need a constraint "
+                           "{actuator: cheapest, catalog: FILE}"),
+            std::string::npos)
+      << no_choice;
+  const fs::path priced_dir = write_study("cheapest_priced", "");
+  std::string priced = read_text(catalog_path);
+  priced = replaced(priced, "max_speed: 0.375}", "max_speed: 0.375, cost: 3}");
+  std::ofstream(priced_dir / "cat.yaml") << priced;
+  std::ofstream(priced_dir / "study.yaml") << replaced(text, catalog_path, "cat.yaml");
+  try {
+    load_design_study((priced_dir / "study.yaml").string());
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("constraints[1].catalog: expected a catalog whose "
+                                         "entries all have a cost or all have none"),
+              std::string::npos)
+        << e.what();
+  }
+  std::string named = read_text(catalog_path);
+  named = replaced(named, "name: CMS50S/70,", "name: cheapest,");
+  std::ofstream(priced_dir / "cat.yaml") << named;
+  try {
+    load_design_study((priced_dir / "study.yaml").string());
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("constraints[1].actuator: expected a catalog without an "
+                                         "entry named 'cheapest'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// The shipped actuator-choice study, reduced (population 12, 3 generations), through the CLI:
+// it resolves to itself and every feasible front design names the catalog entry it chose.
+TEST(DesignStudy, ShippedActuatorChoiceStudyRunsReduced) {
+  const std::string source =
+      std::string(PKMOPT_SOURCE_DIR) + "/studies/hexapod-actuator-choice.yaml";
+  const DesignStudy study = load_design_study(source);
+  // Resolved again it is the same but for the comment on where the milling wrench came from.
+  auto without_comments = [](const std::string& yaml) {
+    std::istringstream in(yaml);
+    std::string line, kept;
+    while (std::getline(in, line))
+      if (!line.starts_with("  #")) kept += line + "\n";
+    return kept;
+  };
+  const fs::path resolved = write_study("actuator_choice_resolved", study.resolved_yaml);
+  EXPECT_EQ(load_design_study((resolved / "study.yaml").string()).resolved_yaml,
+            without_comments(study.resolved_yaml));
+  const std::string text = replaced(
+      replaced(read_text(source), "population: 80, generations: 50",
+               "population: 12, generations: 3"),
+      "catalogs/sew-cms.yaml", std::string(PKMOPT_SOURCE_DIR) + "/studies/catalogs/sew-cms.yaml");
+  const fs::path dir = write_study("actuator_choice", text);
+  const std::string command = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
+                              " --out " + (dir / "out").string() + " > " +
+                              (dir / "log.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir / "log.txt");
+  const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
+  EXPECT_EQ(pareto["actuator_catalog"]["name"], "sew-cms");
+  for (const nlohmann::json& d : pareto["designs"]) {
+    if (d["feasible"].get<bool>()) {
+      EXPECT_TRUE(d["actuator"].is_object()) << d.dump();
+    }
+  }
+}
+
 TEST(DesignStudy, WrenchFromTheMillingModel) {
   const std::string text =
       replaced(kStudy, "  wrench: [0, 0, -3000, 0, 0, 0]\n",
@@ -169,11 +314,12 @@ TEST(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
                 "platform_pair_separation_deg, min_length, stroke, home_height");
   const std::string file2 =
       (fs::temp_directory_path() / "pkmopt_study_design_test_e2" / "study.yaml").string();
-  EXPECT_EQ(load_error("e2", replaced(kStudy, "maximize: stiffness_min", "maximize: stifness")),
-            file2 +
-                ":15:15: objectives[0].maximize: expected one of stiffness_min, "
-                "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
-                "conditioning_index, machine_size, found 'stifness'");
+  EXPECT_EQ(
+      load_error("e2", replaced(kStudy, "maximize: stiffness_min", "maximize: stifness")),
+      file2 +
+          ":15:15: objectives[0].maximize: expected one of stiffness_min, "
+          "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
+          "conditioning_index, machine_size, actuator_cost, actuator_overload, found 'stifness'");
   const std::string file3 =
       (fs::temp_directory_path() / "pkmopt_study_design_test_e3" / "study.yaml").string();
   EXPECT_EQ(load_error("e3", replaced(kStudy, "{min: 0.5, max: 0.7}", "{min: 0.7, max: 0.5}")),

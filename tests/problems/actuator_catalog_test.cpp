@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <vector>
 
 namespace pkmopt {
 namespace {
@@ -65,6 +67,49 @@ TEST(ActuatorCatalog, CostsOrderTheChoiceWhenGiven) {
   EXPECT_EQ(choice.entry->name, "CMS71L/200");
   EXPECT_EQ(find_actuator(catalog, "CMS63S/100"), &catalog.entries[3]);
   EXPECT_EQ(find_actuator(catalog, "CMS99"), nullptr);
+}
+
+// The cost a study chooses by: ranks by force rating (then stroke) without costs, the costs
+// when every entry has one, an error when only some have.
+TEST(ActuatorCatalog, CostsAreRanksWithoutPricesAndPricesWithThem) {
+  ActuatorCatalog catalog = seeds_catalog();
+  // 5300 N x {70, 150, 300} mm, 10500 N x {100, 200} mm, 17000 N x 350 mm, 20000 N x 200 mm.
+  EXPECT_EQ(actuator_costs(catalog), (std::vector<double>{1, 2, 3, 4, 5, 7, 6}));
+  // The rank order is choose_actuator's: for every requirement the chosen entry has the
+  // smallest rank among the entries that carry it.
+  const std::vector<double> ranks = actuator_costs(catalog);
+  for (double force = 0.0; force <= 21000.0; force += 500.0)
+    for (double stroke = 0.05; stroke <= 0.40; stroke += 0.05) {
+      const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0});
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < catalog.entries.size(); ++i)
+        if (carries(catalog.entries[i], {force, stroke, 0.0})) best = std::min(best, ranks[i]);
+      if (choice.entry == nullptr) {
+        EXPECT_EQ(best, std::numeric_limits<double>::infinity()) << force << " " << stroke;
+      } else {
+        EXPECT_EQ(ranks[static_cast<std::size_t>(choice.entry - catalog.entries.data())], best);
+      }
+    }
+  for (std::size_t i = 0; i < catalog.entries.size(); ++i) catalog.entries[i].cost = 10.0 + i;
+  EXPECT_EQ(actuator_costs(catalog)[6], 16.0);
+  catalog.entries[2].cost.reset();
+  EXPECT_THROW(actuator_costs(catalog), std::invalid_argument);
+}
+
+// The force a leg of a given stroke can have: the strongest entry at least that long.
+TEST(ActuatorCatalog, ForceCapacityIsTheStrongestEntryLongEnough) {
+  const ActuatorCatalog catalog = seeds_catalog();
+  EXPECT_EQ(actuator_force_capacity(catalog, 0.05), 20000.0);
+  EXPECT_EQ(actuator_force_capacity(catalog, 0.20), 20000.0);
+  EXPECT_EQ(actuator_force_capacity(catalog, 0.2001), 17000.0);
+  EXPECT_EQ(actuator_force_capacity(catalog, 0.35), 17000.0);
+  EXPECT_EQ(actuator_force_capacity(catalog, 0.36), -std::numeric_limits<double>::infinity());
+  // A requirement is carried exactly when its force is within the capacity of its stroke.
+  for (double force = 0.0; force <= 21000.0; force += 250.0)
+    for (double stroke = 0.05; stroke <= 0.40; stroke += 0.025)
+      EXPECT_EQ(choose_actuator(catalog, {force, stroke, 0.0}).entry != nullptr,
+                force <= actuator_force_capacity(catalog, stroke))
+          << force << " " << stroke;
 }
 
 TEST(ActuatorCatalog, CarriesChecksEveryRequirement) {

@@ -4,12 +4,16 @@
 // and a 1-parameter Ipopt optimum equal to the aggregate stiffness.
 #include "problems/hexapod_design.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <set>
 #include <stdexcept>
+#include <string>
 
 #include "optimizer/ipopt_solver.hpp"
 #include "tests/sample_machines.hpp"
@@ -414,6 +418,142 @@ TEST(HexapodDesign, SmoothFormulationRefusesNonSmoothMetricsAndAggregateHasNoGra
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
   spec = smooth_spec();
   spec.objectives.clear();
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+}
+
+// The seeds' SEW catalog (studies/catalogs/sew-cms.yaml), one entry per stroke variant.
+ActuatorCatalog sew_catalog() {
+  ActuatorCatalog c;
+  c.name = "sew-cms";
+  c.entries = {{"CMS50S/70", "electric_cylinder", 5300, 0.070, 0.375, {}, {}, {}},
+               {"CMS50S/150", "electric_cylinder", 5300, 0.150, 0.375, {}, {}, {}},
+               {"CMS50S/300", "electric_cylinder", 5300, 0.300, 0.375, {}, {}, {}},
+               {"CMS63S/100", "electric_cylinder", 10500, 0.100, 0.45, {}, {}, {}},
+               {"CMS63S/200", "electric_cylinder", 10500, 0.200, 0.45, {}, {}, {}},
+               {"CMS71L/200", "electric_cylinder", 20000, 0.200, 0.5, {}, {}, {}},
+               {"CMS71L/350", "electric_cylinder", 17000, 0.350, 0.5, {}, {}, {}}};
+  return c;
+}
+
+// The optimiser chooses the cheapest catalog entry: actuator_cost, actuator_overload and the
+// chosen entry follow from leg_force_max and the stroke exactly as the catalog functions say.
+TEST(HexapodDesign, ChoosesTheCheapestCatalogActuatorThatCarriesTheLegs) {
+  HexapodDesignSpec spec = smooth_spec();
+  spec.formulation = DesignFormulation::aggregate;
+  spec.parameters[kStroke] = {0.10, 0.35};
+  spec.actuator_catalog = sew_catalog();
+  spec.objectives = {{DesignMetric::actuator_cost, Sense::minimize},
+                     {DesignMetric::stiffness_min, Sense::maximize}};
+  spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
+  spec.require_reachable = false;
+  const ActuatorCatalog& catalog = *spec.actuator_catalog;
+  const std::vector<double> ranks = actuator_costs(catalog);
+  sample_machines::Uniform u(17);
+  std::set<std::string> chosen;
+  int infeasible = 0;
+  // Loads from 4 to 40 kN down: the weaker drives carry some designs, none carries others.
+  const Wrench base_wrench = spec.task.wrench;
+  for (int trial = 0; trial < 80; ++trial) {
+    spec.task.wrench = base_wrench * (1.0 + trial % 8 * 1.3);
+    const HexapodDesignProblem problem(spec);
+    const Bounds b = problem.bounds();
+    std::vector<double> x;
+    for (std::size_t j = 0; j < b.lower.size(); ++j) x.push_back(u(b.lower[j], b.upper[j]));
+    const DesignEvaluation ev = problem.evaluate(x);
+    if (!ev.ok()) continue;
+    const double force = ev.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+    const double stroke = ev.parameters[kStroke];
+    EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::actuator_overload)],
+              force - actuator_force_capacity(catalog, stroke));
+    const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0});
+    const std::vector<double> f = problem.fitness(x);
+    ASSERT_EQ(f.size(), 3u);
+    EXPECT_EQ(f[2], ev.metrics[static_cast<int>(DesignMetric::actuator_overload)]);
+    if (choice.entry == nullptr) {
+      ++infeasible;
+      EXPECT_EQ(ev.actuator, -1);
+      EXPECT_GT(f[2], 0.0);
+      EXPECT_EQ(f[0], 8.0);  // no entry carries: rank catalog of 7 entries -> 8
+    } else {
+      const std::size_t index = static_cast<std::size_t>(choice.entry - catalog.entries.data());
+      EXPECT_EQ(ev.actuator, static_cast<int>(index));
+      EXPECT_LE(f[2], 0.0);
+      EXPECT_EQ(f[0], ranks[index]);
+      chosen.insert(choice.entry->name);
+      // No cheaper entry carries the legs.
+      for (std::size_t i = 0; i < catalog.entries.size(); ++i)
+        if (ranks[i] < ranks[index]) {
+          EXPECT_FALSE(carries(catalog.entries[i], {force, stroke, 0}));
+        }
+    }
+  }
+  // The random designs need different drives, and some need more than any entry has.
+  EXPECT_GE(chosen.size(), 3u) << fmt::format("{}", fmt::join(chosen, ", "));
+  EXPECT_GT(infeasible, 0);
+
+  // With prices the cost is the price; a design no entry carries costs twice the dearest.
+  for (std::size_t i = 0; i < spec.actuator_catalog->entries.size(); ++i)
+    spec.actuator_catalog->entries[i].cost = 100.0 + 10.0 * static_cast<double>(i);
+  spec.task.wrench = base_wrench * 30.0;  // 120 kN down: nothing carries it
+  const HexapodDesignProblem priced(spec);
+  const DesignEvaluation heavy =
+      priced.evaluate({0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.3, 0.0});
+  ASSERT_TRUE(heavy.ok()) << heavy.failure;
+  EXPECT_EQ(heavy.actuator, -1);
+  EXPECT_EQ(heavy.metrics[static_cast<int>(DesignMetric::actuator_cost)], 2.0 * 160.0);
+  EXPECT_GT(heavy.metrics[static_cast<int>(DesignMetric::actuator_overload)], 0.0);
+}
+
+// With a fixed stroke the catalog's capacity F is a constant, and the smooth formulation's
+// actuator_overload <= b rows are the leg_force_max <= b + F rows.
+TEST(HexapodDesign, SmoothActuatorOverloadRowsAreForceRowsAtTheCapacity) {
+  HexapodDesignSpec spec = smooth_spec();
+  spec.parameters[kStroke] = {0.2, 0.2};
+  spec.actuator_catalog = sew_catalog();
+  spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, -500.0}};
+  const HexapodDesignProblem overload(spec);
+  spec.constraints = {{DesignMetric::leg_force_max, Relation::less_equal, 20000.0 - 500.0}};
+  spec.actuator_catalog.reset();
+  const HexapodDesignProblem force(spec);
+  ASSERT_EQ(overload.num_inequality(), force.num_inequality());
+  const std::vector<double> x{0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.0, 2.0};
+  EXPECT_EQ(overload.fitness(x), force.fitness(x));
+  EXPECT_EQ(overload.gradient(x), force.gradient(x));
+  const GradientCheck check = check_gradient(overload, x);
+  EXPECT_TRUE(check.ok) << check.report;
+}
+
+TEST(HexapodDesign, ActuatorChoiceErrors) {
+  HexapodDesignSpec spec = smooth_spec();
+  spec.formulation = DesignFormulation::aggregate;
+  spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no catalog
+  spec.actuator_catalog = sew_catalog();
+  spec.parameters[kStroke] = {0.3, 0.6};  // longer than the longest entry (0.35 m)
+  try {
+    HexapodDesignProblem{spec};
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("parameter stroke: expected an upper bound <= 0.35 m"),
+              std::string::npos)
+        << e.what();
+  }
+  spec.parameters[kStroke] = {0.3, 0.35};
+  EXPECT_NO_THROW(HexapodDesignProblem{spec});
+  spec.actuator_catalog->entries[1].cost = 3.0;  // some prices, not all
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+  spec.actuator_catalog = sew_catalog();
+  spec.actuator_catalog->entries[1].max_force = -1.0;
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+  // Smooth: the overload needs a fixed stroke; the cost has no smooth formulation.
+  spec = smooth_spec();
+  spec.actuator_catalog = sew_catalog();
+  spec.parameters[kStroke] = {0.2, 0.3};
+  spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
+  spec.parameters[kStroke] = {0.3, 0.3};
+  EXPECT_NO_THROW(HexapodDesignProblem{spec});
+  spec.objectives[1] = {DesignMetric::actuator_cost, Sense::minimize};
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
 }
 

@@ -277,6 +277,17 @@ TEST(MachineDesign, SpecErrorsNameTheField) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("guide_radius"), std::string::npos) << e.what();
   }
+  // The catalog actuator metrics belong to hexapod problems (they choose from a catalog).
+  spec = linear_delta_spec();
+  spec.objectives.push_back({DesignMetric::actuator_cost, Sense::minimize});
+  try {
+    MachineDesignProblem problem(spec);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("actuator_cost needs an actuator catalog"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(MachineDesign, BatchesAreBitIdenticalOnOneAndTwoThreads) {
