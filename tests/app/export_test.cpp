@@ -104,6 +104,53 @@ TEST(ReadParetoJson, NullIsNaNAndWritesBackAsNull) {
   EXPECT_TRUE(again["designs"][1]["constraints"]["g_singularity_margin_min"].is_null());
 }
 
+// A front whose study chose catalog actuators: the chosen entry is read, written back by
+// pareto_json and pareto_csv, and a malformed one names its key.
+TEST(ReadParetoJson, ChosenActuatorsRoundTrip) {
+  nlohmann::json root = load_json(kFixtures / "two/pareto.json");
+  root["actuator_catalog"] = {
+      {"name", "sew-cms"}, {"entries", 7}, {"cost", "rank by force rating"}};
+  root["designs"][0]["actuator"] = {{"name", "CMS63S/200"},    {"type", "electric_cylinder"},
+                                    {"max_force", 10500.0},    {"stroke", 0.2},
+                                    {"max_speed", 0.45},       {"cost", 5.0},
+                                    {"leg_force_max", 7000.0}, {"force_reserve", 1.5}};
+  for (std::size_t d = 1; d < root["designs"].size(); ++d) root["designs"][d]["actuator"] = nullptr;
+  const fs::path dir =
+      fs::temp_directory_path() / ("pkmopt_export_actuator_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "pareto.json") << root.dump(2);
+  const auto front = pkmopt::read_pareto_json((dir / "pareto.json").string());
+  ASSERT_EQ(front.actuator_catalog, std::optional<std::string>("sew-cms"));
+  ASSERT_TRUE(front.designs[0].actuator.has_value());
+  EXPECT_EQ(front.designs[0].actuator->name, "CMS63S/200");
+  EXPECT_EQ(front.designs[0].actuator->max_force, 10500.0);
+  EXPECT_EQ(front.designs[0].actuator->stroke, 0.2);
+  EXPECT_EQ(front.designs[0].actuator->cost, 5.0);
+  EXPECT_EQ(front.designs[0].actuator->force_reserve, 1.5);
+  EXPECT_FALSE(front.designs[1].actuator.has_value());
+  const nlohmann::json again = nlohmann::json::parse(pkmopt::pareto_json(front));
+  EXPECT_EQ(again["actuator_catalog"]["name"], "sew-cms");
+  EXPECT_EQ(again["designs"][0]["actuator"]["name"], "CMS63S/200");
+  EXPECT_EQ(again["designs"][0]["actuator"]["force_reserve"], 1.5);
+  EXPECT_TRUE(again["designs"][1]["actuator"].is_null());
+  const std::string csv = pkmopt::pareto_csv(front);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_NE(header.find(",actuator,feasible,knee"), std::string::npos) << header;
+  EXPECT_NE(csv.find(",CMS63S/200,"), std::string::npos) << csv;
+  // A chosen actuator without its name.
+  root["designs"][0]["actuator"].erase("name");
+  std::ofstream(dir / "pareto.json") << root.dump(2);
+  try {
+    pkmopt::read_pareto_json((dir / "pareto.json").string());
+    ADD_FAILURE() << "no error";
+  } catch (const pkmopt::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("designs[0].actuator.name: expected a string"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(dir);
+}
+
 TEST(ParetoPlot, PngAndSvgHaveOnePointPerDesignAndNamedAxes) {
   const auto front = pkmopt::read_pareto_json((kFixtures / "two/pareto.json").string());
   const std::string png = pkmopt::pareto_plot_png(front);
