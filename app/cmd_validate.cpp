@@ -45,6 +45,14 @@ void validate_study(const std::string& path) {
     for (const DesignConstraint& c : study.constraints())
       text += fmt::format(" {} {} {}", design_metric_name(c.metric),
                           c.relation == Relation::less_equal ? "<=" : ">=", c.bound);
+    if (study.problem && study.problem->spec().actuator_catalog) {
+      const ActuatorCatalog& catalog = *study.problem->spec().actuator_catalog;
+      text += fmt::format(
+          "\n  actuators: each design's cheapest entry of catalog '{}' ({} entries, "
+          "{}) that carries its legs",
+          catalog.name, catalog.entries.size(),
+          catalog.entries.front().cost ? "by cost" : "by force rating");
+    }
     const std::size_t poses = study.task().poses.size();
     text +=
         fmt::format("\n  task: {} poses ({} positions x {} orientations)\n", poses,

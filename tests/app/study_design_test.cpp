@@ -164,6 +164,15 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   const fs::path again = write_study("cheapest_resolved", study.resolved_yaml);
   EXPECT_EQ(load_design_study((again / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
 
+  const std::string validate = std::string(PKMOPT_CLI) + " validate " +
+                               (dir / "study.yaml").string() + " > " +
+                               (dir / "validate.txt").string() + " 2>&1";
+  ASSERT_EQ(std::system(validate.c_str()), 0);
+  EXPECT_NE(read_text(dir / "validate.txt")
+                .find("actuators: each design's cheapest entry of catalog 'sew-cms' (7 entries, "
+                      "by force rating) that carries its legs"),
+            std::string::npos)
+      << read_text(dir / "validate.txt");
   const std::string command = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
                               " --out " + (dir / "out").string() + " --threads 2 > " +
                               (dir / "log.txt").string() + " 2>&1";
