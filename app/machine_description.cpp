@@ -109,10 +109,10 @@ MachineDescription describe_machine_file(const std::string& path) {
   } else if (d.model == "hybrid") {
     root.check_keys({"model", "name", "description", "serial", "parallel"});
     const YamlValue serial = root.required("serial");
-    serial.check_keys({"code", "axes"});
+    serial.check_keys({"code", "axes", "range", "stiffness", "error"});
     add_serial(d, read_serial(serial, false));
     const YamlValue parallel = root.required("parallel");
-    parallel.check_keys({"file"});
+    parallel.check_keys({"file", "home"});
     const YamlValue file = parallel.required("file");
     const std::filesystem::path module =
         std::filesystem::path(path).parent_path() / file.as_string();

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "app/csv.hpp"
+#include "app/machine_file_hybrid.hpp"
 #include "app/machine_file_lathe.hpp"
 #include "app/machine_file_leg_chain.hpp"
 
@@ -139,8 +140,9 @@ std::unique_ptr<Machine> load_machine(const YamlValue& root) {
   if (model == "hexapod") return std::make_unique<Hexapod>(read_hexapod_design(root));
   if (auto machine = load_leg_chain_machine(root, model)) return machine;
   if (auto machine = load_lathe_machine(root, model)) return machine;
+  if (model == "hybrid") return load_hybrid_machine(root);
   model_value.fail(
-      fmt::format("a known model (hexapod, {}, lathe_16k20f3)", leg_chain_model_names()),
+      fmt::format("a known model (hexapod, {}, lathe_16k20f3, hybrid)", leg_chain_model_names()),
       quote_found(model));
 }
 

@@ -243,6 +243,8 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   symmetric_eigenvalues3(Ctt, c_eigenvalues);
   const double c_max = c_eigenvalues(2);
   out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : 0.0;
+  d.compliance_tt = Ctt;
+  d.error_map = design_.actuator_error * Pt.transpose();
 
   // tcp_error_max: the largest |P s| over the 32 sign vectors s with s_0 = +1, as the sums of
   // p_0 +- p_1 +- p_2 (4 vectors) and +- p_3 +- p_4 +- p_5 (8 vectors), p_j the columns of P.
@@ -273,6 +275,18 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                       PoseMetrics& out) const {
   compute_metrics(static_cast<HexapodData&>(data), pose, wrench, out);
+}
+
+bool Hexapod::translational_maps(MachineData& data, const Pose& pose,
+                                 Eigen::Matrix3d& compliance_tt,
+                                 Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
+  auto& d = static_cast<HexapodData&>(data);
+  PoseMetrics metrics;
+  compute_metrics(d, pose, Wrench::Zero(), metrics);
+  if (metrics.singular) return false;
+  compliance_tt = d.compliance_tt;
+  error_map = d.error_map;
+  return true;
 }
 
 Vec6<double> Hexapod::inverse_kinematics(const Pose& pose) const {

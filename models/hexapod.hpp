@@ -128,6 +128,10 @@ class HexapodData : public MachineData {
   Eigen::Matrix<double, 3, 6> r;  ///< R (b_i - tcp), base frame
   Matrix6d J;                     ///< inverse Jacobian
   Vec6<double> leg_stiffness;     ///< k_i (N/m)
+  Mat3<double> compliance_tt;     ///< C_tt of the last compute_metrics (m/N; not if singular)
+  /// TCP position error per actuator error of the last compute_metrics (m; not if singular):
+  /// actuator_error times the translational rows of J^-1.
+  Eigen::Matrix<double, 3, 6> error_map;
 };
 
 /// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.
@@ -164,6 +168,9 @@ class Hexapod final : public Machine {
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
+  /// C_tt and actuator_error * (translational rows of J^-1), from compute_metrics.
+  bool translational_maps(MachineData& data, const Pose& pose, Eigen::Matrix3d& compliance_tt,
+                          Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
 
   /// Leg lengths at a pose.
   Vec6<double> inverse_kinematics(const Pose& pose) const;

@@ -656,6 +656,8 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     best = std::max(best, v.squaredNorm());
   }
   out.tcp_error_max = design_.actuator_error * std::sqrt(best);
+  d.compliance_tt = Ctt;
+  d.error_map = design_.actuator_error * E;
   if (!std::isfinite(out.stiffness_min) || !out.tau.allFinite() ||
       !std::isfinite(out.tcp_error_max)) {
     out.singular = true;
@@ -664,6 +666,18 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
   }
+}
+
+bool LegChainMachine::translational_maps(
+    MachineData& data, const Pose& pose, Eigen::Matrix3d& compliance_tt,
+    Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
+  auto& d = static_cast<LegChainData&>(data);
+  PoseMetrics metrics;
+  analyze(d, pose, Wrench::Zero(), metrics);
+  if (metrics.singular) return false;
+  compliance_tt = d.compliance_tt;
+  error_map = d.error_map;
+  return true;
 }
 
 FkResult LegChainMachine::forward_kinematics(const Eigen::VectorXd& q_target,

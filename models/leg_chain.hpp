@@ -186,6 +186,10 @@ class LegChainData : public MachineData {
   bool parallel_singular = false;    ///< A numerically singular
   double det_a = 0.0;
   double det_b = 0.0;
+  Eigen::Matrix3d compliance_tt = Eigen::Matrix3d::Zero();  ///< C_tt of the last analyze (m/N)
+  /// TCP position error per actuator error of the last analyze (3 x m, m): actuator_error times
+  /// the position rows of T J^-1.
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> error_map;
 };
 
 /// A leg-chain machine. Immutable; share it between threads, give each a LegChainData.
@@ -214,6 +218,9 @@ class LegChainMachine final : public Machine {
   /// Row i: [s_i^T, (r_i x s_i)^T] / B_i at actual_pose(pose) (false when a leg cannot close or
   /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
+  /// C_tt and actuator_error * (position rows of T J^-1), from analyze.
+  bool translational_maps(MachineData& data, const Pose& pose, Eigen::Matrix3d& compliance_tt,
+                          Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
 
   /// Closed-form IK of every leg on its branch (at actual_pose(pose)); nullopt when a leg cannot
   /// close or the parasitic motion cannot be solved.

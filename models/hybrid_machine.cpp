@@ -1,0 +1,306 @@
+#include "models/hybrid_machine.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "models/leg_chain.hpp"
+
+namespace pkmopt {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// A parasitic module's pose counts as attained when the world TCP is within this (m).
+constexpr double kAttainedTolerance = 1e-9;
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw std::invalid_argument(message);
+}
+
+void set_singular(PoseMetrics& out) {
+  out.singularity_margin = 0.0;
+  out.stiffness_min = 0.0;
+  out.tau.setConstant(kInf);
+  out.tcp_error_max = kInf;
+}
+
+}  // namespace
+
+HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
+  require(design_.module != nullptr, "hybrid: the parallel module is missing");
+  require(design_.module->model() != "hybrid", "hybrid: the module must be a parallel machine");
+  require(!design_.module->revolute_actuators(),
+          "hybrid: modules with revolute actuators (a delta) are not supported: q would mix the "
+          "axes' metres with the module's angles; use a module with prismatic actuators");
+  num_serial_ = design_.chain.num_variables();
+  require(num_serial_ >= 1, "hybrid: the serial chain needs at least one variable axis");
+  require(design_.chain.num_rotations() == 0,
+          "hybrid: variable rotary axes (motions 4, 5, 6) are not computable; use translations "
+          "(1, 2, 3) and constant rotations");
+  require(
+      static_cast<int>(design_.axes.size()) == num_serial_,
+      fmt::format("hybrid: {} axis ranges for {} serial axes", design_.axes.size(), num_serial_));
+  for (std::size_t i = 0; i < design_.axes.size(); ++i) {
+    const HybridAxis& a = design_.axes[i];
+    require(std::isfinite(a.min) && std::isfinite(a.max) && a.min <= a.max,
+            fmt::format("hybrid: axis {} range must be finite with min <= max, found [{}, {}]",
+                        i + 1, a.min, a.max));
+    require(std::isfinite(a.stiffness) && a.stiffness >= 0.0,
+            fmt::format("hybrid: axis {} stiffness must be >= 0, found {}", i + 1, a.stiffness));
+    require(std::isfinite(a.error) && a.error >= 0.0,
+            fmt::format("hybrid: axis {} error must be >= 0, found {}", i + 1, a.error));
+  }
+  require(design_.home.allFinite(), "hybrid: the module's home point must be finite");
+
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(num_serial_);
+  const Eigen::Matrix4d T0 = design_.chain.transform(zero);
+  R0_ = T0.topLeftCorner<3, 3>();
+  t0_ = T0.topRightCorner<3, 1>();
+  A_ = design_.chain.tool_point_jacobian(zero, Eigen::Vector3d::Zero());
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A_);
+  require(qr.rank() == num_serial_,
+          fmt::format("hybrid: the {} serial axes are linearly dependent (rank {}); give "
+                      "independent translation axes",
+                      num_serial_, qr.rank()));
+  A_pinv_ = (A_.transpose() * A_).ldlt().solve(A_.transpose());
+
+  if (const auto* chain = dynamic_cast<const LegChainMachine*>(design_.module.get())) {
+    if (chain->design().mobility == PlatformMobility::kPlanarLegs) parasitic_module_ = chain;
+  }
+}
+
+std::unique_ptr<MachineData> HybridMachine::make_data() const {
+  auto d = std::make_unique<HybridData>();
+  d->module = design_.module->make_data();
+  return d;
+}
+
+Pose HybridMachine::world_pose(const Eigen::VectorXd& q_serial, const Pose& local) const {
+  Pose world;
+  world.position = t0_ + A_ * q_serial + R0_ * local.position;
+  world.angles = angles_from_rotation(R0_ * rotation_zyx<double>(local.angles));
+  return world;
+}
+
+HybridSplit HybridMachine::split(const Pose& pose) const {
+  HybridSplit s;
+  auto clamp = [&](const Eigen::VectorXd& u) {
+    Eigen::VectorXd q(num_serial_);
+    for (int i = 0; i < num_serial_; ++i) {
+      const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
+      q(i) = std::clamp(u(i), a.min, a.max);
+    }
+    return q;
+  };
+  const Eigen::Vector3d local_angles =
+      angles_from_rotation(R0_.transpose() * rotation_zyx<double>(pose.angles));
+  auto local_at = [&](const Eigen::VectorXd& q) {
+    Pose local;
+    local.position = R0_.transpose() * (pose.position - t0_ - A_ * q);
+    local.angles = local_angles;
+    return local;
+  };
+  s.unclamped = A_pinv_ * (pose.position - t0_ - R0_ * design_.home);
+  s.serial = clamp(s.unclamped);
+  s.local = local_at(s.serial);
+  if (parasitic_module_ == nullptr) return s;
+
+  // The module fixes its own local x, y (and rz): the serial axes carry it to the world point.
+  s.attained = false;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const std::optional<Pose> actual = parasitic_module_->actual_pose(s.local);
+    if (!actual) return s;
+    s.unclamped = A_pinv_ * (pose.position - t0_ - R0_ * actual->position);
+    const Eigen::VectorXd next = clamp(s.unclamped);
+    const double step = (next - s.serial).cwiseAbs().maxCoeff();
+    s.serial = next;
+    s.local = local_at(s.serial);
+    if (step <= 1e-14 * (1.0 + s.serial.cwiseAbs().maxCoeff())) break;
+  }
+  const std::optional<Pose> actual = parasitic_module_->actual_pose(s.local);
+  if (!actual) return s;
+  const Eigen::Vector3d reached = t0_ + A_ * s.serial + R0_ * actual->position;
+  s.attained = (reached - pose.position).norm() <= kAttainedTolerance;
+  return s;
+}
+
+void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
+                            PoseMetrics& out) const {
+  auto& d = static_cast<HybridData&>(data);
+  const int n = num_actuators();
+  const HybridSplit s = split(pose);
+  Wrench local_wrench;
+  local_wrench.head<3>() = R0_.transpose() * wrench.head<3>();
+  local_wrench.tail<3>() = R0_.transpose() * wrench.tail<3>();
+  PoseMetrics& m = d.module_metrics;
+  design_.module->analyze(*d.module, s.local, local_wrench, m);
+
+  out.reachable = m.reachable && s.attained;
+  out.q.resize(n);
+  out.q << s.serial, m.q;
+  out.tau.resize(n);
+  out.tau.head(num_serial_) = (A_.transpose() * wrench.head<3>()).array() + 0.0;
+  out.tau.tail(n - num_serial_) = m.tau;
+  out.singular = m.singular;
+  out.singularity_margin = m.singularity_margin;
+  out.det_j = m.det_j;
+  if (m.singular || !design_.module->translational_maps(*d.module, s.local, d.module_compliance,
+                                                        d.module_error_map)) {
+    out.singular = true;
+    set_singular(out);
+    return;
+  }
+
+  // Serial and parallel compliances in series.
+  Eigen::Matrix3d compliance = R0_ * d.module_compliance * R0_.transpose();
+  for (int i = 0; i < num_serial_; ++i) {
+    const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
+    if (k > 0.0) compliance += A_.col(i) * A_.col(i).transpose() / k;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(compliance, Eigen::EigenvaluesOnly);
+  const double c_max = eig.eigenvalues()(2);
+  out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : 0.0;
+
+  // tcp_error_max over the vertices of the combined error box (zero columns skipped).
+  Eigen::Matrix<double, 3, Eigen::Dynamic> columns(3, n);
+  int used = 0;
+  for (int i = 0; i < num_serial_; ++i) {
+    const double e = design_.axes[static_cast<std::size_t>(i)].error;
+    if (e > 0.0) columns.col(used++) = e * A_.col(i);
+  }
+  for (int j = 0; j < d.module_error_map.cols(); ++j) {
+    if (d.module_error_map.col(j).squaredNorm() > 0.0) {
+      columns.col(used++) = R0_ * d.module_error_map.col(j);
+    }
+  }
+  double best = 0.0;
+  if (used > 0) {
+    const unsigned vertices = 1u << (used - 1);
+    for (unsigned g = 0; g < vertices; ++g) {
+      Eigen::Vector3d v = columns.col(0);
+      for (int j = 1; j < used; ++j) v += ((g >> (j - 1)) & 1u ? -1.0 : 1.0) * columns.col(j);
+      best = std::max(best, v.squaredNorm());
+    }
+  }
+  out.tcp_error_max = std::sqrt(best);
+  if (!out.tau.allFinite() || !std::isfinite(out.tcp_error_max) ||
+      !std::isfinite(out.stiffness_min)) {
+    out.singular = true;
+    set_singular(out);
+  }
+}
+
+bool HybridMachine::reachable(MachineData& data, const Pose& pose) const {
+  auto& d = static_cast<HybridData&>(data);
+  const HybridSplit s = split(pose);
+  return s.attained && design_.module->reachable(*d.module, s.local);
+}
+
+FkResult HybridMachine::forward_kinematics(const Eigen::VectorXd& q,
+                                           const std::optional<Pose>& guess,
+                                           const FkOptions& options) const {
+  FkResult result;
+  if (q.size() != num_actuators() || !q.head(num_serial_).allFinite()) {
+    result.message = fmt::format("{} actuator coordinates expected, the first {} finite",
+                                 num_actuators(), num_serial_);
+    result.residual = kInf;
+    return result;
+  }
+  const Eigen::VectorXd q_serial = q.head(num_serial_);
+  std::optional<Pose> local_guess;
+  if (guess) {
+    local_guess = Pose{};
+    local_guess->position = R0_.transpose() * (guess->position - t0_ - A_ * q_serial);
+    local_guess->angles =
+        angles_from_rotation(R0_.transpose() * rotation_zyx<double>(guess->angles));
+  }
+  result = design_.module->forward_kinematics(q.tail(num_actuators() - num_serial_), local_guess,
+                                              options);
+  result.pose = world_pose(q_serial, result.pose);
+  return result;
+}
+
+std::optional<Eigen::AlignedBox3d> HybridMachine::workspace_search_box(
+    const std::vector<Eigen::Matrix3d>& orientations) const {
+  std::vector<Eigen::Matrix3d> local;
+  local.reserve(orientations.size());
+  for (const Eigen::Matrix3d& R : orientations) local.push_back(R0_.transpose() * R);
+  const std::optional<Eigen::AlignedBox3d> module_box = design_.module->workspace_search_box(local);
+  if (!module_box) return std::nullopt;
+  Eigen::AlignedBox3d box;  // empty
+  if (module_box->isEmpty()) return box;
+  const unsigned serial_vertices = 1u << num_serial_;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner =
+        t0_ + R0_ * module_box->corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    for (unsigned g = 0; g < serial_vertices; ++g) {
+      Eigen::Vector3d point = corner;
+      for (int i = 0; i < num_serial_; ++i) {
+        const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
+        point += ((g >> i) & 1u ? a.max : a.min) * A_.col(i);
+      }
+      box.extend(point);
+    }
+  }
+  return box;
+}
+
+std::string HybridMachine::actuator_coordinates_requirement(const Eigen::VectorXd& q) const {
+  if (q.size() != num_actuators()) return fmt::format("{} actuator coordinates", num_actuators());
+  const std::string inner =
+      design_.module->actuator_coordinates_requirement(q.tail(num_actuators() - num_serial_));
+  if (inner.empty()) return {};
+  return fmt::format("{} serial axis positions (m), then {}", num_serial_, inner);
+}
+
+bool HybridMachine::twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const {
+  auto& d = static_cast<HybridData&>(data);
+  const HybridSplit s = split(pose);
+  if (!design_.module->twist_jacobian(*d.module, s.local, d.module_jacobian)) return false;
+  const int n = num_actuators();
+  const int n_module = n - num_serial_;
+  // Axes strictly inside their range follow; clamped ones stand still.
+  Eigen::VectorXd free(num_serial_);
+  for (int i = 0; i < num_serial_; ++i) {
+    const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
+    free(i) = s.unclamped(i) > a.min && s.unclamped(i) < a.max ? 1.0 : 0.0;
+  }
+  Eigen::Matrix<double, 6, 6> to_local = Eigen::Matrix<double, 6, 6>::Zero();
+  to_local.topLeftCorner<3, 3>() = R0_.transpose();
+  to_local.bottomRightCorner<3, 3>() = R0_.transpose();
+  Eigen::MatrixXd out(n, 6);
+  if (parasitic_module_ == nullptr) {
+    // q_s_dot = D A^+ v; local twist = to_local [v - A q_s_dot; omega].
+    Eigen::MatrixXd serial = Eigen::MatrixXd::Zero(num_serial_, 6);
+    serial.leftCols<3>() = free.asDiagonal() * A_pinv_;
+    Eigen::Matrix<double, 6, 6> remaining = Eigen::Matrix<double, 6, 6>::Identity();
+    remaining.topLeftCorner<3, 3>() -= A_ * serial.leftCols<3>();
+    out.topRows(num_serial_) = serial;
+    out.bottomRows(n_module) = d.module_jacobian * to_local * remaining;
+  } else {
+    // [A D, R0 T_v; 0, R0 T_w] [q_s_dot; eta] = xi in the least-squares sense.
+    const auto& module_data = static_cast<const LegChainData&>(*d.module);
+    const Eigen::MatrixXd T = module_data.T;  // 6 x dof, local twist per DOF rate
+    const int dof = static_cast<int>(T.cols());
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6, num_serial_ + dof);
+    M.topLeftCorner(3, num_serial_) = A_ * free.asDiagonal();
+    M.topRightCorner(3, dof) = R0_ * T.topRows(3);
+    M.bottomRightCorner(3, dof) = R0_ * T.bottomRows(3);
+    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(M);
+    const Eigen::MatrixXd M_pinv = cod.pseudoInverse();
+    out.topRows(num_serial_) = M_pinv.topRows(num_serial_);
+    out.bottomRows(n_module) = d.module_jacobian * T * M_pinv.bottomRows(dof);
+  }
+  if (!out.allFinite()) return false;
+  J = std::move(out);
+  return true;
+}
+
+}  // namespace pkmopt

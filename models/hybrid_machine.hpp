@@ -1,0 +1,163 @@
+// Hybrid machines: serial translational axes carrying a parallel module (a long X axis carrying
+// a hexapod like Hexamech-1, structure class P1З6; a gantry X/Y carrying a 3-PRS head like the
+// Ecospeed / Sprint Z3, P2З3).
+//
+// Model. The serial carrier is a coordinate-code chain (models/serial_chain.hpp) whose VARIABLE
+// elements are translations (motions 1, 2, 3); constant elements may be translations or
+// rotations (a mount offset or tilt). Its transform at axis values q_s is therefore
+//     T_chain(q_s) = [R0, t0 + A q_s; 0, 1]
+// with R0 the constant mount rotation, t0 the constant offset and A (3 x n_s) the world
+// directions of the axes (unit, constant because no variable element rotates). The module's base
+// frame is T_chain(q_s): a TCP pose (p, R) of the machine (world) is the module-local pose
+//     p_local = R0^T (p - t0 - A q_s),   R_local = R0^T R.
+// Variable rotary axes are refused (their directions would depend on q_s); describe accepts them.
+//
+// Redundancy rule ("follow"): the serial axes take the coarse travel so that the module's TCP
+// stays as close as possible to the module's reference point h (module-local, `home`):
+//     q_s = clamp(A^+ (p - t0 - R0 h), [min_i, max_i])   componentwise,
+// A^+ = (A^T A)^-1 A^T (A must have full column rank). A long axis carrying a hexapod thus does
+// the macro motion and the hexapod the micro motion about h. Modules with parasitic motion
+// (planar-leg 3-PRS heads, whose x, y follow from z, rx, ry) cannot choose their local x, y: the
+// serial axes then compensate the module's actual position a(p_local) instead of h,
+//     q_s = clamp(A^+ (p - t0 - R0 a)),   solved by fixed-point iteration,
+// and a pose is attained only when t0 + A q_s + R0 a = p (within 1e-9 m); the module's local rz
+// is its parasitic one (as for the bare module, the requested rz is not honoured).
+//
+// Actuator coordinates q = [q_s; q_p] (n_s + n_p): the serial axis positions (m) first, then the
+// module's (m). Modules with revolute actuators (a delta) are refused: the CLI scales every q of
+// a machine by one unit (m, or rad shown as degrees), so q would mix units.
+//
+// Metrics at a pose under a wrench w = [f; m] at the TCP (base axes):
+//   reachable   module reachable at the local pose (the serial axes are clamped to their range,
+//               so they are always in range) and, with a parasitic module, the pose attained.
+//   tau         serial axis i: tau_s,i = a_i . f (N; the statics of a serial chain, tau_s = A^T f:
+//               each prismatic drive carries the force component along its axis, moments go into
+//               the guides); module: the module's tau under the local wrench [R0^T f; R0^T m]
+//               (the wrench acts at the TCP, so no moment transfer).
+//   stiffness_min  1 / lambda_max(C_tt), the serial and parallel compliances in series:
+//               C_tt = R0 C_tt,module R0^T + sum_i a_i a_i^T / k_i (k_i the axis stiffness, N/m,
+//               absent = rigid).
+//   singularity_margin, det_j, singular: the module's at the local pose.
+//   tcp_error_max  max over |ds_i| <= e_i (axis errors, m) and |dq_j| <= module actuator error of
+//               |sum_i a_i ds_i + R0 P dq| (P the module's TCP position error map), exact: the
+//               maximum of a convex function over a box is at a vertex; all 2^(n-1) sign
+//               vectors are enumerated (n <= 9: at most 3 independent axes and 6 module drives).
+//   At a singular module pose: singularity_margin = stiffness_min = 0, every tau_i and
+//   tcp_error_max = +inf (CONVENTIONS.md). Never NaN.
+// Forward kinematics: T_chain(q_s) composed with the module FK of q_p (the world guess is taken
+// to the local frame at q_s). Twist Jacobian: q_s_dot = A^+ v for an axis strictly inside its
+// range (0 for an axis clamped at a limit: the follow rule holds it there), module rows from the
+// module's twist Jacobian on the local twist [R0^T (v - A q_s_dot); R0^T omega]. Parasitic
+// modules: the serial and module DOF rates solve [A, R0 T_v; 0, R0 T_w] [q_s_dot; eta] = xi in
+// the least-squares sense (T the module's 6 x 3 DOF-to-twist map): exact along the twists the
+// machine can make; a twist with another rz rate than the head's parasitic one is projected.
+// Workspace search box: the module's box for the local orientations R0^T R, moved by R0, t0 and
+// every vertex of the serial range box (the bounding box of the transformed corners).
+// envelope_volume: unknown (nullopt).
+//
+// Units: m, rad, N, N/m inside the code.
+//
+// Example:
+//   pkmopt::HybridDesign design;
+//   design.chain = pkmopt::SerialChain::from_code("1");      // one X axis
+//   design.axes = {{-1.0, 1.0, 2.0e8, 5e-6}};                  // range (m), stiffness, error
+//   design.module = std::make_shared<pkmopt::Hexapod>(hexapod_design);
+//   design.home = {0.0, 0.0, 0.9};                              // module-local reference point
+//   pkmopt::HybridMachine machine(design);
+//   auto data = machine.make_data();
+//   pkmopt::PoseMetrics m;
+//   machine.analyze(*data, pkmopt::Pose{{0.7, 0.0, 0.9}, {0, 0, 0}}, pkmopt::Wrench::Zero(), m);
+//   // m.q = [0.7 (X), six leg lengths of the hexapod at its home]
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "models/machine.hpp"
+#include "models/pose.hpp"
+#include "models/serial_chain.hpp"
+
+namespace pkmopt {
+
+class LegChainMachine;
+
+/// One serial axis of a hybrid machine.
+struct HybridAxis {
+  double min = 0.0;        ///< travel range (m), min <= max
+  double max = 0.0;        ///< m
+  double stiffness = 0.0;  ///< axial stiffness of the drive (N/m); 0 = rigid
+  double error = 0.0;      ///< positioning error half-width (m); default 0 (exact)
+};
+
+/// Everything that defines a hybrid machine. Validated by the HybridMachine constructor.
+struct HybridDesign {
+  SerialChain chain;                      ///< variable elements: translations only (m, rad)
+  std::vector<HybridAxis> axes;           ///< one per variable element, in chain order
+  std::shared_ptr<const Machine> module;  ///< the parallel module (not itself hybrid)
+  Eigen::Vector3d home = Eigen::Vector3d::Zero();  ///< h, module-local reference point (m)
+};
+
+/// Per-thread scratch space of a hybrid machine: the module's data and last results.
+class HybridData : public MachineData {
+ public:
+  std::unique_ptr<MachineData> module;
+  PoseMetrics module_metrics;
+  Eigen::Matrix3d module_compliance = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> module_error_map;
+  Eigen::MatrixXd module_jacobian;
+};
+
+/// The split of a world TCP pose between the serial axes and the module (the follow rule).
+struct HybridSplit {
+  Eigen::VectorXd serial;     ///< q_s, clamped to the ranges (m)
+  Eigen::VectorXd unclamped;  ///< A^+ (p - t0 - R0 h) before clamping (m)
+  Pose local;                 ///< the module-local TCP pose
+  bool attained = true;       ///< parasitic modules: the world position is reached
+};
+
+/// A hybrid machine. Immutable; share it between threads, give each a HybridData.
+class HybridMachine final : public Machine {
+ public:
+  /// Validates the design; throws std::invalid_argument naming the offending field.
+  explicit HybridMachine(HybridDesign design);
+
+  const HybridDesign& design() const { return design_; }
+  const Machine& module() const { return *design_.module; }
+  int num_serial() const { return num_serial_; }
+  const Eigen::Matrix3d& mount_rotation() const { return R0_; }  ///< R0
+  const Eigen::Vector3d& mount_offset() const { return t0_; }    ///< t0 (m)
+  const Eigen::Matrix<double, 3, Eigen::Dynamic>& axis_directions() const { return A_; }  ///< A
+
+  std::string_view model() const override { return "hybrid"; }
+  int num_actuators() const override { return num_serial_ + design_.module->num_actuators(); }
+  bool revolute_actuators() const override { return false; }  ///< modules are prismatic
+  std::unique_ptr<MachineData> make_data() const override;
+  void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
+               PoseMetrics& out) const override;
+  bool reachable(MachineData& data, const Pose& pose) const override;
+  FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
+                              const FkOptions& options = {}) const override;
+  std::optional<Eigen::AlignedBox3d> workspace_search_box(
+      const std::vector<Eigen::Matrix3d>& orientations) const override;
+  std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
+
+  /// The follow rule at a world pose (see the header comment).
+  HybridSplit split(const Pose& pose) const;
+  /// The world pose of a module-local pose with the serial axes at q_s.
+  Pose world_pose(const Eigen::VectorXd& q_serial, const Pose& local) const;
+
+ private:
+  HybridDesign design_;
+  int num_serial_ = 0;
+  Eigen::Matrix3d R0_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d t0_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 3, Eigen::Dynamic> A_;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> A_pinv_;
+  const LegChainMachine* parasitic_module_ = nullptr;  // planar-leg module, else null
+};
+
+}  // namespace pkmopt
