@@ -277,12 +277,11 @@ void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
   compute_metrics(static_cast<HexapodData&>(data), pose, wrench, out);
 }
 
-bool Hexapod::translational_maps(MachineData& data, const Pose& pose,
-                                 Eigen::Matrix3d& compliance_tt,
+bool Hexapod::translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                                 PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
                                  Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
   auto& d = static_cast<HexapodData&>(data);
-  PoseMetrics metrics;
-  compute_metrics(d, pose, Wrench::Zero(), metrics);
+  compute_metrics(d, pose, wrench, metrics);
   if (metrics.singular) return false;
   compliance_tt = d.compliance_tt;
   error_map = d.error_map;

@@ -169,7 +169,8 @@ class Hexapod final : public Machine {
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (translational rows of J^-1), from compute_metrics.
-  bool translational_maps(MachineData& data, const Pose& pose, Eigen::Matrix3d& compliance_tt,
+  bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                          PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
                           Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
 
   /// Leg lengths at a pose.

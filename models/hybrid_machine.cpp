@@ -139,7 +139,8 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   local_wrench.head<3>() = R0_.transpose() * wrench.head<3>();
   local_wrench.tail<3>() = R0_.transpose() * wrench.tail<3>();
   PoseMetrics& m = d.module_metrics;
-  design_.module->analyze(*d.module, s.local, local_wrench, m);
+  const bool maps = design_.module->translational_maps(*d.module, s.local, local_wrench, m,
+                                                       d.module_compliance, d.module_error_map);
 
   out.reachable = m.reachable && s.attained;
   out.q.resize(n);
@@ -150,8 +151,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.singular = m.singular;
   out.singularity_margin = m.singularity_margin;
   out.det_j = m.det_j;
-  if (m.singular || !design_.module->translational_maps(*d.module, s.local, d.module_compliance,
-                                                        d.module_error_map)) {
+  if (m.singular || !maps) {
     out.singular = true;
     set_singular(out);
     return;

@@ -669,11 +669,10 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
 }
 
 bool LegChainMachine::translational_maps(
-    MachineData& data, const Pose& pose, Eigen::Matrix3d& compliance_tt,
-    Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
+    MachineData& data, const Pose& pose, const Wrench& wrench, PoseMetrics& metrics,
+    Eigen::Matrix3d& compliance_tt, Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
   auto& d = static_cast<LegChainData&>(data);
-  PoseMetrics metrics;
-  analyze(d, pose, Wrench::Zero(), metrics);
+  analyze(d, pose, wrench, metrics);
   if (metrics.singular) return false;
   compliance_tt = d.compliance_tt;
   error_map = d.error_map;

@@ -219,7 +219,8 @@ class LegChainMachine final : public Machine {
   /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (position rows of T J^-1), from analyze.
-  bool translational_maps(MachineData& data, const Pose& pose, Eigen::Matrix3d& compliance_tt,
+  bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                          PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
                           Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
 
   /// Closed-form IK of every leg on its branch (at actual_pose(pose)); nullopt when a leg cannot

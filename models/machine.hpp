@@ -118,18 +118,20 @@ class Machine {
     return false;
   }
 
-  /// The translational maps at the TCP that a hybrid machine (models/hybrid_machine.hpp) needs
-  /// to put this machine in series with serial axes, in base axes:
+  /// analyze(data, pose, wrench, metrics), and with it the translational maps at the TCP that a
+  /// hybrid machine (models/hybrid_machine.hpp) needs to put this machine in series with serial
+  /// axes, in base axes (both independent of the wrench):
   ///   compliance_tt (m/N): C_tt, the translational 3x3 block of the TCP compliance
   ///     (stiffness_min = 1 / lambda_max(C_tt));
   ///   error_map (3 x num_actuators, m): column j is the TCP position error when actuator j errs
   ///     by +actuator_error and the others are exact, so tcp_error_max = max over sign vectors
   ///     s in {-1, +1}^n of |error_map s|.
-  /// Runs the model's own analyze at the pose (same data). Returns false (outputs unspecified)
-  /// at a singular pose or when the model does not provide the maps.
-  virtual bool translational_maps(MachineData& /*data*/, const Pose& /*pose*/,
-                                  Eigen::Matrix3d& /*compliance_tt*/,
+  /// `metrics` is filled in every case; returns false (maps unspecified) at a singular pose or
+  /// when the model does not provide the maps (the default: analyze only).
+  virtual bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                                  PoseMetrics& metrics, Eigen::Matrix3d& /*compliance_tt*/,
                                   Eigen::Matrix<double, 3, Eigen::Dynamic>& /*error_map*/) const {
+    analyze(data, pose, wrench, metrics);
     return false;
   }
 };

@@ -375,7 +375,13 @@ TEST(HybridMachine, ModuleTranslationalMaps) {
   const Pose pose{{0.05, -0.03, 0.88}, deg_to_rad(Eigen::Vector3d(4, -6, 9))};
   Eigen::Matrix3d C;
   Eigen::Matrix<double, 3, Eigen::Dynamic> E;
-  ASSERT_TRUE(hexapod.translational_maps(*hex_data, pose, C, E));
+  PoseMetrics metrics, reference;
+  const Wrench w = (Wrench() << 300, -200, -900, 10, 0, -20).finished();
+  ASSERT_TRUE(hexapod.translational_maps(*hex_data, pose, w, metrics, C, E));
+  hexapod.analyze(*hexapod.make_data(), pose, w, reference);  // the same analyze
+  EXPECT_EQ(metrics.tau, reference.tau);
+  EXPECT_EQ(metrics.stiffness_min, reference.stiffness_min);
+  EXPECT_EQ(metrics.tcp_error_max, reference.tcp_error_max);
   const Eigen::Matrix3d C_ref = hexapod.stiffness_matrix(pose).inverse().topLeftCorner<3, 3>();
   EXPECT_LE((C - C_ref).cwiseAbs().maxCoeff(), 1e-9 * C_ref.cwiseAbs().maxCoeff());
   const Eigen::Matrix<double, 3, 6> E_ref =
@@ -387,7 +393,10 @@ TEST(HybridMachine, ModuleTranslationalMaps) {
   const Eigen::Vector3d q(0.45, 0.52, 0.40);
   const FkResult fk = tripod->forward_kinematics(q, std::nullopt);
   ASSERT_TRUE(fk.converged);
-  ASSERT_TRUE(tripod->translational_maps(*tripod_data, fk.pose, C, E));
+  ASSERT_TRUE(tripod->translational_maps(*tripod_data, fk.pose, w, metrics, C, E));
+  tripod->analyze(*tripod->make_data(), fk.pose, w, reference);
+  EXPECT_EQ(metrics.tau, reference.tau);
+  EXPECT_EQ(metrics.stiffness_min, reference.stiffness_min);
   const double error = static_cast<const LegChainMachine&>(*tripod).design().actuator_error;
   for (int j = 0; j < 3; ++j) {
     const double h = 1e-6;
