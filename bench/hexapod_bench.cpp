@@ -15,6 +15,7 @@
 #include "models/hexapod.hpp"
 #include "models/hexapod_batch.hpp"
 #include "models/sample_machines.hpp"
+#include "tests/sample_machines.hpp"
 
 namespace {
 
@@ -24,14 +25,7 @@ pkmopt::Hexapod sample_hexapod() {
 
 // Deterministic poses spread over the working region (splitmix64).
 std::vector<pkmopt::Pose> sample_poses(std::size_t n) {
-  std::uint64_t state = 12345;
-  auto uniform = [&state](double lo, double hi) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-  };
+  pkmopt::sample_machines::Uniform uniform(12345);
   std::vector<pkmopt::Pose> poses(n);
   for (auto& p : poses) {
     p.position = {uniform(-0.15, 0.15), uniform(-0.15, 0.15), uniform(0.75, 0.95)};

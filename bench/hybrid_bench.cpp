@@ -11,6 +11,7 @@
 #include "models/hybrid_machine.hpp"
 #include "models/leg_chain.hpp"
 #include "models/sample_machines.hpp"
+#include "tests/sample_machines.hpp"
 
 namespace {
 
@@ -18,14 +19,7 @@ namespace {
 std::vector<pkmopt::Pose> poses_about(const Eigen::Vector3d& centre, const Eigen::Vector3d& spread,
                                       double max_angle_deg, std::size_t n) {
   std::vector<pkmopt::Pose> poses(n);
-  std::uint64_t state = 7;
-  auto uniform = [&state](double lo, double hi) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-  };
+  pkmopt::sample_machines::Uniform uniform(7);
   for (auto& p : poses) {
     for (int k = 0; k < 3; ++k) p.position(k) = centre(k) + uniform(-spread(k), spread(k));
     p.angles = pkmopt::deg_to_rad(Eigen::Vector3d(uniform(-max_angle_deg, max_angle_deg),

@@ -8,20 +8,14 @@
 #include <vector>
 
 #include "models/leg_chain.hpp"
+#include "tests/sample_machines.hpp"
 
 namespace {
 
 // Poses spread over the delta's working region (seeded splitmix64, reproducible).
 std::vector<pkmopt::Pose> delta_poses(std::size_t n) {
   std::vector<pkmopt::Pose> poses(n);
-  std::uint64_t state = 42;
-  auto uniform = [&state](double lo, double hi) {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-  };
+  pkmopt::sample_machines::Uniform uniform(42);
   for (auto& p : poses) {
     p.position = {uniform(-0.4, 0.4), uniform(-0.4, 0.4), uniform(-1.2, -0.8)};
   }

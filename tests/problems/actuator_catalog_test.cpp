@@ -9,25 +9,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "tests/sample_catalogs.hpp"
+
 namespace pkmopt {
 namespace {
 
-// The seeds' electro-cylinders (SEW CMS50S / CMS63S / CMS71L), one entry per stroke.
-ActuatorCatalog seeds_catalog() {
-  ActuatorCatalog c;
-  c.name = "sew-cms";
-  c.entries = {{"CMS50S/70", "electric_cylinder", 5300, 0.070, 0.375, {}, {}, {}},
-               {"CMS50S/150", "electric_cylinder", 5300, 0.150, 0.375, {}, {}, {}},
-               {"CMS50S/300", "electric_cylinder", 5300, 0.300, 0.375, {}, {}, {}},
-               {"CMS63S/100", "electric_cylinder", 10500, 0.100, 0.45, {}, {}, {}},
-               {"CMS63S/200", "electric_cylinder", 10500, 0.200, 0.45, {}, {}, {}},
-               {"CMS71L/200", "electric_cylinder", 20000, 0.200, 0.5, {}, {}, {}},
-               {"CMS71L/350", "electric_cylinder", 17000, 0.350, 0.5, {}, {}, {}}};
-  return c;
-}
-
 TEST(ActuatorCatalog, ChoosesTheSmallestDriveThatCarriesTheLoad) {
-  const ActuatorCatalog catalog = seeds_catalog();
+  const ActuatorCatalog catalog = sample_catalogs::sew_cms();
   EXPECT_EQ(check_actuator_catalog(catalog), "");
   // The lathe's turning load (6633 N) over a 180 mm stroke: CMS50S is too weak, CMS63S/200 fits.
   ActuatorChoice choice = choose_actuator(catalog, {6633.0, 0.18, 0.0});
@@ -58,7 +46,7 @@ TEST(ActuatorCatalog, ChoosesTheSmallestDriveThatCarriesTheLoad) {
 }
 
 TEST(ActuatorCatalog, CostsOrderTheChoiceWhenGiven) {
-  ActuatorCatalog catalog = seeds_catalog();
+  ActuatorCatalog catalog = sample_catalogs::sew_cms();
   // Suppose the CMS71L/200 were on offer cheaper than the CMS63S/200.
   for (auto& e : catalog.entries) e.cost = e.max_force / 1000.0;
   catalog.entries[5].cost = 5.0;
@@ -72,7 +60,7 @@ TEST(ActuatorCatalog, CostsOrderTheChoiceWhenGiven) {
 // The cost a study chooses by: ranks by force rating (then stroke) without costs, the costs
 // when every entry has one, an error when only some have.
 TEST(ActuatorCatalog, CostsAreRanksWithoutPricesAndPricesWithThem) {
-  ActuatorCatalog catalog = seeds_catalog();
+  ActuatorCatalog catalog = sample_catalogs::sew_cms();
   // 5300 N x {70, 150, 300} mm, 10500 N x {100, 200} mm, 17000 N x 350 mm, 20000 N x 200 mm.
   EXPECT_EQ(actuator_costs(catalog), (std::vector<double>{1, 2, 3, 4, 5, 7, 6}));
   // The rank order is choose_actuator's: for every requirement the chosen entry has the
@@ -98,7 +86,7 @@ TEST(ActuatorCatalog, CostsAreRanksWithoutPricesAndPricesWithThem) {
 
 // The force a leg of a given stroke can have: the strongest entry at least that long.
 TEST(ActuatorCatalog, ForceCapacityIsTheStrongestEntryLongEnough) {
-  const ActuatorCatalog catalog = seeds_catalog();
+  const ActuatorCatalog catalog = sample_catalogs::sew_cms();
   EXPECT_EQ(actuator_force_capacity(catalog, 0.05), 20000.0);
   EXPECT_EQ(actuator_force_capacity(catalog, 0.20), 20000.0);
   EXPECT_EQ(actuator_force_capacity(catalog, 0.2001), 17000.0);
@@ -121,15 +109,15 @@ TEST(ActuatorCatalog, CarriesChecksEveryRequirement) {
 }
 
 TEST(ActuatorCatalog, CheckNamesTheBadEntry) {
-  ActuatorCatalog catalog = seeds_catalog();
+  ActuatorCatalog catalog = sample_catalogs::sew_cms();
   catalog.entries[2].stroke = -0.1;
   EXPECT_EQ(check_actuator_catalog(catalog),
             "entry 2 (CMS50S/300): stroke: expected a number > 0, found -0.1");
-  catalog = seeds_catalog();
+  catalog = sample_catalogs::sew_cms();
   catalog.entries[1].name = "CMS50S/70";
   EXPECT_EQ(check_actuator_catalog(catalog),
             "entry 1 (CMS50S/70): name: expected a unique name, found a repeat");
-  catalog = seeds_catalog();
+  catalog = sample_catalogs::sew_cms();
   catalog.entries[0].stiffness = std::nan("");
   EXPECT_EQ(check_actuator_catalog(catalog),
             "entry 0 (CMS50S/70): stiffness: expected a number > 0, found nan");

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "optimizer/ipopt_solver.hpp"
+#include "tests/sample_catalogs.hpp"
 #include "tests/sample_machines.hpp"
 
 namespace pkmopt {
@@ -421,27 +422,13 @@ TEST(HexapodDesign, SmoothFormulationRefusesNonSmoothMetricsAndAggregateHasNoGra
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
 }
 
-// The seeds' SEW catalog (studies/catalogs/sew-cms.yaml), one entry per stroke variant.
-ActuatorCatalog sew_catalog() {
-  ActuatorCatalog c;
-  c.name = "sew-cms";
-  c.entries = {{"CMS50S/70", "electric_cylinder", 5300, 0.070, 0.375, {}, {}, {}},
-               {"CMS50S/150", "electric_cylinder", 5300, 0.150, 0.375, {}, {}, {}},
-               {"CMS50S/300", "electric_cylinder", 5300, 0.300, 0.375, {}, {}, {}},
-               {"CMS63S/100", "electric_cylinder", 10500, 0.100, 0.45, {}, {}, {}},
-               {"CMS63S/200", "electric_cylinder", 10500, 0.200, 0.45, {}, {}, {}},
-               {"CMS71L/200", "electric_cylinder", 20000, 0.200, 0.5, {}, {}, {}},
-               {"CMS71L/350", "electric_cylinder", 17000, 0.350, 0.5, {}, {}, {}}};
-  return c;
-}
-
 // The optimiser chooses the cheapest catalog entry: actuator_cost, actuator_overload and the
 // chosen entry follow from leg_force_max and the stroke exactly as the catalog functions say.
 TEST(HexapodDesign, ChoosesTheCheapestCatalogActuatorThatCarriesTheLegs) {
   HexapodDesignSpec spec = smooth_spec();
   spec.formulation = DesignFormulation::aggregate;
   spec.parameters[kStroke] = {0.10, 0.35};
-  spec.actuator_catalog = sew_catalog();
+  spec.actuator_catalog = sample_catalogs::sew_cms();
   spec.objectives = {{DesignMetric::actuator_cost, Sense::minimize},
                      {DesignMetric::stiffness_min, Sense::maximize}};
   spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
@@ -509,7 +496,7 @@ TEST(HexapodDesign, ChoosesTheCheapestCatalogActuatorThatCarriesTheLegs) {
 TEST(HexapodDesign, SmoothActuatorOverloadRowsAreForceRowsAtTheCapacity) {
   HexapodDesignSpec spec = smooth_spec();
   spec.parameters[kStroke] = {0.2, 0.2};
-  spec.actuator_catalog = sew_catalog();
+  spec.actuator_catalog = sample_catalogs::sew_cms();
   spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, -500.0}};
   const HexapodDesignProblem overload(spec);
   spec.constraints = {{DesignMetric::leg_force_max, Relation::less_equal, 20000.0 - 500.0}};
@@ -528,7 +515,7 @@ TEST(HexapodDesign, ActuatorChoiceErrors) {
   spec.formulation = DesignFormulation::aggregate;
   spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no catalog
-  spec.actuator_catalog = sew_catalog();
+  spec.actuator_catalog = sample_catalogs::sew_cms();
   spec.parameters[kStroke] = {0.3, 0.6};  // longer than the longest entry (0.35 m)
   try {
     HexapodDesignProblem{spec};
@@ -542,12 +529,12 @@ TEST(HexapodDesign, ActuatorChoiceErrors) {
   EXPECT_NO_THROW(HexapodDesignProblem{spec});
   spec.actuator_catalog->entries[1].cost = 3.0;  // some prices, not all
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
-  spec.actuator_catalog = sew_catalog();
+  spec.actuator_catalog = sample_catalogs::sew_cms();
   spec.actuator_catalog->entries[1].max_force = -1.0;
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
   // Smooth: the overload needs a fixed stroke; the cost has no smooth formulation.
   spec = smooth_spec();
-  spec.actuator_catalog = sew_catalog();
+  spec.actuator_catalog = sample_catalogs::sew_cms();
   spec.parameters[kStroke] = {0.2, 0.3};
   spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
