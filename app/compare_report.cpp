@@ -37,7 +37,6 @@ enum class Marker { kCircle, kSquare, kTriangleUp, kDiamond, kTriangleDown, kPlu
 constexpr std::array<Marker, 6> kMarkers{Marker::kCircle,       Marker::kSquare,
                                          Marker::kTriangleUp,   Marker::kDiamond,
                                          Marker::kTriangleDown, Marker::kPlus};
-constexpr Rgb kGridColour{230, 230, 230};
 constexpr double kMarkerRadius = 5.0, kKneeRadius = 8.0;
 
 Rgb run_colour(std::size_t run) { return kRunColours[run % kRunColours.size()]; }
@@ -121,11 +120,9 @@ void paint_marker(raster::RgbImage& image, Marker marker, double cx, double cy, 
 // ---------------------------------------------------------------------------------------------
 // The scatter's geometry, shared by the SVG and the PNG.
 
-struct CompareLayout {
-  int width = 760, left = 100, top = 60, right = 30, plot_width = 630, plot_height = 420;
+struct CompareLayout : raster::PlotAxes {
+  int width = 760, right = 30;  // right: margin
   int legend_top = 0, legend_row = 20, height = 0;
-  double x_low = 0, x_high = 1, y_low = 0, y_high = 1;
-  std::vector<double> x_ticks, y_ticks;
   std::string title, x_label, y_label;
   struct Point {
     std::size_t run, design;
@@ -134,27 +131,17 @@ struct CompareLayout {
   };
   std::vector<Point> points;  // run by run, every run's knee last of all
 
-  int bottom() const { return top + plot_height; }
-  double screen_x(double v) const { return left + plot_width * (v - x_low) / (x_high - x_low); }
-  double screen_y(double v) const {
-    return top + plot_height * (1.0 - (v - y_low) / (y_high - y_low));
+  CompareLayout() {
+    left = 100;
+    top = 60;
+    plot_width = 630;
+    plot_height = 420;
   }
 };
 
-void padded_range(double& low, double& high) {
-  if (!(low <= high)) {
-    low = 0.0;
-    high = 1.0;
-    return;
-  }
-  const double pad = high > low ? 0.05 * (high - low) : (low != 0.0 ? 0.05 * std::abs(low) : 1.0);
-  low -= pad;
-  high += pad;
-}
-
 CompareLayout make_layout(const RunComparison& c) {
   CompareLayout L;
-  L.legend_top = L.bottom() + 62;
+  L.legend_top = L.frame_bottom() + 62;
   L.height = L.legend_top + L.legend_row * static_cast<int>(c.runs.size()) + 12;
   double x_low = std::numeric_limits<double>::infinity(), x_high = -x_low;
   double y_low = x_low, y_high = -x_low;
@@ -174,8 +161,8 @@ CompareLayout make_layout(const RunComparison& c) {
     }
   }
   L.points.insert(L.points.end(), knees.begin(), knees.end());
-  padded_range(x_low, x_high);
-  padded_range(y_low, y_high);
+  raster::padded_range(x_low, x_high);
+  raster::padded_range(y_low, y_high);
   L.x_low = x_low;
   L.x_high = x_high;
   L.y_low = y_low;
@@ -201,26 +188,8 @@ std::string scatter_svg(const RunComparison& c, bool standalone) {
       "<text x=\"{}\" y=\"30\" font-size=\"15\">{}</text>\n",
       standalone ? "xmlns=\"http://www.w3.org/2000/svg\" " : "", L.width, L.height, L.width,
       L.height, L.width, L.height, L.left, html_escape(L.title));
-  const int bottom = L.bottom(), right = L.left + L.plot_width;
-  for (double t : L.x_ticks) {
-    out += fmt::format(
-        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{5}\"/>\n"
-        "<line x1=\"{0:.1f}\" y1=\"{2}\" x2=\"{0:.1f}\" y2=\"{3}\" stroke=\"#141414\"/>\n"
-        "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{6}</text>\n",
-        L.screen_x(t), L.top, bottom, bottom + 6, bottom + 20, raster::hex(kGridColour),
-        short_number(t));
-  }
-  for (double t : L.y_ticks) {
-    out += fmt::format(
-        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{4}\"/>\n"
-        "<line x1=\"{3}\" y1=\"{1:.1f}\" x2=\"{0}\" y2=\"{1:.1f}\" stroke=\"#141414\"/>\n"
-        "<text x=\"{5}\" y=\"{6:.1f}\" text-anchor=\"end\">{7}</text>\n",
-        L.left, L.screen_y(t), right, L.left - 6, raster::hex(kGridColour), L.left - 9,
-        L.screen_y(t) + 4, short_number(t));
-  }
-  out += fmt::format(
-      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#141414\"/>\n",
-      L.left, L.top, L.plot_width, L.plot_height);
+  const int bottom = L.frame_bottom();
+  out += raster::svg_axes(L);
   out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
                      L.left + L.plot_width / 2, bottom + 42, html_escape(L.x_label));
   out += fmt::format(
@@ -763,22 +732,8 @@ std::string comparison_plot_png(const RunComparison& c) {
   using raster::kGlyphHeight;
   using raster::kInk;
   raster::RgbImage image(L.width, L.height, raster::kWhite);
-  const int bottom = L.bottom(), right = L.left + L.plot_width;
-  for (double t : L.x_ticks) {
-    const int x = static_cast<int>(std::lround(L.screen_x(t)));
-    image.fill(x, L.top, x + 1, bottom, kGridColour);
-    image.fill(x, bottom, x + 1, bottom + 6, kInk);
-    const std::string label = short_number(t);
-    image.text(x - image.text_width(label) / 2, bottom + 9, label, kInk);
-  }
-  for (double t : L.y_ticks) {
-    const int y = static_cast<int>(std::lround(L.screen_y(t)));
-    image.fill(L.left, y, right, y + 1, kGridColour);
-    image.fill(L.left - 6, y, L.left, y + 1, kInk);
-    const std::string label = short_number(t);
-    image.text(L.left - 9 - image.text_width(label), y - kGlyphHeight / 2, label, kInk);
-  }
-  image.frame(L.left, L.top, right + 1, bottom + 1, kInk);
+  const int bottom = L.frame_bottom();
+  raster::draw_axes(image, L);
   image.text(L.left, 14, L.title, kInk);
   image.text(L.left + L.plot_width / 2 - image.text_width(L.x_label) / 2, bottom + 34, L.x_label,
              kInk);

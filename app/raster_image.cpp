@@ -219,4 +219,58 @@ std::string RgbImage::encode_png() const {
   return bytes;
 }
 
+void padded_range(double& low, double& high) {
+  if (!(low <= high)) {
+    low = 0.0;
+    high = 1.0;
+    return;
+  }
+  const double pad = high > low ? 0.05 * (high - low) : (low != 0.0 ? 0.05 * std::abs(low) : 1.0);
+  low -= pad;
+  high += pad;
+}
+
+std::string svg_axes(const PlotAxes& a) {
+  const int bottom = a.frame_bottom(), right = a.frame_right();
+  std::string out;
+  for (double t : a.x_ticks) {
+    out += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{5}\"/>\n"
+        "<line x1=\"{0:.1f}\" y1=\"{2}\" x2=\"{0:.1f}\" y2=\"{3}\" stroke=\"#141414\"/>\n"
+        "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{6:.4g}</text>\n",
+        a.screen_x(t), a.top, bottom, bottom + 6, bottom + 20, hex(kGridColour), t);
+  }
+  for (double t : a.y_ticks) {
+    const double y = a.screen_y(t);
+    out += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{4}\"/>\n"
+        "<line x1=\"{3}\" y1=\"{1:.1f}\" x2=\"{0}\" y2=\"{1:.1f}\" stroke=\"#141414\"/>\n"
+        "<text x=\"{5}\" y=\"{6:.1f}\" text-anchor=\"end\">{7:.4g}</text>\n",
+        a.left, y, right, a.left - 6, hex(kGridColour), a.left - 9, y + 4, t);
+  }
+  out += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#141414\"/>\n",
+      a.left, a.top, a.plot_width, a.plot_height);
+  return out;
+}
+
+void draw_axes(RgbImage& image, const PlotAxes& a) {
+  const int bottom = a.frame_bottom(), right = a.frame_right();
+  for (double t : a.x_ticks) {
+    const int x = static_cast<int>(std::lround(a.screen_x(t)));
+    image.fill(x, a.top, x + 1, bottom, kGridColour);
+    image.fill(x, bottom, x + 1, bottom + 6, kInk);
+    const std::string label = fmt::format("{:.4g}", t);
+    image.text(x - image.text_width(label) / 2, bottom + 9, label, kInk);
+  }
+  for (double t : a.y_ticks) {
+    const int y = static_cast<int>(std::lround(a.screen_y(t)));
+    image.fill(a.left, y, right, y + 1, kGridColour);
+    image.fill(a.left - 6, y, a.left, y + 1, kInk);
+    const std::string label = fmt::format("{:.4g}", t);
+    image.text(a.left - 9 - image.text_width(label), y - kGlyphHeight / 2, label, kInk);
+  }
+  image.frame(a.left, a.top, right + 1, bottom + 1, kInk);
+}
+
 }  // namespace pkmopt::raster

@@ -194,15 +194,11 @@ std::string objective_label(const ParetoObjective& o) {
 constexpr Rgb kFeasibleColour{31, 119, 180};
 constexpr Rgb kInfeasibleColour{140, 140, 140};
 constexpr Rgb kKneeColour{214, 39, 40};
-constexpr Rgb kGridColour{230, 230, 230};
 
 // The scatter's geometry, shared by the SVG and the PNG. Axis -1 is the design number (for a
 // front with one objective).
-struct ScatterLayout {
-  int width = 680, height = 520, left = 100, top = 70, right = 30, bottom = 70;
-  int plot_width = 0, plot_height = 0;
-  double x_low = 0, x_high = 1, y_low = 0, y_high = 1;
-  std::vector<double> x_ticks, y_ticks;
+struct ScatterLayout : raster::PlotAxes {
+  int width = 680, height = 520, right = 30, bottom = 70;  // right, bottom: margins
   std::string title, x_label, y_label;
   struct Point {
     std::size_t design;
@@ -210,30 +206,15 @@ struct ScatterLayout {
   };
   std::vector<Point> points;  // designs with finite coordinates, knee last (drawn on top)
 
-  double screen_x(double v) const { return left + plot_width * (v - x_low) / (x_high - x_low); }
-  double screen_y(double v) const {
-    return top + plot_height * (1.0 - (v - y_low) / (y_high - y_low));
+  ScatterLayout() {
+    left = 100;
+    top = 70;
   }
 };
 
 double axis_value(const ParetoFront& front, std::size_t design, int axis) {
   if (axis < 0) return static_cast<double>(design);
   return front.designs[design].objectives[static_cast<std::size_t>(axis)];
-}
-
-void padded_range(double& low, double& high) {
-  if (!(low <= high)) {
-    low = 0.0;
-    high = 1.0;
-  } else if (high == low) {
-    const double pad = low != 0.0 ? 0.05 * std::abs(low) : 1.0;
-    low -= pad;
-    high += pad;
-  } else {
-    const double pad = 0.05 * (high - low);
-    low -= pad;
-    high += pad;
-  }
 }
 
 ScatterLayout make_scatter(const ParetoFront& front, int x_axis, int y_axis) {
@@ -266,8 +247,8 @@ ScatterLayout make_scatter(const ParetoFront& front, int x_axis, int y_axis) {
       std::isfinite(axis_value(front, static_cast<std::size_t>(knee), y_axis))) {
     shown.push_back(static_cast<std::size_t>(knee));
   }
-  padded_range(x_low, x_high);
-  padded_range(y_low, y_high);
+  raster::padded_range(x_low, x_high);
+  raster::padded_range(y_low, y_high);
   L.x_low = x_low;
   L.x_high = x_high;
   L.y_low = y_low;
@@ -296,26 +277,8 @@ std::string scatter_svg(const ParetoFront& front, int x_axis, int y_axis, bool s
       L.height, L.width, L.height);
   out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"15\">{}</text>\n", L.left, 26,
                      xml_escape(L.title));
-  const int bottom = L.top + L.plot_height, right = L.left + L.plot_width;
-  for (double t : L.x_ticks) {
-    const double x = L.screen_x(t);
-    out += fmt::format(
-        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{5}\"/>\n"
-        "<line x1=\"{0:.1f}\" y1=\"{2}\" x2=\"{0:.1f}\" y2=\"{3}\" stroke=\"#141414\"/>\n"
-        "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{6}</text>\n",
-        x, L.top, bottom, bottom + 6, bottom + 20, raster::hex(kGridColour), short_number(t));
-  }
-  for (double t : L.y_ticks) {
-    const double y = L.screen_y(t);
-    out += fmt::format(
-        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{4}\"/>\n"
-        "<line x1=\"{3}\" y1=\"{1:.1f}\" x2=\"{0}\" y2=\"{1:.1f}\" stroke=\"#141414\"/>\n"
-        "<text x=\"{5}\" y=\"{6:.1f}\" text-anchor=\"end\">{7}</text>\n",
-        L.left, y, right, L.left - 6, raster::hex(kGridColour), L.left - 9, y + 4, short_number(t));
-  }
-  out += fmt::format(
-      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#141414\"/>\n",
-      L.left, L.top, L.plot_width, L.plot_height);
+  const int bottom = L.frame_bottom();
+  out += raster::svg_axes(L);
   out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
                      L.left + L.plot_width / 2, bottom + 45, xml_escape(L.x_label));
   out += fmt::format(
@@ -849,22 +812,8 @@ std::string pareto_plot_png(const ParetoFront& front, int x_objective, int y_obj
   using raster::kGlyphHeight;
   using raster::kInk;
   raster::RgbImage image(L.width, L.height, raster::kWhite);
-  const int bottom = L.top + L.plot_height, right = L.left + L.plot_width;
-  for (double t : L.x_ticks) {
-    const int x = static_cast<int>(std::lround(L.screen_x(t)));
-    image.fill(x, L.top, x + 1, bottom, kGridColour);
-    image.fill(x, bottom, x + 1, bottom + 6, kInk);
-    const std::string label = short_number(t);
-    image.text(x - image.text_width(label) / 2, bottom + 9, label, kInk);
-  }
-  for (double t : L.y_ticks) {
-    const int y = static_cast<int>(std::lround(L.screen_y(t)));
-    image.fill(L.left, y, right, y + 1, kGridColour);
-    image.fill(L.left - 6, y, L.left, y + 1, kInk);
-    const std::string label = short_number(t);
-    image.text(L.left - 9 - image.text_width(label), y - kGlyphHeight / 2, label, kInk);
-  }
-  image.frame(L.left, L.top, right + 1, bottom + 1, kInk);
+  const int bottom = L.frame_bottom();
+  raster::draw_axes(image, L);
   image.text(L.left, 12, L.title, kInk);
   image.text(L.left + L.plot_width / 2 - image.text_width(L.x_label) / 2, bottom + 36, L.x_label,
              kInk);

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -120,6 +121,57 @@ TEST(RgbImage, CapitalsWithoutAGlyphAreDrawnAsSmallLetters) {
   EXPECT_EQ(upper.encode_png(), lower.encode_png());
   pkmopt::raster::RgbImage blank(60, 20, pkmopt::raster::kWhite);
   EXPECT_NE(upper.encode_png(), blank.encode_png());
+}
+
+// The plot range: 5 % of the span on each side; an empty span 5 % of the value (1 about 0);
+// inverted or NaN ranges become [0, 1].
+TEST(PaddedRange, WidensByFivePercent) {
+  auto padded = [](double low, double high) {
+    pkmopt::raster::padded_range(low, high);
+    return std::pair{low, high};
+  };
+  EXPECT_EQ(padded(0.0, 10.0), std::pair(-0.5, 10.5));
+  EXPECT_EQ(padded(4.0, 4.0), std::pair(3.8, 4.2));
+  EXPECT_EQ(padded(0.0, 0.0), std::pair(-1.0, 1.0));
+  EXPECT_EQ(padded(2.0, 1.0), std::pair(0.0, 1.0));
+  EXPECT_EQ(padded(std::nan(""), 1.0), std::pair(0.0, 1.0));
+}
+
+// The axes map their value ranges onto the frame (y downwards) and draw one grid line, tick
+// and label per tick, and the frame.
+TEST(PlotAxes, MapRangesOntoTheFrameAndDrawEveryTick) {
+  pkmopt::raster::PlotAxes axes;
+  axes.left = 100;
+  axes.top = 50;
+  axes.plot_width = 400;
+  axes.plot_height = 200;
+  axes.x_low = -1.0;
+  axes.x_high = 3.0;
+  axes.y_low = 10.0;
+  axes.y_high = 20.0;
+  axes.x_ticks = {-1.0, 0.0, 1.0, 2.0, 3.0};
+  axes.y_ticks = {10.0, 15.0, 20.0};
+  EXPECT_EQ(axes.screen_x(-1.0), 100.0);
+  EXPECT_EQ(axes.screen_x(3.0), 500.0);
+  EXPECT_EQ(axes.screen_y(10.0), 250.0);
+  EXPECT_EQ(axes.screen_y(20.0), 50.0);
+  EXPECT_EQ(axes.frame_right(), 500);
+  EXPECT_EQ(axes.frame_bottom(), 250);
+  const std::string svg = pkmopt::raster::svg_axes(axes);
+  std::size_t lines = 0, texts = 0;
+  for (std::size_t at = svg.find("<line"); at != std::string::npos; at = svg.find("<line", at + 1))
+    ++lines;
+  for (std::size_t at = svg.find("<text"); at != std::string::npos; at = svg.find("<text", at + 1))
+    ++texts;
+  EXPECT_EQ(lines, 2u * 8u);  // grid line and tick mark per tick
+  EXPECT_EQ(texts, 8u);
+  EXPECT_NE(svg.find(">15</text>"), std::string::npos);
+  EXPECT_NE(svg.find("<rect x=\"100\" y=\"50\" width=\"400\" height=\"200\""), std::string::npos);
+  pkmopt::raster::RgbImage image(600, 300, pkmopt::raster::kWhite);
+  pkmopt::raster::draw_axes(image, axes);
+  pkmopt::raster::RgbImage frame_only(600, 300, pkmopt::raster::kWhite);
+  frame_only.frame(100, 50, 501, 251, pkmopt::raster::kInk);
+  EXPECT_NE(image.encode_png(), frame_only.encode_png());
 }
 
 }  // namespace
