@@ -27,6 +27,26 @@
 
 namespace pkmopt::hexapod_reference {
 
+/// A semi-regular hexapod with similar hexagons (architecturally singular: platform separation
+/// 120 deg minus the base's) whose platform joints are then moved by 1e-9 .. 1e-2 m (log-uniform
+/// amplitude): designs at every distance from the singularity. Legs 0.2 .. 2 m, steel 3 cm^2,
+/// an actuator stiffness of 2e8 N/m when asked.
+inline HexapodDesign near_similar_hexapod(sample_machines::Uniform& u, bool actuator_stiffness) {
+  const double base_sep = u(10, 60);
+  HexapodDesign d = semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(base_sep), u(0.15, 0.4),
+                                         deg_to_rad(120.0 - base_sep));
+  const double amplitude = std::pow(10.0, u(-9, -2));
+  for (int i = 0; i < 6; ++i) {
+    for (int c = 0; c < 3; ++c) d.platform_joints(c, i) += amplitude * u(-1, 1);
+  }
+  d.min_length = 0.2;
+  d.max_length = 2.0;
+  d.stiffness.E = 2.1e11;
+  d.stiffness.area = 3e-4;
+  d.stiffness.actuator_stiffness = actuator_stiffness ? 2e8 : 0.0;
+  return d;
+}
+
 /// An independent rotation: fixed-axis x, then y, then z.
 inline Eigen::Matrix3d rotation(const Eigen::Vector3d& a) {
   return (Eigen::AngleAxisd(a(2), Eigen::Vector3d::UnitZ()) *

@@ -134,19 +134,7 @@ TEST(HexapodBatch, MatchesReferenceNearSingularities) {
   Uniform u(33);
   std::size_t scalar = 0;
   for (int g = 0; g < 150; ++g) {
-    const double base_sep = u(10, 60);
-    HexapodDesign d = semi_regular_hexapod(u(0.4, 0.9), deg_to_rad(base_sep), u(0.15, 0.4),
-                                           deg_to_rad(120.0 - base_sep));
-    const double amplitude = std::pow(10.0, u(-9, -2));
-    for (int i = 0; i < 6; ++i) {
-      for (int c = 0; c < 3; ++c) d.platform_joints(c, i) += amplitude * u(-1, 1);
-    }
-    d.min_length = 0.2;
-    d.max_length = 2.0;
-    d.stiffness.E = 2.1e11;
-    d.stiffness.area = 3e-4;
-    d.stiffness.actuator_stiffness = g % 2 ? 2e8 : 0.0;
-    const Hexapod hexapod(d);
+    const Hexapod hexapod(hexapod_reference::near_similar_hexapod(u, g % 2 == 1));
     std::vector<Pose> poses(5);
     for (Pose& p : poses) p = sample_machines::random_pose(u);
     scalar += expect_batch_matches(hexapod, poses, random_wrench(u), "similar " + std::to_string(g))
