@@ -803,7 +803,6 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
   const ActuatorCatalog* catalog = study.problem && study.problem->spec().actuator_catalog
                                        ? &*study.problem->spec().actuator_catalog
                                        : nullptr;
-  const std::vector<double> costs = catalog ? actuator_costs(*catalog) : std::vector<double>{};
 
   // pareto.csv
   std::ostringstream csv;
@@ -857,7 +856,7 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
                               {"max_force", e.max_force},
                               {"stroke", e.stroke},
                               {"max_speed", e.max_speed},
-                              {"cost", costs[static_cast<std::size_t>(d.actuator)]},
+                              {"cost", d.metrics[static_cast<int>(DesignMetric::actuator_cost)]},
                               {"leg_force_max", json_number(force)},
                               {"force_reserve", json_number(e.max_force / force)}};
       } else {

@@ -104,10 +104,12 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
           "{}: parameter stroke: expected an upper bound <= {} m (the longest entry of actuator "
           "catalog '{}'), found {} m",
           where, longest, catalog.name, spec_.parameters[kStroke].upper));
-    // No entry carries the legs: dearer than every entry (actuator_overload > 0 says why).
-    no_actuator_cost_ = 2.0 * *std::max_element(actuator_costs_.begin(), actuator_costs_.end());
-    if (!catalog.entries.front().cost)
-      no_actuator_cost_ = static_cast<double>(catalog.entries.size() + 1);
+    // No entry carries the legs: dearer than every entry (actuator_overload > 0 says why):
+    // twice the dearest price, or the rank after the last.
+    no_actuator_cost_ =
+        catalog.entries.front().cost
+            ? 2.0 * *std::max_element(actuator_costs_.begin(), actuator_costs_.end())
+            : static_cast<double>(catalog.entries.size() + 1);
     needed_[static_cast<int>(DesignMetric::leg_force_max)] = true;
   } else {
     for (int m = 0; m < kNumDesignMetrics; ++m)
