@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "models/leg_chain.hpp"
+#include "models/linalg.hpp"
 
 namespace pkmopt {
 namespace {
@@ -169,7 +170,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : 0.0;
 
   // tcp_error_max over the vertices of the combined error box (zero columns skipped).
-  Eigen::Matrix<double, 3, Eigen::Dynamic> columns(3, n);
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 16> columns(3, n);
   int used = 0;
   for (int i = 0; i < num_serial_; ++i) {
     const double e = design_.axes[static_cast<std::size_t>(i)].error;
@@ -180,16 +181,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
       columns.col(used++) = R0_ * d.module_error_map.col(j);
     }
   }
-  double best = 0.0;
-  if (used > 0) {
-    const unsigned vertices = 1u << (used - 1);
-    for (unsigned g = 0; g < vertices; ++g) {
-      Eigen::Vector3d v = columns.col(0);
-      for (int j = 1; j < used; ++j) v += ((g >> (j - 1)) & 1u ? -1.0 : 1.0) * columns.col(j);
-      best = std::max(best, v.squaredNorm());
-    }
-  }
-  out.tcp_error_max = std::sqrt(best);
+  out.tcp_error_max = max_norm_over_sign_vectors(columns.leftCols(used));
   if (!out.tau.allFinite() || !std::isfinite(out.tcp_error_max) ||
       !std::isfinite(out.stiffness_min)) {
     out.singular = true;

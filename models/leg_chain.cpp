@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "models/hexapod.hpp"  // kSingularRcond, semi_regular_platform_joints
+#include "models/linalg.hpp"
 #include "models/pose_solver.hpp"
 
 namespace pkmopt {
@@ -648,14 +649,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
 
   // tcp_error_max: dx = A^-1 B dq; the largest |position part| over the box vertices.
   const Mat3M E = P * d.B.asDiagonal();
-  double best = 0.0;
-  const unsigned vertices = 1u << (n - 1);
-  for (unsigned g = 0; g < vertices; ++g) {
-    Eigen::Vector3d v = E.col(0);
-    for (int j = 1; j < n; ++j) v += ((g >> (j - 1)) & 1u ? -1.0 : 1.0) * E.col(j);
-    best = std::max(best, v.squaredNorm());
-  }
-  out.tcp_error_max = design_.actuator_error * std::sqrt(best);
+  out.tcp_error_max = design_.actuator_error * max_norm_over_sign_vectors(E);
   d.compliance_tt = Ctt;
   d.error_map = design_.actuator_error * E;
   if (!std::isfinite(out.stiffness_min) || !out.tau.allFinite() ||

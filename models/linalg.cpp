@@ -338,4 +338,18 @@ Eigen::Matrix<double, 6, 1> Lu6::solve_transposed(const Eigen::Matrix<double, 6,
   return x;
 }
 
+double max_norm_over_sign_vectors(
+    const Eigen::Ref<const Eigen::Matrix<double, 3, Eigen::Dynamic>>& columns) {
+  const int n = static_cast<int>(columns.cols());
+  if (n == 0) return 0.0;
+  double best = 0.0;
+  const unsigned vertices = 1u << (n - 1);
+  for (unsigned g = 0; g < vertices; ++g) {
+    Eigen::Vector3d v = columns.col(0);
+    for (int j = 1; j < n; ++j) v += ((g >> (j - 1)) & 1u ? -1.0 : 1.0) * columns.col(j);
+    best = std::max(best, v.squaredNorm());
+  }
+  return std::sqrt(best);
+}
+
 }  // namespace pkmopt

@@ -21,6 +21,10 @@
 // solve_transposed6x4: J^T X = B for a 6x6 J and four right-hand sides at once, by Gaussian
 // elimination with partial pivoting on the augmented rows [J^T | B], with det J as a by-product.
 //
+// max_norm_over_sign_vectors: max over s in {-1, +1}^n of |C s| for a 3 x n C, the largest TCP
+// error over an error box |dq_j| <= 1 mapped by C (the maximum of a convex function over a box
+// is at a vertex; s and -s give the same norm, so 2^(n-1) vertices with s_0 = +1).
+//
 //   Eigen::Matrix<double, 6, 1> lambda;
 //   pkmopt::symmetric_eigenvalues6(A, lambda);   // lambda(0) smallest, lambda(5) largest
 //   pkmopt::Lu6 lu(J);
@@ -33,6 +37,10 @@
 #include <Eigen/Core>
 
 namespace pkmopt {
+
+/// max over s in {-1, +1}^n of |columns * s| (0 for no columns); n <= 31.
+double max_norm_over_sign_vectors(
+    const Eigen::Ref<const Eigen::Matrix<double, 3, Eigen::Dynamic>>& columns);
 
 /// Eigenvalues of the symmetric matrix A (only its lower triangle is read), ascending.
 void symmetric_eigenvalues6(const Eigen::Matrix<double, 6, 6>& A,

@@ -6,6 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+#include <cmath>
 
 #include "tests/sample_machines.hpp"
 
@@ -140,4 +141,32 @@ TEST(Linalg, TransposedSolveWithFourRightHandSides) {
 }
 
 }  // namespace
+// The box maximum against every one of the 2^n sign vectors (both signs of s_0) and against
+// random interior points of the box, which never exceed it; a known case by hand.
+TEST(Linalg, MaxNormOverSignVectorsIsTheLargestBoxVertex) {
+  EXPECT_EQ(max_norm_over_sign_vectors(Eigen::Matrix<double, 3, Eigen::Dynamic>(3, 0)), 0.0);
+  Eigen::Matrix<double, 3, 2> two;
+  two << 1, 0, 0, 2, 0, 0;  // columns (1, 0, 0) and (0, 2, 0): |(+-1, +-2, 0)| = sqrt(5)
+  EXPECT_DOUBLE_EQ(max_norm_over_sign_vectors(two), std::sqrt(5.0));
+  sample_machines::Uniform uniform(5);
+  for (int n = 1; n <= 9; ++n) {
+    Eigen::Matrix<double, 3, Eigen::Dynamic> c(3, n);
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < 3; ++a) c(a, j) = uniform(-1.0, 1.0);
+    const double max = max_norm_over_sign_vectors(c);
+    double brute = 0.0;
+    for (unsigned g = 0; g < (1u << n); ++g) {
+      Eigen::VectorXd s(n);
+      for (int j = 0; j < n; ++j) s(j) = (g >> j) & 1u ? -1.0 : 1.0;
+      brute = std::max(brute, (c * s).norm());
+    }
+    EXPECT_NEAR(max, brute, 1e-14 * brute) << n;
+    for (int k = 0; k < 2000; ++k) {
+      Eigen::VectorXd s(n);
+      for (int j = 0; j < n; ++j) s(j) = uniform(-1.0, 1.0);
+      EXPECT_LE((c * s).norm(), max * (1.0 + 1e-14)) << n;
+    }
+  }
+}
+
 }  // namespace pkmopt
