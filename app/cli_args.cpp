@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "app/input_error.hpp"
+#include "io/input_error.hpp"
 
 namespace pkmopt {
 
@@ -35,6 +35,10 @@ std::vector<double> parse_number_list(std::string_view option, const std::string
   }
   if (values.size() != count) fail(fmt::format(" ({} numbers)", values.size()));
   return values;
+}
+
+void bad_option(std::string_view option, std::string_view expected, double found) {
+  throw InputError(fmt::format("{}: expected {}, found {}", option, expected, found));
 }
 
 }  // namespace pkmopt

@@ -12,4 +12,7 @@ namespace pkmopt {
 std::vector<double> parse_number_list(std::string_view option, const std::string& text,
                                       std::size_t count);
 
+/// Throws InputError "OPTION: expected EXPECTED, found FOUND" for a bad numeric option value.
+[[noreturn]] void bad_option(std::string_view option, std::string_view expected, double found);
+
 }  // namespace pkmopt

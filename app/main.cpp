@@ -6,7 +6,7 @@
 #include <exception>
 
 #include "app/commands.hpp"
-#include "app/input_error.hpp"
+#include "io/input_error.hpp"
 #include "pkmopt/version.hpp"
 
 int main(int argc, char** argv) {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/study_design.hpp"
+#include "studies/design_study.hpp"
 
 namespace {
 
@@ -28,30 +28,30 @@ void evaluate_study_design(benchmark::State& state, const std::string& study_fil
 
 // hexapod-quick: 64 task poses, stiffness, leg forces, machine size, reachability.
 void BM_DesignEvaluationHexapodQuick(benchmark::State& state) {
-  evaluate_study_design(state, "studies/hexapod-quick.yaml");
+  evaluate_study_design(state, "studies/library/hexapod-quick.yaml");
 }
 BENCHMARK(BM_DesignEvaluationHexapodQuick)->Unit(benchmark::kMillisecond);
 
 // hexapod-milling (the default study): 64 task poses plus a 50 mm workspace volume.
 void BM_DesignEvaluationHexapodMilling(benchmark::State& state) {
-  evaluate_study_design(state, "studies/hexapod-milling.yaml");
+  evaluate_study_design(state, "studies/library/hexapod-milling.yaml");
 }
 BENCHMARK(BM_DesignEvaluationHexapodMilling)->Unit(benchmark::kMillisecond);
 
-// The comparison studies (studies/compare-300): 27 task poses each, stiffness, machine size,
+// The comparison studies (studies/library/compare-300): 27 task poses each, stiffness, machine size,
 // singularity margin, reachability; the leg chains through the generic Machine interface.
 void BM_DesignEvaluationCompareHexapod(benchmark::State& state) {
-  evaluate_study_design(state, "studies/compare-300/hexapod.yaml");
+  evaluate_study_design(state, "studies/library/compare-300/hexapod.yaml");
 }
 BENCHMARK(BM_DesignEvaluationCompareHexapod)->Unit(benchmark::kMicrosecond);
 
 void BM_DesignEvaluationCompareHexaglide(benchmark::State& state) {
-  evaluate_study_design(state, "studies/compare-300/hexaglide.yaml");
+  evaluate_study_design(state, "studies/library/compare-300/hexaglide.yaml");
 }
 BENCHMARK(BM_DesignEvaluationCompareHexaglide)->Unit(benchmark::kMicrosecond);
 
 void BM_DesignEvaluationCompareLinearDelta(benchmark::State& state) {
-  evaluate_study_design(state, "studies/compare-300/linear-delta.yaml");
+  evaluate_study_design(state, "studies/library/compare-300/linear-delta.yaml");
 }
 BENCHMARK(BM_DesignEvaluationCompareLinearDelta)->Unit(benchmark::kMicrosecond);
 

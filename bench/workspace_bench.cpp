@@ -1,4 +1,4 @@
-// Workspace volume of the sample hexapod of CONVENTIONS.md (constant orientation R = I) against
+// Workspace volume of the docs/conventions.md hexapod (constant orientation R = I) against
 // the grid resolution. Goal: within 0.5 % of the reference in under 100 ms on 2 cores.
 //
 // Counters: volume (m^3), rel_error = (volume - reference) / reference, where the reference is a

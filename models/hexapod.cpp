@@ -12,6 +12,7 @@
 
 #include "models/linalg.hpp"
 #include "models/pose_solver.hpp"
+#include "models/require.hpp"
 
 namespace pkmopt {
 namespace {
@@ -28,10 +29,6 @@ std::string fmt_double(double v) {
   os.precision(17);
   os << v;
   return os.str();
-}
-
-void require(bool condition, const std::string& message) {
-  if (!condition) throw std::invalid_argument(message);
 }
 
 // 1 / k_i of a leg of length q (m/N): the leg and the actuator in series.

@@ -1,7 +1,7 @@
 // The Gough-Stewart hexapod (6-UPS): six legs of variable length join base joints a_i to
 // platform joints b_i.
 //
-// Frames and formulas (CONVENTIONS.md):
+// Frames and formulas (docs/conventions.md):
 //   base joints a_i in the base frame, platform joints b_i and the TCP `tcp` in the platform
 //   frame; for a TCP pose (p, R):   p0 = p - R tcp,   r_i = R (b_i - tcp),
 //   leg vector  l_i = p + r_i - a_i,   length q_i = |l_i|,   unit vector s_i = l_i / q_i.
@@ -80,7 +80,7 @@ struct HexapodDesign {
   double actuator_error = 1e-5;  ///< m, half-width of the actuator error box
 };
 
-/// Joints of a semi-regular hexagon of the given radius and pair separation (rad), CONVENTIONS.md:
+/// Joints of a semi-regular hexagon of given radius and pair separation (rad), docs/conventions.md:
 /// base: angle 120k -+ sep/2 (even/odd i); platform: 120k - 60 + sep/2 (even), 120k + 60 - sep/2
 /// (odd), with k = floor(i / 2).
 Eigen::Matrix<double, 3, 6> semi_regular_base_joints(double radius, double pair_separation);

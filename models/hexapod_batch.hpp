@@ -1,7 +1,7 @@
 // The hexapod metric set for many poses at once: a SIMD batch path behind Hexapod::analyze.
 //
 // analyze_hexapod_batch(hexapod, poses, n, wrench, out) writes into out[i] what
-// hexapod.analyze(data, poses[i], wrench, out[i]) writes (the metric set of CONVENTIONS.md:
+// hexapod.analyze(data, poses[i], wrench, out[i]) writes (the metric set of docs/conventions.md:
 // reachable, q, tau, stiffness_min, singularity_margin, det_j, tcp_error_max, singular),
 // to within the accuracy rules of the fast path (docs/performance.md, "Accuracy"): 1e-10
 // relative, or 64 eps cond(J) where J is too ill-conditioned for that.

@@ -12,6 +12,7 @@
 
 #include "models/leg_chain.hpp"
 #include "models/linalg.hpp"
+#include "models/require.hpp"
 
 namespace pkmopt {
 namespace {
@@ -19,10 +20,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // A parasitic module's pose counts as attained when the world TCP is within this (m).
 constexpr double kAttainedTolerance = 1e-9;
-
-void require(bool condition, const std::string& message) {
-  if (!condition) throw std::invalid_argument(message);
-}
 
 void set_singular(PoseMetrics& out) {
   out.singularity_margin = 0.0;

@@ -43,7 +43,7 @@
 //               maximum of a convex function over a box is at a vertex; all 2^(n-1) sign
 //               vectors are enumerated (n <= 9: at most 3 independent axes and 6 module drives).
 //   At a singular module pose: singularity_margin = stiffness_min = 0, every tau_i and
-//   tcp_error_max = +inf (CONVENTIONS.md). Never NaN.
+//   tcp_error_max = +inf (docs/conventions.md). Never NaN.
 // Forward kinematics: T_chain(q_s) composed with the module FK of q_p (the world guess is taken
 // to the local frame at q_s). Twist Jacobian: q_s_dot = A^+ v for an axis strictly inside its
 // range (0 for an axis clamped at a limit: the follow rule holds it there), module rows from the

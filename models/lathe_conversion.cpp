@@ -1,4 +1,5 @@
 #include "models/lathe_conversion.hpp"
+#include "models/require.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -8,8 +9,9 @@
 namespace pkmopt {
 namespace {
 
-void require(bool condition, const std::string& message) {
-  if (!condition) throw std::invalid_argument("lathe_16k20f3: " + message);
+// The lathe model's checks name the model.
+void require_lathe(bool condition, const std::string& message) {
+  require(condition, "lathe_16k20f3: " + message);
 }
 
 bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
@@ -17,23 +19,23 @@ bool finite_positive(double v) { return std::isfinite(v) && v > 0.0; }
 }  // namespace
 
 LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
-  require(finite_positive(d.centre_height), "centre_height must be > 0");
-  require(std::isfinite(d.tool_reach) && d.tool_reach >= 0.0, "tool_reach must be >= 0");
-  require(finite_positive(d.strut_length), "strut_length must be > 0");
-  require(finite_positive(d.strut_joint_spread), "strut_joint_spread must be > 0");
-  require(d.carriage_min < d.carriage_max, "carriage_min must be < carriage_max");
-  require(finite_positive(d.leg_min_length) && d.leg_min_length < d.leg_max_length,
+  require_lathe(finite_positive(d.centre_height), "centre_height must be > 0");
+  require_lathe(std::isfinite(d.tool_reach) && d.tool_reach >= 0.0, "tool_reach must be >= 0");
+  require_lathe(finite_positive(d.strut_length), "strut_length must be > 0");
+  require_lathe(finite_positive(d.strut_joint_spread), "strut_joint_spread must be > 0");
+  require_lathe(d.carriage_min < d.carriage_max, "carriage_min must be < carriage_max");
+  require_lathe(finite_positive(d.leg_min_length) && d.leg_min_length < d.leg_max_length,
           "leg lengths must satisfy 0 < leg_min_length < leg_max_length");
-  require(finite_positive(d.leg_base_spacing), "leg_base_spacing must be > 0");
-  require(finite_positive(d.leg_joint_spacing), "leg_joint_spacing must be > 0");
-  require(finite_positive(d.strut_max_angle) && d.strut_max_angle < 0.5 * std::numbers::pi,
+  require_lathe(finite_positive(d.leg_base_spacing), "leg_base_spacing must be > 0");
+  require_lathe(finite_positive(d.leg_joint_spacing), "leg_joint_spacing must be > 0");
+  require_lathe(finite_positive(d.strut_max_angle) && d.strut_max_angle < 0.5 * std::numbers::pi,
           "strut_max_angle must be in (0, 90) deg");
-  require(finite_positive(d.leg_max_angle) && d.leg_max_angle < std::numbers::pi,
+  require_lathe(finite_positive(d.leg_max_angle) && d.leg_max_angle < std::numbers::pi,
           "leg_max_angle must be in (0, 180) deg");
-  require(finite_positive(d.strut_E) && finite_positive(d.strut_area) && finite_positive(d.leg_E) &&
+  require_lathe(finite_positive(d.strut_E) && finite_positive(d.strut_area) && finite_positive(d.leg_E) &&
               finite_positive(d.leg_area),
           "E and areas must be > 0");
-  require(d.carriage_stiffness >= 0.0 && d.leg_actuator_stiffness >= 0.0,
+  require_lathe(d.carriage_stiffness >= 0.0 && d.leg_actuator_stiffness >= 0.0,
           "actuator stiffnesses must be >= 0");
 
   LegChainDesign design;

@@ -1,9 +1,9 @@
 // The 16K20F3 lathe conversion: the cross slide of a 16K20F3 CNC lathe replaced by a 2-PUS +
 // 2-UPS Schoenflies (3T1R) strut mechanism carrying a 12-position turret, as a named member of
-// the leg-chain family (models/leg_chain.hpp), plus the design steps of the seeds' conversion
+// the leg-chain family (models/leg_chain.hpp), plus the design steps of the original conversion
 // study (their strut-length formula, the task, the minimal strut length by bisection).
 //
-// Frame (base = lathe frame, CONVENTIONS.md units): origin on the spindle axis halfway between
+// Frame (base = lathe frame, docs/conventions.md units): origin on the spindle axis halfway between
 // the centres; x along the spindle axis towards the tailstock (along the bed's guideways), y
 // horizontal across the bed towards the operator (the stock cross-slide direction), z up. The
 // carriage guideways lie at z = -centre_height. This is the frame of the cutting model
@@ -11,7 +11,7 @@
 // through the tool tip and z along the surface velocity), so a turning wrench from
 // `wrench: {turning: ..., approach_angle_deg: optimal}` applies unchanged.
 //
-// Mechanism (studies/lathe-16k20f3/README.md has the drawing):
+// Mechanism (studies/library/lathe-16k20f3/README.md has the drawing):
 //   legs 0, 1  PUS: two carriages on the bed's front guideway (guide line through
 //              (0, guide_y, guide_z), direction +x, q = carriage position x in m), each carrying a
 //              constant-length parallelogram strut pair (two rods, bars parallel to x) to the
@@ -35,7 +35,7 @@
 // the bed, like the stock Z drive) carriage_stiffness in series; legs E * leg_area / q in series
 // with leg_actuator_stiffness. The parallelogram bars are taken as rigid (leg_chain.hpp).
 //
-// The seeds' strut length (their formula, `seeds_strut_length`): the strut from the carriage
+// The conversion study's strut-length formula (`seeds_strut_length`): the strut from the carriage
 // hinge (Y_I, Z_I) must reach the farthest tool position, the largest part's radius plus the
 // tool-approach clearance in y and in z from the part axis (Y_D, Z_D), with the axial offset X_K
 // that keeps it inclined to the guideway:
@@ -65,7 +65,7 @@
 namespace pkmopt {
 
 /// The conversion's geometry (m, rad, N/m, Pa, m^2). Defaults: the design of the study
-/// (studies/lathe-16k20f3/README.md says where each number comes from).
+/// (studies/library/lathe-16k20f3/README.md says where each number comes from).
 struct Lathe16k20f3Design {
   double centre_height = 0.215;  ///< spindle axis above the guideways (16K20: 215 mm)
   // Turret (platform frame: origin at the turret centre, axes parallel to the base axes at phi=0)
@@ -105,7 +105,7 @@ struct Lathe16k20f3Design {
 LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d);
 std::unique_ptr<Machine> make_lathe_16k20f3(const Lathe16k20f3Design& d);
 
-/// The inputs of the seeds' strut-length formula (m; see the header comment).
+/// The inputs of the conversion study's strut-length formula (m; see the header comment).
 struct SeedsStrutInputs {
   double X_K = 0.0;    ///< axial offset of the strut (carriage hinge to platform joint along x)
   double Y_D = 0.0;    ///< part axis y

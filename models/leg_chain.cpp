@@ -13,6 +13,7 @@
 #include "models/hexapod.hpp"  // kSingularRcond, semi_regular_platform_joints
 #include "models/linalg.hpp"
 #include "models/pose_solver.hpp"
+#include "models/require.hpp"
 
 namespace pkmopt {
 namespace {
@@ -34,10 +35,6 @@ std::string fmt_double(double v) {
   os.precision(17);
   os << v;
   return os.str();
-}
-
-void require(bool condition, const std::string& message) {
-  if (!condition) throw std::invalid_argument(message);
 }
 
 // Angle wrapped to (-pi, pi].

@@ -44,13 +44,13 @@
 //
 // IK is closed form per leg. The two solutions of PUS and RUS legs are told apart by the sign of
 // B_i: branch +1 takes B_i > 0, branch -1 takes B_i < 0 (B_i = 0 is the serial singularity
-// between them). For the delta (CONVENTIONS.md) branch +1 is the elbow-out solution.
+// between them). For the delta (docs/conventions.md) branch +1 is the elbow-out solution.
 // FK: Levenberg-Marquardt (models/pose_solver.hpp) on the closure errors |P_i - c_i| - L_i;
 // 6-DOF and translational platforms solve on their DOF; Schoenflies and planar-leg platforms on
 // the full twist with their mobility equations appended (6 x 6, all in m): L e1 . (R e) = 0 and
 // L e2 . (R e) = 0 (e1, e2 orthogonal to e), resp. h_i = 0.
 //
-// Metrics (same names and meanings as the hexapod, CONVENTIONS.md):
+// Metrics (same names and meanings as the hexapod, docs/conventions.md):
 //   q_i: m (UPS, PUS), rad (RUS; degrees in files).
 //   tau: J^T tau = T^T w, the actuator forces (N) / torques (N*m) balancing the wrench w at the
 //     TCP; for platforms with fewer than 6 DOF only the components T^T w of w along the platform
@@ -287,7 +287,7 @@ struct LinkStiffness {
   double actuator_stiffness = 0.0;  ///< N/m (prismatic) or N*m/rad (revolute); 0 = rigid
 };
 
-/// Rotary (Clavel) delta, CONVENTIONS.md: pivots at base_radius, azimuth -90 + 120 (i - 1) deg,
+/// Rotary (Clavel) delta, docs/conventions.md: pivots at base_radius, azimuth -90+120(i-1) deg,
 /// cranks of length upper_arm in the vertical plane through the centre, theta = 0 horizontal
 /// outwards, positive theta lowers the elbow; parallelogram rods of length rod to platform
 /// points at platform_radius on the same azimuth; platform below the base (z < 0).
@@ -339,7 +339,7 @@ std::unique_ptr<Machine> make_linear_delta(const LinearDeltaDesign& d);
 /// guide_z[i]; struts of length strut join carriage i to platform joint b_i. Carriage i sits on
 /// the -x side of its platform joint for b_i.x < 0 and on the +x side otherwise (splayed
 /// struts). q_i = carriage position along the guide (m, from x = 0).
-/// Defaults: b_i = the semi-regular hexagon of CONVENTIONS.md (radius 0.25, pair separation
+/// Defaults: b_i = the semi-regular hexagon of docs/conventions.md (radius 0.25, pair separation
 /// 20 deg) turned by 90 deg about z (three joints on each side of x = 0), guide_y[i] =
 /// b_i.y +- 0.3 (outwards). (Guides with guide_y proportional to b_i.y are singular: a turn about
 /// x with a y translation keeps every strut length.)
@@ -367,7 +367,7 @@ std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d);
 /// at base_radius, azimuths -90 + 120 (i - 1) deg; each carriage carries a revolute joint whose
 /// axis is horizontal and tangential (n_i = (-sin a_i, cos a_i, 0)), so strut i (constant length
 /// `strut`) stays in the vertical plane through the head axis and slide i; a spherical joint at
-/// platform_radius joins it to the platform. Base frame (CONVENTIONS.md, tripods): z along the
+/// platform_radius joins it to the platform. Base frame (docs/conventions.md, tripods): z along the
 /// slides from the base towards the platform (for a head hanging from a gantry z points down,
 /// towards the workpiece); q_i = carriage position along +z (m). The platform is on the +z side of
 /// the carriages (branch +1); the TCP is tool_length beyond the platform centre along the

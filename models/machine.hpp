@@ -8,7 +8,7 @@
 //   pkmopt::PoseMetrics metrics;
 //   machine.analyze(*data, pose, wrench, metrics);
 //
-// The meaning of every metric is fixed by CONVENTIONS.md:
+// The meaning of every metric is fixed by docs/conventions.md:
 //   q             actuator coordinates (m for prismatic actuators, rad for revolute ones;
 //                 files show revolute coordinates in degrees)
 //   tau           actuator forces (N) or torques (N*m) balancing the wrench, J^T tau = w,

@@ -7,7 +7,7 @@
 
 namespace pkmopt::sample_machines {
 
-/// The hexapod of CONVENTIONS.md (examples/hexapod.yaml): base r 0.60 m, platform r 0.25 m,
+/// The hexapod of docs/conventions.md (examples/hexapod.yaml): base r 0.60 m, platform r 0.25 m,
 /// pair separations 20 deg, legs 0.70..1.15 m, E 2.1e11 Pa, area 3e-4 m^2, actuator 2e8 N/m in
 /// series, joint limits 45 deg, TCP 0.10 m below the platform origin.
 inline HexapodDesign conventions_hexapod_design() {

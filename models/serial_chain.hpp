@@ -17,10 +17,10 @@
 //   Eigen::Matrix4d T = chain.transform(q);          // q: one value per variable element
 //   Eigen::Vector3d r0 = chain.tool_point(q, r_tool);
 //
-// Structure class by drive coupling (the seeds' classification): "P<n>З<m>" with n the feed
+// Structure class by drive coupling (16K20F3 conversion study): "P<n>З<m>" with n the feed
 // drives in open (serial) chains and m the drives in closed (parallel) chains: P5З0 a
 // traditional 5-axis machine, P0З6 a hexapod, P2З3 a gantry X/Y carrying a 3-PRS head,
-// P1З6 a long axis carrying a hexapod. (З is the Cyrillic letter Ze, as in the seeds.)
+// P1З6 a long axis carrying a hexapod. (З is the Cyrillic letter Ze, as in that study.)
 #pragma once
 
 #include <Eigen/Core>

@@ -2,7 +2,7 @@
 // a machine needs to follow it, and the singular poses it crosses.
 //
 // Pose rate and twist. A path gives the TCP pose (p, a) at time t (a = (rx, ry, rz), radians,
-// R = Rz(rz) Ry(ry) Rx(rx), CONVENTIONS.md) and its derivative (p_dot, a_dot). The twist a
+// R = Rz(rz) Ry(ry) Rx(rx), docs/conventions.md) and its derivative (p_dot, a_dot). The twist a
 // machine's inverse Jacobian takes is [v; omega] with omega the angular velocity in base axes,
 // NOT the Euler angle rates:
 //     omega = E(a) a_dot,   E(a) = [ cz*cy  -sz  0 ]
@@ -11,12 +11,12 @@
 // (omega = rz_dot e_z + ry_dot Rz e_y + rx_dot Rz Ry e_x; cy = cos ry, sz = sin rz, ...).
 // The actuator rates are then q_dot = J(pose) [v; omega] (Machine::twist_jacobian).
 //
-// The seeds' helix (HelixPath), with the phase phi = w t (w in rad/s, 1 by default):
+// The helical test path (HelixPath), with the phase phi = w t (w in rad/s, 1 by default):
 //     amp(phi) = r0 + r1 phi / (2 pi)
 //     x = cx + amp cos phi,   y = cy + amp sin phi,   z = cz + z0 + z1 phi^2 / (4 pi^2)
 //     rx = ox + ax sin phi,   ry = oy + ay cos phi,   rz = oz + az sin 2 phi
-// (r0 = 0.01 m, r1 = 0.02 m, z0 = 0.01 m, z1 = 0.01 m as in the seeds; the harmonic angle
-// form and its amplitudes a are this project's choice, the seeds do not give them exactly).
+// (r0 = 0.01 m, r1 = 0.02 m, z0 = 0.01 m, z1 = 0.01 m as in the 16K20F3 lathe-conversion study;
+// the harmonic angle form and its amplitudes a are this project's choice, not given there).
 //
 // A sampled path (SampledPath) interpolates given poses linearly in t; its rate at a sample is
 // the three-point central difference for uneven spacing (one-sided at the two ends), linearly
@@ -33,7 +33,7 @@
 // Units: m, rad, s inside the code (files show degrees).
 //
 // Example:
-//   pkmopt::HelixPath helix;                       // the seeds' helix about the origin
+//   pkmopt::HelixPath helix;                       // the test helix about the origin
 //   helix.parameters.centre = {0, 0, 0.9};
 //   std::vector<double> times = pkmopt::uniform_times(helix.t_start(), helix.t_end(), 201);
 //   pkmopt::TrajectoryResult run = pkmopt::evaluate_trajectory(machine, helix, times);
@@ -72,7 +72,7 @@ class TcpPath {
   virtual PathPoint at(double t) const = 0;
 };
 
-/// Parameters of the seeds' helix (see the header comment). Lengths in m, angles in rad.
+/// Parameters of the helical test path (see the header comment). Lengths in m, angles in rad.
 struct HelixParameters {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();            ///< (cx, cy, cz), m
   double radius_start = 0.01;                                  ///< r0, m
@@ -86,7 +86,7 @@ struct HelixParameters {
   double t_end = 2.0 * std::numbers::pi;                       ///< s (one turn at w = 1)
 };
 
-/// The seeds' helix with analytic derivatives.
+/// The helical test path with analytic derivatives.
 class HelixPath final : public TcpPath {
  public:
   HelixPath() = default;

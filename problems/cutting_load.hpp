@@ -17,7 +17,7 @@
 // The machine-z component P_z cos a + P_y sin a is largest, sqrt(P_y^2 + P_z^2), at
 // tan a = P_y / P_z (a = arccot 2 for P_y = P_z / 2); there the whole in-plane force lies along
 // the machine's z axis and the y component vanishes (`optimal_approach_angle`).
-// Example (the seeds' case, steel, D 120 mm, t 3 mm, s 0.84 mm/rev, T 60 min):
+// Example (the lathe-conversion study's cut: steel, D 120 mm, t 3 mm, s 0.84 mm/rev, T 60 min):
 //   V = 116.88 m/min, n = 310 rev/min, P_z = 5933 N; at a = 26.57 deg the z force is 6633 N.
 //
 // Milling (specific cutting force after Kienzle, as in tool makers' handbooks, with the

@@ -28,7 +28,7 @@ constexpr std::array<std::string_view, kNumDesignParameters> kParameterNames = {
 constexpr int kMaxEpigraph = 2;
 using DesignJet = ceres::Jet<double, kNumDesignParameters + kMaxEpigraph>;
 
-// Semi-regular joints (CONVENTIONS.md) for any scalar type.
+// Semi-regular joints (docs/conventions.md) for any scalar type.
 template <typename T>
 Eigen::Matrix<T, 3, 6> semi_regular_joints(const T& radius, const T& separation, bool platform) {
   using std::cos;

@@ -7,13 +7,13 @@
 //   stroke), home_height h (m: the task region is lifted by h along base z).
 // Each is fixed (lower == upper) or free within [lower, upper]; only free ones are variables.
 // The rest of the machine (leg stiffness, joint limits, TCP, actuator error, characteristic
-// length) comes from a fixed HexapodDesign template. Joints follow CONVENTIONS.md (semi-regular).
+// length) comes from a fixed HexapodDesign template. Joints: docs/conventions.md (semi-regular).
 //
 // Task: N TCP poses (positions of a box or cylinder grid x orientations of a tilt cone x yaw
 // range, sampled by sample_orientations of models/workspace), a constant wrench w at the TCP.
 // Pose k: position p_k + (0, 0, h), angles of R_k.
 //
-// Metrics (user units and signs; see CONVENTIONS.md for the per-pose definitions):
+// Metrics (user units and signs; see docs/conventions.md for the per-pose definitions):
 //   stiffness_min       min_k stiffness_min(pose k)                    N/m
 //   singularity_margin  min_k singularity_margin(pose k)               0..1
 //   leg_force_max       max_k max_i |tau_i(pose k)| under w            N
@@ -80,7 +80,7 @@
 // batch_fitness evaluates designs in parallel (OpenMP) with one HexapodData per thread.
 //
 // Example:
-//   HexapodDesignSpec spec;                       // defaults: the CONVENTIONS.md hexapod
+//   HexapodDesignSpec spec;                       // defaults: the docs/conventions.md hexapod
 //   spec.parameters[kBaseRadius] = {0.5, 0.7};    // free
 //   spec.task = box_task({0, 0, 0.9}, {0.15, 0.15, 0.1}, {3, 3, 3}, deg_to_rad(20), 0);
 //   spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
@@ -137,7 +137,7 @@ struct HexapodDesignSpec {
   /// entry of every evaluation); the stroke's upper bound must not exceed the longest entry.
   std::optional<ActuatorCatalog> actuator_catalog;
 
-  /// The CONVENTIONS.md hexapod with every parameter fixed at its value.
+  /// The docs/conventions.md hexapod with every parameter fixed at its value.
   HexapodDesignSpec();
 };
 

@@ -10,10 +10,10 @@
 //
 // machine_size (m^3) of this family is L^3, the cube of the strut length: the study's size
 // objective is the strut length itself (a monotone measure of it, in the metric's unit m^3), not
-// an envelope volume - the seeds' question is how short the struts can be. Read L = size^(1/3).
+// an envelope volume - the conversion's question is how short the struts can be. L = size^(1/3).
 //
 // The machine file written for a parameter vector is the `model: lathe_16k20f3` file of
-// app/machine_file_lathe.hpp (every key written).
+// io/machine_file_lathe.hpp (every key written).
 //
 // Example:
 //   MachineDesignSpec spec;
@@ -32,8 +32,5 @@ namespace pkmopt {
 /// The family around a template design (its strut_length, guide_y and leg_base_y are the
 /// parameter defaults).
 DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& design_template);
-
-/// The `model: lathe_16k20f3` machine file (YAML) of a design, every key written.
-std::string lathe_16k20f3_machine_file(const Lathe16k20f3Design& design);
 
 }  // namespace pkmopt

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "models/hexapod.hpp"
+#include "models/require.hpp"
 
 namespace pkmopt {
 namespace {
@@ -223,123 +224,17 @@ std::vector<ParameterRange> default_ranges(const DesignFamily& family) {
 
 namespace {
 
-// Machine-file text helpers: numbers in their shortest round-trip form.
-std::string number(double v) { return fmt::format("{}", v); }
-// Degrees of an angle in rad, to 12 significant digits (60, not 59.99999999999999).
-std::string degrees(double rad) { return fmt::format("{:.12g}", rad_to_deg(rad)); }
-std::string vector3(const Eigen::Vector3d& v) {
-  return fmt::format("[{}, {}, {}]", number(v.x()), number(v.y()), number(v.z()));
-}
-
-std::string link_stiffness_yaml(const LinkStiffness& k) {
-  return k.axial_stiffness > 0.0 ? fmt::format("{{axial_stiffness: {}}}", number(k.axial_stiffness))
-                                 : fmt::format("{{E: {}, area: {}}}", number(k.E), number(k.area));
-}
-
-// joints: {<base_key>: deg, platform_max_angle_deg: deg} with the finite limits (or nothing).
-std::string joints_yaml(const char* base_key, double base_limit, double platform_limit) {
-  std::string items;
-  if (std::isfinite(base_limit)) items += fmt::format("{}: {}", base_key, degrees(base_limit));
-  if (std::isfinite(platform_limit))
-    items += fmt::format("{}platform_max_angle_deg: {}", items.empty() ? "" : ", ",
-                         degrees(platform_limit));
-  return items.empty() ? "" : "joints: {" + items + "}\n";
-}
-
-// The keys every leg-chain machine file has after its geometry: link stiffness, actuator
-// stiffness (when not rigid), joint limits, tool, characteristic length.
-std::string links_and_joints_yaml(const char* links_key, const LinkStiffness& k,
-                                  const char* actuator_key, const char* base_joint_key,
-                                  double base_limit, double platform_limit,
-                                  const Eigen::Vector3d& tcp, const std::optional<double>& length) {
-  std::string text = fmt::format("{}: {}\n", links_key, link_stiffness_yaml(k));
-  if (k.actuator_stiffness > 0.0)
-    text += fmt::format("{}: {}\n", actuator_key, number(k.actuator_stiffness));
-  text += joints_yaml(base_joint_key, base_limit, platform_limit);
-  text += "tool: {tcp: " + vector3(tcp) + "}\n";
-  if (length) text += "characteristic_length: " + number(*length) + "\n";
-  return text;
-}
-
 double lift(const std::vector<double>& p, std::size_t home_index) { return p.at(home_index); }
-
-void require(bool condition, const std::string& message) {
-  if (!condition) throw std::invalid_argument(message);
-}
 
 }  // namespace
 
-std::string delta_machine_file(const DeltaDesign& d) {
-  std::string text = "model: delta\n";
-  text += fmt::format("base_radius: {}\nplatform_radius: {}\nupper_arm: {}\nrod: {}\n",
-                      number(d.base_radius), number(d.platform_radius), number(d.upper_arm),
-                      number(d.rod));
-  text += fmt::format("drive_range_deg: [{}, {}]\n", degrees(d.theta_min), degrees(d.theta_max));
-  text += fmt::format("branch: {}\n", d.branch > 0 ? "elbow_out" : "elbow_in");
-  text += links_and_joints_yaml("rods", d.stiffness, "drive_stiffness", "elbow_max_angle_deg",
-                                d.elbow_max_angle, d.platform_max_angle, d.tcp,
-                                d.characteristic_length);
-  text += "actuator_error_deg: " + degrees(d.actuator_error) + "\n";
-  return text;
-}
-
-std::string linear_delta_machine_file(const LinearDeltaDesign& d) {
-  std::string text = "model: linear_delta\n";
-  text += fmt::format("guide_radius: {}\nplatform_radius: {}\nrod: {}\ninclination_deg: {}\n",
-                      number(d.guide_radius), number(d.platform_radius), number(d.rod),
-                      degrees(d.inclination));
-  text += fmt::format("stroke: [{}, {}]\n", number(d.q_min), number(d.q_max));
-  text += links_and_joints_yaml("rods", d.stiffness, "carriage_stiffness", "carriage_max_angle_deg",
-                                d.carriage_max_angle, d.platform_max_angle, d.tcp,
-                                d.characteristic_length);
-  text += "actuator_error: " + number(d.actuator_error) + "\n";
-  return text;
-}
-
-std::string hexaglide_machine_file(const HexaglideDesign& d) {
-  std::string text = "model: hexaglide\n";
-  std::string ys, zs, joints;
-  for (int i = 0; i < 6; ++i) {
-    ys += (i ? ", " : "") + number(d.guide_y[static_cast<std::size_t>(i)]);
-    zs += (i ? ", " : "") + number(d.guide_z[static_cast<std::size_t>(i)]);
-    joints += (i ? ", " : "") + vector3(d.platform_joints.col(i));
-  }
-  text += fmt::format("guides: {{y: [{}], z: [{}], inclination_deg: {}}}\n", ys, zs,
-                      degrees(d.inclination));
-  text += "strut: " + number(d.strut) + "\n";
-  text += "platform_joints: [" + joints + "]\n";
-  text += fmt::format("stroke: [{}, {}]\n", number(d.q_min), number(d.q_max));
-  text += links_and_joints_yaml("struts", d.stiffness, "carriage_stiffness",
-                                "carriage_max_angle_deg", d.carriage_max_angle,
-                                d.platform_max_angle, d.tcp, d.characteristic_length);
-  text += "actuator_error: " + number(d.actuator_error) + "\n";
-  text += "home_height: " + number(d.home_height) + "\n";
-  return text;
-}
-
-std::string tripod_3prs_machine_file(const Tripod3PrsDesign& d) {
-  std::string text = "model: tripod_3prs\n";
-  text += fmt::format("base_radius: {}\nplatform_radius: {}\nstrut: {}\n", number(d.base_radius),
-                      number(d.platform_radius), number(d.strut));
-  text += fmt::format("stroke: [{}, {}]\n", number(d.q_min), number(d.q_max));
-  text += "tool_length: " + number(d.tool_length) + "\n";
-  text += fmt::format("struts: {}\n", link_stiffness_yaml(d.stiffness));
-  if (d.stiffness.actuator_stiffness > 0.0)
-    text += "slide_stiffness: " + number(d.stiffness.actuator_stiffness) + "\n";
-  text += joints_yaml("revolute_max_angle_deg", d.revolute_max_angle, d.platform_max_angle);
-  if (d.characteristic_length)
-    text += "characteristic_length: " + number(*d.characteristic_length) + "\n";
-  text += "actuator_error: " + number(d.actuator_error) + "\n";
-  return text;
-}
-
 namespace {
 
-// build = make(design(p)), machine_file = write(design(p)), machine_size = the envelope.
-template <typename FromParameters, typename Make, typename Write>
-void wire_family(DesignFamily& family, FromParameters design, Make make, Write write) {
+// build = make(design(p)), design = design(p), machine_size = the envelope.
+template <typename FromParameters, typename Make>
+void wire_family(DesignFamily& family, FromParameters design, Make make) {
   family.build = [design, make](const std::vector<double>& p) { return make(design(p)); };
-  family.machine_file = [design, write](const std::vector<double>& p) { return write(design(p)); };
+  family.design = [design](const std::vector<double>& p) { return FamilyDesign(design(p)); };
   family.machine_size = envelope_machine_size;
 }
 
@@ -368,7 +263,7 @@ DesignFamily delta_family(const DeltaDesign& t) {
     require(d.theta_min < d.theta_max, "drive_min_deg must be below drive_max_deg");
     return d;
   };
-  wire_family(family, design, make_delta, delta_machine_file);
+  wire_family(family, design, make_delta);
   return family;
 }
 
@@ -393,7 +288,7 @@ DesignFamily linear_delta_family(const LinearDeltaDesign& t) {
     d.inclination = p.at(4);
     return d;
   };
-  wire_family(family, design, make_linear_delta, linear_delta_machine_file);
+  wire_family(family, design, make_linear_delta);
   return family;
 }
 
@@ -403,7 +298,7 @@ DesignFamily hexaglide_family(const HexaglideDesign& t) {
   // guide 0 from its joint.
   const Eigen::Vector3d b0 = t.platform_joints.col(0);
   const double radius = b0.head<2>().norm();
-  // Joint 0 sits at azimuth 90 - 60 + sep/2 = 30 + sep/2 deg (CONVENTIONS.md, turned by 90).
+  // Joint 0 sits at azimuth 90 - 60 + sep/2 = 30 + sep/2 deg (docs/conventions.md, turned by 90).
   const double separation = 2.0 * (rad_to_deg(std::atan2(b0.y(), b0.x())) - 30.0);
   const double offset = std::abs(t.guide_y[0] - b0.y());
   DesignFamily family;
@@ -433,7 +328,7 @@ DesignFamily hexaglide_family(const HexaglideDesign& t) {
     d.home_height = t.home_height + p.at(6);
     return d;
   };
-  wire_family(family, design, make_hexaglide, hexaglide_machine_file);
+  wire_family(family, design, make_hexaglide);
   return family;
 }
 
@@ -454,7 +349,7 @@ DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t) {
     d.q_max = t.q_min + p.at(3);
     return d;
   };
-  wire_family(family, design, make_tripod_3prs, tripod_3prs_machine_file);
+  wire_family(family, design, make_tripod_3prs);
   return family;
 }
 
@@ -485,7 +380,7 @@ double pose_reach_violation(const Machine& machine, const Pose& pose) {
 MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::move(spec)) {
   const std::string where = fmt::format("{} design problem '{}'", spec_.family.model, spec_.name);
   const DesignFamily& family = spec_.family;
-  if (!family.build || !family.machine_size || !family.machine_file)
+  if (!family.build || !family.machine_size || !family.design)
     throw std::invalid_argument(where +
                                 ": the design family lacks a builder, machine_size or "
                                 "machine-file writer");

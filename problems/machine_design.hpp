@@ -39,7 +39,7 @@
 // family's template design.
 //
 // Metrics (same names and meanings as the hexapod problem; per-pose definitions in
-// CONVENTIONS.md and models/machine.hpp), over the task poses k lifted by home_height:
+// docs/conventions.md and models/machine.hpp), over the task poses k lifted by home_height:
 //   stiffness_min       min_k stiffness_min(pose k)                       N/m
 //   singularity_margin  min_k singularity_margin(pose k)                  0..1
 //   leg_force_max       max_k max_i |tau_i(pose k)| under w               N (N*m for rotary drives)
@@ -90,8 +90,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
+#include "models/lathe_conversion.hpp"
 #include "models/leg_chain.hpp"
 #include "models/machine.hpp"
 #include "models/workspace/workspace.hpp"
@@ -215,6 +217,10 @@ std::vector<double> aggregate_design_rows(const std::vector<DesignObjective>& ob
 // ---------------------------------------------------------------------------------------------
 // Design families.
 
+/// The design of a family's machine: the design struct of its model.
+using FamilyDesign = std::variant<DeltaDesign, LinearDeltaDesign, HexaglideDesign, Tripod3PrsDesign,
+                                  Lathe16k20f3Design>;
+
 /// One named design parameter of a family.
 struct FamilyParameter {
   std::string name;      ///< as in study files: "rod", "inclination_deg"
@@ -239,8 +245,9 @@ struct DesignFamily {
   /// The machine of a parameter vector (internal units; one value per parameter). Throws
   /// std::invalid_argument for an impossible machine.
   std::function<std::unique_ptr<Machine>(const std::vector<double>&)> build;
-  /// Machine-file YAML of a parameter vector (a file `pkmopt analyze` loads).
-  std::function<std::string(const std::vector<double>&)> machine_file;
+  /// The model's design of a parameter vector (internal units); io/machine_file_writer.hpp
+  /// writes it as a machine file.
+  std::function<FamilyDesign(const std::vector<double>&)> design;
   /// The machine_size metric of a built design (m^3).
   std::function<double(const Machine&, const std::vector<double>&)> machine_size;
   /// The platform keeps its orientation (task poses must not rotate).
@@ -265,11 +272,6 @@ DesignFamily linear_delta_family(const LinearDeltaDesign& design_template);
 DesignFamily hexaglide_family(const HexaglideDesign& design_template);
 DesignFamily tripod_3prs_family(const Tripod3PrsDesign& design_template);
 
-/// Machine files (YAML, the keys of app/machine_file_leg_chain.hpp) of leg-chain designs.
-std::string delta_machine_file(const DeltaDesign& design);
-std::string linear_delta_machine_file(const LinearDeltaDesign& design);
-std::string hexaglide_machine_file(const HexaglideDesign& design);
-std::string tripod_3prs_machine_file(const Tripod3PrsDesign& design);
 
 // ---------------------------------------------------------------------------------------------
 // The problem.

@@ -4,5 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPKMOPT_WERROR=ON >/dev/null
+launcher=()
+# ccache, when installed, makes rebuilds after small changes fast (not required).
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPKMOPT_WERROR=ON "${launcher[@]}" >/dev/null
 cmake --build build -j"$(nproc)" "$@"

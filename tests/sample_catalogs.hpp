@@ -1,5 +1,5 @@
 // Actuator catalogs for tests: the seeds' SEW CMS electric cylinders as in
-// studies/catalogs/sew-cms.yaml (one entry per stroke variant; no costs, accuracy or stiffness).
+// studies/library/catalogs/sew-cms.yaml (one entry per stroke variant; no costs, accuracy or stiffness).
 #pragma once
 
 #include "problems/actuator_catalog.hpp"

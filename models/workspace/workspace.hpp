@@ -5,7 +5,7 @@
 //   constant orientation  W(R0)  = { p : reachable(p, R0) }                 (tilt = yaw = 0)
 //   all orientations      W_all  = { p : reachable(p, R) for every R in S }  (Mode::kAll)
 //   some orientation      W_some = { p : reachable(p, R) for some R in S }   (Mode::kSome)
-// where "reachable" is Machine::reachable (actuator ranges and joint limits, CONVENTIONS.md),
+// where "reachable" is Machine::reachable (actuator ranges and joint limits, docs/conventions.md),
 // optionally tightened to singularity_margin >= m and/or stiffness_min >= k.
 //
 // Orientation set S: R = R0 * Rot(u(phi), theta) * Rz(gamma), where R0 = rotation_zyx(nominal),
@@ -32,7 +32,7 @@
 // The mesh interpolates a boundary whose vertices are exact (to h / 2^steps), so the error falls
 // like h^2 (a smooth surface of curvature radius rho gives about -A h^2 / (16 rho); sharp edges of
 // the region are cut and make the error depend a little on how the grid meets them). Features
-// thinner than h can be missed. On the sample hexapod of CONVENTIONS.md (0.10505 m^3) the error
+// thinner than h can be missed. On the docs/conventions.md hexapod (0.10505 m^3) the error
 // is -0.35 % at h = 40 mm, -0.12 % at h = 20 mm, -0.05 % at h = 10 mm (docs/workspace.md).
 //
 // Maps (over the grid nodes inside, each the worst over the orientations of S that count at that

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "app/csv.hpp"
+#include "io/csv.hpp"
 #include "tests/cli_runner.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/csv.hpp"
+#include "io/csv.hpp"
 #include "models/hexapod.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/sample_machines.hpp"

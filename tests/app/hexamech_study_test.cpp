@@ -1,4 +1,4 @@
-// Tests of the hexamech-long-axis study (studies/hexamech-long-axis/) in its reduced form
+// Tests of the hexamech-long-axis study (studies/library/hexamech-long-axis/) in its reduced form
 // through the CLI: a hexapod alone against the same hexapod on a +-1 m X axis
 // (examples/hybrid_long_axis_hexapod.yaml). Pins the structure classes, the workspace relations
 // of the follow rule, the statics and the series stiffness along the bed, the clamped axis past
@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <string>
 
-#include "app/csv.hpp"
+#include "io/csv.hpp"
 #include "tests/cli_runner.hpp"
 
 namespace pkmopt {
@@ -28,7 +28,7 @@ class HexamechStudy : public ::testing::Test {
     fs::create_directories(out_);
     const std::string command = "PKMOPT=" + std::string(PKMOPT_CLI) + " bash " +
                                 std::string(PKMOPT_SOURCE_DIR) +
-                                "/studies/hexamech-long-axis/run.sh " + (out_ / "r").string() +
+                                "/studies/library/hexamech-long-axis/run.sh " + (out_ / "r").string() +
                                 " 0.04 61 >" + (out_ / "log.txt").string() + " 2>&1";
     status_ = std::system(command.c_str());
   }

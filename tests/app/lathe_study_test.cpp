@@ -1,4 +1,4 @@
-// Tests of the 16K20F3 lathe-conversion study (studies/lathe-16k20f3/) in its reduced form, through
+// Tests of the 16K20F3 lathe-conversion study (studies/library/lathe-16k20f3/) in its reduced form, through
 // the CLI: the machine file (app/machine_file_lathe) loads and `pkmopt analyze` gives the study's
 // forces and stiffness, the computed minimal strut length reaches the task and 1% less does not,
 // the cylinders' load picks the catalog entry of the README, the turret centre's workspace, and
@@ -17,9 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "app/actuator_catalog_file.hpp"
-#include "app/machine_file.hpp"
-#include "app/machine_file_lathe.hpp"
+#include "io/actuator_catalog_file.hpp"
+#include "io/machine_file.hpp"
+#include "io/machine_file_writer.hpp"
+#include "io/machine_file_lathe.hpp"
 #include "models/lathe_conversion.hpp"
 #include "problems/actuator_catalog.hpp"
 #include "problems/lathe_design.hpp"

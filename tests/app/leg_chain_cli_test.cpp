@@ -1,4 +1,4 @@
-// Tests of the leg-chain machine files (app/machine_file_leg_chain) and of `pkmopt analyze`,
+// Tests of the leg-chain machine files (io/machine_file_leg_chain) and of `pkmopt analyze`,
 // `fk`, `workspace` and `describe` on a delta, a hexaglide, a Schoenflies machine in the generic
 // `leg_chain` form and the tripod_3prs head: results agree with the library, revolute
 // coordinates are in degrees, bad input exits with status 2 and one message.
@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "app/csv.hpp"
-#include "app/input_error.hpp"
-#include "app/machine_file.hpp"
-#include "app/machine_file_leg_chain.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/machine_file.hpp"
+#include "io/machine_file_leg_chain.hpp"
 #include "models/leg_chain.hpp"
 #include "tests/cli_runner.hpp"
 

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "app/csv.hpp"
-#include "app/machine_file.hpp"
+#include "io/csv.hpp"
+#include "io/machine_file.hpp"
 #include "models/hexapod.hpp"
 #include "tests/cli_runner.hpp"
 
@@ -137,7 +137,7 @@ void expect_rates_match_ik(const Machine& machine, const TcpPath& path, int samp
 }
 
 TEST(Trajectory, HexapodLegRatesMatchDifferencesOfTheIkAlongTheHelix) {
-  const auto machine = load_machine_file(source_path("studies/hexapod-450/hexapod-450.yaml"));
+  const auto machine = load_machine_file(source_path("studies/library/hexapod-450/hexapod-450.yaml"));
   HelixParameters hp = seeds_helix();
   hp.angle_amplitudes = deg_to_rad(Eigen::Vector3d(15, 10, 20));  // large angles: E(a) matters
   expect_rates_match_ik(*machine, HelixPath(hp), 401, 1e-7, 2e-3);
@@ -169,7 +169,7 @@ TEST(Trajectory, DeltaDriveRatesMatchDifferencesOfTheIkAlongATranslationalHelix)
 // A sampled path's rates are central differences: q_dot from them converges to the IK
 // differences as the samples get denser.
 TEST(Trajectory, SampledPathFollowsTheHelix) {
-  const auto machine = load_machine_file(source_path("studies/hexapod-450/hexapod-450.yaml"));
+  const auto machine = load_machine_file(source_path("studies/library/hexapod-450/hexapod-450.yaml"));
   const HelixPath helix(seeds_helix());
   const std::vector<double> times = uniform_times(0.0, 2 * kPi, 401);
   std::vector<Pose> poses;
@@ -263,7 +263,7 @@ class TrajectoryCli : public ::testing::Test {
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    machine_ = source_path("studies/hexapod-450/hexapod-450.yaml");
+    machine_ = source_path("studies/library/hexapod-450/hexapod-450.yaml");
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -281,13 +281,13 @@ class TrajectoryCli : public ::testing::Test {
   std::string machine_;
 };
 
-// The study in its reduced form: studies/hexapod-450/run.sh with 20 mm workspaces and 61 helix
+// The study in its reduced form: studies/library/hexapod-450/run.sh with 20 mm workspaces and 61 helix
 // samples. Every helix pose reachable and regular, the file's q columns equal to the IK, and
 // the study's numbers pinned (README.md of the study quotes them at full resolution).
 TEST_F(TrajectoryCli, Hexapod450StudyReducedForm) {
   const fs::path out = dir_ / "study";
   const std::string command = "PKMOPT=" + std::string(PKMOPT_CLI) + " bash " +
-                              source_path("studies/hexapod-450/run.sh") + " " + out.string() +
+                              source_path("studies/library/hexapod-450/run.sh") + " " + out.string() +
                               " 0.02 61 >" + (dir_ / "log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << cli_runner::read_text(dir_ / "log.txt");
   const std::string level_summary = cli_runner::read_text(out / "helix-level.txt");

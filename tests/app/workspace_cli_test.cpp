@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/machine_file.hpp"
+#include "io/machine_file.hpp"
 #include "models/workspace/workspace.hpp"
 #include "tests/cli_runner.hpp"
 

@@ -185,7 +185,7 @@ TEST(HexapodBatch, SingularPosesGiveTheScalarSingularOutputs) {
   }
 }
 
-// The bench poses of the CONVENTIONS.md hexapod: the SIMD kernel answers every one, and a pose's
+// Bench poses of the docs/conventions.md hexapod: the SIMD kernel answers every one; a pose's
 // result does not depend on the batch it is in (blocks padded, never mixed with the scalar path).
 TEST(HexapodBatch, BitIdenticalHoweverTheBatchIsSplit) {
   const Hexapod hexapod(sample_machines::conventions_hexapod_design());

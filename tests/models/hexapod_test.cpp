@@ -1,4 +1,4 @@
-// Tests of models/hexapod: every formula of CONVENTIONS.md checked independently, derivatives
+// Tests of models/hexapod: every formula of docs/conventions.md checked independently, derivatives
 // against finite differences, IK/FK round trips, equilibrium, published singular cases and
 // Dietmaier's 40 real assembly modes.
 #include "models/hexapod.hpp"

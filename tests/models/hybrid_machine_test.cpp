@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "app/input_error.hpp"
-#include "app/machine_file.hpp"
+#include "io/input_error.hpp"
+#include "io/machine_file.hpp"
 #include "models/hexapod.hpp"
 #include "models/leg_chain.hpp"
 #include "models/workspace/workspace.hpp"

@@ -54,7 +54,7 @@ Hexapod two_shell_hexapod(const Eigen::Vector3d& centre_a, const Eigen::Vector3d
   return Hexapod(design);
 }
 
-// The sample hexapod of CONVENTIONS.md.
+// The sample hexapod of docs/conventions.md.
 Hexapod sample_hexapod() { return Hexapod(sample_machines::conventions_hexapod_design()); }
 
 WorkspaceOptions volume_only(double resolution) {

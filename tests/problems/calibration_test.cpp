@@ -15,7 +15,7 @@
 namespace pkmopt {
 namespace {
 
-// The sample hexapod of CONVENTIONS.md.
+// The sample hexapod of docs/conventions.md.
 HexapodDesign sample_hexapod() { return sample_machines::conventions_hexapod_design(); }
 
 // Readings are strokes from a 0.7 m zero length.

@@ -6,8 +6,9 @@
 
 #include <cmath>
 
-#include "app/machine_file_lathe.hpp"
-#include "app/yaml_reader.hpp"
+#include "io/machine_file_lathe.hpp"
+#include "io/machine_file_writer.hpp"
+#include "io/yaml_reader.hpp"
 
 namespace pkmopt {
 namespace {
@@ -41,7 +42,7 @@ TEST(LatheDesign, FamilyParametersAndBuilder) {
   EXPECT_DOUBLE_EQ(family.machine_size(*machine, p), 0.65 * 0.65 * 0.65);
   // The machine file loads back to the same design.
   const Lathe16k20f3Design read =
-      read_lathe_16k20f3_design(YamlValue::load_string(family.machine_file(p), "family.yaml"));
+      read_lathe_16k20f3_design(YamlValue::load_string(family_machine_file(family.design(p)), "family.yaml"));
   EXPECT_EQ(lathe_16k20f3_machine_file(read), lathe_16k20f3_machine_file(expected));
 }
 

@@ -8,8 +8,9 @@
 #include <numbers>
 #include <random>
 
-#include "app/machine_file_leg_chain.hpp"
-#include "app/yaml_reader.hpp"
+#include "io/machine_file_leg_chain.hpp"
+#include "io/machine_file_writer.hpp"
+#include "io/yaml_reader.hpp"
 #include "models/hexapod.hpp"
 
 namespace pkmopt {
@@ -186,7 +187,7 @@ TEST(MachineDesign, MachineFilesLoadBackToTheSameMachine) {
       Pose{{0.05, -0.02, 0.45}, {0.03, 0.02, -0.01}}, Pose{{0.0, 0.0, 1.0}, {0.2, -0.1, 0.0}}};
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const auto& [family, p] = cases[c];
-    const std::string text = family.machine_file(p);
+    const std::string text = family_machine_file(family.design(p));
     const YamlValue root = YamlValue::load_string(text, family.model + ".yaml");
     const std::unique_ptr<Machine> loaded = load_leg_chain_machine(root, family.model);
     ASSERT_NE(loaded, nullptr) << text;

@@ -1,0 +1,63 @@
+// pkmopt analyze MACHINE.yaml --poses POSES.csv [--wrench fx,fy,fz,mx,my,mz] [--out FILE.csv]
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+#include "app/cli_args.hpp"
+#include "app/commands.hpp"
+#include "io/analyze_csv.hpp"
+#include "io/input_error.hpp"
+#include "io/machine_file.hpp"
+#include "io/output_file.hpp"
+#include "io/pose_csv.hpp"
+#include "models/pose_analysis.hpp"
+
+namespace pkmopt::cli {
+namespace {
+
+struct AnalyzeOptions {
+  std::string machine_file;
+  std::string poses_file;
+  std::string wrench;
+  std::string out_file;
+};
+
+void run_analyze(const AnalyzeOptions& opt) {
+  // Read and validate every input before anything is written.
+  const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  Wrench wrench = Wrench::Zero();
+  if (!opt.wrench.empty()) {
+    const auto w = parse_number_list("--wrench", opt.wrench, 6);
+    for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
+  }
+  const PoseTable poses = read_pose_csv(opt.poses_file);
+  const std::vector<PoseMetrics> metrics = analyze_poses(*machine, poses.poses, wrench);
+  const std::string csv = analyze_csv(*machine, poses, metrics);
+  if (opt.out_file.empty()) {
+    std::cout << csv;
+    std::cout.flush();
+  } else {
+    write_file_atomically(opt.out_file, csv);
+  }
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app) {
+  auto opt = std::make_shared<AnalyzeOptions>();
+  CLI::App* cmd =
+      app.add_subcommand("analyze",
+                         "Evaluate a machine at every pose of a CSV file: reachability, actuator "
+                         "coordinates and forces, stiffness, singularity margin, accuracy");
+  cmd->add_option("machine", opt->machine_file, "Machine file (YAML)")->required();
+  cmd->add_option("--poses", opt->poses_file,
+                  "Pose CSV with columns x,y,z (m) and optionally rx,ry,rz (deg)")
+      ->required();
+  cmd->add_option("--wrench", opt->wrench,
+                  "External wrench at the TCP, base axes: fx,fy,fz,mx,my,mz (N, N*m); default 0");
+  cmd->add_option("--out", opt->out_file, "Output CSV (default: standard output)");
+  cmd->callback([opt] { run_analyze(*opt); });
+}
+
+}  // namespace pkmopt::cli

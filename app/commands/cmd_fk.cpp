@@ -1,0 +1,73 @@
+// pkmopt fk MACHINE.yaml --q q1,...,qn [--guess x,y,z,rx,ry,rz]
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+#include "app/cli_args.hpp"
+#include "app/commands.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/machine_file.hpp"
+
+namespace pkmopt::cli {
+namespace {
+
+struct FkCommandOptions {
+  std::string machine_file;
+  std::string q;
+  std::string guess;
+  int max_iterations = 100;
+};
+
+void run_fk(const FkCommandOptions& opt) {
+  const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  const int na = machine->num_actuators();
+  const auto q_values = parse_number_list("--q", opt.q, static_cast<std::size_t>(na));
+  Eigen::VectorXd q(na);
+  const double q_scale = machine->revolute_actuators() ? kDegToRad : 1.0;
+  for (int i = 0; i < na; ++i) q(i) = q_values[static_cast<std::size_t>(i)] * q_scale;
+  if (const std::string expected = machine->actuator_coordinates_requirement(q);
+      !expected.empty()) {
+    throw InputError(fmt::format("--q: expected {}, found '{}'", expected, opt.q));
+  }
+  std::optional<Pose> guess;
+  if (!opt.guess.empty()) {
+    const auto g = parse_number_list("--guess", opt.guess, 6);
+    guess = Pose{{g[0], g[1], g[2]}, deg_to_rad(Eigen::Vector3d(g[3], g[4], g[5]))};
+  }
+  if (opt.max_iterations < 1) {
+    throw InputError(
+        fmt::format("--max-iterations: expected an integer >= 1, found {}", opt.max_iterations));
+  }
+  FkOptions fk_options;
+  fk_options.max_iterations = opt.max_iterations;
+  const FkResult r = machine->forward_kinematics(q, guess, fk_options);
+  const Eigen::Vector3d angles = rad_to_deg(r.pose.angles);
+  std::cout << "x,y,z,rx,ry,rz,converged,iterations,residual\n";
+  std::cout << format_number(r.pose.position(0)) << ',' << format_number(r.pose.position(1)) << ','
+            << format_number(r.pose.position(2)) << ',' << format_number(angles(0)) << ','
+            << format_number(angles(1)) << ',' << format_number(angles(2)) << ','
+            << (r.converged ? 1 : 0) << ',' << r.iterations << ',' << format_number(r.residual)
+            << '\n';
+  std::cout.flush();
+  if (!r.converged) std::cerr << "pkmopt: fk: " << r.message << '\n';
+}
+
+}  // namespace
+
+void add_fk_command(CLI::App& app) {
+  auto opt = std::make_shared<FkCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "fk", "Forward kinematics: the TCP pose for given actuator coordinates (damped Newton)");
+  cmd->add_option("machine", opt->machine_file, "Machine file (YAML)")->required();
+  cmd->add_option("--q", opt->q,
+                  "Actuator coordinates q1,...,qn (m for legs, deg for revolute drives)")
+      ->required();
+  cmd->add_option("--guess", opt->guess,
+                  "Start pose x,y,z,rx,ry,rz (m, deg); default: the machine's home pose");
+  cmd->add_option("--max-iterations", opt->max_iterations, "Iteration limit (default 100)");
+  cmd->callback([opt] { run_fk(*opt); });
+}
+
+}  // namespace pkmopt::cli

@@ -1,0 +1,25 @@
+// Reading actuator catalog files (YAML) into problems/actuator_catalog.
+//
+//   catalog: sew-cms                     # name, required
+//   description: "..."                   # optional
+//   entries:                             # at least one
+//     - {name: CMS63S/200, type: electric_cylinder, max_force: 10500, stroke: 0.200,
+//        max_speed: 0.45, accuracy: 1.0e-5, stiffness: 1.5e8, cost: 2.0}   # last 3 optional
+//   drive_types:                         # optional comparison table
+//     - {name: linear_motor, speed: [2, 5], accuracy: [1.0e-6, 5.0e-6], note: "..."}
+//
+// SI units: N, m, m/s, N/m. Strict: unknown keys, missing keys, non-finite or non-positive
+// numbers, repeated names -> InputError "file:line:col: key: expected ..., found ...".
+#pragma once
+
+#include <string>
+
+#include "io/yaml_reader.hpp"
+#include "problems/actuator_catalog.hpp"
+
+namespace pkmopt {
+
+ActuatorCatalog read_actuator_catalog(const YamlValue& root);
+ActuatorCatalog load_actuator_catalog(const std::string& path);
+
+}  // namespace pkmopt

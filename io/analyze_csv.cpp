@@ -1,0 +1,40 @@
+#include "io/analyze_csv.hpp"
+
+#include <sstream>
+
+namespace pkmopt {
+
+std::string analyze_csv(const Machine& machine, const PoseTable& poses,
+                        const std::vector<PoseMetrics>& metrics) {
+  const CsvTable& table = poses.table;
+  const std::vector<int> passthrough = poses.other_columns();
+  const int na = machine.num_actuators();
+  const double q_scale = machine.revolute_actuators() ? kRadToDeg : 1.0;
+  std::ostringstream out;
+  out << "x,y,z,rx,ry,rz,reachable";
+  for (int j = 1; j <= na; ++j) out << ",q_" << j;
+  for (int j = 1; j <= na; ++j) out << ",tau_" << j;
+  out << ",stiffness_min,singularity_margin,det_j,tcp_error_max";
+  for (int c : passthrough) out << ',' << csv_field(table.header[static_cast<std::size_t>(c)]);
+  out << '\n';
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const PoseMetrics& m = metrics[i];
+    std::string line;
+    line.reserve(512);
+    for (int k = 0; k < 3; ++k) line += format_number(poses.poses[i].position(k)) + ',';
+    for (int k = 0; k < 3; ++k) line += format_number(poses.angles_deg[i](k)) + ',';
+    line += m.reachable ? '1' : '0';
+    for (int j = 0; j < na; ++j) line += ',' + format_number(m.q(j) * q_scale);
+    for (int j = 0; j < na; ++j) line += ',' + format_number(m.tau(j));
+    line += ',' + format_number(m.stiffness_min);
+    line += ',' + format_number(m.singularity_margin);
+    line += ',' + format_number(m.det_j);
+    line += ',' + format_number(m.tcp_error_max);
+    for (int c : passthrough)
+      line += ',' + csv_field(table.rows[i].cells[static_cast<std::size_t>(c)]);
+    out << line << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,26 @@
+// The output CSV of `pkmopt analyze`: one row per pose, the columns of docs/conventions.md.
+//
+//   x,y,z,rx,ry,rz,reachable,q_1..q_n,tau_1..tau_n,stiffness_min,singularity_margin,det_j,
+//   tcp_error_max, then every other column of the pose file, unchanged.
+// q_i in m for prismatic actuators and degrees for revolute ones; tau_i in N or N·m; numbers in
+// the shortest text that reads back to the same double (format_number).
+//
+// Example:
+//   const PoseTable poses = read_pose_csv("poses.csv");
+//   const auto metrics = analyze_poses(machine, poses.poses, Wrench::Zero());
+//   write_file_atomically("out.csv", analyze_csv(machine, poses, metrics));
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/pose_csv.hpp"
+#include "models/machine.hpp"
+
+namespace pkmopt {
+
+/// The whole CSV text (header and one row per pose; `metrics[i]` belongs to `poses.poses[i]`).
+std::string analyze_csv(const Machine& machine, const PoseTable& poses,
+                        const std::vector<PoseMetrics>& metrics);
+
+}  // namespace pkmopt

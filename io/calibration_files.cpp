@@ -1,0 +1,530 @@
+#include "io/calibration_files.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/machine_file.hpp"
+#include "io/pose_csv.hpp"
+#include "io/yaml_reader.hpp"
+#include "pkmopt/version.hpp"
+
+namespace pkmopt {
+namespace {
+
+std::string resolve_path(const std::string& base_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return path;
+  return (std::filesystem::path(base_file).parent_path() / p).lexically_normal().string();
+}
+
+Pose read_frame(const YamlValue& value) {
+  value.check_keys({"position", "angles_deg"});
+  Pose pose;
+  if (auto p = value.optional("position")) {
+    const auto v = p->as_doubles(3);
+    pose.position = {v[0], v[1], v[2]};
+  }
+  if (auto a = value.optional("angles_deg")) {
+    const auto v = a->as_doubles(3);
+    pose.angles = deg_to_rad(Eigen::Vector3d(v[0], v[1], v[2]));
+  }
+  return pose;
+}
+
+nlohmann::json errors_json(const CalibrationErrors& e) {
+  nlohmann::json j;
+  j["count"] = e.count;
+  j["leg_rms"] = std::vector<double>(e.leg_rms.data(), e.leg_rms.data() + 6);
+  j["leg_max"] = std::vector<double>(e.leg_max.data(), e.leg_max.data() + 6);
+  j["leg_rms_all"] = std::sqrt(e.leg_rms.squaredNorm() / 6.0);
+  j["tcp_position_rms"] = e.tcp_position_rms;
+  j["tcp_position_max"] = e.tcp_position_max;
+  j["tcp_orientation_rms_deg"] = rad_to_deg(e.tcp_orientation_rms);
+  j["tcp_orientation_max_deg"] = rad_to_deg(e.tcp_orientation_max);
+  j["fk_failures"] = e.fk_failures;
+  return j;
+}
+
+bool is_angle(int index) {
+  return index >= kCalibrationInstrumentIndex && (index - kCalibrationInstrumentIndex) % 6 >= 3;
+}
+
+}  // namespace
+
+std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
+                                                         double unit_scale) {
+  const CsvTable table = read_csv_file(path);
+  const bool quaternion = table.column("qw") >= 0;
+  std::vector<std::string> expected = {"x", "y", "z"};
+  if (quaternion) {
+    expected.insert(expected.end(), {"qw", "qx", "qy", "qz"});
+  } else {
+    expected.insert(expected.end(), {"rx", "ry", "rz"});
+  }
+  for (int i = 1; i <= 6; ++i) expected.push_back(fmt::format("q_{}", i));
+  auto expected_text = [&] {
+    std::string text;
+    for (const auto& name : expected) {
+      if (!text.empty()) text.push_back(',');
+      text.append(name);
+    }
+    return text;
+  };
+  for (std::size_t c = 0; c < table.header.size(); ++c) {
+    if (std::find(expected.begin(), expected.end(), table.header[c]) == expected.end()) {
+      throw InputError(fmt::format(
+          "{}column {} '{}': expected only the columns {} (or rx,ry,rz instead of qw,qx,qy,qz), "
+          "found an unknown column",
+          location_prefix(path, table.header_line), c + 1, table.header[c], expected_text()));
+    }
+  }
+  const PoseColumns pose_columns = find_pose_columns(table, PoseOrientation::euler_or_quaternion);
+  std::vector<int> reading_columns;
+  for (int i = 1; i <= 6; ++i) reading_columns.push_back(table.require_column(fmt::format("q_{}", i)));
+  if (table.rows.empty()) {
+    throw InputError(
+        fmt::format("{}expected at least one measured pose, found none", location_prefix(path)));
+  }
+  std::vector<CalibrationMeasurement> measurements;
+  for (const CsvRow& row : table.rows) {
+    CalibrationMeasurement m;
+    m.line = row.line;
+    m.pose = pose_of_row(table, row, pose_columns);
+    for (int i = 0; i < 6; ++i)
+      m.stroke(i) = table.number(row, reading_columns[static_cast<std::size_t>(i)]) * unit_scale;
+    measurements.push_back(m);
+  }
+  return measurements;
+}
+
+CalibrationSetup read_calibration_setup(const std::string& path) {
+  CalibrationSetup setup;
+  setup.file = path;
+  const YamlValue root = YamlValue::load_file(path);
+  root.check_keys({"machine", "measurements", "frame", "instrument", "target", "actuators", "noise",
+                   "model", "fixed", "gauge", "loss", "outlier_chi2", "validation",
+                   "max_iterations", "correlation_threshold", "parameter_scale"});
+
+  // Nominal machine.
+  setup.machine_file = resolve_path(path, root.required("machine").as_string());
+  {
+    const YamlValue machine = YamlValue::load_file(setup.machine_file);
+    const YamlValue model = machine.required("model");
+    if (model.as_string() != "hexapod") model.fail("'hexapod' (calibration)", model.describe());
+    setup.nominal_design = read_hexapod_design(machine);
+  }
+
+  // Frames.
+  if (auto frame = root.optional("frame")) {
+    setup.frame = frame->as_string();
+    if (setup.frame != "base" && setup.frame != "instrument") {
+      frame->fail("'base' or 'instrument'", frame->describe());
+    }
+  }
+  Pose instrument, target;
+  if (auto value = root.optional("instrument")) {
+    if (setup.frame == "base")
+      value->fail(
+          "no instrument with frame: base (poses measured in the base frame); set frame: "
+          "instrument");
+    instrument = read_frame(*value);
+  }
+  if (auto value = root.optional("target")) target = read_frame(*value);
+
+  // Actuators.
+  const YamlValue actuators = root.required("actuators");
+  actuators.check_keys({"unit", "lead", "counts_per_metre", "zero_length"});
+  const YamlValue unit = actuators.required("unit");
+  setup.unit = unit.as_string();
+  if (setup.unit == "m") {
+    setup.unit_scale = 1.0;
+  } else if (setup.unit == "mm") {
+    setup.unit_scale = 1e-3;
+  } else if (setup.unit == "rev") {
+    setup.unit_scale = actuators.required("lead").as_positive();
+  } else if (setup.unit == "counts") {
+    setup.unit_scale = 1.0 / actuators.required("counts_per_metre").as_positive();
+  } else {
+    unit.fail("one of m, mm, rev, counts", unit.describe());
+  }
+  if (setup.unit != "rev" && actuators.has("lead")) {
+    actuators.required("lead").fail("no lead unless unit: rev");
+  }
+  if (setup.unit != "counts" && actuators.has("counts_per_metre")) {
+    actuators.required("counts_per_metre").fail("no counts_per_metre unless unit: counts");
+  }
+  Vec6<double> zero_length = Vec6<double>::Zero();
+  if (auto z = actuators.optional("zero_length")) {
+    if (z->is_sequence()) {
+      const auto v = z->as_doubles(6);
+      for (int i = 0; i < 6; ++i) zero_length(i) = v[static_cast<std::size_t>(i)];
+    } else {
+      zero_length.setConstant(z->as_double());
+    }
+  }
+  setup.nominal = nominal_calibration_vector(setup.nominal_design, zero_length, instrument, target);
+
+  // Noise.
+  const YamlValue noise = root.required("noise");
+  noise.check_keys({"position", "orientation_deg", "actuator"});
+  setup.options.sigma_position = noise.required("position").as_positive();
+  setup.options.sigma_orientation = deg_to_rad(noise.required("orientation_deg").as_positive());
+  setup.options.sigma_actuator = noise.required("actuator").as_positive() * setup.unit_scale;
+
+  // Free parameters.
+  if (auto model = root.optional("model")) {
+    setup.model = model->as_string();
+    if (setup.model != "42" && setup.model != "48") model->fail("42 or 48", model->describe());
+  }
+  setup.options.free =
+      model_free_mask(setup.model == "42" ? CalibrationModelKind::k42 : CalibrationModelKind::k48);
+  if (setup.frame == "instrument") {
+    for (int i = kCalibrationInstrumentIndex; i < kCalibrationParameters; ++i) {
+      setup.options.free[static_cast<std::size_t>(i)] = true;
+    }
+  }
+  if (auto fixed = root.optional("fixed")) {
+    for (const YamlValue& item : fixed->elements()) {
+      const std::string name = item.as_string();
+      const int index = calibration_parameter_index(name);
+      if (index < 0) {
+        item.fail(
+            "a parameter name (a1.x .. b6.z, offset1..6, gain1..6, instrument.x..rz, "
+            "target.x..rz)",
+            item.describe());
+      }
+      setup.options.free[static_cast<std::size_t>(index)] = false;
+      setup.fixed.push_back(index);
+    }
+  }
+  if (auto gauge = root.optional("gauge")) {
+    setup.gauge = gauge->as_string();
+    if (setup.gauge != "auto" && setup.gauge != "none") {
+      gauge->fail("'auto' or 'none'", gauge->describe());
+    }
+  }
+
+  // Solver.
+  if (auto loss = root.optional("loss")) {
+    loss->check_keys({"type", "scale"});
+    const YamlValue type = loss->required("type");
+    const std::string name = type.as_string();
+    if (name == "huber") {
+      setup.options.loss = CalibrationLoss::kHuber;
+    } else if (name == "cauchy") {
+      setup.options.loss = CalibrationLoss::kCauchy;
+    } else if (name == "none") {
+      setup.options.loss = CalibrationLoss::kNone;
+    } else {
+      type.fail("huber, cauchy or none", type.describe());
+    }
+    if (auto scale = loss->optional("scale")) setup.options.loss_scale = scale->as_positive();
+  }
+  if (auto chi2 = root.optional("outlier_chi2")) setup.options.outlier_chi2 = chi2->as_positive();
+  if (auto iterations = root.optional("max_iterations")) {
+    const long long n = iterations->as_int();
+    if (n < 1 || n > 100000) iterations->fail("an integer in 1..100000", iterations->describe());
+    setup.options.max_iterations = static_cast<int>(n);
+  }
+  if (auto threshold = root.optional("correlation_threshold")) {
+    const double t = threshold->as_double();
+    if (!(t > 0.0 && t <= 1.0)) threshold->fail("a number in (0, 1]", threshold->describe());
+    setup.options.correlation_threshold = t;
+  }
+
+  if (auto scale = root.optional("parameter_scale")) {
+    scale->check_keys({"length", "gain", "frame_position", "frame_angle_deg"});
+    double length = 1e-3, gain = 2e-4, frame_position = 5e-3, frame_angle = 1e-3;
+    if (auto v = scale->optional("length")) length = v->as_positive();
+    if (auto v = scale->optional("gain")) gain = v->as_positive();
+    if (auto v = scale->optional("frame_position")) frame_position = v->as_positive();
+    if (auto v = scale->optional("frame_angle_deg")) frame_angle = deg_to_rad(v->as_positive());
+    setup.options.parameter_scale =
+        calibration_parameter_scale(length, gain, frame_position, frame_angle);
+  }
+
+  // Measurements.
+  const YamlValue measurements = root.required("measurements");
+  setup.measurement_file = resolve_path(path, measurements.as_string());
+  setup.measurements = read_measurement_csv(setup.measurement_file, setup.unit_scale);
+  const int num_rows = static_cast<int>(setup.measurements.size());
+
+  // Validation rows.
+  std::set<int> held_out;
+  if (auto validation = root.optional("validation")) {
+    validation->check_keys({"every", "rows"});
+    if (auto every = validation->optional("every")) {
+      const long long n = every->as_int();
+      if (n < 2) every->fail("an integer >= 2", every->describe());
+      for (int k = 0; k < num_rows; ++k) {
+        if ((k + 1) % n == 0) held_out.insert(k);
+      }
+    }
+    if (auto rows = validation->optional("rows")) {
+      for (const YamlValue& item : rows->elements()) {
+        const long long row = item.as_int();
+        if (row < 1 || row > num_rows) {
+          item.fail(fmt::format("a data row number in 1..{}", num_rows), item.describe());
+        }
+        held_out.insert(static_cast<int>(row - 1));
+      }
+    }
+  }
+  for (int k = 0; k < num_rows; ++k) {
+    (held_out.count(k) ? setup.held_out : setup.fit).push_back(k);
+  }
+
+  std::vector<CalibrationMeasurement> fitted;
+  for (int k : setup.fit) fitted.push_back(setup.measurements[static_cast<std::size_t>(k)]);
+  int num_free = 0;
+  for (bool f : setup.options.free) num_free += f ? 1 : 0;
+  if (6 * static_cast<int>(fitted.size()) < num_free + 1) {
+    throw InputError(fmt::format(
+        "{}: too few poses: {} fitted rows ({} held out) give {} equations, the {} free "
+        "parameters (model {}{}) need more; measure at least {} poses (3 times as many is a "
+        "good rule), hold out fewer, or fix parameters",
+        setup.measurement_file, fitted.size(), setup.held_out.size(), 6 * fitted.size(), num_free,
+        setup.model, setup.frame == "instrument" ? " + instrument + target" : "",
+        num_free / 6 + 1));
+  }
+  if (setup.gauge == "auto") {
+    setup.gauge_fixed =
+        choose_gauge_fixing(setup.nominal, setup.nominal_design.tcp, fitted, setup.options);
+    for (int index : setup.gauge_fixed) setup.options.free[static_cast<std::size_t>(index)] = false;
+  }
+  return setup;
+}
+
+nlohmann::json calibration_report_json(const CalibrationSetup& setup,
+                                       const CalibrationResult& result) {
+  using nlohmann::json;
+  json report;
+  report["pkmopt_version"] = kVersion;
+  report["calibration_file"] = setup.file;
+  report["machine_file"] = setup.machine_file;
+  report["measurement_file"] = setup.measurement_file;
+  report["frame"] = setup.frame;
+  report["model"] = setup.model;
+  report["actuator_unit"] = setup.unit;
+  report["actuator_unit_scale"] = setup.unit_scale;
+  report["noise"] = {{"position", setup.options.sigma_position},
+                     {"orientation_deg", rad_to_deg(setup.options.sigma_orientation)},
+                     {"actuator", setup.options.sigma_actuator}};
+
+  std::vector<int> inliers;
+  for (std::size_t r = 0; r < setup.fit.size(); ++r) {
+    if (std::find(result.outliers.begin(), result.outliers.end(), static_cast<int>(r)) ==
+        result.outliers.end()) {
+      inliers.push_back(setup.fit[r]);
+    }
+  }
+  // Held-out rows screened with the calibrated machine: each row's own pose fitted with the
+  // machine held; chi^2 above the threshold flags a gross outlier.
+  const std::vector<double> held_out_chi2 = fixed_machine_chi2(
+      setup.nominal_design.tcp, result.estimate, setup.measurements, setup.held_out, setup.options);
+  std::vector<int> held_out_inliers;
+  json held_out_outliers = json::array();
+  for (std::size_t r = 0; r < setup.held_out.size(); ++r) {
+    const int k = setup.held_out[r];
+    if (held_out_chi2[r] > setup.options.outlier_chi2) {
+      held_out_outliers.push_back({{"row", k + 1},
+                                   {"line", setup.measurements[static_cast<std::size_t>(k)].line},
+                                   {"chi2", held_out_chi2[r]}});
+    } else {
+      held_out_inliers.push_back(k);
+    }
+  }
+  report["poses"] = {{"total", setup.measurements.size()},
+                     {"fitted", inliers.size()},
+                     {"held_out", setup.held_out.size()},
+                     {"outliers", result.outliers.size()},
+                     {"held_out_outliers", held_out_outliers.size()}};
+
+  std::vector<std::string> gauge_names, fixed_names;
+  for (int index : setup.gauge_fixed) gauge_names.push_back(calibration_parameter_name(index));
+  for (int index : setup.fixed) fixed_names.push_back(calibration_parameter_name(index));
+  std::string reason =
+      setup.frame == "base"
+          ? "poses measured in the base frame: the instrument defines the base frame and the "
+            "target the TCP frame, no gauge freedom exists"
+          : "instrument and target transforms are free: any rigid motion of the base frame "
+            "(6) and of the platform frame (6) leaves the data unchanged; the listed joint "
+            "coordinates are held at nominal to define both frames";
+  report["gauge"] = {{"mode", setup.gauge}, {"fixed", gauge_names}, {"reason", reason}};
+  report["fixed_by_user"] = fixed_names;
+
+  report["solver"] = {{"converged", result.converged},
+                      {"iterations", result.iterations},
+                      {"message", result.solver_message},
+                      {"chi2_per_dof", result.chi2_per_dof}};
+
+  const CalibrationVector& nominal = setup.nominal;
+  const CalibrationVector& estimate = result.estimate;
+  json errors;
+  errors["before"]["fitted"] =
+      errors_json(calibration_errors(setup.nominal_design, nominal, setup.measurements, inliers));
+  errors["after"]["fitted"] =
+      errors_json(calibration_errors(setup.nominal_design, estimate, setup.measurements, inliers));
+  errors["before"]["held_out"] = errors_json(
+      calibration_errors(setup.nominal_design, nominal, setup.measurements, setup.held_out));
+  errors["after"]["held_out"] = errors_json(
+      calibration_errors(setup.nominal_design, estimate, setup.measurements, setup.held_out));
+  errors["before"]["held_out_inliers"] = errors_json(
+      calibration_errors(setup.nominal_design, nominal, setup.measurements, held_out_inliers));
+  errors["after"]["held_out_inliers"] = errors_json(
+      calibration_errors(setup.nominal_design, estimate, setup.measurements, held_out_inliers));
+  report["errors"] = errors;
+  report["noise_floor"] = {
+      {"tcp_position_rms", std::sqrt(3.0) * setup.options.sigma_position},
+      {"tcp_orientation_rms_deg", std::sqrt(3.0) * rad_to_deg(setup.options.sigma_orientation)}};
+
+  json parameters = json::array();
+  for (int i = 0; i < kCalibrationParameters; ++i) {
+    const bool in_model = i < kCalibrationMachineParameters || setup.frame == "instrument";
+    if (!in_model) continue;
+    const double scale = is_angle(i) ? kRadToDeg : 1.0;
+    parameters.push_back({{"name", calibration_parameter_name(i)},
+                          {"unit", is_angle(i) ? "deg" : calibration_parameter_unit(i)},
+                          {"free", setup.options.free[static_cast<std::size_t>(i)]},
+                          {"nominal", nominal(i) * scale},
+                          {"estimate", estimate(i) * scale},
+                          {"change", (estimate(i) - nominal(i)) * scale},
+                          {"sigma", result.sigma(i) * scale}});
+  }
+  report["parameters"] = parameters;
+  json pairs = json::array();
+  for (const CorrelatedPair& p : result.correlated) {
+    pairs.push_back({{"first", calibration_parameter_name(p.first)},
+                     {"second", calibration_parameter_name(p.second)},
+                     {"correlation", p.correlation}});
+  }
+  report["correlated_pairs"] = pairs;
+  const Identification& id = result.identification;
+  const auto& s = id.singular_values;
+  report["identification"] = {
+      {"free_parameters", id.free_indices.size()},
+      {"rank", id.rank},
+      {"singular_values", std::vector<double>(s.data(), s.data() + s.size())},
+      {"O1", id.O1},
+      {"O2", id.O2},
+      {"O3", id.O3},
+      {"O4", id.O4},
+      {"scaled",
+       {{"parameter_scale", std::vector<double>(id.column_scale.data(),
+                                                id.column_scale.data() + id.column_scale.size())},
+        {"singular_values",
+         std::vector<double>(id.scaled.singular_values.data(),
+                             id.scaled.singular_values.data() + id.scaled.singular_values.size())},
+        {"O1", id.scaled.O1},
+        {"O2", id.scaled.O2},
+        {"O3", id.scaled.O3},
+        {"O4", id.scaled.O4}}}};
+  json outliers = json::array();
+  for (int r : result.outliers) {
+    const int k = setup.fit[static_cast<std::size_t>(r)];
+    outliers.push_back({{"row", k + 1},
+                        {"line", setup.measurements[static_cast<std::size_t>(k)].line},
+                        {"chi2", result.chi2[static_cast<std::size_t>(r)]}});
+  }
+  report["outliers"] = outliers;
+  report["held_out_outliers"] = held_out_outliers;
+  report["outlier_chi2"] = setup.options.outlier_chi2;
+  return report;
+}
+
+std::string calibration_report_text(const nlohmann::json& r) {
+  std::string out;
+  out += fmt::format("pkmopt calibration report ({})\n", r["calibration_file"].get<std::string>());
+  out += fmt::format("machine: {}\nmeasurements: {}\n", r["machine_file"].get<std::string>(),
+                     r["measurement_file"].get<std::string>());
+  out += fmt::format(
+      "frame: {}, model: {}, poses: {} total, {} fitted, {} held out, {} outliers in the fit, "
+      "{} among the held-out rows\n",
+      r["frame"].get<std::string>(), r["model"].get<std::string>(), r["poses"]["total"].get<int>(),
+      r["poses"]["fitted"].get<int>(), r["poses"]["held_out"].get<int>(),
+      r["poses"]["outliers"].get<int>(), r["poses"]["held_out_outliers"].get<int>());
+  out += fmt::format("solver: converged {}, {} iterations, chi2/dof {:.3f}\n",
+                     r["solver"]["converged"].get<bool>(), r["solver"]["iterations"].get<int>(),
+                     r["solver"]["chi2_per_dof"].get<double>());
+  out += fmt::format("gauge ({}): {}\n", r["gauge"]["mode"].get<std::string>(),
+                     r["gauge"]["reason"].get<std::string>());
+  if (!r["gauge"]["fixed"].empty()) {
+    std::string names;
+    for (const auto& n : r["gauge"]["fixed"]) {
+      names.push_back(' ');
+      names.append(n.get<std::string>());
+    }
+    out += fmt::format("  held at nominal:{}\n", names);
+  }
+  out += "\nErrors (um for legs and TCP position, deg for TCP orientation)\n";
+  out += fmt::format("{:<30}{:>8}{:>12}{:>12}{:>14}{:>14}{:>12}{:>12}\n", "", "poses", "leg rms",
+                     "leg max", "TCP pos rms", "TCP pos max", "TCP rot rms", "TCP rot max");
+  for (const char* when : {"before", "after"}) {
+    for (const char* set : {"fitted", "held_out", "held_out_inliers"}) {
+      const auto& e = r["errors"][when][set];
+      double leg_max = 0.0;
+      for (const auto& v : e["leg_max"]) leg_max = std::max(leg_max, v.get<double>());
+      out += fmt::format(
+          "{:<30}{:>8}{:>12.2f}{:>12.2f}{:>14.2f}{:>14.2f}{:>12.5f}{:>12.5f}\n",
+          fmt::format("{} / {}", when, set), e["count"].get<int>(),
+          1e6 * e["leg_rms_all"].get<double>(), 1e6 * leg_max,
+          1e6 * e["tcp_position_rms"].get<double>(), 1e6 * e["tcp_position_max"].get<double>(),
+          e["tcp_orientation_rms_deg"].get<double>(), e["tcp_orientation_max_deg"].get<double>());
+    }
+  }
+  out +=
+      fmt::format("noise floor (sqrt(3) sigma): TCP position {:.2f} um, orientation {:.5f} deg\n",
+                  1e6 * r["noise_floor"]["tcp_position_rms"].get<double>(),
+                  r["noise_floor"]["tcp_orientation_rms_deg"].get<double>());
+  const auto& id = r["identification"];
+  out += fmt::format(
+      "\nIdentification: rank {} of {} free\n"
+      "  unscaled (parameters in m, 1, rad): O1 {:.4g}  O2 (cond) {:.4g}  O3 (sigma_min) {:.4g}  "
+      "O4 {:.4g}\n"
+      "  scaled (parameters in units of their a-priori sigma): O1 {:.4g}  O2 {:.4g}  O3 {:.4g}  "
+      "O4 {:.4g}\n",
+      id["rank"].get<int>(), id["free_parameters"].get<int>(), id["O1"].get<double>(),
+      id["O2"].get<double>(), id["O3"].get<double>(), id["O4"].get<double>(),
+      id["scaled"]["O1"].get<double>(), id["scaled"]["O2"].get<double>(),
+      id["scaled"]["O3"].get<double>(), id["scaled"]["O4"].get<double>());
+  out += "\nParameters (m, deg, or 1 for gains; change = estimate - nominal)\n";
+  out += fmt::format("{:<15}{:>5}{:>16}{:>16}{:>14}{:>14}\n", "name", "free", "nominal", "estimate",
+                     "change", "sigma");
+  for (const auto& p : r["parameters"]) {
+    out += fmt::format("{:<15}{:>5}{:>16.9f}{:>16.9f}{:>14.3e}{:>14.3e}\n",
+                       p["name"].get<std::string>(), p["free"].get<bool>() ? "yes" : "no",
+                       p["nominal"].get<double>(), p["estimate"].get<double>(),
+                       p["change"].get<double>(), p["sigma"].get<double>());
+  }
+  out += "\nStrongly correlated pairs\n";
+  if (r["correlated_pairs"].empty()) out += "  none\n";
+  for (const auto& p : r["correlated_pairs"]) {
+    out += fmt::format("  {} ~ {}: {:.4f}\n", p["first"].get<std::string>(),
+                       p["second"].get<std::string>(), p["correlation"].get<double>());
+  }
+  out += fmt::format("\nOutliers (pose chi2 > {})\n", r["outlier_chi2"].get<double>());
+  if (r["outliers"].empty()) out += "  none\n";
+  for (const auto& o : r["outliers"]) {
+    out += fmt::format("  data row {} (line {}): chi2 {:.1f}\n", o["row"].get<int>(),
+                       o["line"].get<int>(), o["chi2"].get<double>());
+  }
+  out += fmt::format(
+      "\nHeld-out outliers (pose chi2 > {} with the calibrated machine; excluded from "
+      "held_out_inliers)\n",
+      r["outlier_chi2"].get<double>());
+  if (r["held_out_outliers"].empty()) out += "  none\n";
+  for (const auto& o : r["held_out_outliers"]) {
+    out += fmt::format("  data row {} (line {}): chi2 {:.1f}\n", o["row"].get<int>(),
+                       o["line"].get<int>(), o["chi2"].get<double>());
+  }
+  return out;
+}
+
+}  // namespace pkmopt

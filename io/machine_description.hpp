@@ -1,0 +1,46 @@
+// `pkmopt describe`: the degrees of freedom and the structure class of a machine file.
+//
+// Machine files with a parallel model (hexapod, delta, ...; io/machine_file.hpp) and two more
+// kinds that describe structure only (no analyze/fk yet):
+//
+//   model: serial                    # serial axes by coordinate code (models/serial_chain.hpp)
+//   name: "5-axis milling machine"   # optional
+//   code: "641236"                   # motions 1..6 in chain order, workpiece to tool
+//   axes: [C, A, X, Y, Z, S]         # optional, one name per variable motion
+//   spindle: S                       # optional: the axis that is the cutting motion
+//
+//   model: hybrid                    # serial axes carrying a parallel module
+//   name: "gantry with a tripod head"
+//   serial: {code: "12", axes: [X, Y]}
+//   parallel: {file: delta.yaml}     # a machine file, relative to this file
+//
+// Drives: every variable serial axis except the spindle is a serial (open-chain) feed drive;
+// every actuator of the parallel module a parallel (closed-chain) drive. The structure class is
+// "P<serial>З<parallel>" (by drive coupling, models/serial_chain.hpp). The degrees of
+// freedom of the tool relative to the workpiece are counted per kind (translations, rotations);
+// a hybrid's are the sum (more than 6 means redundancy).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pkmopt {
+
+struct MachineDescription {
+  std::string model;
+  std::string name;
+  int translations = 0;  ///< translational degrees of freedom (feed motions)
+  int rotations = 0;     ///< rotational degrees of freedom (feed motions)
+  int serial_drives = 0;
+  int parallel_drives = 0;
+  std::string structure;             ///< "P5З0"
+  std::vector<std::string> details;  ///< further "key: value" lines
+};
+
+/// Reads and describes a machine file. Throws InputError for bad files.
+MachineDescription describe_machine_file(const std::string& path);
+
+/// The text `pkmopt describe` prints.
+std::string format_description(const MachineDescription& description);
+
+}  // namespace pkmopt

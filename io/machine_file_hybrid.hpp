@@ -1,0 +1,39 @@
+// Machine files (YAML) of hybrid machines, `model: hybrid`: serial translation axes carrying a
+// parallel module (models/hybrid_machine.hpp has the model, the follow rule and the metrics).
+//
+//   model: hybrid
+//   name: "long axis carrying a hexapod"                 # optional
+//   serial:
+//     code: "1"              # coordinate code; variable elements must be translations 1, 2, 3;
+//                            # constants "k:v" (m for 1..3, DEGREES for rotations 4..6)
+//     axes: [X]              # optional names, one per variable element
+//     range: [[-1.0, 1.0]]   # [min, max] per axis (m), required
+//     stiffness: [2.0e8]     # optional, N/m per axis (0 = rigid; absent: all rigid)
+//     error: [5.0e-6]        # optional, m per axis (absent: 0)
+//   parallel:
+//     file: hexapod.yaml     # the module's machine file, relative to this file
+//     home: [0, 0, 0.9]      # module-local reference point h of the follow rule (m), required
+//
+// Strict like the other readers: unknown keys, counts that differ from the number of axes,
+// min > max, variable rotary axes, linearly dependent axes, a module file that is missing, is
+// itself serial or hybrid, or has revolute drives (a delta) all throw InputError naming file, line,
+// column and key (exit 2).
+//
+// Example:
+//   YamlValue root = YamlValue::load_file("examples/hybrid_long_axis_hexapod.yaml");
+//   std::unique_ptr<Machine> machine = load_hybrid_machine(root);
+#pragma once
+
+#include <memory>
+
+#include "io/yaml_reader.hpp"
+#include "models/hybrid_machine.hpp"
+
+namespace pkmopt {
+
+/// The design of a `model: hybrid` map; module file paths are relative to root.file().
+HybridDesign read_hybrid_design(const YamlValue& root);
+/// The machine of a `model: hybrid` map.
+std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
+
+}  // namespace pkmopt

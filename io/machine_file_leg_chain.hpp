@@ -1,0 +1,45 @@
+// Machine files (YAML) of the leg-chain models: delta, linear_delta, hexaglide, tripod_3prs,
+// and the generic form `model: leg_chain` (any mobility, an explicit list of legs).
+//
+// Strict like the hexapod reader (io/machine_file.hpp): unknown keys, missing required keys,
+// wrong counts, non-finite numbers and impossible values throw InputError naming file, line,
+// column and key. Angles are in degrees in the files (drive ranges, joint limits, inclinations,
+// the delta's actuator_error_deg). docs/machines.md lists every key with its unit.
+//
+//   model: delta
+//   base_radius: 0.164          # m
+//   platform_radius: 0.044      # m
+//   upper_arm: 0.524            # m
+//   rod: 1.244                  # m
+//   drive_range_deg: [-60, 100]
+//   rods: {E: 7.0e10, area: 5.0e-5}   # per rod (2 per parallelogram), or {axial_stiffness: N/m}
+//
+// Example:
+//   YamlValue root = YamlValue::load_file("examples/delta.yaml");
+//   std::unique_ptr<Machine> m = load_leg_chain_machine(root, "delta");  // nullptr: not ours
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "io/yaml_reader.hpp"
+#include "models/leg_chain.hpp"
+
+namespace pkmopt {
+
+DeltaDesign read_delta_design(const YamlValue& root);
+LinearDeltaDesign read_linear_delta_design(const YamlValue& root);
+HexaglideDesign read_hexaglide_design(const YamlValue& root);
+Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root);
+/// The generic form `model: leg_chain` (mobility, rotation_axis, tool, legs list; see
+/// docs/machines.md).
+LegChainDesign read_leg_chain_design(const YamlValue& root);
+
+/// The machine of a leg-chain model file (`model` is the value of `model:`); nullptr when the
+/// model is not a leg-chain model. Throws InputError.
+std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std::string& model);
+
+/// The leg-chain model names this reader knows, for messages ("delta, linear_delta, ...").
+const char* leg_chain_model_names();
+
+}  // namespace pkmopt

@@ -1,0 +1,221 @@
+#include "io/yaml_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace pkmopt {
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + names[i];
+  return out;
+}
+
+bool parse_double(const std::string& text, double& value) {
+  if (text.empty()) return false;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  value = std::strtod(begin, &end);
+  // "inf" and "nan" parse here and are rejected by the callers' finiteness checks.
+  return end != begin && *end == '\0';
+}
+
+}  // namespace
+
+YamlValue YamlValue::load_file(const std::string& path) {
+  return load_string(read_input_file(path), path);
+}
+
+YamlValue YamlValue::load_string(const std::string& text, const std::string& file) {
+  auto file_name = std::make_shared<const std::string>(file);
+  YAML::Node node;
+  try {
+    node = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}malformed YAML: {}",
+                                 location_prefix(file, e.mark.line + 1, e.mark.column + 1), e.msg));
+  }
+  YamlValue root(node, file_name, "");
+  if (root.line_ == 0) root.set_location(1, 1);
+  return root;
+}
+
+YamlValue::YamlValue(YAML::Node node, std::shared_ptr<const std::string> file, std::string path)
+    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {
+  if (node_ && node_.Mark().line >= 0) {
+    line_ = node_.Mark().line + 1;
+    column_ = node_.Mark().column + 1;
+  }
+}
+
+int YamlValue::line() const { return line_; }
+int YamlValue::column() const { return column_; }
+
+std::string YamlValue::child_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+YamlValue YamlValue::child(const YAML::Node& node, const std::string& path) const {
+  YamlValue v(node, file_, path);
+  if (v.line_ == 0) v.set_location(line_, column_);
+  return v;
+}
+
+std::string YamlValue::describe() const {
+  if (!node_ || node_.IsNull()) return "nothing (null)";
+  if (node_.IsScalar()) return quote_found(node_.Scalar());
+  if (node_.IsSequence()) return fmt::format("a list of {}", node_.size());
+  if (node_.IsMap()) return "a map";
+  return "an unknown YAML node";
+}
+
+void YamlValue::fail(std::string_view expected, std::string_view found) const {
+  throw InputError(fmt::format("{}{}expected {}, found {}", location_prefix(*file_, line_, column_),
+                               path_.empty() ? "" : path_ + ": ", expected, found));
+}
+
+void YamlValue::fail(std::string_view message) const {
+  throw InputError(fmt::format("{}{}{}", location_prefix(*file_, line_, column_),
+                               path_.empty() ? "" : path_ + ": ", message));
+}
+
+void YamlValue::expect_map() const {
+  if (!node_.IsMap()) fail("a map of keys", describe());
+}
+
+void YamlValue::check_keys(std::initializer_list<std::string_view> allowed) const {
+  std::vector<std::string> names;
+  for (auto a : allowed) names.emplace_back(a);
+  check_keys(names);
+}
+
+void YamlValue::check_keys(const std::vector<std::string>& allowed) const {
+  expect_map();
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    bool known = false;
+    for (const auto& a : allowed) known = known || a == key;
+    if (!known) {
+      YamlValue key_value(it->first, file_, child_path(key));
+      key_value.fail(fmt::format("unknown key '{}'; allowed keys here: {}", key, join(allowed)));
+    }
+  }
+  // Duplicate keys: yaml-cpp keeps both; reject them.
+  std::vector<std::string> seen;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.Scalar();
+    for (const auto& s : seen) {
+      if (s == key) {
+        YamlValue key_value(it->first, file_, child_path(key));
+        key_value.fail(fmt::format("duplicate key '{}'", key));
+      }
+    }
+    seen.push_back(key);
+  }
+}
+
+bool YamlValue::has(std::string_view key) const {
+  if (!node_.IsMap()) return false;
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (it->first.Scalar() == key) return true;
+  }
+  return false;
+}
+
+YamlValue YamlValue::required(std::string_view key) const {
+  expect_map();
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (it->first.Scalar() == key) {
+      YamlValue v = child(it->second, child_path(key));
+      if (it->second.IsNull()) {
+        v.set_location(it->first.Mark().line + 1, it->first.Mark().column + 1);
+      }
+      return v;
+    }
+  }
+  fail(fmt::format("missing required key '{}'", key));
+}
+
+std::optional<YamlValue> YamlValue::optional(std::string_view key) const {
+  if (!has(key)) return std::nullopt;
+  return required(key);
+}
+
+std::vector<std::string> YamlValue::keys() const {
+  expect_map();
+  std::vector<std::string> out;
+  for (auto it = node_.begin(); it != node_.end(); ++it) out.push_back(it->first.Scalar());
+  return out;
+}
+
+std::vector<YamlValue> YamlValue::elements(int count) const {
+  if (!node_.IsSequence()) {
+    fail(count >= 0 ? fmt::format("a list of {}", count) : std::string("a list"), describe());
+  }
+  if (count >= 0 && static_cast<int>(node_.size()) != count) {
+    fail(fmt::format("a list of {}", count), describe());
+  }
+  std::vector<YamlValue> out;
+  for (std::size_t i = 0; i < node_.size(); ++i) {
+    out.push_back(child(node_[i], fmt::format("{}[{}]", path_, i)));
+  }
+  return out;
+}
+
+double YamlValue::as_double() const {
+  if (!node_.IsScalar()) fail("a finite number", describe());
+  double value = 0.0;
+  if (!parse_double(node_.Scalar(), value)) fail("a finite number", describe());
+  if (!std::isfinite(value)) fail("a finite number", describe());
+  return value;
+}
+
+double YamlValue::as_positive() const {
+  const double v = as_double();
+  if (!(v > 0.0)) fail("a number > 0", describe());
+  return v;
+}
+
+double YamlValue::as_non_negative() const {
+  const double v = as_double();
+  if (!(v >= 0.0)) fail("a number >= 0", describe());
+  return v;
+}
+
+long long YamlValue::as_int() const {
+  if (!node_.IsScalar()) fail("an integer", describe());
+  const std::string& text = node_.Scalar();
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno == ERANGE) fail("an integer", describe());
+  return value;
+}
+
+bool YamlValue::as_bool() const {
+  if (node_.IsScalar()) {
+    const std::string& t = node_.Scalar();
+    if (t == "true" || t == "True" || t == "TRUE") return true;
+    if (t == "false" || t == "False" || t == "FALSE") return false;
+  }
+  fail("true or false", describe());
+}
+
+std::string YamlValue::as_string() const {
+  if (!node_.IsScalar()) fail("a string", describe());
+  return node_.Scalar();
+}
+
+std::vector<double> YamlValue::as_doubles(int count) const {
+  std::vector<double> out;
+  for (const auto& e : elements(count)) out.push_back(e.as_double());
+  return out;
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,338 @@
+#include "report/workspace_export.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "io/csv.hpp"
+#include "report/raster_image.hpp"
+
+namespace pkmopt {
+namespace {
+
+using raster::hex;
+using raster::kGlyphHeight;
+using raster::kInk;
+using raster::kWhite;
+using raster::nice_ticks;
+using raster::Rgb;
+using raster::RgbImage;
+using raster::viridis;
+
+constexpr Rgb kOutsideColour{225, 225, 225};
+constexpr Rgb kInfiniteColour{0, 0, 0};
+
+std::string short_number(double v) { return fmt::format("{:.3g}", v); }
+
+char axis_name(char normal, int which) {
+  // In-plane axes u, v in the order used by compute_workspace_slice.
+  if (normal == 'x') return which == 0 ? 'y' : 'z';
+  if (normal == 'y') return which == 0 ? 'x' : 'z';
+  return which == 0 ? 'x' : 'y';
+}
+
+// Geometry shared by the SVG and the PNG picture (screen pixels, y down).
+struct SliceLayout {
+  int scale = 1;  // screen pixels per slice pixel
+  int left = 90, top = 50, plot_width = 0, plot_height = 0;
+  int bar_left = 0, bar_width = 22;
+  int width = 0, height = 0;
+  double low = 0.0, high = 0.0;  // colour range
+  bool has_values = false;
+  std::vector<double> ticks_u, ticks_v, ticks_bar;
+  std::string title, label_u, label_v;
+
+  double screen_x(const WorkspaceSlice& s, double u) const {
+    return left + scale * ((u - s.origin(0)) / s.pixel + 0.5);
+  }
+  double screen_y(const WorkspaceSlice& s, double v) const {
+    return top + plot_height - scale * ((v - s.origin(1)) / s.pixel + 0.5);
+  }
+  double bar_y(double value) const {
+    const double t = high > low ? (value - low) / (high - low) : 0.5;
+    return top + plot_height * (1.0 - t);
+  }
+};
+
+SliceLayout make_layout(const WorkspaceSlice& slice, SliceMetric metric) {
+  SliceLayout layout;
+  layout.scale = std::max(1, 640 / std::max(slice.width, slice.height));
+  layout.plot_width = slice.width * layout.scale;
+  layout.plot_height = slice.height * layout.scale;
+  layout.bar_left = layout.left + layout.plot_width + 30;
+  layout.width = layout.bar_left + layout.bar_width + 100;
+  layout.height = layout.top + layout.plot_height + 60;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (std::size_t p = 0; p < slice.inside.size(); ++p) {
+    if (!slice.inside[p]) continue;
+    const double v = slice_metric_value(slice.metrics[p], metric);
+    if (!std::isfinite(v)) continue;
+    low = std::min(low, v);
+    high = std::max(high, v);
+  }
+  layout.has_values = low <= high;
+  layout.low = layout.has_values ? low : 0.0;
+  layout.high = layout.has_values ? high : 1.0;
+  const double pad = 0.5 * slice.pixel;
+  const double u0 = slice.origin(0) - pad,
+               u1 = slice.origin(0) + (slice.width - 1) * slice.pixel + pad;
+  const double v0 = slice.origin(1) - pad,
+               v1 = slice.origin(1) + (slice.height - 1) * slice.pixel + pad;
+  for (double t : nice_ticks(1e3 * u0, 1e3 * u1, 6)) layout.ticks_u.push_back(t / 1e3);
+  for (double t : nice_ticks(1e3 * v0, 1e3 * v1, 6)) layout.ticks_v.push_back(t / 1e3);
+  layout.ticks_bar = layout.high > layout.low ? nice_ticks(layout.low, layout.high, 5)
+                                              : std::vector<double>{layout.low};
+  layout.title = fmt::format("{}, {} = {} mm", slice_metric_label(metric), slice.normal_axis,
+                             short_number(1e3 * slice.offset));
+  layout.label_u = fmt::format("{} [mm]", axis_name(slice.normal_axis, 0));
+  layout.label_v = fmt::format("{} [mm]", axis_name(slice.normal_axis, 1));
+  return layout;
+}
+
+Rgb pixel_colour(const WorkspaceSlice& slice, const SliceLayout& layout, SliceMetric metric,
+                 std::size_t p) {
+  if (!slice.inside[p]) return kOutsideColour;
+  const double v = slice_metric_value(slice.metrics[p], metric);
+  if (!std::isfinite(v)) return kInfiniteColour;
+  const double t = layout.high > layout.low ? (v - layout.low) / (layout.high - layout.low) : 0.5;
+  // 64 colour levels, as in the colour bar (and long runs of equal colour in the SVG).
+  return viridis((std::min(63.0, std::floor(64.0 * t)) + 0.5) / 64.0);
+}
+
+void append_float(std::string& out, float value) {
+  char bytes[4];
+  std::memcpy(bytes, &value, 4);  // STL is little-endian, as is every target we build for
+  out.append(bytes, 4);
+}
+
+}  // namespace
+
+std::optional<SliceMetric> parse_slice_metric(std::string_view name) {
+  if (name == "singularity_margin") return SliceMetric::kSingularityMargin;
+  if (name == "stiffness_min") return SliceMetric::kStiffnessMin;
+  if (name == "max_leg_force") return SliceMetric::kMaxLegForce;
+  if (name == "tcp_error_max") return SliceMetric::kTcpErrorMax;
+  return std::nullopt;
+}
+
+std::string slice_metric_name(SliceMetric metric) {
+  switch (metric) {
+    case SliceMetric::kSingularityMargin:
+      return "singularity_margin";
+    case SliceMetric::kStiffnessMin:
+      return "stiffness_min";
+    case SliceMetric::kMaxLegForce:
+      return "max_leg_force";
+    case SliceMetric::kTcpErrorMax:
+      return "tcp_error_max";
+  }
+  return "";
+}
+
+std::string slice_metric_label(SliceMetric metric) {
+  switch (metric) {
+    case SliceMetric::kSingularityMargin:
+      return "singularity_margin";
+    case SliceMetric::kStiffnessMin:
+      return "stiffness_min [N/m]";
+    case SliceMetric::kMaxLegForce:
+      return "max_leg_force [N]";
+    case SliceMetric::kTcpErrorMax:
+      return "tcp_error_max [m]";
+  }
+  return "";
+}
+
+double slice_metric_value(const WorkspacePointMetrics& m, SliceMetric metric) {
+  switch (metric) {
+    case SliceMetric::kSingularityMargin:
+      return m.singularity_margin;
+    case SliceMetric::kStiffnessMin:
+      return m.stiffness_min;
+    case SliceMetric::kMaxLegForce:
+      return m.max_leg_force;
+    case SliceMetric::kTcpErrorMax:
+      return m.tcp_error_max;
+  }
+  return 0.0;
+}
+
+std::string boundary_ply(const TriangleMesh& mesh) {
+  std::string out = fmt::format(
+      "ply\nformat ascii 1.0\ncomment pkmopt workspace boundary, metres, outward normals\n"
+      "element vertex {}\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+      mesh.vertices.size(), mesh.triangles.size());
+  for (const auto& v : mesh.vertices) {
+    out += format_number(v.x()) + ' ' + format_number(v.y()) + ' ' + format_number(v.z()) + '\n';
+  }
+  for (const auto& t : mesh.triangles) out += fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
+  return out;
+}
+
+std::string boundary_stl(const TriangleMesh& mesh) {
+  std::string out(80, ' ');
+  const std::string header = "pkmopt workspace boundary (metres, outward normals)";
+  out.replace(0, header.size(), header);
+  const auto count = static_cast<std::uint32_t>(mesh.triangles.size());
+  char count_bytes[4];
+  std::memcpy(count_bytes, &count, 4);
+  out.append(count_bytes, 4);
+  out.reserve(out.size() + 50 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(t[1])];
+    const Eigen::Vector3d& c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    Eigen::Vector3d outward = (b - a).cross(c - a);
+    if (outward.norm() > 0.0) outward.normalize();
+    const Eigen::Vector3d& normal = outward;
+    for (const Eigen::Vector3d* v : {&normal, &a, &b, &c}) {
+      for (int k = 0; k < 3; ++k) append_float(out, static_cast<float>((*v)(k)));
+    }
+    out.append(2, '\0');
+  }
+  return out;
+}
+
+std::string point_cloud_csv(const std::vector<WorkspacePoint>& points) {
+  std::string out = "x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max\n";
+  for (const auto& p : points) {
+    for (int k = 0; k < 3; ++k) out += format_number(p.position(k)) + ',';
+    out += format_number(p.metrics.singularity_margin) + ',' +
+           format_number(p.metrics.stiffness_min) + ',' + format_number(p.metrics.max_leg_force) +
+           ',' + format_number(p.metrics.tcp_error_max) + '\n';
+  }
+  return out;
+}
+
+std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric) {
+  const SliceLayout L = make_layout(slice, metric);
+  std::string out = fmt::format(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
+      "viewBox=\"0 0 {0} {1}\" font-family=\"sans-serif\" font-size=\"13\">\n"
+      "<rect width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
+      L.width, L.height);
+  out += fmt::format("<text x=\"{}\" y=\"{}\" font-size=\"15\">{}</text>\n", L.left, L.top - 22,
+                     L.title);
+  // Pixels, as runs of equal colour along each row.
+  out += "<g shape-rendering=\"crispEdges\">\n";
+  for (int j = 0; j < slice.height; ++j) {
+    const int y = L.top + (slice.height - 1 - j) * L.scale;
+    int i = 0;
+    while (i < slice.width) {
+      const Rgb c = pixel_colour(slice, L, metric, static_cast<std::size_t>(j) * slice.width + i);
+      int run = 1;
+      while (i + run < slice.width) {
+        const Rgb d =
+            pixel_colour(slice, L, metric, static_cast<std::size_t>(j) * slice.width + i + run);
+        if (d.r != c.r || d.g != c.g || d.b != c.b) break;
+        ++run;
+      }
+      out += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\"/>\n",
+                         L.left + i * L.scale, y, run * L.scale, L.scale, hex(c));
+      i += run;
+    }
+  }
+  out += "</g>\n";
+  out += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#141414\"/>\n",
+      L.left, L.top, L.plot_width, L.plot_height);
+  const int bottom = L.top + L.plot_height;
+  for (double u : L.ticks_u) {
+    const double x = L.screen_x(slice, u);
+    out += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#141414\"/>\n"
+        "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>\n",
+        x, bottom, bottom + 6, bottom + 20, fmt::format("{:g}", 1e3 * u));
+  }
+  for (double v : L.ticks_v) {
+    const double y = L.screen_y(slice, v);
+    out += fmt::format(
+        "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#141414\"/>\n"
+        "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
+        L.left - 6, y, L.left, L.left - 9, y + 4, fmt::format("{:g}", 1e3 * v));
+  }
+  out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
+                     L.left + L.plot_width / 2, bottom + 42, L.label_u);
+  out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", L.left - 9,
+                     L.top - 6, L.label_v);
+  // Colour bar: 64 bands, low at the bottom.
+  const int bands = 64;
+  for (int b = 0; b < bands; ++b) {
+    const double y0 = L.top + L.plot_height * (1.0 - (b + 1.0) / bands);
+    out +=
+        fmt::format("<rect x=\"{}\" y=\"{:.2f}\" width=\"{}\" height=\"{:.2f}\" fill=\"{}\"/>\n",
+                    L.bar_left, y0, L.bar_width, L.plot_height / static_cast<double>(bands) + 0.5,
+                    hex(viridis((b + 0.5) / bands)));
+  }
+  out += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#141414\"/>\n",
+      L.bar_left, L.top, L.bar_width, L.plot_height);
+  if (L.has_values) {
+    for (double t : L.ticks_bar) {
+      const double y = L.bar_y(t);
+      out += fmt::format(
+          "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#141414\"/>\n"
+          "<text x=\"{3}\" y=\"{4:.1f}\">{5}</text>\n",
+          L.bar_left + L.bar_width, y, L.bar_left + L.bar_width + 5, L.bar_left + L.bar_width + 8,
+          y + 4, short_number(t));
+    }
+  } else {
+    out += fmt::format("<text x=\"{}\" y=\"{}\">no workspace</text>\n", L.bar_left,
+                       L.top + L.plot_height / 2);
+  }
+  out += "</svg>\n";
+  return out;
+}
+
+std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric) {
+  const SliceLayout L = make_layout(slice, metric);
+  RgbImage image(L.width, L.height, kWhite);
+  for (int j = 0; j < slice.height; ++j) {
+    for (int i = 0; i < slice.width; ++i) {
+      const Rgb c = pixel_colour(slice, L, metric, static_cast<std::size_t>(j) * slice.width + i);
+      const int x = L.left + i * L.scale, y = L.top + (slice.height - 1 - j) * L.scale;
+      image.fill(x, y, x + L.scale, y + L.scale, c);
+    }
+  }
+  image.frame(L.left - 1, L.top - 1, L.left + L.plot_width + 1, L.top + L.plot_height + 1, kInk);
+  image.text(L.left, L.top - 22 - kGlyphHeight / 2, L.title, kInk);
+  const int bottom = L.top + L.plot_height;
+  for (double u : L.ticks_u) {
+    const int x = static_cast<int>(std::lround(L.screen_x(slice, u)));
+    image.fill(x, bottom, x + 1, bottom + 6, kInk);
+    const std::string label = fmt::format("{:g}", 1e3 * u);
+    image.text(x - image.text_width(label) / 2, bottom + 9, label, kInk);
+  }
+  for (double v : L.ticks_v) {
+    const int y = static_cast<int>(std::lround(L.screen_y(slice, v)));
+    image.fill(L.left - 6, y, L.left, y + 1, kInk);
+    const std::string label = fmt::format("{:g}", 1e3 * v);
+    image.text(L.left - 9 - image.text_width(label), y - kGlyphHeight / 2, label, kInk);
+  }
+  image.text(L.left + L.plot_width / 2 - image.text_width(L.label_u) / 2, bottom + 30, L.label_u,
+             kInk);
+  image.text(L.left - 9 - image.text_width(L.label_v), L.top - 6 - kGlyphHeight, L.label_v, kInk);
+  for (int y = L.top; y < bottom; ++y) {
+    const double t = 1.0 - (y - L.top + 0.5) / L.plot_height;
+    image.fill(L.bar_left, y, L.bar_left + L.bar_width, y + 1, viridis(t));
+  }
+  image.frame(L.bar_left - 1, L.top - 1, L.bar_left + L.bar_width + 1, bottom + 1, kInk);
+  if (L.has_values) {
+    for (double t : L.ticks_bar) {
+      const int y = static_cast<int>(std::lround(L.bar_y(t)));
+      image.fill(L.bar_left + L.bar_width, y, L.bar_left + L.bar_width + 5, y + 1, kInk);
+      image.text(L.bar_left + L.bar_width + 8, y - kGlyphHeight / 2, short_number(t), kInk);
+    }
+  }
+  return image.encode_png();
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,71 @@
+// Study files for `pkmopt run`: which problem, which optimizer, and the result files.
+//
+// A study file (YAML, strict: unknown keys are errors with file, line and column):
+//   study: zdt1-nsga2                                  # name, required
+//   description: "..."                                 # optional
+//   problem: {benchmark: zdt1, variables: 30}          # required; see read_benchmark_problem
+//   optimizer: {algorithm: nsga2, population: 100, generations: 250, seed: 1}   # required
+//   indicators: {reference_point: [1.1, 1.1]}          # optional hypervolume reference point
+//
+// Design studies (studies/design_study.hpp) share the optimizer section and its runner
+// (studies/optimizer_spec.hpp); write_run_outputs writes DIR/pareto.csv and DIR/summary.json.
+//
+// pareto.csv: one row per feasible non-dominated design, columns x_1..x_n, f_1..f_m (the
+// problem's variables and objectives in its own units and sign). summary.json: study, problem,
+// algorithm, status, message, evaluations, gradient_evaluations, points, hypervolume,
+// reference_point, igd_plus (when an analytic front is known), time_seconds, seed, threads,
+// subproblems, failed_subproblems, dominated_subproblems, knee_point (row index, 0-based) and
+// pkmopt version. For single-objective algorithms (ipopt, nlopt:NAME) hypervolume,
+// reference_point and igd_plus are null and `objective` and `constraint_violation` are given.
+//
+// Example:
+//   BenchmarkStudy study = load_benchmark_study("studies/library/zdt1-nsga2.yaml");
+//   RunOutcome outcome = run_optimizer(*study.problem, study.optimizer, /*threads=*/0);
+//   write_run_outputs("out", study.name, *study.problem, study.optimizer, outcome, 0,
+//                     study.reference_point, study.problem->reference_front(1000));
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/yaml_reader.hpp"
+#include "problems/benchmarks.hpp"
+#include "studies/optimizer_spec.hpp"
+
+namespace pkmopt {
+
+/// A study whose problem is a benchmark.
+struct BenchmarkStudy {
+  std::string name;
+  std::unique_ptr<BenchmarkProblem> problem;
+  OptimizerSpec optimizer;
+  std::vector<double> reference_point;  ///< empty: chosen by write_run_outputs
+  /// The study with every optimizer default filled in (study.resolved.yaml; a valid study file).
+  std::string resolved_yaml;
+};
+
+/// The `problem:` section of benchmark kind: keys benchmark (name), variables, objectives.
+std::unique_ptr<BenchmarkProblem> read_benchmark_problem(const YamlValue& problem_section);
+
+/// The optional `indicators:` section: reference_point with one value per objective.
+std::vector<double> read_indicators_section(const YamlValue& indicators_section,
+                                            std::size_t num_objectives);
+
+/// Loads a whole benchmark study file (throws InputError for bad input).
+BenchmarkStudy load_benchmark_study(const std::string& path);
+
+/// Writes DIR/pareto.csv and DIR/summary.json (creating DIR), each atomically; the keys of
+/// `extra_summary` are added to summary.json.
+/// `reference_point` empty: nadir + 10% of the range of `reference_front` if given, else of
+/// the front found. `reference_front` may be empty (no IGD+ then).
+void write_run_outputs(const std::string& directory, const std::string& study_name,
+                       const Problem& problem, const OptimizerSpec& spec, const RunOutcome& outcome,
+                       int threads, const std::vector<double>& reference_point,
+                       const ObjectiveSet& reference_front,
+                       const nlohmann::json& extra_summary = nlohmann::json::object());
+
+}  // namespace pkmopt

@@ -1,0 +1,149 @@
+// Design study files for `pkmopt run`: a machine with free parameters, a task, objectives,
+// constraints, an optimizer and output options -> a HexapodDesignProblem, its Pareto front and
+// the result folder. A study file is a design study when it has a `machine:` key.
+//
+//   study: hexapod-quick                      # name, required
+//   description: "..."                        # optional
+//   machine:
+//     model: hexapod                          # hexapod, delta, linear_delta or hexaglide
+//     parameters:                             # every key optional; a number = fixed,
+//       base_radius: {min: 0.45, max: 0.75}   #   {min, max} = free (m; *_deg in degrees)
+//       platform_radius: 0.25
+//       base_pair_separation_deg: 20
+//       platform_pair_separation_deg: {min: 10, max: 40}
+//       min_length: 0.70
+//       stroke: 0.45
+//       home_height: 0.0                      # lifts the task region along z (m)
+//     legs: {E: 2.1e11, area: 3.0e-4, actuator_stiffness: 2.0e8}   # or {axial_stiffness: k}
+//     joints: {base_max_angle_deg: 45, platform_max_angle_deg: 45} # optional
+//     tool: {tcp: [0, 0, -0.10]}                                    # optional
+//     actuator_error: 1.0e-5                                        # optional (m)
+//   task:
+//     region: {shape: box, centre: [0, 0, 0.9], size: [0.3, 0.3, 0.2], points: [3, 3, 3]}
+//          #  {shape: cylinder, centre: [...], radius: r, height: h, rings: 2, per_ring: 6,
+//          #   layers: 3}
+//     orientations: {tilt_deg: 20, yaw_deg: 0, step_deg: 10}         # optional
+//     wrench: [fx, fy, fz, mx, my, mz]                                # N, N*m; optional
+//     workspace: {resolution: 0.05, tilt_deg: 0, yaw_deg: 0, step_deg: 5}  # optional
+//   objectives:                               # list, at least one
+//     - maximize: stiffness_min
+//     - minimize: machine_size
+//   constraints:                              # optional list
+//     - {metric: leg_force_max, max: 10500}   # metric <= 10500
+//     - {metric: singularity_margin, min: 0.05}
+//     - task_reachable
+//   optimizer: {algorithm: nsga2, population: 24, generations: 20, seed: 1}
+//   output: {designs: true}                   # optional: write designs/<id>.yaml
+//
+// nsga2 uses the aggregate (derivative-free) formulation; every other algorithm the smooth one
+// (see problems/hexapod_design.hpp).
+//
+// Leg-chain models (delta, linear_delta, hexaglide) load into a MachineDesignProblem
+// (problems/machine_design.hpp): `parameters:` takes the family's parameters (number = fixed,
+// {min, max} = free), and every other key of the model's machine file
+// (io/machine_file_leg_chain.hpp) may follow except the keys the parameters set:
+//   machine:
+//     model: linear_delta
+//     parameters: {guide_radius: {min: 0.3, max: 0.6}, rod: {min: 0.5, max: 1.0}, stroke: 0.6,
+//                  platform_radius: 0.05, inclination_deg: 0, home_height: 0}
+//     rods: {E: 7.0e10, area: 3.0e-5}
+//     carriage_stiffness: 2.0e7
+//     joints: {carriage_max_angle_deg: 40, platform_max_angle_deg: 40}
+// They take nsga2 or a derivative-free nlopt algorithm (aggregate formulation only); actuator
+// catalog constraints are hexapod-only; translational platforms (delta, linear_delta) need a
+// task without tilt or yaw.
+//
+// Outputs in DIR (docs/design-studies.md lists every column and unit): study.resolved.yaml
+// (this schema with every default filled in; it loads to the same problem), journal.txt and
+// evaluations.csv (every evaluation as it happens, studies/journal.hpp), pareto.csv and
+// pareto.json (the front; pareto.json follows the pkmopt-pareto-1 format), summary.json, and
+// designs/<id>.yaml (machine files for `pkmopt analyze` and `pkmopt workspace`).
+//
+// Example:
+//   DesignStudy study = load_design_study("studies/library/hexapod-quick.yaml");
+//   JournalOptions journal = design_journal_options(study);
+//   journal.directory = "out";
+//   journal.study_hash = study_hash(study.resolved_yaml);
+//   JournaledProblem journaled(study.optimization_problem(), journal);
+//   RunOutcome outcome = run_optimizer(journaled, study.optimizer, 0);
+//   write_design_outputs("out", study, outcome, {.threads = 0});
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "studies/optimizer_spec.hpp"
+#include "studies/journal.hpp"
+#include "problems/hexapod_design.hpp"
+#include "problems/machine_design.hpp"
+
+namespace pkmopt {
+
+/// One design parameter of a study in file units (m; degrees for *_deg).
+struct StudyParameter {
+  std::string name;
+  std::string unit;  ///< "m" or "deg"
+  double min = 0.0;
+  double max = 0.0;  ///< == min when the parameter is fixed
+  bool free() const { return min < max; }
+};
+
+struct DesignStudy {
+  std::string name;
+  std::string description;
+  /// The machine model: "hexapod" (problem) or a leg-chain model (machine_problem).
+  std::string model = "hexapod";
+  std::unique_ptr<HexapodDesignProblem> problem;          ///< model hexapod, else null
+  std::unique_ptr<MachineDesignProblem> machine_problem;  ///< leg-chain models, else null
+  OptimizerSpec optimizer;
+  bool write_designs = true;
+  /// Each parameter's [min, max] in file units (m, degrees for *_deg); min == max when fixed.
+  std::array<std::pair<double, double>, kNumDesignParameters> parameter_ranges{};
+  std::array<double, 3> task_centre{};  ///< m, before the home_height lift
+  double task_tilt_deg = 0.0;
+  double task_yaw_deg = 0.0;
+  std::size_t task_positions = 0;  ///< positions of the region (times orientations = poses)
+  /// study.resolved.yaml: the study with every default filled in (a valid study file).
+  std::string resolved_yaml;
+  /// Every parameter of the model in problem order (the free ones are the variables, in order).
+  std::vector<StudyParameter> parameters;
+
+  /// The problem the optimizer runs (whichever of problem / machine_problem is set).
+  const Problem& optimization_problem() const;
+  const std::vector<DesignObjective>& objectives() const;
+  const std::vector<DesignConstraint>& constraints() const;
+  bool require_reachable() const;
+  const DesignTask& task() const;
+  /// True for the aggregate (derivative-free) formulation.
+  bool aggregate() const;
+};
+
+/// True when the file's root map has a `machine:` key (throws InputError for a bad file).
+bool is_design_study_file(const std::string& path);
+
+/// Loads and validates a design study (throws InputError naming file, line, column and key).
+DesignStudy load_design_study(const std::string& path);
+
+/// The unit of a metric in outputs ("N/m", "m^3", "" for the dimensionless ones).
+std::string_view design_metric_unit(DesignMetric metric);
+
+/// Journal options for a design study: the evaluator with failure reasons and the
+/// evaluations.csv header and rows (directory, hash and progress are left to the caller).
+JournalOptions design_journal_options(const DesignStudy& study);
+
+/// Extra facts for summary.json.
+struct DesignRunFacts {
+  int threads = 0;
+  double wall_seconds = 0.0;
+  bool resumed = false;
+  const JournaledProblem* journal = nullptr;  ///< evaluation counts (may be null)
+};
+
+/// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`.
+void write_design_outputs(const std::string& directory, const DesignStudy& study,
+                          const RunOutcome& outcome, const DesignRunFacts& facts);
+
+}  // namespace pkmopt

@@ -1,0 +1,390 @@
+#include "studies/journal.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/input_error.hpp"
+#include "io/output_file.hpp"
+#include "optimizer/indicators.hpp"
+
+namespace pkmopt {
+namespace {
+
+constexpr std::string_view kJournalMagic = "pkmopt-journal 1";
+
+std::string key_of(const std::vector<double>& x) {
+  return std::string(reinterpret_cast<const char*>(x.data()), x.size() * sizeof(double));
+}
+
+std::string hex(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%a", value);
+  return buffer;
+}
+
+std::string header_line(std::uint64_t hash, std::size_t n, std::size_t m) {
+  return fmt::format("{} {:016x} {} {}\n", kJournalMagic, hash, n, m);
+}
+
+void write_all(int fd, const std::string& text, const std::string& what) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t written = ::write(fd, text.data() + done, text.size() - done);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(fmt::format("{}: write failed: {}", what, std::strerror(errno)));
+    }
+    done += static_cast<std::size_t>(written);
+  }
+}
+
+int open_append(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0)
+    throw InputError(fmt::format("{}: cannot open for appending: {}", path, std::strerror(errno)));
+  return fd;
+}
+
+bool is_feasible(const Problem& problem, const JournalEntry& entry) {
+  if (!entry.note.empty()) return false;
+  for (std::size_t i = 0; i < problem.num_objectives(); ++i)
+    if (!std::isfinite(entry.fitness[i])) return false;
+  return constraint_violation(problem, entry.fitness, 1e-6, 1e-8) == 0.0;
+}
+
+// Adds a point to a non-dominated set (minimisation).
+void add_non_dominated(std::vector<std::vector<double>>& set, std::vector<double> point) {
+  auto dominates = [](const std::vector<double>& a, const std::vector<double>& b) {
+    bool strictly = false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (a[i] > b[i]) return false;
+      if (a[i] < b[i]) strictly = true;
+    }
+    return strictly;
+  };
+  for (const auto& s : set)
+    if (dominates(s, point) || s == point) return;
+  std::erase_if(set, [&](const std::vector<double>& s) { return dominates(point, s); });
+  set.push_back(std::move(point));
+}
+
+std::string clock_text(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "?";
+  const long long s = std::llround(seconds);
+  if (s >= 3600) return fmt::format("{}h{:02}m{:02}s", s / 3600, s / 60 % 60, s % 60);
+  if (s >= 60) return fmt::format("{}m{:02}s", s / 60, s % 60);
+  return fmt::format("{}s", s);
+}
+
+}  // namespace
+
+std::uint64_t study_hash(std::string_view text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : text) {
+    hash ^= c;
+    hash *= 1099511628211ull;
+  }
+  return hash;
+}
+
+std::string journal_line(const JournalEntry& entry) {
+  std::string line;
+  for (double v : entry.x) line += (line.empty() ? "" : " ") + hex(v);
+  for (double v : entry.fitness) line += (line.empty() ? "" : " ") + hex(v);
+  line += '\t';
+  for (char c : entry.note) line += (c == '\t' || c == '\n' || c == '\r') ? ' ' : c;
+  line += '\n';
+  return line;
+}
+
+bool parse_journal_line(std::string_view line, std::size_t num_variables, std::size_t fitness_size,
+                        JournalEntry& entry) {
+  const std::size_t tab = line.find('\t');
+  if (tab == std::string_view::npos) return false;
+  const std::string numbers(line.substr(0, tab));
+  entry.x.clear();
+  entry.fitness.clear();
+  const char* p = numbers.c_str();
+  const char* end = p + numbers.size();
+  std::vector<double> values;
+  while (p < end) {
+    while (p < end && *p == ' ') ++p;
+    if (p >= end) break;
+    char* next = nullptr;
+    const double v = std::strtod(p, &next);
+    if (next == p || (next < end && *next != ' ')) return false;
+    values.push_back(v);
+    p = next;
+  }
+  if (values.size() != num_variables + fitness_size) return false;
+  entry.x.assign(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(num_variables));
+  entry.fitness.assign(values.begin() + static_cast<std::ptrdiff_t>(num_variables), values.end());
+  entry.note = std::string(line.substr(tab + 1));
+  return true;
+}
+
+JournalContents read_journal(const std::string& path) {
+  const std::string text = read_input_file(path);
+  JournalContents contents;
+  const std::size_t first_end = text.find('\n');
+  std::istringstream header(first_end == std::string::npos ? "" : text.substr(0, first_end));
+  std::string magic, version, hash_text;
+  header >> magic >> version >> hash_text >> contents.num_variables >> contents.fitness_size;
+  if (magic + " " + version != kJournalMagic || !header || hash_text.size() != 16)
+    throw InputError(fmt::format(
+        "{}:1: expected a pkmopt journal header '{} HASH N M', found '{}'", path, kJournalMagic,
+        first_end == std::string::npos ? text.substr(0, 60) : text.substr(0, first_end)));
+  contents.study_hash = std::strtoull(hash_text.c_str(), nullptr, 16);
+  std::size_t at = first_end + 1;
+  contents.valid_bytes = at;
+  while (at < text.size()) {
+    const std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) break;  // a line cut by a kill
+    JournalEntry entry;
+    if (!parse_journal_line(std::string_view(text).substr(at, end - at), contents.num_variables,
+                            contents.fitness_size, entry))
+      break;  // a damaged line: everything after it is ignored (and cut off on resume)
+    contents.entries.push_back(std::move(entry));
+    at = end + 1;
+    contents.valid_bytes = at;
+  }
+  return contents;
+}
+
+JournaledProblem::JournaledProblem(const Problem& inner, JournalOptions options)
+    : inner_(inner), options_(std::move(options)) {
+  namespace fs = std::filesystem;
+  const fs::path dir(options_.directory);
+  const std::string journal_path = (dir / "journal.txt").string();
+  const std::string csv_path = (dir / "evaluations.csv").string();
+  const std::size_t n = inner_.num_variables(), m = inner_.fitness_size();
+  if (options_.resume && fs::exists(journal_path)) {
+    JournalContents contents = read_journal(journal_path);
+    if (contents.study_hash != options_.study_hash)
+      throw InputError(fmt::format(
+          "{}: --resume: the journal belongs to another version of the study (study hash {:016x}, "
+          "the study file now gives {:016x}); the study file changed since the run started: "
+          "restore it, or start over with --force",
+          journal_path, contents.study_hash, options_.study_hash));
+    if (contents.num_variables != n || contents.fitness_size != m)
+      throw InputError(
+          fmt::format("{}: --resume: the journal has {} variables and {} fitness "
+                      "values per line, the study {} and {}",
+                      journal_path, contents.num_variables, contents.fitness_size, n, m));
+    fs::resize_file(journal_path, contents.valid_bytes);  // drop a cut last line
+    entries_ = std::move(contents.entries);
+  } else {
+    write_file_atomically(journal_path, header_line(options_.study_hash, n, m));
+  }
+  loaded_ = entries_.size();
+  for (std::size_t k = 0; k < entries_.size(); ++k) {
+    index_.emplace(key_of(entries_[k].x), k);
+    if (!entries_[k].note.empty()) ++failed_;
+    if (is_feasible(inner_, entries_[k]))
+      add_non_dominated(feasible_front_,
+                        std::vector<double>(entries_[k].fitness.begin(),
+                                            entries_[k].fitness.begin() +
+                                                static_cast<std::ptrdiff_t>(num_objectives())));
+  }
+  if (options_.csv_row) {
+    std::string csv = options_.csv_header + "\n";
+    for (std::size_t k = 0; k < entries_.size(); ++k)
+      csv += options_.csv_row(k, entries_[k]) + "\n";
+    write_file_atomically(csv_path, csv);
+    csv_fd_ = open_append(csv_path);
+  }
+  journal_fd_ = open_append(journal_path);
+  terminal_ = ::isatty(STDERR_FILENO) != 0;
+  start_ = last_report_ = std::chrono::steady_clock::now();
+}
+
+JournaledProblem::~JournaledProblem() {
+  if (journal_fd_ >= 0) ::close(journal_fd_);
+  if (csv_fd_ >= 0) ::close(csv_fd_);
+}
+
+const JournalEntry* JournaledProblem::find(const std::vector<double>& x) const {
+  std::lock_guard lock(mutex_);
+  const auto it = index_.find(key_of(x));
+  return it == index_.end() ? nullptr : &entries_[it->second];
+}
+
+long long JournaledProblem::requests() const {
+  std::lock_guard lock(mutex_);
+  return requests_;
+}
+long long JournaledProblem::cache_hits() const {
+  std::lock_guard lock(mutex_);
+  return cache_hits_;
+}
+long long JournaledProblem::failed() const {
+  std::lock_guard lock(mutex_);
+  return failed_;
+}
+
+void JournaledProblem::append(std::span<const JournalEntry> fresh) const {
+  // Called with mutex_ held.
+  std::string journal, csv;
+  for (const JournalEntry& entry : fresh) {
+    const std::size_t k = entries_.size();
+    entries_.push_back(entry);
+    index_.emplace(key_of(entry.x), k);
+    if (!entry.note.empty()) ++failed_;
+    if (is_feasible(inner_, entry))
+      add_non_dominated(feasible_front_,
+                        std::vector<double>(
+                            entry.fitness.begin(),
+                            entry.fitness.begin() + static_cast<std::ptrdiff_t>(num_objectives())));
+    journal += journal_line(entry);
+    if (options_.csv_row) csv += options_.csv_row(k, entry) + "\n";
+  }
+  write_all(journal_fd_, journal, "journal.txt");
+  if (csv_fd_ >= 0) write_all(csv_fd_, csv, "evaluations.csv");
+}
+
+std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::vector<double>> xs,
+                                                         int threads) const {
+  std::vector<std::vector<double>> result(xs.size());
+  std::vector<std::size_t> misses;  // positions in xs of the first request of each new design
+  std::vector<std::ptrdiff_t> source(xs.size(), -1);  // earlier position in xs with the same x
+  {
+    std::lock_guard lock(mutex_);
+    std::unordered_map<std::string, std::size_t> in_batch;
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      ++requests_;
+      const std::string key = key_of(xs[k]);
+      if (const auto it = index_.find(key); it != index_.end()) {
+        result[k] = entries_[it->second].fitness;
+        ++cache_hits_;
+      } else if (const auto b = in_batch.find(key); b != in_batch.end()) {
+        source[k] = static_cast<std::ptrdiff_t>(b->second);
+        ++cache_hits_;
+      } else {
+        in_batch.emplace(key, k);
+        misses.push_back(k);
+      }
+    }
+  }
+  std::vector<JournalEntry> fresh(misses.size());
+  auto evaluate_one = [&](std::size_t i) {
+    const std::vector<double>& x = xs[misses[i]];
+    if (options_.evaluate) {
+      fresh[i] = options_.evaluate(x);
+    } else {
+      fresh[i].fitness = inner_.fitness(x);
+    }
+    fresh[i].x = x;
+  };
+  const int thread_count = resolve_thread_count(threads);
+  if (thread_count <= 1 || inner_.thread_safety() == ThreadSafety::none || misses.size() < 2) {
+    for (std::size_t i = 0; i < misses.size(); ++i) evaluate_one(i);
+  } else {
+    std::exception_ptr first_error;
+    const long long count = static_cast<long long>(misses.size());
+#pragma omp parallel for num_threads(thread_count) schedule(dynamic)
+    for (long long i = 0; i < count; ++i) {
+      try {
+        evaluate_one(static_cast<std::size_t>(i));
+      } catch (...) {
+#pragma omp critical(pkmopt_journal_error)
+        if (!first_error) first_error = std::current_exception();
+      }
+    }
+    if (first_error) std::rethrow_exception(first_error);
+  }
+  for (std::size_t i = 0; i < misses.size(); ++i) {
+    if (fresh[i].fitness.size() != inner_.fitness_size())
+      throw std::runtime_error(fmt::format("problem '{}': fitness returned {} values, expected {}",
+                                           inner_.name(), fresh[i].fitness.size(),
+                                           inner_.fitness_size()));
+    result[misses[i]] = fresh[i].fitness;
+  }
+  for (std::size_t k = 0; k < xs.size(); ++k)
+    if (source[k] >= 0) result[k] = result[static_cast<std::size_t>(source[k])];
+  {
+    std::lock_guard lock(mutex_);
+    // Another thread (single fitness calls) may have recorded one of these meanwhile.
+    std::vector<JournalEntry> unseen;
+    for (JournalEntry& entry : fresh)
+      if (!index_.contains(key_of(entry.x))) unseen.push_back(std::move(entry));
+    append(unseen);
+  }
+  report_progress(false);
+  return result;
+}
+
+std::vector<double> JournaledProblem::fitness(const std::vector<double>& x) const {
+  const std::vector<double> one[1] = {x};
+  return serve(one, 1).front();
+}
+
+std::vector<std::vector<double>> JournaledProblem::batch_fitness(
+    std::span<const std::vector<double>> xs, int threads) const {
+  return serve(xs, threads);
+}
+
+void JournaledProblem::report_progress(bool force) const {
+  if (!options_.show_progress) return;
+  std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  const double since = std::chrono::duration<double>(now - last_report_).count();
+  const double interval = terminal_ ? 0.25 : options_.log_interval_seconds;
+  if (!force && since < interval) return;
+  last_report_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  std::string hv = "-";
+  if (!feasible_front_.empty() && num_objectives() >= 2 &&
+      (num_objectives() <= 3 || feasible_front_.size() <= 64)) {
+    const double value = hypervolume(feasible_front_, reference_point_from(feasible_front_));
+    if (std::isfinite(value)) hv = fmt::format("{:.4g}", value);
+  }
+  std::string count = fmt::format("{} evaluations", requests_);
+  std::string remaining;
+  if (options_.expected_requests > 0) {
+    const double fraction = std::min(
+        1.0, static_cast<double>(requests_) / static_cast<double>(options_.expected_requests));
+    count = fmt::format("{}/{} evaluations ({:.0f}%)", requests_, options_.expected_requests,
+                        100.0 * fraction);
+    if (fraction > 0.0)
+      remaining = fmt::format(", ~{} left", clock_text(elapsed * (1.0 - fraction) / fraction));
+    if (terminal_) {
+      const int width = 20;
+      const int filled = static_cast<int>(fraction * width);
+      count = "[" + std::string(static_cast<std::size_t>(filled), '#') +
+              std::string(static_cast<std::size_t>(width - filled), '.') + "] " + count;
+    }
+  }
+  const std::string text = fmt::format(
+      "{}, {} cached, {} failed, {} feasible non-dominated, hypervolume {}, {}{}", count,
+      cache_hits_, failed_, feasible_front_.size(), hv, clock_text(elapsed), remaining);
+  if (terminal_) {
+    std::fprintf(stderr, "\r\033[2K%s", text.c_str());
+    progress_line_open_ = true;
+  } else {
+    std::fprintf(stderr, "pkmopt: run: %s\n", text.c_str());
+  }
+  std::fflush(stderr);
+}
+
+void JournaledProblem::finish() const {
+  report_progress(true);
+  std::lock_guard lock(mutex_);
+  if (progress_line_open_) {
+    std::fputc('\n', stderr);
+    progress_line_open_ = false;
+  }
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,165 @@
+#include "studies/run_study.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/output_file.hpp"
+#include "studies/benchmark_study.hpp"
+#include "studies/design_study.hpp"
+#include "studies/journal.hpp"
+
+namespace pkmopt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Checks DIR against --resume / --force and creates it. Returns true when a journal is resumed.
+bool prepare_output_directory(const StudyRunOptions& opt) {
+  const fs::path dir(opt.out);
+  const bool has_journal = fs::exists(dir / "journal.txt");
+  const bool holds_run =
+      has_journal || fs::exists(dir / "summary.json") || fs::exists(dir / "pareto.csv");
+  if (holds_run && !opt.resume && !opt.force)
+    throw InputError(fmt::format(
+        "--out: '{}' holds a previous run ({}); continue it with --resume or replace it with "
+        "--force",
+        opt.out, has_journal ? "journal.txt" : "summary.json or pareto.csv"));
+  if (opt.force) {
+    for (const char* name : {"journal.txt", "evaluations.csv", "pareto.csv", "pareto.json",
+                             "summary.json", "study.resolved.yaml"})
+      fs::remove(dir / name);
+    if (fs::is_directory(dir / "designs"))
+      for (const fs::directory_entry& e : fs::directory_iterator(dir / "designs"))
+        if (e.path().extension() == ".yaml" && e.path().filename().string().starts_with("d"))
+          fs::remove(e.path());
+  }
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir))
+    throw InputError(fmt::format("--out: cannot create the folder '{}': {}", opt.out,
+                                 error ? error.message() : "not a folder"));
+  if (opt.resume && !has_journal)
+    opt.message(fmt::format("no journal in '{}': starting a new run", opt.out));
+  return opt.resume && has_journal;
+}
+
+void fill_journal_options(JournalOptions& options, const StudyRunOptions& opt,
+                          const std::string& resolved_yaml, const OptimizerSpec& spec) {
+  options.directory = opt.out;
+  options.study_hash = study_hash(resolved_yaml);
+  options.resume = opt.resume;
+  options.expected_requests = spec.expected_requests();
+  options.show_progress = opt.show_progress;
+  options.threads = opt.threads;
+}
+
+// evaluations.csv of a benchmark study: x_j, f_i, constraint rows c_k, feasible.
+void benchmark_csv(JournalOptions& options, const Problem& problem) {
+  std::string header = "index";
+  for (std::size_t j = 0; j < problem.num_variables(); ++j) header += fmt::format(",x_{}", j + 1);
+  for (std::size_t i = 0; i < problem.num_objectives(); ++i) header += fmt::format(",f_{}", i + 1);
+  for (std::size_t k = 0; k < problem.num_constraints(); ++k) header += fmt::format(",c_{}", k + 1);
+  options.csv_header = header + ",feasible,failure";
+  const Problem* p = &problem;
+  options.csv_row = [p](std::size_t index, const JournalEntry& e) {
+    std::string row = std::to_string(index);
+    for (double v : e.x) row += "," + format_number(v);
+    bool finite = true;
+    for (double v : e.fitness) {
+      finite = finite && std::isfinite(v);
+      row += std::isfinite(v) || std::isinf(v) ? "," + format_number(v) : ",";
+    }
+    const bool feasible = finite && e.note.empty() && constraint_violation(*p, e.fitness) == 0.0;
+    return row + (feasible ? ",1," : ",0,") + csv_field(e.note);
+  };
+}
+
+}  // namespace
+
+StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptions& options) {
+  StudyRunOptions opt = options;
+  if (!opt.message)
+    opt.message = [](const std::string& text) { std::cerr << "pkmopt: run: " << text << '\n'; };
+  const auto wall_start = std::chrono::steady_clock::now();
+  auto wall_seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  };
+  if (opt.threads < 0)
+    throw InputError(fmt::format("--threads: expected an integer >= 0, found {}", opt.threads));
+  if (opt.resume && opt.force)
+    throw InputError("--resume and --force: expected one of them, found both");
+  StudyRunResult result;
+  if (is_design_study_file(study_file)) {
+    const DesignStudy design = load_design_study(study_file);
+    const bool resumed = prepare_output_directory(opt);
+    JournalOptions journal_options = design_journal_options(design);
+    fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
+    JournaledProblem journaled(design.optimization_problem(), journal_options);
+    write_file_atomically((fs::path(opt.out) / "study.resolved.yaml").string(),
+                          design.resolved_yaml);
+    const RunOutcome outcome = run_optimizer(journaled, design.optimizer, opt.threads);
+    journaled.finish();
+    DesignRunFacts facts;
+    facts.threads = opt.threads;
+    facts.resumed = resumed;
+    facts.journal = &journaled;
+    facts.wall_seconds = wall_seconds();
+    write_design_outputs(opt.out, design, outcome, facts);
+    result.design_study = true;
+    result.name = design.name;
+    result.algorithm = design.optimizer.name();
+    result.status = outcome.status;
+    result.message = outcome.front.message;
+    result.designs = outcome.front.x.size();
+    result.evaluations = outcome.front.fitness_evaluations;
+    result.from_cache = journaled.cache_hits();
+    result.failed = journaled.failed();
+    result.optimizer_seconds = outcome.front.seconds;
+    result.wall_seconds = facts.wall_seconds;
+    result.resumed = resumed;
+    return result;
+  }
+  const BenchmarkStudy study = load_benchmark_study(study_file);
+  const bool resumed = prepare_output_directory(opt);
+  JournalOptions journal_options;
+  fill_journal_options(journal_options, opt, study.resolved_yaml, study.optimizer);
+  benchmark_csv(journal_options, *study.problem);
+  JournaledProblem journaled(*study.problem, journal_options);
+  write_file_atomically((fs::path(opt.out) / "study.resolved.yaml").string(), study.resolved_yaml);
+  const RunOutcome outcome = run_optimizer(journaled, study.optimizer, opt.threads);
+  journaled.finish();
+  const ObjectiveSet reference_front =
+      study.problem->num_objectives() >= 2 ? study.problem->reference_front(1000) : ObjectiveSet{};
+  nlohmann::json extra;
+  extra["resumed"] = resumed;
+  extra["evaluations_from_cache"] = journaled.cache_hits();
+  extra["evaluations_distinct"] = journaled.entries().size();
+  extra["evaluations_loaded_from_journal"] = journaled.loaded_entries();
+  extra["evaluations_new"] = journaled.entries().size() - journaled.loaded_entries();
+  extra["evaluations_failed"] = journaled.failed();
+  extra["wall_seconds"] = wall_seconds();
+  write_run_outputs(opt.out, study.name, *study.problem, study.optimizer, outcome, opt.threads,
+                    study.reference_point, reference_front, extra);
+  result.name = study.name;
+  result.algorithm = study.optimizer.name();
+  result.problem = study.problem->name();
+  result.status = outcome.status;
+  result.message = outcome.front.message;
+  result.designs = outcome.front.x.size();
+  result.evaluations = outcome.front.fitness_evaluations;
+  result.from_cache = journaled.cache_hits();
+  result.failed = journaled.failed();
+  result.optimizer_seconds = outcome.front.seconds;
+  result.wall_seconds = wall_seconds();
+  result.resumed = resumed;
+  return result;
+}
+
+}  // namespace pkmopt

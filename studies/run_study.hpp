@@ -1,0 +1,54 @@
+// Running a study file: the result folder, the journal, the optimizer and the result files.
+//
+// run_study_file(path, options) does what `pkmopt run STUDY.yaml --out DIR` does: it loads the
+// study (a design study when the file has `machine:`, else a benchmark study), checks DIR
+// against resume/force (a folder holding a run, i.e. journal.txt, summary.json or pareto.csv,
+// is never overwritten without one of them), writes DIR/study.resolved.yaml, runs the optimizer
+// through a JournaledProblem (studies/journal.hpp: DIR/journal.txt and DIR/evaluations.csv grow
+// as the run goes; `resume` continues a killed run) and writes pareto.csv, pareto.json (design
+// studies), summary.json and designs/<id>.yaml. Bad input throws InputError before anything is
+// written.
+//
+// Example:
+//   StudyRunOptions options;
+//   options.out = "results/quick";
+//   const StudyRunResult result = run_study_file("studies/library/hexapod-quick.yaml", options);
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace pkmopt {
+
+struct StudyRunOptions {
+  std::string out;            ///< the result folder (created when missing)
+  int threads = 0;            ///< OpenMP threads for batch evaluations (0: all cores)
+  bool resume = false;        ///< continue the run in `out` from its journal
+  bool force = false;         ///< replace a previous run in `out`
+  bool show_progress = true;  ///< progress line / log lines on stderr
+  /// Notes for the user ("no journal in DIR: starting a new run"); default: stderr.
+  std::function<void(const std::string&)> message;
+};
+
+/// What a finished run says about itself (the files in `out` hold the results).
+struct StudyRunResult {
+  bool design_study = false;
+  std::string name;          ///< the study's name
+  std::string algorithm;     ///< as in the study file (nsga2, nlopt:SLSQP, ...)
+  std::string problem;       ///< the problem's name (benchmark studies)
+  std::string status;        ///< ok, no_feasible_design, or the single solver's status
+  std::string message;       ///< the optimizer's message (empty when it has none)
+  std::size_t designs = 0;   ///< points of the front
+  long long evaluations = 0; ///< fitness evaluations requested by the optimizer
+  std::size_t from_cache = 0;
+  std::size_t failed = 0;
+  double optimizer_seconds = 0.0;
+  double wall_seconds = 0.0;
+  bool resumed = false;
+};
+
+/// Runs a study file into options.out (see the header comment). Throws InputError.
+StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptions& options);
+
+}  // namespace pkmopt

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the build tree into a scratch prefix, builds tests/consumer against it with
+# find_package(pkmopt) and runs it on the sample hexapod and a small study.
+# Usage: tests/consumer/run_consumer.sh SOURCE_DIR BUILD_DIR SCRATCH_DIR
+set -euo pipefail
+src=$1 build=$2 scratch=$3
+rm -rf "$scratch"
+mkdir -p "$scratch"
+cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+cmake -S "$src/tests/consumer" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_PREFIX_PATH="$scratch/prefix" "${launcher[@]}" >/dev/null
+cmake --build "$scratch/build" -j2 >/dev/null
+sed 's/population: 60, generations: 80/population: 8, generations: 2/' \
+  "$src/studies/library/hexapod-quick.yaml" >"$scratch/study.yaml"
+"$scratch/build/consumer" "$src/examples/hexapod.yaml" "$scratch/study.yaml" "$scratch/out"
+test -s "$scratch/out/pareto.csv"
+echo "consumer_project: built against $scratch/prefix and ran"

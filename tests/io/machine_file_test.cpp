@@ -1,0 +1,112 @@
+// Tests of io/machine_file: the hexapod file form of docs/conventions.md and its strict errors.
+#include "io/machine_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tests/sample_machines.hpp"
+
+namespace pkmopt {
+namespace {
+
+const char* kGood = R"(model: hexapod
+base: {radius: 0.60, pair_separation_deg: 20}
+platform: {radius: 0.25, pair_separation_deg: 20}
+legs: {min_length: 0.70, max_length: 1.15, E: 2.1e11, area: 3.0e-4, actuator_stiffness: 2.0e8}
+joints: {base_max_angle_deg: 45, platform_max_angle_deg: 45}
+tool: {tcp: [0, 0, -0.10]}
+)";
+
+std::string error_of(const std::string& text) {
+  try {
+    read_hexapod_design(YamlValue::load_string(text, "m.yaml"));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  text.replace(text.find(from), from.size(), to);
+  return text;
+}
+
+TEST(MachineFile, ReadsTheConventionsExample) {
+  const HexapodDesign d = read_hexapod_design(YamlValue::load_string(kGood, "m.yaml"));
+  const HexapodDesign expected = sample_machines::conventions_hexapod_design();
+  EXPECT_LT((d.base_joints - expected.base_joints).norm(), 1e-15);
+  EXPECT_LT((d.platform_joints - expected.platform_joints).norm(), 1e-15);
+  EXPECT_EQ(d.min_length, 0.70);
+  EXPECT_EQ(d.stiffness.actuator_stiffness, 2.0e8);
+  EXPECT_NEAR(d.joints.base_max_angle, deg_to_rad(45), 1e-15);
+  EXPECT_EQ(d.tcp, Eigen::Vector3d(0, 0, -0.10));
+  EXPECT_FALSE(d.characteristic_length.has_value());
+  EXPECT_EQ(d.actuator_error, 1e-5);
+}
+
+TEST(MachineFile, WrittenDesignReadsBackExactly) {
+  sample_machines::Uniform u(1);
+  for (int k = 0; k < 10; ++k) {
+    HexapodDesign d = sample_machines::random_hexapod_design(u);
+    d.joints.base_max_angle = deg_to_rad(u(10, 80));
+    if (k % 2) d.characteristic_length = u(0.1, 0.4);
+    const HexapodDesign back =
+        read_hexapod_design(YamlValue::load_string(hexapod_design_to_yaml(d), "w.yaml"));
+    EXPECT_EQ(back.base_joints, d.base_joints);
+    EXPECT_EQ(back.platform_joints, d.platform_joints);
+    EXPECT_EQ(back.min_length, d.min_length);
+    EXPECT_EQ(back.max_length, d.max_length);
+    EXPECT_EQ(back.stiffness.E, d.stiffness.E);
+    EXPECT_EQ(back.stiffness.axial_stiffness, d.stiffness.axial_stiffness);
+    EXPECT_EQ(back.tcp, d.tcp);
+    EXPECT_EQ(back.characteristic_length, d.characteristic_length);
+    EXPECT_EQ(back.actuator_error, d.actuator_error);
+    EXPECT_NEAR(back.joints.base_max_angle, d.joints.base_max_angle, 1e-15);
+  }
+}
+
+TEST(MachineFile, ErrorsNameFileLineColumnKeyExpectedAndFound) {
+  EXPECT_EQ(error_of(replace(kGood, "min_length: 0.70", "min_length: abc")),
+            "m.yaml:4:20: legs.min_length: expected a finite number, found 'abc'");
+  EXPECT_EQ(error_of(replace(kGood, "max_length: 1.15", "max_length: 0.5")),
+            "m.yaml:4:38: legs.max_length: expected a number > legs.min_length (0.7), found '0.5'");
+  EXPECT_EQ(error_of(replace(kGood, "tool:", "toll:")),
+            "m.yaml:6:1: toll: unknown key 'toll'; allowed keys here: model, name, description, "
+            "base, base_joints, platform, platform_joints, legs, joints, tool, "
+            "characteristic_length, actuator_error");
+  EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: .nan")),
+            "m.yaml:4:47: legs.E: expected a finite number, found '.nan'");
+  EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: inf")),
+            "m.yaml:4:47: legs.E: expected a finite number, found 'inf'");
+  EXPECT_EQ(error_of(replace(kGood, "tcp: [0, 0, -0.10]", "tcp: [0, 0]")),
+            "m.yaml:6:13: tool.tcp: expected a list of 3, found a list of 2");
+  EXPECT_EQ(error_of(replace(kGood, "legs: {min_length: 0.70, ", "legs: {")),
+            "m.yaml:4:7: legs: missing required key 'min_length'");
+  EXPECT_EQ(error_of(replace(kGood, "actuator_stiffness: 2.0e8", "actuator_stiffness: -2")),
+            "m.yaml:4:89: legs.actuator_stiffness: expected a number > 0, found '-2'");
+  EXPECT_EQ(error_of("model: hexapod\nbase: {radius: 0.6, pair_separation_deg: 20}\n"
+                     "platform_joints: [[0,0,0], [1,0,0]]\n"),
+            "m.yaml:3:18: platform_joints: expected a list of 6, found a list of 2");
+  EXPECT_EQ(error_of("model: hexapod\nbase: [1, 2\n"),
+            "m.yaml:3:1: malformed YAML: end of sequence flow not found");
+  EXPECT_NE(error_of(replace(kGood, "base: {", "base_joints: [[0,0,0]]\nbase: {"))
+                .find("either 'base' or 'base_joints', not both"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(replace(kGood, "E: 2.1e11, area: 3.0e-4, ", "")).find("missing the leg stiffness"),
+      std::string::npos);
+}
+
+TEST(MachineFile, UnknownModelIsAnError) {
+  try {
+    load_machine(YamlValue::load_string("model: octopod\n", "m.yaml"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "m.yaml:1:8: model: expected a known model (hexapod, delta, linear_delta, "
+                 "hexaglide, tripod_3prs, leg_chain, lathe_16k20f3, hybrid), found 'octopod'");
+  }
+  EXPECT_THROW(load_machine_file("/nonexistent/machine.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace pkmopt

@@ -1,0 +1,173 @@
+// Tests of studies/journal: bit-exact journal lines, cut lines, cache, resume and refusal.
+#include "studies/journal.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "io/input_error.hpp"
+
+namespace pkmopt {
+namespace {
+
+namespace fs = std::filesystem;
+
+// f = [x0^2 + x1, x0 - x1 | g = x0 - 0.5]; counts its own evaluations.
+class CountedPair : public Problem {
+ public:
+  Bounds bounds() const override { return {{-1.0, -1.0}, {1.0, 1.0}}; }
+  std::size_t num_objectives() const override { return 2; }
+  std::size_t num_inequality() const override { return 1; }
+  std::vector<double> fitness(const std::vector<double>& x) const override {
+    ++calls;
+    return {x[0] * x[0] + x[1], x[0] - x[1], x[0] - 0.5};
+  }
+  std::string name() const override { return "counted-pair"; }
+  mutable std::atomic<int> calls{0};
+};
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("pkmopt_study_journal_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t line_count(const fs::path& path) {
+  const std::string text = read_text(path);
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+JournalOptions options_for(const fs::path& dir, std::uint64_t hash, bool resume) {
+  JournalOptions options;
+  options.directory = dir.string();
+  options.study_hash = hash;
+  options.resume = resume;
+  options.csv_header = "index,x_1,x_2";
+  options.csv_row = [](std::size_t k, const JournalEntry& e) {
+    return std::to_string(k) + "," + std::to_string(e.x[0]) + "," + std::to_string(e.x[1]);
+  };
+  return options;
+}
+
+TEST(StudyJournal, LinesAreBitExact) {
+  JournalEntry entry;
+  entry.x = {0.1, -0.0, 5e-324, 1.0 / 3.0};
+  entry.fitness = {std::numeric_limits<double>::infinity(), 1e20, -2.5e-300};
+  entry.note = "singular\tat pose 3\n";
+  const std::string line = journal_line(entry);
+  ASSERT_EQ(line.back(), '\n');
+  JournalEntry back;
+  ASSERT_TRUE(parse_journal_line(std::string_view(line).substr(0, line.size() - 1), 4, 3, back));
+  ASSERT_EQ(back.x.size(), 4u);
+  ASSERT_EQ(back.fitness.size(), 3u);
+  for (std::size_t j = 0; j < 4; ++j)
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(back.x[j]), std::bit_cast<std::uint64_t>(entry.x[j]));
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(back.fitness[i]),
+              std::bit_cast<std::uint64_t>(entry.fitness[i]));
+  EXPECT_EQ(back.note, "singular at pose 3 ");
+  // Wrong counts and cut numbers are rejected.
+  EXPECT_FALSE(parse_journal_line(std::string_view(line).substr(0, line.size() - 1), 3, 3, back));
+  EXPECT_FALSE(parse_journal_line(std::string_view(line).substr(0, 20), 4, 3, back));
+}
+
+TEST(StudyJournal, StudyHashIsFnv1a) {
+  // FNV-1a 64 of "" and "a" (the published test vectors of the algorithm).
+  EXPECT_EQ(study_hash(""), 0xcbf29ce484222325ull);
+  EXPECT_EQ(study_hash("a"), 0xaf63dc4c8601ec8cull);
+}
+
+TEST(StudyJournal, CachesIdenticalDesignsAndRecordsEachOnce) {
+  const fs::path dir = fresh_dir("cache");
+  CountedPair inner;
+  JournaledProblem journaled(inner, options_for(dir, 7, false));
+  const std::vector<std::vector<double>> batch = {{0.1, 0.2}, {0.3, 0.4}, {0.1, 0.2}};
+  const auto first = journaled.batch_fitness(batch, 2);
+  EXPECT_EQ(inner.calls.load(), 2);
+  EXPECT_EQ(first[0], first[2]);
+  EXPECT_EQ(first[1], inner.fitness({0.3, 0.4}));
+  inner.calls = 0;
+  EXPECT_EQ(journaled.fitness({0.3, 0.4}), first[1]);
+  EXPECT_EQ(inner.calls.load(), 0);
+  EXPECT_EQ(journaled.requests(), 4);
+  EXPECT_EQ(journaled.cache_hits(), 2);
+  EXPECT_EQ(journaled.entries().size(), 2u);
+  EXPECT_EQ(line_count(dir / "journal.txt"), 3u);      // header + 2 evaluations
+  EXPECT_EQ(line_count(dir / "evaluations.csv"), 3u);  // header + 2 evaluations
+}
+
+TEST(StudyJournal, ResumeServesRecordedDesignsAndDropsACutLine) {
+  const fs::path dir = fresh_dir("resume");
+  CountedPair inner;
+  {
+    JournaledProblem journaled(inner, options_for(dir, 11, false));
+    journaled.batch_fitness(std::vector<std::vector<double>>{{0.1, 0.2}, {0.3, 0.4}}, 1);
+  }
+  // A kill in the middle of a line leaves it without its newline.
+  std::ofstream(dir / "journal.txt", std::ios::app) << "0x1.8p-1 0x1";
+  const JournalContents contents = read_journal((dir / "journal.txt").string());
+  EXPECT_EQ(contents.entries.size(), 2u);
+  EXPECT_EQ(contents.study_hash, 11u);
+
+  inner.calls = 0;
+  JournaledProblem resumed(inner, options_for(dir, 11, true));
+  EXPECT_EQ(resumed.loaded_entries(), 2u);
+  const auto f = resumed.batch_fitness(
+      std::vector<std::vector<double>>{{0.1, 0.2}, {0.3, 0.4}, {0.5, 0.6}}, 1);
+  EXPECT_EQ(inner.calls.load(), 1);  // only the new design
+  EXPECT_EQ(f[2], inner.fitness({0.5, 0.6}));
+  EXPECT_EQ(resumed.entries().size(), 3u);
+  EXPECT_EQ(read_journal((dir / "journal.txt").string()).entries.size(), 3u);
+  EXPECT_EQ(line_count(dir / "journal.txt"), 4u);  // the cut line is gone
+  const std::string csv = read_text(dir / "evaluations.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  EXPECT_EQ(csv.substr(0, 14), "index,x_1,x_2\n");
+}
+
+TEST(StudyJournal, ResumeRefusesAnotherStudy) {
+  const fs::path dir = fresh_dir("refuse");
+  CountedPair inner;
+  { JournaledProblem journaled(inner, options_for(dir, 1, false)); }
+  try {
+    JournaledProblem resumed(inner, options_for(dir, 2, true));
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(std::string(error.what()),
+              (dir / "journal.txt").string() +
+                  ": --resume: the journal belongs to another version of the study (study hash "
+                  "0000000000000001, the study file now gives 0000000000000002); the study file "
+                  "changed since the run started: restore it, or start over with --force");
+  }
+}
+
+TEST(StudyJournal, JournalDoesNotDependOnThreads) {
+  std::vector<std::vector<double>> batch;
+  for (int k = 0; k < 40; ++k) batch.push_back({std::sin(k) * 0.9, std::cos(3 * k) * 0.9});
+  std::string texts[2];
+  for (int t = 1; t <= 2; ++t) {
+    const fs::path dir = fresh_dir("threads" + std::to_string(t));
+    CountedPair inner;
+    JournaledProblem journaled(inner, options_for(dir, 3, false));
+    journaled.batch_fitness(batch, t);
+    texts[t - 1] = read_text(dir / "journal.txt");
+  }
+  EXPECT_EQ(texts[0], texts[1]);
+}
+
+}  // namespace
+}  // namespace pkmopt
