@@ -12,10 +12,10 @@
 #include <limits>
 #include <vector>
 
+#include "bench/uniform_stream.hpp"
 #include "models/hexapod.hpp"
 #include "models/hexapod_batch.hpp"
 #include "models/sample_machines.hpp"
-#include "tests/sample_machines.hpp"
 
 namespace {
 

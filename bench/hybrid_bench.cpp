@@ -7,11 +7,11 @@
 #include <memory>
 #include <vector>
 
+#include "bench/uniform_stream.hpp"
 #include "models/hexapod.hpp"
 #include "models/hybrid_machine.hpp"
 #include "models/leg_chain.hpp"
 #include "models/sample_machines.hpp"
-#include "tests/sample_machines.hpp"
 
 namespace {
 

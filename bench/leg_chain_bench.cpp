@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include "bench/uniform_stream.hpp"
 #include "models/leg_chain.hpp"
-#include "tests/sample_machines.hpp"
 
 namespace {
 

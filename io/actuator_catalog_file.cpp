@@ -1,70 +1,87 @@
 #include "io/actuator_catalog_file.hpp"
 
 #include <set>
-#include <tuple>
-#include <utility>
+#include <string>
 #include <vector>
+
+#include "io/field_list.hpp"
 
 namespace pkmopt {
 namespace {
 
 // [min, max] with 0 < min <= max.
-std::pair<double, double> read_range(const YamlValue& value) {
-  const std::vector<double> range = value.as_doubles(2);
-  if (!(range[0] > 0.0 && range[0] <= range[1])) {
-    value.fail("[min, max] with 0 < min <= max", value.describe());
-  }
-  return {range[0], range[1]};
+FieldRule range_rule(std::string_view unit, std::string_view doc) {
+  return {.min = 0,
+          .min_exclusive = true,
+          .required = true,
+          .unit = unit,
+          .expected = "[min, max] with 0 < min <= max",
+          .doc = doc};
 }
 
-ActuatorEntry read_entry(const YamlValue& value) {
-  value.check_keys(
-      {"name", "type", "max_force", "stroke", "max_speed", "accuracy", "stiffness", "cost"});
-  ActuatorEntry entry;
-  const YamlValue name = value.required("name");
-  entry.name = name.as_string();
-  if (entry.name.empty()) name.fail("a non-empty name", "''");
-  entry.type = value.required("type").as_string();
-  entry.max_force = value.required("max_force").as_positive();
-  entry.stroke = value.required("stroke").as_positive();
-  entry.max_speed = value.required("max_speed").as_positive();
-  if (const auto v = value.optional("accuracy")) entry.accuracy = v->as_positive();
-  if (const auto v = value.optional("stiffness")) entry.stiffness = v->as_positive();
-  if (const auto v = value.optional("cost")) entry.cost = v->as_positive();
-  return entry;
-}
-
-DriveType read_drive_type(const YamlValue& value) {
-  value.check_keys({"name", "speed", "accuracy", "note"});
-  DriveType type;
-  type.name = value.required("name").as_string();
-  std::tie(type.speed_min, type.speed_max) = read_range(value.required("speed"));
-  std::tie(type.accuracy_min, type.accuracy_max) = read_range(value.required("accuracy"));
-  if (const auto note = value.optional("note")) type.note = note->as_string();
-  return type;
+FieldRule positive(std::string_view unit, std::string_view doc, bool required) {
+  return {.min = 0, .min_exclusive = true, .required = required, .unit = unit, .doc = doc};
 }
 
 }  // namespace
 
+template <class Fields>
+void describe_fields(Fields& f, ActuatorEntry& e) {
+  f.field("name", e.name, {.required = true, .doc = "the entry's name, unique in the catalog"});
+  f.field("type", e.type,
+          {.required = true, .doc = "drive type, e.g. electric_cylinder, linear_motor"});
+  f.field("max_force", e.max_force, positive("N", "rated axial force", true));
+  f.field("stroke", e.stroke, positive("m", "stroke", true));
+  f.field("max_speed", e.max_speed, positive("m/s", "maximum speed", true));
+  f.field("accuracy", e.accuracy, positive("m", "positioning accuracy (repeatability)", false));
+  f.field("stiffness", e.stiffness, positive("N/m", "axial stiffness", false));
+  f.field("cost", e.cost,
+          positive("", "relative cost (the cheapest entry that carries wins)", false));
+}
+
+template <class Fields>
+void describe_fields(Fields& f, DriveType& t) {
+  f.field("name", t.name, {.required = true, .doc = "the drive type"});
+  FieldRange speed{.low = t.speed_min, .high = t.speed_max, .closed = true};
+  f.field("speed", speed, range_rule("m/s", "typical speed range"));
+  FieldRange accuracy{.low = t.accuracy_min, .high = t.accuracy_max, .closed = true};
+  f.field("accuracy", accuracy, range_rule("m", "typical positioning accuracy (best .. worst)"));
+  f.field("note", t.note, {.zero_is_unset = true, .doc = "free text"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, ActuatorCatalog& c) {
+  f.field("catalog", c.name, {.required = true, .doc = "the catalog's name"});
+  f.note("description", "a text", "", "none", "free text");
+  f.note("entries", "a list of at least one entry (entries[] below)", "", "required",
+         "the actuators, one entry per orderable variant");
+  f.note("drive_types", "a list of drive types (drive_types[] below)", "", "none",
+         "a comparison table of drive principles (not used for sizing)");
+}
+
 ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
-  root.check_keys({"catalog", "description", "entries", "drive_types"});
   ActuatorCatalog catalog;
-  catalog.name = root.required("catalog").as_string();
+  read_fields(root, catalog);
   if (const auto d = root.optional("description")) (void)d->as_string();
   const YamlValue entries = root.required("entries");
   const std::vector<YamlValue> items = entries.elements();
   if (items.empty()) entries.fail("a list of at least one entry", "an empty list");
   std::set<std::string> names;
   for (const YamlValue& item : items) {
-    catalog.entries.push_back(read_entry(item));
-    if (!names.insert(catalog.entries.back().name).second) {
+    ActuatorEntry entry;
+    read_fields(item, entry);
+    if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
+    if (!names.insert(entry.name).second) {
       item.required("name").fail("a name not used by an earlier entry",
-                                 "'" + catalog.entries.back().name + "' again");
+                                 "'" + entry.name + "' again");
     }
+    catalog.entries.push_back(std::move(entry));
   }
   if (const auto types = root.optional("drive_types")) {
     for (const YamlValue& item : types->elements()) {
-      catalog.drive_types.push_back(read_drive_type(item));
+      DriveType type;
+      read_fields(item, type);
+      catalog.drive_types.push_back(std::move(type));
     }
   }
   return catalog;
@@ -72,6 +89,19 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
 
 ActuatorCatalog load_actuator_catalog(const std::string& path) {
   return read_actuator_catalog(YamlValue::load_file(path));
+}
+
+std::string actuator_catalog_fields_markdown() {
+  FieldDocs docs;
+  ActuatorCatalog catalog;
+  describe_fields(docs, catalog);
+  ActuatorEntry entry;
+  docs.set_prefix("entries[].");
+  describe_fields(docs, entry);
+  DriveType type;
+  docs.set_prefix("drive_types[].");
+  describe_fields(docs, type);
+  return docs.markdown();
 }
 
 }  // namespace pkmopt

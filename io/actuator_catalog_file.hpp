@@ -9,7 +9,9 @@
 //     - {name: linear_motor, speed: [2, 5], accuracy: [1.0e-6, 5.0e-6], note: "..."}
 //
 // SI units: N, m, m/s, N/m. Strict: unknown keys, missing keys, non-finite or non-positive
-// numbers, repeated names -> InputError "file:line:col: key: expected ..., found ...".
+// numbers, repeated names -> InputError "file:line:col: key: expected ..., found ...". The keys
+// of the catalog, its entries and its drive types are described once in field lists
+// (io/field_list.hpp): the reader and the docs table in README.md come from them.
 #pragma once
 
 #include <string>
@@ -21,5 +23,9 @@ namespace pkmopt {
 
 ActuatorCatalog read_actuator_catalog(const YamlValue& root);
 ActuatorCatalog load_actuator_catalog(const std::string& path);
+
+/// The docs table of the catalog file's keys (entries' keys as `entries[].KEY`, drive types' as
+/// `drive_types[].KEY`), from the field lists the reader uses.
+std::string actuator_catalog_fields_markdown();
 
 }  // namespace pkmopt

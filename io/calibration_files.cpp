@@ -87,7 +87,8 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
   }
   const PoseColumns pose_columns = find_pose_columns(table, PoseOrientation::euler_or_quaternion);
   std::vector<int> reading_columns;
-  for (int i = 1; i <= 6; ++i) reading_columns.push_back(table.require_column(fmt::format("q_{}", i)));
+  for (int i = 1; i <= 6; ++i)
+    reading_columns.push_back(table.require_column(fmt::format("q_{}", i)));
   if (table.rows.empty()) {
     throw InputError(
         fmt::format("{}expected at least one measured pose, found none", location_prefix(path)));
@@ -104,6 +105,20 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
   return measurements;
 }
 
+HexapodDesign read_calibration_machine(const std::string& path) {
+  const YamlValue machine = YamlValue::load_file(path);
+  const YamlValue model = machine.required("model");
+  if (model.as_string() != "hexapod") model.fail("'hexapod' (calibration)", model.describe());
+  return read_hexapod_design(machine);
+}
+
+std::vector<CalibrationMeasurement> fitted_measurements(const CalibrationSetup& setup) {
+  std::vector<CalibrationMeasurement> fitted;
+  fitted.reserve(setup.fit.size());
+  for (int k : setup.fit) fitted.push_back(setup.measurements[static_cast<std::size_t>(k)]);
+  return fitted;
+}
+
 CalibrationSetup read_calibration_setup(const std::string& path) {
   CalibrationSetup setup;
   setup.file = path;
@@ -114,12 +129,7 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
 
   // Nominal machine.
   setup.machine_file = resolve_path(path, root.required("machine").as_string());
-  {
-    const YamlValue machine = YamlValue::load_file(setup.machine_file);
-    const YamlValue model = machine.required("model");
-    if (model.as_string() != "hexapod") model.fail("'hexapod' (calibration)", model.describe());
-    setup.nominal_design = read_hexapod_design(machine);
-  }
+  setup.nominal_design = read_calibration_machine(setup.machine_file);
 
   // Frames.
   if (auto frame = root.optional("frame")) {

@@ -22,7 +22,13 @@
 // Measurement CSV: header x,y,z, then qw,qx,qy,qz or rx,ry,rz (degrees), then q_1..q_6 in the
 // actuator unit; no other columns. Positions in metres.
 //
+// The nominal machine of a calibration must be a hexapod machine file (io/machine_file.hpp).
+//
+// Example:
 //   CalibrationSetup setup = read_calibration_setup("calibration.yaml");   // InputError
+//   CalibrationResult result = calibrate(setup.nominal_design, setup.nominal,
+//                                        fitted_measurements(setup), setup.options);
+//   std::string text = calibration_report_text(calibration_report_json(setup, result));
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -53,6 +59,13 @@ struct CalibrationSetup {
   std::vector<int> fit;       ///< indices of the fitted rows
   std::vector<int> held_out;  ///< indices of the validation rows
 };
+
+/// A hexapod machine file for calibration; InputError naming file, line and column when the file
+/// is not one (`model:` other than hexapod: "expected 'hexapod' (calibration)").
+HexapodDesign read_calibration_machine(const std::string& path);
+
+/// The measurements of the fitted rows (setup.fit), in that order; the held-out rows are left out.
+std::vector<CalibrationMeasurement> fitted_measurements(const CalibrationSetup& setup);
 
 /// Reads the YAML, the machine and the measurements; validates everything; chooses the gauge.
 /// Throws InputError naming file, line, column or key, expected and found.

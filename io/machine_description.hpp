@@ -1,7 +1,8 @@
 // `pkmopt describe`: the degrees of freedom and the structure class of a machine file.
 //
-// Machine files with a parallel model (hexapod, delta, ...; io/machine_file.hpp) and two more
-// kinds that describe structure only (no analyze/fk yet):
+// Machine files with a parallel model (hexapod, delta, ...; io/machine_file.hpp), serial axes by
+// coordinate code (described here; not computable by analyze/fk), and hybrid machines (serial
+// axes carrying a parallel module; computable, io/machine_file_hybrid.hpp):
 //
 //   model: serial                    # serial axes by coordinate code (models/serial_chain.hpp)
 //   name: "5-axis milling machine"   # optional

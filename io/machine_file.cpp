@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "io/csv.hpp"
+#include "io/field_list.hpp"
 #include "io/machine_file_hybrid.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
@@ -21,17 +22,6 @@ Eigen::Matrix<double, 3, 6> read_joint_list(const YamlValue& value) {
     joints.col(i) << xyz[0], xyz[1], xyz[2];
   }
   return joints;
-}
-
-Eigen::Vector3d read_vector3(const YamlValue& value) {
-  const auto v = value.as_doubles(3);
-  return {v[0], v[1], v[2]};
-}
-
-double angle_limit(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v > 0.0 && v <= 180.0)) value.fail("an angle in degrees in (0, 180]", value.describe());
-  return deg_to_rad(v);
 }
 
 // Semi-regular hexagon {radius, pair_separation_deg}; `platform` selects the platform form.
@@ -63,74 +53,154 @@ Eigen::Matrix<double, 3, 6> read_joints(const YamlValue& root, const char* form_
 
 }  // namespace
 
+template <class Fields>
+void describe_fields(Fields& f, HexapodDesign& d) {
+  f.note("model", "hexapod", "", "required", "the machine model");
+  f.note("name", "a text", "", "none", "free text");
+  f.note("description", "a text", "", "none", "free text");
+  f.note("base", "{radius, pair_separation_deg}", "m, deg", "required (or base_joints)",
+         "semi-regular base: joint i at angle 120k ∓ α_b/2 (even/odd i, k = ⌊i/2⌋), radius > 0, "
+         "α_b in [0, 120]");
+  f.note("base_joints", "[[x, y, z] × 6]", "m", "required (or base)",
+         "the six base joints a_i in the base frame (general 6-6 geometry)");
+  f.note("platform", "{radius, pair_separation_deg}", "m, deg", "required (or platform_joints)",
+         "semi-regular platform: joint i at angle 120k − 60 + α_p/2 (even i) or 120k + 60 − α_p/2 "
+         "(odd i)");
+  f.note("platform_joints", "[[x, y, z] × 6]", "m", "required (or platform)",
+         "the six platform joints b_i in the platform frame");
+  f.section("legs", {.required = true}, [&](auto& g) {
+    g.field("min_length", d.min_length,
+            {.min = 0,
+             .min_exclusive = true,
+             .required = true,
+             .unit = "m",
+             .doc = "shortest leg length (stroke limit)"});
+    g.field("max_length", d.max_length,
+            {.min = 0,
+             .min_exclusive = true,
+             .required = true,
+             .unit = "m",
+             .expected = "a number > legs.min_length",
+             .doc = "longest leg length (stroke limit)"});
+    g.field("axial_stiffness", d.stiffness.axial_stiffness,
+            {.min = 0,
+             .min_exclusive = true,
+             .zero_is_unset = true,
+             .unit = "N/m",
+             .doc = "constant leg stiffness; give it, or E and area"});
+    g.field("E", d.stiffness.E,
+            {.min = 0,
+             .min_exclusive = true,
+             .zero_is_unset = true,
+             .unit = "Pa",
+             .doc = "Young's modulus of the leg (with area): k = E·area/q, q the leg length",
+             .omit_when = [&d] { return d.stiffness.axial_stiffness > 0.0; }});
+    g.field("area", d.stiffness.area,
+            {.min = 0,
+             .min_exclusive = true,
+             .zero_is_unset = true,
+             .unit = "m²",
+             .doc = "cross-section of the leg",
+             .omit_when = [&d] { return d.stiffness.axial_stiffness > 0.0; }});
+    g.field(
+        "actuator_stiffness", d.stiffness.actuator_stiffness,
+        {.min = 0,
+         .min_exclusive = true,
+         .zero_is_unset = true,
+         .unit = "N/m",
+         .doc = "in series with the leg: k = 1/(1/k_leg + 1/actuator_stiffness); unset: rigid"});
+  });
+  HexapodJointLimits& j = d.joints;
+  const bool default_axes = j.base_axis.isApprox(Eigen::Vector3d(0, 0, 1), 0.0) &&
+                            j.platform_axis.isApprox(Eigen::Vector3d(0, 0, -1), 0.0);
+  f.section("joints", {}, [&](auto& g) {
+    const FieldRule angle{.min = 0,
+                          .max = 180,
+                          .min_exclusive = true,
+                          .infinite_is_unset = true,
+                          .degrees = true,
+                          .unit = "deg",
+                          .expected = "an angle in degrees in (0, 180]"};
+    FieldRule base = angle, platform = angle;
+    base.doc = "limit of the angle between the leg direction s_i and the base joint axis";
+    platform.doc = "limit of the angle between −s_i and R·platform_axis";
+    g.field("base_max_angle_deg", j.base_max_angle, base);
+    g.field("platform_max_angle_deg", j.platform_max_angle, platform);
+    g.field("base_axis", j.base_axis,
+            {.expected = "a non-zero vector",
+             .doc = "base joint axis in the base frame (unit after reading)",
+             .omit_when = [default_axes] { return default_axes; }});
+    g.field("platform_axis", j.platform_axis,
+            {.expected = "a non-zero vector",
+             .doc = "platform joint axis in the platform frame (unit after reading)",
+             .omit_when = [default_axes] { return default_axes; }});
+  });
+  f.section("tool", {}, [&](auto& g) {
+    g.field("tcp", d.tcp, {.unit = "m", .doc = "the TCP in the platform frame"});
+  });
+  f.field("characteristic_length", d.characteristic_length,
+          {.min = 0,
+           .min_exclusive = true,
+           .unit = "m",
+           .default_text = "mean distance from the TCP to the platform joints",
+           .doc = "L of J_h = J·diag(1, 1, 1, 1/L, 1/L, 1/L) in singularity_margin"});
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+}
+
 HexapodDesign read_hexapod_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "base", "base_joints", "platform",
-                   "platform_joints", "legs", "joints", "tool", "characteristic_length",
-                   "actuator_error"});
   HexapodDesign design;
+  {
+    FieldKeys keys;
+    describe_fields(keys, design);
+    root.check_keys(keys.keys);
+  }
   design.base_joints = read_joints(root, "base", "base_joints", false);
   design.platform_joints = read_joints(root, "platform", "platform_joints", true);
-
   const YamlValue legs = root.required("legs");
-  legs.check_keys(
-      {"min_length", "max_length", "axial_stiffness", "E", "area", "actuator_stiffness"});
-  design.min_length = legs.required("min_length").as_positive();
-  const YamlValue max_value = legs.required("max_length");
-  design.max_length = max_value.as_positive();
+  {
+    const bool has_axial = legs.has("axial_stiffness");
+    if (has_axial && (legs.has("E") || legs.has("area")))
+      legs.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
+  }
+  FieldReader reader(root);
+  describe_fields(reader, design);
   if (!(design.max_length > design.min_length)) {
+    const YamlValue max_value = legs.required("max_length");
     max_value.fail(fmt::format("a number > legs.min_length ({})", format_number(design.min_length)),
                    max_value.describe());
   }
-  const bool has_axial = legs.has("axial_stiffness");
-  const bool has_e = legs.has("E");
-  const bool has_area = legs.has("area");
-  if (has_axial && (has_e || has_area)) {
-    legs.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
+  if (design.stiffness.axial_stiffness == 0.0) {
+    if (legs.has("E") || legs.has("area")) {
+      (void)legs.required("E");  // both are needed: names the missing one
+      (void)legs.required("area");
+    } else {
+      legs.fail("missing the leg stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
+    }
   }
-  if (has_axial) {
-    design.stiffness.axial_stiffness = legs.required("axial_stiffness").as_positive();
-  } else if (has_e || has_area) {
-    design.stiffness.E = legs.required("E").as_positive();
-    design.stiffness.area = legs.required("area").as_positive();
-  } else {
-    legs.fail("missing the leg stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
-  }
-  if (auto v = legs.optional("actuator_stiffness")) {
-    design.stiffness.actuator_stiffness = v->as_positive();
-  }
-
   if (auto joints = root.optional("joints")) {
-    joints->check_keys(
-        {"base_max_angle_deg", "platform_max_angle_deg", "base_axis", "platform_axis"});
-    if (auto v = joints->optional("base_max_angle_deg")) {
-      design.joints.base_max_angle = angle_limit(*v);
-    }
-    if (auto v = joints->optional("platform_max_angle_deg")) {
-      design.joints.platform_max_angle = angle_limit(*v);
-    }
     for (const char* key : {"base_axis", "platform_axis"}) {
       if (auto v = joints->optional(key)) {
-        const Eigen::Vector3d axis = read_vector3(*v);
+        Eigen::Vector3d& axis =
+            std::string(key) == "base_axis" ? design.joints.base_axis : design.joints.platform_axis;
         if (!(axis.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
-        (std::string(key) == "base_axis" ? design.joints.base_axis : design.joints.platform_axis) =
-            axis.normalized();
+        axis.normalize();
       }
     }
   }
-  if (auto tool = root.optional("tool")) {
-    tool->check_keys({"tcp"});
-    if (auto v = tool->optional("tcp")) design.tcp = read_vector3(*v);
-  }
-  if (auto v = root.optional("characteristic_length"))
-    design.characteristic_length = v->as_positive();
-  if (auto v = root.optional("actuator_error")) design.actuator_error = v->as_non_negative();
-
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)
   } catch (const std::invalid_argument& e) {
     root.fail(e.what());
   }
   return design;
+}
+
+std::string hexapod_machine_fields_markdown() {
+  FieldDocs docs;
+  HexapodDesign design;
+  describe_fields(docs, design);
+  return docs.markdown();
 }
 
 std::unique_ptr<Machine> load_machine(const YamlValue& root) {
@@ -160,42 +230,10 @@ std::string hexapod_design_to_yaml(const HexapodDesign& design) {
   for (int i = 0; i < 6; ++i) out += "  - " + vec(design.base_joints.col(i)) + "\n";
   out += "platform_joints:\n";
   for (int i = 0; i < 6; ++i) out += "  - " + vec(design.platform_joints.col(i)) + "\n";
-  out += fmt::format("legs:\n  min_length: {}\n  max_length: {}\n",
-                     format_number(design.min_length), format_number(design.max_length));
-  const LegStiffness& k = design.stiffness;
-  if (k.axial_stiffness > 0.0) {
-    out += fmt::format("  axial_stiffness: {}\n", format_number(k.axial_stiffness));
-  } else {
-    out += fmt::format("  E: {}\n  area: {}\n", format_number(k.E), format_number(k.area));
-  }
-  if (k.actuator_stiffness > 0.0) {
-    out += fmt::format("  actuator_stiffness: {}\n", format_number(k.actuator_stiffness));
-  }
-  const HexapodJointLimits& j = design.joints;
-  const bool base_limited = std::isfinite(j.base_max_angle);
-  const bool platform_limited = std::isfinite(j.platform_max_angle);
-  const bool default_axes = j.base_axis.isApprox(Eigen::Vector3d(0, 0, 1), 0.0) &&
-                            j.platform_axis.isApprox(Eigen::Vector3d(0, 0, -1), 0.0);
-  if (base_limited || platform_limited || !default_axes) {
-    out += "joints:\n";
-    if (base_limited) {
-      out += fmt::format("  base_max_angle_deg: {}\n", format_number(rad_to_deg(j.base_max_angle)));
-    }
-    if (platform_limited) {
-      out += fmt::format("  platform_max_angle_deg: {}\n",
-                         format_number(rad_to_deg(j.platform_max_angle)));
-    }
-    if (!default_axes) {
-      out += "  base_axis: " + vec(j.base_axis) + "\n";
-      out += "  platform_axis: " + vec(j.platform_axis) + "\n";
-    }
-  }
-  out += "tool:\n  tcp: " + vec(design.tcp) + "\n";
-  if (design.characteristic_length) {
-    out += fmt::format("characteristic_length: {}\n", format_number(*design.characteristic_length));
-  }
-  out += fmt::format("actuator_error: {}\n", format_number(design.actuator_error));
-  return out;
+  FieldWriter writer;
+  HexapodDesign copy = design;
+  describe_fields(writer, copy);
+  return out + writer.block();
 }
 
 }  // namespace pkmopt

@@ -36,4 +36,8 @@ HexapodDesign read_hexapod_design(const YamlValue& root);
 /// written so that it round-trips).
 std::string hexapod_design_to_yaml(const HexapodDesign& design);
 
+/// The docs table of the hexapod machine file's keys, from the field list its reader and writer
+/// use.
+std::string hexapod_machine_fields_markdown();
+
 }  // namespace pkmopt

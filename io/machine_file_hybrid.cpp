@@ -8,16 +8,81 @@
 #include <string>
 
 #include "io/csv.hpp"
+#include "io/field_list.hpp"
 #include "io/machine_file.hpp"
 
 namespace pkmopt {
+namespace {
+
+// The serial section's keys; range, stiffness and error have one entry per element of
+// design.axes (sized from the code, which is read by hand with the axis names).
+template <class Fields>
+void describe_serial(Fields& g, HybridDesign& d) {
+  g.note("code", "a coordinate code", "m, deg", "required",
+         "the serial chain: variable elements 1, 2, 3 (translations) only; constants \"k:v\" "
+         "(m for 1..3, degrees for 4..6)");
+  g.note("axes", "distinct names, one per variable axis", "", "none", "names of the variable axes");
+  std::vector<FieldRange> ranges;
+  FieldColumn stiffness;
+  FieldColumn error;
+  for (HybridAxis& a : d.axes) {
+    ranges.push_back({.low = a.min, .high = a.max, .closed = true, .found_values = true});
+    stiffness.members.push_back(&a.stiffness);
+    error.members.push_back(&a.error);
+  }
+  g.field("range", ranges,
+          {.required = true,
+           .unit = "m",
+           .expected = "[min, max] with min <= max (m)",
+           .doc = "travel of each variable axis ([0, 0]: a fixed axis)"});
+  g.field("stiffness", stiffness,
+          {.min = 0,
+           .unit = "N/m",
+           .default_text = "all 0 (rigid)",
+           .doc = "axial stiffness of each axis drive, one per axis (0: rigid)"});
+  g.field("error", error,
+          {.min = 0,
+           .unit = "m",
+           .default_text = "all 0 (exact)",
+           .doc = "positioning error half-width of each axis, one per axis"});
+}
+
+template <class Fields>
+void describe_parallel(Fields& g, HybridDesign& d) {
+  g.note("file", "a machine file", "", "required",
+         "the module's machine file, relative to this file (not serial or hybrid, prismatic "
+         "drives)");
+  g.field(
+      "home", d.home,
+      {.required = true, .unit = "m", .doc = "module-local reference point h of the follow rule"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, HybridDesign& d) {
+  f.note("model", "hybrid", "", "required", "the machine model");
+  f.note("name", "a text", "", "none", "free text");
+  f.note("description", "a text", "", "none", "free text");
+  f.section("serial", {.required = true, .doc = "the serial axes carrying the module"},
+            [&](auto& g) { describe_serial(g, d); });
+  f.section("parallel", {.required = true, .doc = "the parallel module"},
+            [&](auto& g) { describe_parallel(g, d); });
+}
+
+template <class Describe>
+void check_keys_of(const YamlValue& map, Describe&& describe) {
+  FieldKeys keys;
+  describe(keys);
+  map.check_keys(keys.keys);
+}
+
+}  // namespace
 
 HybridDesign read_hybrid_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "serial", "parallel"});
   HybridDesign design;
+  check_keys_of(root, [&](auto& keys) { describe_fields(keys, design); });
 
   const YamlValue serial = root.required("serial");
-  serial.check_keys({"code", "axes", "range", "stiffness", "error"});
+  check_keys_of(serial, [&](auto& keys) { describe_serial(keys, design); });
   const YamlValue code = serial.required("code");
   try {
     design.chain = SerialChain::from_code(code.as_string());
@@ -50,34 +115,13 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   design.chain = SerialChain(std::move(elements));
 
   design.axes.resize(static_cast<std::size_t>(n));
-  const auto ranges = serial.required("range").elements(n);
-  for (int i = 0; i < n; ++i) {
-    const YamlValue& r = ranges[static_cast<std::size_t>(i)];
-    const auto v = r.as_doubles(2);
-    if (!(v[0] <= v[1])) {
-      r.fail("[min, max] with min <= max (m)",
-             fmt::format("[{}, {}]", format_number(v[0]), format_number(v[1])));
-    }
-    design.axes[static_cast<std::size_t>(i)].min = v[0];
-    design.axes[static_cast<std::size_t>(i)].max = v[1];
-  }
-  if (const auto stiffness = serial.optional("stiffness")) {
-    const auto values = stiffness->elements(n);
-    for (int i = 0; i < n; ++i) {
-      design.axes[static_cast<std::size_t>(i)].stiffness =
-          values[static_cast<std::size_t>(i)].as_non_negative();
-    }
-  }
-  if (const auto error = serial.optional("error")) {
-    const auto values = error->elements(n);
-    for (int i = 0; i < n; ++i) {
-      design.axes[static_cast<std::size_t>(i)].error =
-          values[static_cast<std::size_t>(i)].as_non_negative();
-    }
+  {
+    FieldReader reader(serial);  // range, stiffness, error: one entry per axis
+    describe_serial(reader, design);
   }
 
   const YamlValue parallel = root.required("parallel");
-  parallel.check_keys({"file", "home"});
+  check_keys_of(parallel, [&](auto& keys) { describe_parallel(keys, design); });
   const YamlValue file = parallel.required("file");
   const std::filesystem::path module =
       std::filesystem::path(root.file()).parent_path() / file.as_string();
@@ -97,8 +141,10 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
         "with the axes' metres in q)",
         "'" + module.string() + "' (model: " + module_model + ", revolute drives)");
   }
-  const auto home = parallel.required("home").as_doubles(3);
-  design.home = Eigen::Vector3d(home[0], home[1], home[2]);
+  {
+    FieldReader reader(parallel);  // home
+    describe_parallel(reader, design);
+  }
 
   try {
     HybridMachine check(design);  // the constructor's own checks (dependent axes, ...)
@@ -110,6 +156,13 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
 
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root) {
   return std::make_unique<HybridMachine>(read_hybrid_design(root));
+}
+
+std::string hybrid_machine_fields_markdown() {
+  FieldDocs docs;
+  HybridDesign design;
+  describe_fields(docs, design);
+  return docs.markdown();
 }
 
 }  // namespace pkmopt

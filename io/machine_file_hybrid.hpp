@@ -17,7 +17,9 @@
 // Strict like the other readers: unknown keys, counts that differ from the number of axes,
 // min > max, variable rotary axes, linearly dependent axes, a module file that is missing, is
 // itself serial or hybrid, or has revolute drives (a delta) all throw InputError naming file, line,
-// column and key (exit 2).
+// column and key (exit 2). The keys are described once in a field list (io/field_list.hpp): the
+// reader and the docs table of docs/hybrid-machines.md come from it; the code, the axis names and
+// the module file are read by hand next to it.
 //
 // Example:
 //   YamlValue root = YamlValue::load_file("examples/hybrid_long_axis_hexapod.yaml");
@@ -25,6 +27,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "io/yaml_reader.hpp"
 #include "models/hybrid_machine.hpp"
@@ -35,5 +38,8 @@ namespace pkmopt {
 HybridDesign read_hybrid_design(const YamlValue& root);
 /// The machine of a `model: hybrid` map.
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
+
+/// The docs table of the hybrid machine file's keys, from the field list its reader uses.
+std::string hybrid_machine_fields_markdown();
 
 }  // namespace pkmopt

@@ -1,107 +1,93 @@
 #include "io/machine_file_lathe.hpp"
 
-#include <fmt/format.h>
-
-#include <cmath>
 #include <stdexcept>
-#include <utility>
 
-#include "io/csv.hpp"
+#include "io/field_list.hpp"
 
 namespace pkmopt {
 namespace {
 
-void read_number(const YamlValue& root, const char* key, double& value) {
-  if (auto v = root.optional(key)) value = v->as_double();
+FieldRule number(std::string_view unit, std::string_view doc) { return {.unit = unit, .doc = doc}; }
+
+FieldRule positive(std::string_view unit, std::string_view doc) {
+  return {.min = 0, .min_exclusive = true, .unit = unit, .doc = doc};
 }
 
-void read_positive(const YamlValue& root, const char* key, double& value) {
-  if (auto v = root.optional(key)) value = v->as_positive();
+FieldRule non_negative(std::string_view unit, std::string_view doc) {
+  return {.min = 0, .unit = unit, .doc = doc};
 }
 
-void read_angle(const YamlValue& root, const char* key, double lo_deg, double hi_deg,
-                double& value) {
-  if (auto v = root.optional(key)) {
-    const double deg = v->as_double();
-    if (!(deg > lo_deg && deg < hi_deg))
-      v->fail(fmt::format("an angle in degrees in ({}, {})", format_number(lo_deg),
-                          format_number(hi_deg)),
-              v->describe());
-    value = deg_to_rad(deg);
-  }
-}
-
-void read_pair(const YamlValue& root, const char* key, bool positive, double& low, double& high) {
-  if (auto v = root.optional(key)) {
-    const auto values = v->as_doubles(2);
-    if (!(values[0] < values[1]) || (positive && !(values[0] > 0.0)))
-      v->fail(positive ? "[low, high] with 0 < low < high (m)" : "[low, high] with low < high (m)",
-              v->describe());
-    low = values[0];
-    high = values[1];
-  }
+// An angle in degrees in the open interval (lo, hi), written in its shortest round-trip form.
+FieldRule angle(double lo, double hi, std::string_view expected, std::string_view doc) {
+  return {.min = lo,
+          .max = hi,
+          .min_exclusive = true,
+          .max_exclusive = true,
+          .degrees = true,
+          .unit = "deg",
+          .expected = expected,
+          .doc = doc};
 }
 
 }  // namespace
 
+template <class Fields>
+void describe_fields(Fields& f, Lathe16k20f3Design& d) {
+  f.note("model", "lathe_16k20f3", "", "required", "the machine model");
+  f.note("name", "a text", "", "none", "free text");
+  f.note("description", "a text", "", "none", "free text");
+  f.field("centre_height", d.centre_height, positive("m", "spindle axis above the guideways"));
+  f.field("tool_reach", d.tool_reach,
+          non_negative("m", "turret centre to the working tool's tip (0: the TCP is the centre)"));
+  f.field("approach_angle_deg", d.approach_angle,
+          angle(-90, 90, "an angle in degrees in (-90, 90)",
+                "a0: the tool's approach angle at phi = 0"));
+  f.field("strut_length", d.strut_length,
+          positive("m", "constant length of the parallelogram strut pairs (PUS)"));
+  f.field("guide_y", d.guide_y, number("m", "y of the carriages' hinge line"));
+  f.field("guide_z", d.guide_z, number("m", "z of the carriages' hinge line"));
+  f.field("strut_joint_spread", d.strut_joint_spread,
+          positive("m", "platform strut joints at (∓spread, strut_joint_y, strut_joint_z)"));
+  f.field("strut_joint_y", d.strut_joint_y, number("m", "platform strut joints, platform frame y"));
+  f.field("strut_joint_z", d.strut_joint_z, number("m", "platform strut joints, platform frame z"));
+  FieldRange travel{d.carriage_min, d.carriage_max};
+  f.field("carriage_travel", travel,
+          {.unit = "m", .doc = "carriage position range along x (both carriages)"});
+  f.field("strut_max_angle_deg", d.strut_max_angle,
+          angle(0, 90, "an angle in degrees in (0, 90)",
+                "hinge limit: angle between a strut and its guide"));
+  f.field("strut_E", d.strut_E, positive("Pa", "Young's modulus of the strut rods"));
+  f.field("strut_area", d.strut_area, positive("m²", "cross-section of a rod (2 rods per pair)"));
+  f.field("carriage_stiffness", d.carriage_stiffness,
+          non_negative("N/m", "carriage drive along x (0: rigid)"));
+  f.field("leg_base_x", d.leg_base_x, number("m", "overhead base joints at (x, y ∓ spacing/2, z)"));
+  f.field("leg_base_y", d.leg_base_y, number("m", "y of the base joints' centre"));
+  f.field("leg_base_z", d.leg_base_z, number("m", "z of the base joints"));
+  f.field("leg_base_spacing", d.leg_base_spacing,
+          positive("m", "y distance between the two base joints"));
+  f.field("leg_joint_spacing", d.leg_joint_spacing,
+          positive("m", "platform leg joints at (0, ∓spacing/2, leg_joint_z)"));
+  f.field("leg_joint_z", d.leg_joint_z, number("m", "platform leg joints, platform frame z"));
+  FieldRange leg_length{d.leg_min_length, d.leg_max_length};
+  f.field("leg_length", leg_length,
+          {.min = 0,
+           .min_exclusive = true,
+           .unit = "m",
+           .expected = "[low, high] with 0 < low < high (m)",
+           .doc = "electro-cylinder (UPS leg) length range"});
+  f.field("leg_max_angle_deg", d.leg_max_angle,
+          angle(0, 180, "an angle in degrees in (0, 180)", "U joint at the beam, from −z"));
+  f.field("leg_E", d.leg_E, positive("Pa", "Young's modulus of the legs"));
+  f.field("leg_area", d.leg_area, positive("m²", "cross-section of a cylinder housing"));
+  f.field("leg_actuator_stiffness", d.leg_actuator_stiffness,
+          non_negative("N/m", "screw and nut of the electro-cylinder, in series (0: rigid)"));
+  f.field("actuator_error", d.actuator_error,
+          non_negative("m", "half-width of the actuator error box of tcp_error_max"));
+}
+
 Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root) {
-  root.check_keys({"model",
-                   "name",
-                   "description",
-                   "centre_height",
-                   "tool_reach",
-                   "approach_angle_deg",
-                   "strut_length",
-                   "guide_y",
-                   "guide_z",
-                   "strut_joint_spread",
-                   "strut_joint_y",
-                   "strut_joint_z",
-                   "carriage_travel",
-                   "strut_max_angle_deg",
-                   "strut_E",
-                   "strut_area",
-                   "carriage_stiffness",
-                   "leg_base_x",
-                   "leg_base_y",
-                   "leg_base_z",
-                   "leg_base_spacing",
-                   "leg_joint_spacing",
-                   "leg_joint_z",
-                   "leg_length",
-                   "leg_max_angle_deg",
-                   "leg_E",
-                   "leg_area",
-                   "leg_actuator_stiffness",
-                   "actuator_error"});
   Lathe16k20f3Design d;
-  read_positive(root, "centre_height", d.centre_height);
-  if (auto v = root.optional("tool_reach")) d.tool_reach = v->as_non_negative();
-  read_angle(root, "approach_angle_deg", -90.0, 90.0, d.approach_angle);
-  read_positive(root, "strut_length", d.strut_length);
-  read_number(root, "guide_y", d.guide_y);
-  read_number(root, "guide_z", d.guide_z);
-  read_positive(root, "strut_joint_spread", d.strut_joint_spread);
-  read_number(root, "strut_joint_y", d.strut_joint_y);
-  read_number(root, "strut_joint_z", d.strut_joint_z);
-  read_pair(root, "carriage_travel", false, d.carriage_min, d.carriage_max);
-  read_angle(root, "strut_max_angle_deg", 0.0, 90.0, d.strut_max_angle);
-  read_positive(root, "strut_E", d.strut_E);
-  read_positive(root, "strut_area", d.strut_area);
-  if (auto v = root.optional("carriage_stiffness")) d.carriage_stiffness = v->as_non_negative();
-  read_number(root, "leg_base_x", d.leg_base_x);
-  read_number(root, "leg_base_y", d.leg_base_y);
-  read_number(root, "leg_base_z", d.leg_base_z);
-  read_positive(root, "leg_base_spacing", d.leg_base_spacing);
-  read_positive(root, "leg_joint_spacing", d.leg_joint_spacing);
-  read_number(root, "leg_joint_z", d.leg_joint_z);
-  read_pair(root, "leg_length", true, d.leg_min_length, d.leg_max_length);
-  read_angle(root, "leg_max_angle_deg", 0.0, 180.0, d.leg_max_angle);
-  read_positive(root, "leg_E", d.leg_E);
-  read_positive(root, "leg_area", d.leg_area);
-  if (auto v = root.optional("leg_actuator_stiffness"))
-    d.leg_actuator_stiffness = v->as_non_negative();
-  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
+  read_fields(root, d);
   try {
     (void)make_lathe_16k20f3(d);
   } catch (const std::invalid_argument& e) {
@@ -114,5 +100,10 @@ std::unique_ptr<Machine> load_lathe_machine(const YamlValue& root, const std::st
   if (model != "lathe_16k20f3") return nullptr;
   return make_lathe_16k20f3(read_lathe_16k20f3_design(root));
 }
+
+std::string lathe_machine_fields_markdown() { return fields_markdown(Lathe16k20f3Design{}); }
+
+// The writer (io/machine_file_writer.cpp) takes the same list.
+template void describe_fields(FieldWriter&, Lathe16k20f3Design&);
 
 }  // namespace pkmopt

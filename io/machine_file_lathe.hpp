@@ -5,7 +5,9 @@
 // every key but `model` is optional and defaults to the study's design. Angles in degrees, lengths
 // in m, stiffness in N/m, E in Pa, areas in m^2. Strict like the other readers: unknown keys,
 // non-finite or impossible values (empty ranges, zero lengths) throw InputError naming file, line,
-// column and key.
+// column and key. The keys are described once (`describe_fields` below, io/field_list.hpp): the
+// reader, the writer lathe_16k20f3_machine_file (io/machine_file_writer.hpp) and the docs table of
+// docs/machines.md come from that list.
 //
 //   model: lathe_16k20f3
 //   centre_height: 0.215          # spindle axis above the guideways
@@ -53,5 +55,13 @@ Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root);
 
 /// The machine of a lathe model file; nullptr when `model` is not "lathe_16k20f3".
 std::unique_ptr<Machine> load_lathe_machine(const YamlValue& root, const std::string& model);
+
+/// The docs table of the lathe machine file's keys, from the field list its reader and writer use.
+std::string lathe_machine_fields_markdown();
+
+/// The field list of the lathe machine file (io/field_list.hpp): instantiated in
+/// io/machine_file_lathe.cpp for its reader and docs, and for FieldWriter.
+template <class Fields>
+void describe_fields(Fields& f, Lathe16k20f3Design& design);
 
 }  // namespace pkmopt

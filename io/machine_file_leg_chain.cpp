@@ -3,103 +3,149 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "io/csv.hpp"
+#include "io/field_list.hpp"
 #include "io/input_error.hpp"
 #include "models/hexapod.hpp"
 
 namespace pkmopt {
 namespace {
 
-double angle_limit(const YamlValue& value) {
-  const double v = value.as_double();
-  if (!(v > 0.0 && v <= 180.0)) value.fail("an angle in degrees in (0, 180]", value.describe());
-  return deg_to_rad(v);
+// Rules shared by the models' field lists.
+FieldRule positive(std::string_view unit, std::string_view doc) {
+  return {.min = 0, .min_exclusive = true, .required = true, .unit = unit, .doc = doc};
 }
 
-// A guide inclination in degrees, (-90, 90), returned in rad.
-double read_inclination(const YamlValue& value) {
-  const double a = value.as_double();
-  if (!(a > -90.0 && a < 90.0)) value.fail("an angle in degrees in (-90, 90)", value.describe());
-  return deg_to_rad(a);
+FieldRule non_negative(std::string_view unit, std::string_view doc) {
+  return {.min = 0, .required = true, .unit = unit, .doc = doc};
 }
 
-Eigen::Vector3d read_vector3(const YamlValue& value) {
-  const auto v = value.as_doubles(3);
-  return {v[0], v[1], v[2]};
+// A joint angle limit in degrees, (0, 180], unlimited when absent; written to 12 digits.
+FieldRule angle_limit(std::string_view doc) {
+  return {.min = 0,
+          .max = 180,
+          .min_exclusive = true,
+          .infinite_is_unset = true,
+          .degrees = true,
+          .digits = 12,
+          .unit = "deg",
+          .expected = "an angle in degrees in (0, 180]",
+          .doc = doc};
 }
 
-// [low, high] with low < high, each within [lo_bound, hi_bound]; scale converts to the code's unit.
-std::pair<double, double> read_range(const YamlValue& value, double lo_bound, double hi_bound,
-                                     const char* unit) {
-  const auto v = value.as_doubles(2);
-  if (!(v[0] < v[1])) {
-    value.fail(fmt::format("[low, high] with low < high ({})", unit), value.describe());
-  }
-  if (!(v[0] >= lo_bound && v[1] <= hi_bound)) {
-    value.fail(fmt::format("a range within [{}, {}] {}", format_number(lo_bound),
-                           format_number(hi_bound), unit),
-               fmt::format("[{}, {}]", format_number(v[0]), format_number(v[1])));
-  }
-  return {v[0], v[1]};
+// A guide inclination in degrees, (-90, 90).
+FieldRule inclination(std::string_view doc) {
+  return {.min = -90,
+          .max = 90,
+          .min_exclusive = true,
+          .max_exclusive = true,
+          .degrees = true,
+          .digits = 12,
+          .unit = "deg",
+          .expected = "an angle in degrees in (-90, 90)",
+          .doc = doc};
 }
 
-// {E, area} or {axial_stiffness}, into k (actuator stiffness untouched).
-void read_link_stiffness(const YamlValue& section, LinkStiffness& k) {
-  section.check_keys({"E", "area", "axial_stiffness"});
+// An actuator stiffness in series with the links: written when > 0, absent = a rigid drive.
+FieldRule drive_stiffness(LinkStiffness& k, std::string_view unit, std::string_view doc) {
+  return {.min = 0,
+          .min_exclusive = true,
+          .zero_is_unset = true,
+          .unit = unit,
+          .doc = doc,
+          .omit_when = [&k] { return !(k.actuator_stiffness > 0.0); }};
+}
+
+template <class Fields>
+void describe_model(Fields& f, std::string_view model) {
+  f.note("model", model, "", "required", "the machine model");
+  f.note("name", "a text", "", "none", "free text");
+  f.note("description", "a text", "", "none", "free text");
+}
+
+// `{E, area}` or `{axial_stiffness}` of the links (check_links checks the choice).
+template <class Fields>
+void describe_link_stiffness(Fields& g, LinkStiffness& k, std::string_view per) {
+  g.field("E", k.E,
+          {.min = 0,
+           .min_exclusive = true,
+           .unit = "Pa",
+           .default_text = "required (or axial_stiffness)",
+           .doc = "Young's modulus of the links (with area)",
+           .omit_when = [&k] { return k.axial_stiffness > 0.0; }});
+  g.field("area", k.area,
+          {.min = 0,
+           .min_exclusive = true,
+           .unit = "m²",
+           .default_text = "required (or axial_stiffness)",
+           .doc = per,
+           .omit_when = [&k] { return k.axial_stiffness > 0.0; }});
+  g.field("axial_stiffness", k.axial_stiffness,
+          {.min = 0,
+           .min_exclusive = true,
+           .zero_is_unset = true,
+           .unit = "N/m",
+           .default_text = "required (or E and area)",
+           .doc = "constant axial stiffness of a link instead of E and area"});
+}
+
+template <class Fields>
+void describe_links(Fields& f, std::string_view key, LinkStiffness& k, std::string_view per) {
+  f.section(key, {.required = true}, [&](auto& g) { describe_link_stiffness(g, k, per); });
+}
+
+template <class Fields>
+void describe_joints(Fields& f, std::string_view base_key, double& base_limit,
+                     std::string_view base_doc, double& platform_limit,
+                     std::string_view platform_doc) {
+  f.section("joints", {}, [&](auto& g) {
+    g.field(base_key, base_limit, angle_limit(base_doc));
+    g.field("platform_max_angle_deg", platform_limit, angle_limit(platform_doc));
+  });
+}
+
+template <class Fields>
+void describe_tool(Fields& f, Eigen::Vector3d& tcp) {
+  f.section("tool", {}, [&](auto& g) {
+    g.field("tcp", tcp, {.unit = "m", .doc = "the TCP in the platform frame"});
+  });
+}
+
+template <class Fields>
+void describe_characteristic_length(Fields& f, std::optional<double>& length) {
+  f.field("characteristic_length", length,
+          {.min = 0,
+           .min_exclusive = true,
+           .unit = "m",
+           .default_text = "mean distance from the TCP to the platform joints",
+           .doc = "L of J_h in singularity_margin (unused by 3-DOF translational machines)"});
+}
+
+FieldRule stroke_rule(std::string_view doc) { return {.required = true, .unit = "m", .doc = doc}; }
+
+// The choice of `{E, area}` or `{axial_stiffness}`, after the list has read the values.
+void check_links(const YamlValue& section) {
   const bool has_axial = section.has("axial_stiffness");
   const bool has_e = section.has("E");
   const bool has_area = section.has("area");
   if (has_axial && (has_e || has_area)) {
     section.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
   }
-  if (has_axial) {
-    k.axial_stiffness = section.required("axial_stiffness").as_positive();
-    k.E = 0.0;
-    k.area = 0.0;
-  } else if (has_e || has_area) {
-    k.axial_stiffness = 0.0;
-    k.E = section.required("E").as_positive();
-    k.area = section.required("area").as_positive();
-  } else {
+  if (has_axial) return;
+  if (!has_e && !has_area) {
     section.fail(
         "missing the link stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
   }
+  (void)section.required("E");  // both are needed: names the missing one
+  (void)section.required("area");
 }
 
-// The links' stiffness under `links_key` and the actuator stiffness under the optional
-// `drive_key` (N/m, or N*m/rad for cranks; absent: a rigid drive).
-void read_links_and_drive(const YamlValue& root, const char* links_key, const char* drive_key,
-                          LinkStiffness& k) {
-  read_link_stiffness(root.required(links_key), k);
-  k.actuator_stiffness = 0.0;
-  if (auto v = root.optional(drive_key)) k.actuator_stiffness = v->as_positive();
-}
-
-// `stroke: [min, max]` (m) into the actuator range.
-void read_stroke(const YamlValue& root, double& q_min, double& q_max) {
-  const double inf = std::numeric_limits<double>::infinity();
-  const auto stroke = read_range(root.required("stroke"), -inf, inf, "m");
-  q_min = stroke.first;
-  q_max = stroke.second;
-}
-
-void read_common(const YamlValue& root, Eigen::Vector3d& tcp,
-                 std::optional<double>& characteristic_length) {
-  if (auto tool = root.optional("tool")) {
-    tool->check_keys({"tcp"});
-    if (auto v = tool->optional("tcp")) tcp = read_vector3(*v);
-  }
-  if (auto v = root.optional("characteristic_length")) characteristic_length = v->as_positive();
-}
-
-void read_joint_limits(const YamlValue& root, const char* base_key, double& base_limit,
-                       double& platform_limit) {
-  if (auto joints = root.optional("joints")) {
-    joints->check_keys({base_key, "platform_max_angle_deg"});
-    if (auto v = joints->optional(base_key)) base_limit = angle_limit(*v);
-    if (auto v = joints->optional("platform_max_angle_deg")) platform_limit = angle_limit(*v);
+void check_non_zero(const YamlValue& map, const char* key, const Eigen::Vector3d& v) {
+  if (auto value = map.optional(key)) {
+    if (!(v.norm() > 1e-12)) value->fail("a non-zero vector", value->describe());
   }
 }
 
@@ -113,74 +159,326 @@ void validate(const YamlValue& root, const Design& design, Make make) {
   }
 }
 
+// The design a reader starts from: the model's defaults with the links' stiffness unset (the
+// file gives it) and a rigid drive unless the file gives its stiffness.
+template <typename Design>
+Design reader_start() {
+  Design d;
+  d.stiffness = {0.0, 0.0, 0.0, 0.0};
+  return d;
+}
+
+template <typename Design>
+std::string markdown_of(Design d) {
+  FieldDocs docs;
+  describe_fields(docs, d);
+  return docs.markdown();
+}
+
 }  // namespace
 
-DeltaDesign read_delta_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "base_radius", "platform_radius", "upper_arm",
-                   "rod", "drive_range_deg", "branch", "rods", "drive_stiffness", "joints", "tool",
-                   "characteristic_length", "actuator_error_deg"});
-  DeltaDesign d;
-  d.base_radius = root.required("base_radius").as_positive();
-  d.platform_radius = root.required("platform_radius").as_non_negative();
-  d.upper_arm = root.required("upper_arm").as_positive();
-  d.rod = root.required("rod").as_positive();
-  const auto range = read_range(root.required("drive_range_deg"), -180.0, 180.0, "deg");
-  d.theta_min = deg_to_rad(range.first);
-  d.theta_max = deg_to_rad(range.second);
-  if (auto v = root.optional("branch")) {
-    const std::string b = v->as_string();
-    if (b == "elbow_out") {
-      d.branch = 1;
-    } else if (b == "elbow_in") {
-      d.branch = -1;
-    } else {
-      v->fail("elbow_out or elbow_in", quote_found(b));
-    }
+template <class Fields>
+void describe_fields(Fields& f, DeltaDesign& d) {
+  describe_model(f, "delta");
+  f.field("base_radius", d.base_radius, positive("m", "centre to each drive pivot"));
+  f.field("platform_radius", d.platform_radius,
+          non_negative("m", "TCP to each rod-pair centre (same azimuth as its drive)"));
+  f.field("upper_arm", d.upper_arm, positive("m", "crank length"));
+  f.field("rod", d.rod, positive("m", "parallelogram rod length"));
+  FieldRange drive{d.theta_min, d.theta_max};
+  f.field("drive_range_deg", drive,
+          {.min = -180,
+           .max = 180,
+           .required = true,
+           .degrees = true,
+           .digits = 12,
+           .unit = "deg",
+           .doc = "drive angle range (θ = 0: crank horizontal outwards; θ > 0 lowers the elbow)"});
+  FieldChoice<int> branch{d.branch, {{"elbow_out", 1}, {"elbow_in", -1}}};
+  f.field("branch", branch, {.doc = "the elbow branch of the inverse kinematics"});
+  describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)");
+  f.field("drive_stiffness", d.stiffness.actuator_stiffness,
+          drive_stiffness(d.stiffness, "N·m/rad", "motor and gearbox in series; unset: rigid"));
+  describe_joints(f, "elbow_max_angle_deg", d.elbow_max_angle,
+                  "limit of the elbow joint angle (axis: the crank's down direction)",
+                  d.platform_max_angle, "limit of the platform joint angle (axis: platform +z)");
+  describe_tool(f, d.tcp);
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error_deg", d.actuator_error,
+          {.min = 0,
+           .degrees = true,
+           .digits = 12,
+           .unit = "deg",
+           .doc = "half-width of the drive angle error box of tcp_error_max"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, LinearDeltaDesign& d) {
+  describe_model(f, "linear_delta");
+  f.field("guide_radius", d.guide_radius,
+          positive("m", "centre to each guide at z = 0 (guides at azimuths −90 + 120 (i − 1))"));
+  f.field("platform_radius", d.platform_radius, non_negative("m", "TCP to each rod-pair centre"));
+  f.field("rod", d.rod, positive("m", "parallelogram rod length"));
+  f.field("inclination_deg", d.inclination,
+          inclination("guide tilt towards the centre (0: vertical guides)"));
+  FieldRange stroke{d.q_min, d.q_max};
+  f.field("stroke", stroke, stroke_rule("carriage travel along the guide (upwards)"));
+  describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)");
+  f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
+          drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
+  describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
+                  "limit of the carriage joint angle", d.platform_max_angle,
+                  "limit of the platform joint angle");
+  describe_tool(f, d.tcp);
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, HexaglideDesign& d) {
+  describe_model(f, "hexaglide");
+  f.section("guides", {.required = true}, [&](auto& g) {
+    g.field("y", d.guide_y,
+            {.required = true, .unit = "m", .doc = "lateral position of each guide (x parallel)"});
+    g.field("z", d.guide_z, {.unit = "m", .doc = "height of each guide"});
+    g.field("inclination_deg", d.inclination, inclination("guide tilt about the y axis"));
+  });
+  f.field("strut", d.strut, positive("m", "constant strut length"));
+  f.note("platform", "{radius, pair_separation_deg, rotation_deg}", "m, deg",
+         "required (or platform_joints)",
+         "semi-regular platform of docs/conventions.md turned by rotation_deg (default 0) about z; "
+         "radius > 0, pair_separation_deg in [0, 120]");
+  f.field("platform_joints", d.platform_joints,
+          {.unit = "m",
+           .default_text = "required (or platform)",
+           .doc = "the six platform joints b_i in the platform frame"});
+  FieldRange stroke{d.q_min, d.q_max};
+  f.field("stroke", stroke, stroke_rule("carriage travel along the guide (from x = 0)"));
+  describe_links(f, "struts", d.stiffness, "cross-section of a strut");
+  f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
+          drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
+  describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
+                  "limit of the carriage joint angle", d.platform_max_angle,
+                  "limit of the platform joint angle");
+  describe_tool(f, d.tcp);
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  f.field("home_height", d.home_height, {.unit = "m", .doc = "z of the FK start pose"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, Tripod3PrsDesign& d) {
+  describe_model(f, "tripod_3prs");
+  f.field("base_radius", d.base_radius, positive("m", "head axis to each slide"));
+  f.field("platform_radius", d.platform_radius,
+          positive("m", "platform centre to each spherical joint"));
+  f.field("strut", d.strut, positive("m", "constant strut length"));
+  FieldRange stroke{d.q_min, d.q_max};
+  f.field("stroke", stroke, stroke_rule("carriage travel along each slide (+z)"));
+  f.field("tool_length", d.tool_length,
+          {.unit = "m", .doc = "TCP beyond the platform centre along the platform's +z"});
+  describe_links(f, "struts", d.stiffness, "cross-section of a strut");
+  f.field("slide_stiffness", d.stiffness.actuator_stiffness,
+          drive_stiffness(d.stiffness, "N/m", "drive along the slide; unset: rigid"));
+  describe_joints(f, "revolute_max_angle_deg", d.revolute_max_angle,
+                  "limit of the strut's angle from the slide's +z (in the leg plane)",
+                  d.platform_max_angle,
+                  "limit of the angle between the strut and the platform normal");
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, LegChainDesign& d) {
+  describe_model(f, "leg_chain");
+  FieldChoice<PlatformMobility> mobility{d.mobility,
+                                         {{"six_dof", PlatformMobility::kSixDof},
+                                          {"translational", PlatformMobility::kTranslational},
+                                          {"schoenflies", PlatformMobility::kSchoenflies},
+                                          {"planar_legs", PlatformMobility::kPlanarLegs}}};
+  f.field("mobility", mobility,
+          {.required = true,
+           .doc = "the platform DOF: 6 legs (six_dof), 3 (translational, planar_legs) or 4 "
+                  "(schoenflies)"});
+  f.field("rotation_axis", d.rotation_axis,
+          {.expected = "a non-zero vector",
+           .doc = "schoenflies only: the platform's rotation axis e (base frame)",
+           .omit_when = [&d] { return d.mobility != PlatformMobility::kSchoenflies; }});
+  f.note("legs", "a list of legs (legs[] below)", "", "required",
+         "exactly as many as the mobility needs, all RUS or all prismatic");
+  describe_tool(f, d.tcp);
+  describe_characteristic_length(f, d.characteristic_length);
+  f.note("actuator_error", "a number >= 0", "m", "1e-05",
+         "prismatic legs: half-width of the actuator error box of tcp_error_max");
+  f.note("actuator_error_deg", "a number >= 0", "deg", "0.001",
+         "RUS legs: the same in degrees (actuator_error is then an error)");
+  f.section("home", {}, [&](auto& g) {
+    g.field("position", d.home.position,
+            {.required = true, .unit = "m", .doc = "position of the FK start pose"});
+    g.field("angles_deg", d.home.angles,
+            {.degrees = true, .digits = 12, .unit = "deg", .doc = "angles of the FK start pose"});
+  });
+}
+
+template <class Fields>
+void describe_leg_kind(Fields& f, LegChainLeg& leg) {
+  FieldChoice<LegKind> kind{leg.kind,
+                            {{"UPS", LegKind::kUPS},
+                             {"PUS", LegKind::kPUS},
+                             {"PUU", LegKind::kPUS},
+                             {"RUS", LegKind::kRUS}}};
+  f.field("kind", kind,
+          {.required = true,
+           .doc = "telescopic leg (UPS), carriage and strut (PUS; PUU a synonym), crank and rod "
+                  "(RUS)"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, LegChainLegFields& fields) {
+  LegChainLeg& leg = fields.leg;
+  const bool all = fields.all;
+  const bool ups = leg.kind == LegKind::kUPS;
+  const bool rus = leg.kind == LegKind::kRUS;
+  describe_leg_kind(f, leg);
+  f.field("base_point", leg.base_point,
+          {.required = true,
+           .unit = "m",
+           .doc = "UPS: base joint; PUS: guide point (carriage joint at q = 0); RUS: crank pivot "
+                  "(base frame)"});
+  f.field("platform_point", leg.platform_point,
+          {.required = true, .unit = "m", .doc = "platform joint b_i (platform frame)"});
+  FieldRange range{leg.q_min, leg.q_max};
+  FieldRule range_rule{.required = true,
+                       .unit = "m",
+                       .doc =
+                           "UPS: leg lengths [min > 0, max] (m); PUS: carriage travel (m); RUS: "
+                           "crank angle within [-180, 180] (deg)"};
+  if (all) {
+    range_rule.unit = "m or deg";
+  } else if (rus) {
+    range_rule.min = -180;
+    range_rule.max = 180;
+    range_rule.degrees = true;
+    range_rule.digits = 12;
+    range_rule.unit = "deg";
+  } else if (ups) {
+    range_rule.min = 0;
   }
-  read_links_and_drive(root, "rods", "drive_stiffness", d.stiffness);
-  read_joint_limits(root, "elbow_max_angle_deg", d.elbow_max_angle, d.platform_max_angle);
-  read_common(root, d.tcp, d.characteristic_length);
-  if (auto v = root.optional("actuator_error_deg"))
-    d.actuator_error = deg_to_rad(v->as_non_negative());
+  f.field("range", range, range_rule);
+  f.section("link", {.required = true}, [&](auto& g) {
+    g.field("E", leg.E,
+            {.min = 0,
+             .min_exclusive = true,
+             .unit = "Pa",
+             .default_text = "required (or axial_stiffness)",
+             .doc = "Young's modulus of the link's rods (with area)",
+             .omit_when = [&leg] { return leg.axial_stiffness > 0.0; }});
+    g.field("area", leg.area,
+            {.min = 0,
+             .min_exclusive = true,
+             .unit = "m²",
+             .default_text = "required (or axial_stiffness)",
+             .doc = "cross-section of a rod",
+             .omit_when = [&leg] { return leg.axial_stiffness > 0.0; }});
+    g.field("axial_stiffness", leg.axial_stiffness,
+            {.min = 0,
+             .min_exclusive = true,
+             .zero_is_unset = true,
+             .unit = "N/m",
+             .default_text = "required (or E and area)",
+             .doc = "constant axial stiffness of the link instead of E and area"});
+    g.field("rods", leg.rods,
+            {.min = 1,
+             .max = 16,
+             .doc = "parallel rods of the link (2 for a parallelogram pair)",
+             .omit_when = [&leg] { return leg.rods == 1; }});
+  });
+  f.section("joints", {}, [&](auto& g) {
+    g.field("base_max_angle_deg", leg.base_max_angle,
+            angle_limit("limit of the angle between the leg and the base joint axis"));
+    g.field("platform_max_angle_deg", leg.platform_max_angle,
+            angle_limit("limit of the angle between the leg and the platform joint axis"));
+    const bool default_axes =
+        leg.base_axis == Eigen::Vector3d::UnitZ() && leg.platform_axis == -Eigen::Vector3d::UnitZ();
+    g.field("base_axis", leg.base_axis,
+            {.expected = "a non-zero vector",
+             .doc = "base joint axis: base frame (UPS, PUS), crank frame at q = 0 (RUS)",
+             .omit_when = [default_axes] { return default_axes; }});
+    g.field("platform_axis", leg.platform_axis,
+            {.expected = "a non-zero vector",
+             .default_text = "[0, 0, -1]",
+             .doc = "platform joint axis in the platform frame",
+             .omit_when = [default_axes] { return default_axes; }});
+  });
+  f.field("actuator_stiffness", leg.actuator_stiffness,
+          {.min = 0,
+           .min_exclusive = true,
+           .zero_is_unset = true,
+           .unit = "N/m or N·m/rad",
+           .doc = "actuator in series with the link (N·m/rad for RUS); unset: rigid"});
+  if (all || !ups) {
+    f.field("axis", leg.axis,
+            {.required = !all,
+             .expected = "a non-zero vector",
+             .default_text = "required (PUS, RUS)",
+             .doc = "PUS: guide direction; RUS: crank axis"});
+    f.field("link_length", leg.link_length,
+            {.min = 0,
+             .min_exclusive = true,
+             .required = !all,
+             .unit = "m",
+             .default_text = "required (PUS, RUS)",
+             .doc = "constant strut or rod length"});
+    f.field("branch", leg.branch,
+            {.min = -1,
+             .max = 1,
+             .expected = "1 or -1",
+             .doc = "PUS, RUS: the IK solution with B_i > 0 (1) or B_i < 0 (-1)"});
+  }
+  if (all || rus) {
+    f.field("crank_zero", leg.crank_zero,
+            {.required = !all,
+             .default_text = "required (RUS)",
+             .doc = "RUS: crank direction at q = 0"});
+    f.field("crank_length", leg.crank_length,
+            {.min = 0,
+             .min_exclusive = true,
+             .required = !all,
+             .unit = "m",
+             .default_text = "required (RUS)",
+             .doc = "RUS: crank length"});
+  }
+  if (all || fields.mobility == PlatformMobility::kPlanarLegs) {
+    f.field("plane_normal", leg.plane_normal,
+            {.required = !all,
+             .expected = "a non-zero vector",
+             .default_text = "required (planar_legs)",
+             .doc = "planar_legs: normal of the leg's plane (its revolute joint's axis)"});
+  }
+}
+
+DeltaDesign read_delta_design(const YamlValue& root) {
+  DeltaDesign d = reader_start<DeltaDesign>();
+  read_fields(root, d);
+  check_links(root.required("rods"));
   validate(root, d, make_delta);
   return d;
 }
 
 LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "guide_radius", "platform_radius", "rod",
-                   "inclination_deg", "stroke", "rods", "carriage_stiffness", "joints", "tool",
-                   "characteristic_length", "actuator_error"});
-  LinearDeltaDesign d;
-  d.guide_radius = root.required("guide_radius").as_positive();
-  d.platform_radius = root.required("platform_radius").as_non_negative();
-  d.rod = root.required("rod").as_positive();
-  if (auto v = root.optional("inclination_deg")) d.inclination = read_inclination(*v);
-  read_stroke(root, d.q_min, d.q_max);
-  read_links_and_drive(root, "rods", "carriage_stiffness", d.stiffness);
-  read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
-  read_common(root, d.tcp, d.characteristic_length);
-  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
+  LinearDeltaDesign d = reader_start<LinearDeltaDesign>();
+  read_fields(root, d);
+  check_links(root.required("rods"));
   validate(root, d, make_linear_delta);
   return d;
 }
 
 HexaglideDesign read_hexaglide_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "guides", "strut", "platform", "platform_joints",
-                   "stroke", "struts", "carriage_stiffness", "joints", "tool",
-                   "characteristic_length", "actuator_error", "home_height"});
-  HexaglideDesign d;
-  const YamlValue guides = root.required("guides");
-  guides.check_keys({"y", "z", "inclination_deg"});
-  const auto ys = guides.required("y").as_doubles(6);
-  for (int i = 0; i < 6; ++i)
-    d.guide_y[static_cast<std::size_t>(i)] = ys[static_cast<std::size_t>(i)];
-  if (auto v = guides.optional("z")) {
-    const auto zs = v->as_doubles(6);
-    for (int i = 0; i < 6; ++i)
-      d.guide_z[static_cast<std::size_t>(i)] = zs[static_cast<std::size_t>(i)];
-  }
-  if (auto v = guides.optional("inclination_deg")) d.inclination = read_inclination(*v);
-  d.strut = root.required("strut").as_positive();
+  HexaglideDesign d = reader_start<HexaglideDesign>();
+  read_fields(root, d);
   const bool has_form = root.has("platform");
   const bool has_list = root.has("platform_joints");
   if (has_form && has_list) {
@@ -200,145 +498,50 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
     if (auto v = p.optional("rotation_deg")) rotation = deg_to_rad(v->as_double());
     d.platform_joints = Eigen::AngleAxisd(rotation, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
                         semi_regular_platform_joints(radius, deg_to_rad(sep));
-  } else {
-    const auto rows = root.required("platform_joints").elements(6);
-    for (int i = 0; i < 6; ++i)
-      d.platform_joints.col(i) = read_vector3(rows[static_cast<std::size_t>(i)]);
   }
-  read_stroke(root, d.q_min, d.q_max);
-  read_links_and_drive(root, "struts", "carriage_stiffness", d.stiffness);
-  read_joint_limits(root, "carriage_max_angle_deg", d.carriage_max_angle, d.platform_max_angle);
-  read_common(root, d.tcp, d.characteristic_length);
-  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
-  if (auto v = root.optional("home_height")) d.home_height = v->as_double();
+  check_links(root.required("struts"));
   validate(root, d, make_hexaglide);
   return d;
 }
 
 Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "base_radius", "platform_radius", "strut",
-                   "stroke", "tool_length", "struts", "slide_stiffness", "joints",
-                   "characteristic_length", "actuator_error"});
-  Tripod3PrsDesign d;
-  d.base_radius = root.required("base_radius").as_positive();
-  d.platform_radius = root.required("platform_radius").as_positive();
-  d.strut = root.required("strut").as_positive();
-  read_stroke(root, d.q_min, d.q_max);
-  if (auto v = root.optional("tool_length")) d.tool_length = v->as_double();
-  read_links_and_drive(root, "struts", "slide_stiffness", d.stiffness);
-  read_joint_limits(root, "revolute_max_angle_deg", d.revolute_max_angle, d.platform_max_angle);
-  if (auto v = root.optional("characteristic_length")) d.characteristic_length = v->as_positive();
-  if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
+  Tripod3PrsDesign d = reader_start<Tripod3PrsDesign>();
+  read_fields(root, d);
+  check_links(root.required("struts"));
   validate(root, d, make_tripod_3prs);
   return d;
 }
 
 namespace {
 
-LegKind read_leg_kind(const YamlValue& value) {
-  const std::string kind = value.as_string();
-  if (kind == "UPS") return LegKind::kUPS;
-  if (kind == "PUS" || kind == "PUU") return LegKind::kPUS;
-  if (kind == "RUS") return LegKind::kRUS;
-  value.fail("UPS, PUS, PUU or RUS", quote_found(kind));
-}
-
 LegChainLeg read_leg(const YamlValue& node, PlatformMobility mobility, bool& revolute) {
   node.expect_map();
   LegChainLeg leg;
-  leg.kind = read_leg_kind(node.required("kind"));
+  {
+    FieldReader kind(node);  // the kind first: it says which keys the leg has
+    describe_leg_kind(kind, leg);
+  }
   revolute = leg.kind == LegKind::kRUS;
-  std::vector<std::string> keys = {"kind", "base_point", "platform_point",    "range",
-                                   "link", "joints",     "actuator_stiffness"};
-  if (leg.kind != LegKind::kUPS) {
-    for (const char* k : {"axis", "link_length", "branch"}) keys.emplace_back(k);
-  }
-  if (leg.kind == LegKind::kRUS) {
-    for (const char* k : {"crank_zero", "crank_length"}) keys.emplace_back(k);
-  }
-  if (mobility == PlatformMobility::kPlanarLegs) keys.emplace_back("plane_normal");
-  node.check_keys(keys);
-  leg.base_point = read_vector3(node.required("base_point"));
-  leg.platform_point = read_vector3(node.required("platform_point"));
-  const double inf = std::numeric_limits<double>::infinity();
-  if (leg.kind == LegKind::kRUS) {
-    const auto range = read_range(node.required("range"), -180.0, 180.0, "deg");
-    leg.q_min = deg_to_rad(range.first);
-    leg.q_max = deg_to_rad(range.second);
-  } else {
-    const auto range =
-        read_range(node.required("range"), leg.kind == LegKind::kUPS ? 0.0 : -inf, inf, "m");
-    if (leg.kind == LegKind::kUPS && !(range.first > 0.0)) {
-      node.required("range").fail("leg lengths [min, max] with min > 0 (m)",
-                                  node.required("range").describe());
-    }
-    leg.q_min = range.first;
-    leg.q_max = range.second;
+  LegChainLegFields fields{leg, mobility};
+  read_fields(node, fields);
+  if (leg.kind == LegKind::kUPS && !(leg.q_min > 0.0)) {
+    const YamlValue range = node.required("range");
+    range.fail("leg lengths [min, max] with min > 0 (m)", range.describe());
   }
   if (leg.kind != LegKind::kUPS) {
-    const YamlValue axis = node.required("axis");
-    leg.axis = read_vector3(axis);
-    if (!(leg.axis.norm() > 1e-12)) axis.fail("a non-zero vector", axis.describe());
-    leg.link_length = node.required("link_length").as_positive();
-    if (auto v = node.optional("branch")) {
-      const long long b = v->as_int();
-      if (b != 1 && b != -1) v->fail("1 or -1", v->describe());
-      leg.branch = static_cast<int>(b);
+    check_non_zero(node, "axis", leg.axis);
+    if (leg.branch == 0) {
+      const YamlValue branch = node.required("branch");
+      branch.fail("1 or -1", branch.describe());
     }
-  }
-  if (leg.kind == LegKind::kRUS) {
-    leg.crank_zero = read_vector3(node.required("crank_zero"));
-    leg.crank_length = node.required("crank_length").as_positive();
   }
   if (mobility == PlatformMobility::kPlanarLegs) {
-    const YamlValue normal = node.required("plane_normal");
-    leg.plane_normal = read_vector3(normal);
-    if (!(leg.plane_normal.norm() > 1e-12)) normal.fail("a non-zero vector", normal.describe());
+    check_non_zero(node, "plane_normal", leg.plane_normal);
   }
-  // link: {E, area, rods} or {axial_stiffness}
-  const YamlValue link = node.required("link");
-  link.check_keys({"E", "area", "axial_stiffness", "rods"});
-  LinkStiffness k;
-  {
-    // read_link_stiffness checks its own keys; give it a view without `rods`.
-    const bool has_axial = link.has("axial_stiffness");
-    const bool has_e = link.has("E") || link.has("area");
-    if (has_axial && has_e) {
-      link.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
-    }
-    if (has_axial) {
-      k.axial_stiffness = link.required("axial_stiffness").as_positive();
-      k.E = 0.0;
-      k.area = 0.0;
-    } else if (has_e) {
-      k.E = link.required("E").as_positive();
-      k.area = link.required("area").as_positive();
-    } else {
-      link.fail("missing the link stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
-    }
-  }
-  leg.axial_stiffness = k.axial_stiffness;
-  leg.E = k.E;
-  leg.area = k.area;
-  if (auto v = link.optional("rods")) {
-    const long long rods = v->as_int();
-    if (rods < 1 || rods > 16) v->fail("an integer in [1, 16]", v->describe());
-    leg.rods = static_cast<int>(rods);
-  }
-  if (auto v = node.optional("actuator_stiffness")) leg.actuator_stiffness = v->as_positive();
+  check_links(node.required("link"));
   if (auto joints = node.optional("joints")) {
-    joints->check_keys(
-        {"base_max_angle_deg", "platform_max_angle_deg", "base_axis", "platform_axis"});
-    if (auto v = joints->optional("base_max_angle_deg")) leg.base_max_angle = angle_limit(*v);
-    if (auto v = joints->optional("platform_max_angle_deg"))
-      leg.platform_max_angle = angle_limit(*v);
-    for (const char* key : {"base_axis", "platform_axis"}) {
-      if (auto v = joints->optional(key)) {
-        const Eigen::Vector3d a = read_vector3(*v);
-        if (!(a.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
-        (std::string(key) == "base_axis" ? leg.base_axis : leg.platform_axis) = a;
-      }
-    }
+    check_non_zero(*joints, "base_axis", leg.base_axis);
+    check_non_zero(*joints, "platform_axis", leg.platform_axis);
   }
   return leg;
 }
@@ -346,34 +549,18 @@ LegChainLeg read_leg(const YamlValue& node, PlatformMobility mobility, bool& rev
 }  // namespace
 
 LegChainDesign read_leg_chain_design(const YamlValue& root) {
-  root.check_keys({"model", "name", "description", "mobility", "rotation_axis", "legs", "tool",
-                   "characteristic_length", "actuator_error", "actuator_error_deg", "home"});
   LegChainDesign d;
   d.model = "leg_chain";
-  const YamlValue mobility = root.required("mobility");
-  const std::string m = mobility.as_string();
-  int expected_legs = 0;
-  if (m == "six_dof") {
-    d.mobility = PlatformMobility::kSixDof;
-    expected_legs = 6;
-  } else if (m == "translational") {
-    d.mobility = PlatformMobility::kTranslational;
-    expected_legs = 3;
-  } else if (m == "schoenflies") {
-    d.mobility = PlatformMobility::kSchoenflies;
-    expected_legs = 4;
-  } else if (m == "planar_legs") {
-    d.mobility = PlatformMobility::kPlanarLegs;
-    expected_legs = 3;
-  } else {
-    mobility.fail("six_dof, translational, schoenflies or planar_legs", quote_found(m));
-  }
+  read_fields(root, d);
+  int expected_legs = 6;
+  if (d.mobility == PlatformMobility::kTranslational) expected_legs = 3;
+  if (d.mobility == PlatformMobility::kSchoenflies) expected_legs = 4;
+  if (d.mobility == PlatformMobility::kPlanarLegs) expected_legs = 3;
   if (auto v = root.optional("rotation_axis")) {
     if (d.mobility != PlatformMobility::kSchoenflies) {
       v->fail("no rotation_axis (it is for mobility: schoenflies)", v->describe());
     }
-    d.rotation_axis = read_vector3(*v);
-    if (!(d.rotation_axis.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
+    check_non_zero(root, "rotation_axis", d.rotation_axis);
   }
   const auto legs = root.required("legs").elements(expected_legs);
   int revolute = 0;
@@ -387,7 +574,6 @@ LegChainDesign read_leg_chain_design(const YamlValue& root) {
         "legs that are all RUS or all prismatic (UPS, PUS)",
         std::to_string(revolute) + " RUS legs of " + std::to_string(expected_legs));
   }
-  read_common(root, d.tcp, d.characteristic_length);
   if (revolute > 0) {
     if (auto v = root.optional("actuator_error")) {
       v->fail("actuator_error_deg (the legs are revolute)", v->describe());
@@ -400,11 +586,6 @@ LegChainDesign read_leg_chain_design(const YamlValue& root) {
       v->fail("actuator_error in m (the legs are prismatic)", v->describe());
     }
     if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
-  }
-  if (auto home = root.optional("home")) {
-    home->check_keys({"position", "angles_deg"});
-    d.home.position = read_vector3(home->required("position"));
-    if (auto v = home->optional("angles_deg")) d.home.angles = deg_to_rad(read_vector3(*v));
   }
   validate(root, d, make_leg_chain_machine);
   return d;
@@ -422,5 +603,32 @@ std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std
 const char* leg_chain_model_names() {
   return "delta, linear_delta, hexaglide, tripod_3prs, leg_chain";
 }
+
+std::string leg_chain_machine_fields_markdown(std::string_view model) {
+  if (model == "delta") return markdown_of(reader_start<DeltaDesign>());
+  if (model == "linear_delta") return markdown_of(reader_start<LinearDeltaDesign>());
+  if (model == "hexaglide") return markdown_of(reader_start<HexaglideDesign>());
+  if (model == "tripod_3prs") return markdown_of(reader_start<Tripod3PrsDesign>());
+  if (model == "leg_chain") {
+    FieldDocs docs;
+    LegChainDesign design;
+    describe_fields(docs, design);
+    LegChainLeg leg;
+    LegChainLegFields fields{leg, PlatformMobility::kSixDof, true};
+    docs.set_prefix("legs[].");
+    describe_fields(docs, fields);
+    return docs.markdown();
+  }
+  throw std::invalid_argument("leg_chain_machine_fields_markdown: unknown model '" +
+                              std::string(model) + "'");
+}
+
+// The writers (io/machine_file_writer.cpp) take the same lists.
+template void describe_fields(FieldWriter&, DeltaDesign&);
+template void describe_fields(FieldWriter&, LinearDeltaDesign&);
+template void describe_fields(FieldWriter&, HexaglideDesign&);
+template void describe_fields(FieldWriter&, Tripod3PrsDesign&);
+template void describe_fields(FieldWriter&, LegChainDesign&);
+template void describe_fields(FieldWriter&, LegChainLegFields&);
 
 }  // namespace pkmopt

@@ -6,6 +6,11 @@
 // column and key. Angles are in degrees in the files (drive ranges, joint limits, inclinations,
 // the delta's actuator_error_deg). docs/machines.md lists every key with its unit.
 //
+// Each model's keys are described once (io/field_list.hpp, `describe_fields` below): the readers,
+// the writers of io/machine_file_writer.hpp and the docs tables of docs/machines.md come from
+// those lists. Alternatives and cross-key checks (E and area or axial_stiffness, platform or
+// platform_joints, the generic form's legs and actuator error) are read by hand next to them.
+//
 //   model: delta
 //   base_radius: 0.164          # m
 //   platform_radius: 0.044      # m
@@ -21,6 +26,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "io/yaml_reader.hpp"
 #include "models/leg_chain.hpp"
@@ -41,5 +47,34 @@ std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std
 
 /// The leg-chain model names this reader knows, for messages ("delta, linear_delta, ...").
 const char* leg_chain_model_names();
+
+/// The docs table of a model's machine-file keys (`model`: delta, linear_delta, hexaglide,
+/// tripod_3prs or leg_chain, whose table has the legs' keys as `legs[].KEY`), from the field
+/// list its reader and writer use. Throws std::invalid_argument for another model.
+std::string leg_chain_machine_fields_markdown(std::string_view model);
+
+/// A leg of the generic form with the keys of its kind and of the platform mobility (`all`: every
+/// key, for the docs).
+struct LegChainLegFields {
+  LegChainLeg& leg;
+  PlatformMobility mobility = PlatformMobility::kSixDof;
+  bool all = false;
+};
+
+/// The field lists of the machine files (io/field_list.hpp): instantiated in
+/// io/machine_file_leg_chain.cpp for its readers and docs, and for FieldWriter.
+template <class Fields>
+void describe_fields(Fields& f, DeltaDesign& design);
+template <class Fields>
+void describe_fields(Fields& f, LinearDeltaDesign& design);
+template <class Fields>
+void describe_fields(Fields& f, HexaglideDesign& design);
+template <class Fields>
+void describe_fields(Fields& f, Tripod3PrsDesign& design);
+/// The generic form's top-level keys (its legs and actuator error are read by hand).
+template <class Fields>
+void describe_fields(Fields& f, LegChainDesign& design);
+template <class Fields>
+void describe_fields(Fields& f, LegChainLegFields& leg);
 
 }  // namespace pkmopt

@@ -7,15 +7,63 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/field_list.hpp"
 #include "problems/cutting_load.hpp"
 
 namespace pkmopt {
-namespace {
 
-double read_or(const YamlValue& map, std::string_view key, double fallback) {
-  const auto value = map.optional(key);
-  return value ? value->as_double() : fallback;
+// The keys of the cutting models, described once (io/field_list.hpp): the reader and the tables
+// of docs/design-studies.md come from these lists. The models check their own value ranges
+// (check_turning_conditions, check_milling_conditions).
+template <class Fields>
+void describe_fields(Fields& f, TurningConditions& c) {
+  const FieldRule req{.required = true};
+  auto rule = [&](std::string_view unit, std::string_view doc) {
+    FieldRule r = req;
+    r.unit = unit;
+    r.doc = doc;
+    return r;
+  };
+  f.field("diameter_mm", c.diameter_mm, rule("mm", "D, workpiece diameter"));
+  f.field("depth_mm", c.depth_mm, rule("mm", "t, depth of cut"));
+  f.field("feed_mm_per_rev", c.feed_mm_per_rev, rule("mm/rev", "s, feed"));
+  f.field("tool_life_min", c.tool_life_min, rule("min", "T, tool life"));
+  f.field("C_v", c.C_v, rule("", "speed coefficient of V = C_v/(T^m t^x_v s^y_v)·K_v"));
+  f.field("x_v", c.x_v, rule("", "exponent of t in V"));
+  f.field("y_v", c.y_v, rule("", "exponent of s in V"));
+  f.field("m", c.m, rule("", "exponent of T in V"));
+  f.field("K_v", c.K_v, rule("", "speed correction factor"));
+  f.field("C_p", c.C_p, rule("", "force coefficient of P_z = 10·C_p·t^x_p·s^y_p·V^n_p·K_p"));
+  f.field("x_p", c.x_p, rule("", "exponent of t in P_z"));
+  f.field("y_p", c.y_p, rule("", "exponent of s in P_z"));
+  f.field("n_p", c.n_p, rule("", "exponent of V in P_z"));
+  f.field("K_p", c.K_p, rule("", "force correction factor (product of the handbook factors)"));
+  f.field("radial_ratio", c.radial_ratio, {.doc = "P_y / P_z"});
+  f.field("axial_ratio", c.axial_ratio, {.doc = "P_x / P_z"});
 }
+
+template <class Fields>
+void describe_fields(Fields& f, MillingConditions& c) {
+  f.field("cutter_diameter_mm", c.cutter_diameter_mm,
+          {.required = true, .unit = "mm", .doc = "D_c, cutter diameter"});
+  f.field("teeth", c.teeth, {.min = 1, .max = 1000, .required = true, .doc = "z_n, teeth"});
+  f.field("cutting_speed", c.cutting_speed,
+          {.required = true, .unit = "m/min", .doc = "v_c, cutting speed"});
+  f.field("feed_per_tooth_mm", c.feed_per_tooth_mm,
+          {.required = true, .unit = "mm", .doc = "f_z, feed per tooth"});
+  f.field("width_mm", c.width_mm,
+          {.required = true, .unit = "mm", .doc = "a_e, radial engagement (at most D_c)"});
+  f.field("depth_mm", c.depth_mm, {.required = true, .unit = "mm", .doc = "a_p, axial depth"});
+  f.field("lead_angle_deg", c.lead_angle_deg,
+          {.unit = "deg", .doc = "κ_r, lead angle (90 for a square shoulder cutter)"});
+  f.field("k_c1", c.k_c1,
+          {.required = true, .unit = "N/mm²", .doc = "specific cutting force at h = 1 mm"});
+  f.field("m_c", c.m_c, {.doc = "rise of the specific cutting force, k_c = k_c1·h_m^(−m_c)"});
+  f.field("radial_ratio", c.radial_ratio, {.doc = "F_r / F_t"});
+  f.field("axial_ratio", c.axial_ratio, {.doc = "F_a / F_t"});
+}
+
+namespace {
 
 // Maps a model's complaint "name: expected ..., found ..." to the key of that name.
 [[noreturn]] void fail_at_key(const YamlValue& map, const std::string& problem) {
@@ -29,25 +77,8 @@ double read_or(const YamlValue& map, std::string_view key, double fallback) {
 TaskWrench read_turning(const YamlValue& root) {
   root.check_keys({"turning", "approach_angle_deg", "rotation_deg", "factor"});
   const YamlValue t = root.required("turning");
-  t.check_keys({"diameter_mm", "depth_mm", "feed_mm_per_rev", "tool_life_min", "C_v", "x_v", "y_v",
-                "m", "K_v", "C_p", "x_p", "y_p", "n_p", "K_p", "radial_ratio", "axial_ratio"});
   TurningConditions c;
-  c.diameter_mm = t.required("diameter_mm").as_double();
-  c.depth_mm = t.required("depth_mm").as_double();
-  c.feed_mm_per_rev = t.required("feed_mm_per_rev").as_double();
-  c.tool_life_min = t.required("tool_life_min").as_double();
-  c.C_v = t.required("C_v").as_double();
-  c.x_v = t.required("x_v").as_double();
-  c.y_v = t.required("y_v").as_double();
-  c.m = t.required("m").as_double();
-  c.K_v = t.required("K_v").as_double();
-  c.C_p = t.required("C_p").as_double();
-  c.x_p = t.required("x_p").as_double();
-  c.y_p = t.required("y_p").as_double();
-  c.n_p = t.required("n_p").as_double();
-  c.K_p = t.required("K_p").as_double();
-  c.radial_ratio = read_or(t, "radial_ratio", c.radial_ratio);
-  c.axial_ratio = read_or(t, "axial_ratio", c.axial_ratio);
+  read_fields(t, c);
   if (const std::string problem = check_turning_conditions(c); !problem.empty()) {
     fail_at_key(t, problem);
   }
@@ -82,23 +113,8 @@ TaskWrench read_turning(const YamlValue& root) {
 TaskWrench read_milling(const YamlValue& root) {
   root.check_keys({"milling", "feed_direction", "factor"});
   const YamlValue m = root.required("milling");
-  m.check_keys({"cutter_diameter_mm", "teeth", "cutting_speed", "feed_per_tooth_mm", "width_mm",
-                "depth_mm", "lead_angle_deg", "k_c1", "m_c", "radial_ratio", "axial_ratio"});
   MillingConditions c;
-  c.cutter_diameter_mm = m.required("cutter_diameter_mm").as_double();
-  const YamlValue teeth = m.required("teeth");
-  const long long n = teeth.as_int();
-  if (n < 1 || n > 1000) teeth.fail("an integer in [1, 1000]", teeth.describe());
-  c.teeth = static_cast<int>(n);
-  c.cutting_speed = m.required("cutting_speed").as_double();
-  c.feed_per_tooth_mm = m.required("feed_per_tooth_mm").as_double();
-  c.width_mm = m.required("width_mm").as_double();
-  c.depth_mm = m.required("depth_mm").as_double();
-  c.lead_angle_deg = read_or(m, "lead_angle_deg", c.lead_angle_deg);
-  c.k_c1 = m.required("k_c1").as_double();
-  c.m_c = read_or(m, "m_c", c.m_c);
-  c.radial_ratio = read_or(m, "radial_ratio", c.radial_ratio);
-  c.axial_ratio = read_or(m, "axial_ratio", c.axial_ratio);
+  read_fields(m, c);
   if (const std::string problem = check_milling_conditions(c); !problem.empty()) {
     fail_at_key(m, problem);
   }
@@ -144,6 +160,13 @@ TaskWrench read_task_wrench(const YamlValue& value) {
     return result;
   }
   value.fail("a list of 6 numbers or a map with 'turning' or 'milling'", value.describe());
+}
+
+std::string cutting_model_fields_markdown(std::string_view model) {
+  if (model == "turning") return fields_markdown(TurningConditions{});
+  if (model == "milling") return fields_markdown(MillingConditions{});
+  throw std::invalid_argument("cutting_model_fields_markdown: unknown model '" +
+                              std::string(model) + "'");
 }
 
 }  // namespace pkmopt

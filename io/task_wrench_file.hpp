@@ -23,6 +23,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "io/yaml_reader.hpp"
 #include "models/pose.hpp"
@@ -37,5 +38,9 @@ struct TaskWrench {
 };
 
 TaskWrench read_task_wrench(const YamlValue& value);
+
+/// The docs table of a cutting model's keys ("turning" or "milling"), from the same field list
+/// the reader uses.
+std::string cutting_model_fields_markdown(std::string_view model);
 
 }  // namespace pkmopt

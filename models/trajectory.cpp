@@ -135,6 +135,21 @@ std::vector<double> uniform_times(double t_start, double t_end, int count) {
   return times;
 }
 
+std::vector<double> stepped_times(double t_start, double t_end, double dt) {
+  if (!(std::isfinite(t_start) && std::isfinite(t_end) && t_end > t_start && std::isfinite(dt) &&
+        dt > 0.0)) {
+    throw std::invalid_argument(
+        "stepped_times: needs finite t_start < t_end and a finite time step dt > 0");
+  }
+  std::vector<double> times;
+  for (double t = t_start; t < t_end - 1e-9 * dt;
+       t = t_start + static_cast<double>(times.size()) * dt) {
+    times.push_back(t);
+  }
+  times.push_back(t_end);
+  return times;
+}
+
 TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path,
                                      const std::vector<double>& times) {
   check_times(times, "evaluate_trajectory");
@@ -229,6 +244,29 @@ TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path
     result.singular_poses.push_back(p);
   }
   return result;
+}
+
+TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_actuators) {
+  TrajectorySummary summary;
+  summary.samples = result.samples.size();
+  summary.q_min = Eigen::VectorXd::Constant(num_actuators, kInf);
+  summary.q_max = -summary.q_min;
+  summary.q_dot_max = Eigen::VectorXd::Zero(num_actuators);
+  for (std::size_t k = 0; k < result.samples.size(); ++k) {
+    const TrajectorySample& s = result.samples[k];
+    const bool interior = k > 0 && k + 1 < result.samples.size();
+    if (s.metrics.reachable) ++summary.reachable;
+    summary.q_min = summary.q_min.cwiseMin(s.metrics.q);
+    summary.q_max = summary.q_max.cwiseMax(s.metrics.q);
+    summary.q_dot_max = summary.q_dot_max.cwiseMax(s.q_dot.cwiseAbs());
+    summary.singularity_margin_min =
+        std::min(summary.singularity_margin_min, s.metrics.singularity_margin);
+    if (s.jacobian_ok && interior) {
+      summary.q_dot_mismatch_max =
+          std::max(summary.q_dot_mismatch_max, (s.q_dot - s.q_dot_fd).cwiseAbs().maxCoeff());
+    }
+  }
+  return summary;
 }
 
 }  // namespace pkmopt

@@ -30,6 +30,10 @@
 // leg chains a leg that cannot close), and between two regular samples whose det_j have
 // opposite signs, located by bisection on t down to the last bit of t.
 //
+// stepped_times gives the sample times of a fixed time step; summarize_trajectory reduces a run
+// to the ranges along the path (actuator coordinates and rates, reachable samples, the smallest
+// singularity_margin) and the worst disagreement of q_dot with q_dot_fd at interior samples.
+//
 // Units: m, rad, s inside the code (files show degrees).
 //
 // Example:
@@ -39,9 +43,13 @@
 //   pkmopt::TrajectoryResult run = pkmopt::evaluate_trajectory(machine, helix, times);
 //   for (const auto& s : run.samples) std::cout << s.t << " " << s.q_dot.transpose() << "\n";
 //   for (const auto& p : run.singular_poses) std::cout << "singular at t = " << p.t << "\n";
+//   const pkmopt::TrajectorySummary summary =
+//       pkmopt::summarize_trajectory(run, machine.num_actuators());   // summary.q_dot_max ...
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -118,6 +126,12 @@ class SampledPath final : public TcpPath {
 /// count >= 2 times evenly spaced from t_start to t_end (both included).
 std::vector<double> uniform_times(double t_start, double t_end, int count);
 
+/// t_start, t_start + dt, t_start + 2 dt, ... while below t_end - 1e-9 dt, then t_end: the step
+/// is kept and the last step is shorter when dt does not divide the span. Sample k is
+/// t_start + k dt (no accumulated rounding). Throws std::invalid_argument unless t_start and
+/// t_end are finite with t_end > t_start and dt > 0 is finite.
+std::vector<double> stepped_times(double t_start, double t_end, double dt);
+
 /// d values / dt at every time by the three-point central difference for uneven spacing
 /// (second order), one-sided first differences at the two ends. values[k] belongs to times[k];
 /// needs at least 2 strictly increasing times.
@@ -159,5 +173,22 @@ struct TrajectoryResult {
 /// Throws std::invalid_argument for fewer than 2 or non-increasing times.
 TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path,
                                      const std::vector<double>& times);
+
+/// Ranges along a trajectory (SI units: m or rad for q, m/s or rad/s for rates).
+struct TrajectorySummary {
+  std::size_t samples = 0;
+  std::size_t reachable = 0;  ///< samples with metrics.reachable
+  /// min over the samples (+inf with no sample)
+  double singularity_margin_min = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd q_min;      ///< per actuator, min of metrics.q (+inf with no sample)
+  Eigen::VectorXd q_max;      ///< per actuator, max of metrics.q (-inf with no sample)
+  Eigen::VectorXd q_dot_max;  ///< per actuator, max |q_dot| (0 with no sample)
+  /// max over actuators and interior samples (not the first or last) with jacobian_ok of
+  /// |q_dot - q_dot_fd|; 0 when there is none.
+  double q_dot_mismatch_max = 0.0;
+};
+
+/// The summary of a run of a machine with `num_actuators` actuators.
+TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_actuators);
 
 }  // namespace pkmopt

@@ -20,6 +20,8 @@
 // feasible start. Subproblems with no feasible point are counted as failed; results that a kept
 // one weakly dominates within 1e-5 of the ranges (levels in a gap of the front repeat the end of
 // the piece before the gap; inactive bounds) are counted as dominated and dropped.
+// The sweep, restarts, repair and front collection are run_front_sweep's (front_sweep.hpp);
+// this builder supplies the epsilon grid and its subproblems.
 //
 // Example:
 //   pkmopt::EpsilonConstraintOptions options;

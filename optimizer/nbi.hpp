@@ -15,7 +15,9 @@
 // at most 100 Ipopt iterations each); the largest t wins. A repair pass re-solves each lattice
 // point from any known point reaching a larger t on its line. Failed subproblems are counted;
 // results a kept one weakly dominates within 1e-5 of the ranges (lattice points facing a gap of
-// the front) are counted as dominated and dropped.
+// the front) are counted as dominated and dropped. The sweep, restarts, repair and front
+// collection are run_front_sweep's (front_sweep.hpp); this builder supplies the lattice and its
+// subproblems.
 //
 // Example:
 //   pkmopt::NbiOptions options;

@@ -175,18 +175,18 @@ GradientCheck check_gradient(const Problem& problem, const std::vector<double>& 
 
 std::vector<double> CountingProblem::fitness(const std::vector<double>& x) const {
   ++fitness_evaluations_;
-  return inner_.fitness(x);
+  return inner().fitness(x);
 }
 
 std::vector<std::vector<double>> CountingProblem::batch_fitness(
     std::span<const std::vector<double>> xs, int threads) const {
   fitness_evaluations_ += static_cast<long long>(xs.size());
-  return inner_.batch_fitness(xs, threads);
+  return inner().batch_fitness(xs, threads);
 }
 
 std::vector<double> CountingProblem::gradient(const std::vector<double>& x) const {
   ++gradient_evaluations_;
-  return inner_.gradient(x);
+  return inner().gradient(x);
 }
 
 int resolve_thread_count(int requested) {

@@ -14,6 +14,9 @@
 // threads at once (`thread_safety()`) and may override `batch_fitness` to evaluate many designs
 // with their own per-thread scratch data (Model/Data split).
 //
+// Decorators (CountingProblem here, the study journal in studies/) derive from ForwardingProblem,
+// which forwards every call to an inner problem, and override only what they change.
+//
 // The optimizer knows nothing of machines: problems live in problems/, solvers in optimizer/.
 //
 // Example:
@@ -134,29 +137,58 @@ struct GradientCheck {
 GradientCheck check_gradient(const Problem& problem, const std::vector<double>& x,
                              const GradientCheckOptions& options = {});
 
-/// A decorator that counts fitness and gradient evaluations of another problem (thread-safe
-/// counters). The wrapped problem must outlive it.
-class CountingProblem : public Problem {
+/// The base of problem decorators: forwards every call (bounds, counts, fitness, gradient and
+/// its sparsity, name, thread safety) to an inner problem, so a decorator overrides only what it
+/// changes. The inner problem must outlive it. batch_fitness is not forwarded: by default it
+/// evaluates this problem's own fitness (in parallel when thread_safety() allows), so a
+/// decorator that changes fitness is right in batches too; a decorator that wants the inner
+/// problem's own batch path (CountingProblem, the journal) overrides batch_fitness itself.
+///
+/// Example:
+///   class Renamed : public pkmopt::ForwardingProblem {
+///    public:
+///     using ForwardingProblem::ForwardingProblem;
+///     std::string name() const override { return inner().name() + " (renamed)"; }
+///   };
+class ForwardingProblem : public Problem {
  public:
-  explicit CountingProblem(const Problem& inner) : inner_(inner) {}
+  explicit ForwardingProblem(const Problem& inner) : inner_(inner) {}
   Bounds bounds() const override { return inner_.bounds(); }
   std::size_t num_objectives() const override { return inner_.num_objectives(); }
   std::size_t num_equality() const override { return inner_.num_equality(); }
   std::size_t num_inequality() const override { return inner_.num_inequality(); }
-  std::vector<double> fitness(const std::vector<double>& x) const override;
-  std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
-                                                 int threads) const override;
+  std::vector<double> fitness(const std::vector<double>& x) const override {
+    return inner_.fitness(x);
+  }
   bool has_gradient() const override { return inner_.has_gradient(); }
-  std::vector<double> gradient(const std::vector<double>& x) const override;
+  std::vector<double> gradient(const std::vector<double>& x) const override {
+    return inner_.gradient(x);
+  }
   SparsityPattern gradient_sparsity() const override { return inner_.gradient_sparsity(); }
   std::string name() const override { return inner_.name(); }
   ThreadSafety thread_safety() const override { return inner_.thread_safety(); }
+
+  /// The decorated problem.
+  const Problem& inner() const { return inner_; }
+
+ private:
+  const Problem& inner_;
+};
+
+/// A decorator that counts fitness and gradient evaluations of another problem (thread-safe
+/// counters). The wrapped problem must outlive it.
+class CountingProblem : public ForwardingProblem {
+ public:
+  using ForwardingProblem::ForwardingProblem;
+  std::vector<double> fitness(const std::vector<double>& x) const override;
+  std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
+                                                 int threads) const override;
+  std::vector<double> gradient(const std::vector<double>& x) const override;
 
   long long fitness_evaluations() const { return fitness_evaluations_.load(); }
   long long gradient_evaluations() const { return gradient_evaluations_.load(); }
 
  private:
-  const Problem& inner_;
   mutable std::atomic<long long> fitness_evaluations_{0};
   mutable std::atomic<long long> gradient_evaluations_{0};
 };

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "io/csv.hpp"
@@ -333,6 +334,95 @@ std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric) {
     }
   }
   return image.encode_png();
+}
+
+namespace {
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) {
+  return nlohmann::json::array({number_or_null(v(0)), number_or_null(v(1)), number_or_null(v(2))});
+}
+
+nlohmann::json optional_json(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
+}
+
+nlohmann::ordered_json box_json(const Eigen::AlignedBox3d& box) {
+  return {{"min", vector_json(box.min())}, {"max", vector_json(box.max())}};
+}
+
+}  // namespace
+
+std::string workspace_kind(const OrientationSet& set) {
+  if (set.constant()) return "constant_orientation";
+  return set.mode == OrientationSet::Mode::kAll ? "all_orientations" : "some_orientation";
+}
+
+std::string workspace_summary_json(const WorkspaceRequest& request, const WorkspaceResult& ws,
+                                   const WorkspaceSlice& slice, SliceMetric metric,
+                                   double seconds) {
+  const WorkspaceOptions& options = request.options;
+  const OrientationSet& set = options.orientations;
+  nlohmann::ordered_json summary;
+  summary["machine"] = request.machine_file;
+  summary["model"] = request.model;
+  summary["kind"] = workspace_kind(set);
+  summary["orientation_deg"] = vector_json(rad_to_deg(set.nominal_angles));
+  summary["tilt_deg"] = request.tilt_deg;
+  summary["yaw_range_deg"] = request.yaw_range_deg;
+  summary["orientation_step_deg"] = request.orientation_step_deg;
+  summary["orientation_count"] = ws.orientation_count;
+  summary["min_singularity_margin"] = optional_json(options.min_singularity_margin);
+  summary["min_stiffness"] = optional_json(options.min_stiffness);
+  summary["wrench"] = std::vector<double>(options.wrench.data(), options.wrench.data() + 6);
+  summary["volume"] = ws.volume;
+  summary["surface_volume"] = ws.surface_volume;
+  summary["convex_hull_volume"] = ws.convex_hull_volume;
+  summary["voxel_volume"] = ws.voxel_volume;
+  summary["convexity"] =
+      ws.convex_hull_volume > 0.0 ? nlohmann::json(ws.volume / ws.convex_hull_volume) : nullptr;
+  summary["global_conditioning_index"] = number_or_null(ws.maps.global_conditioning_index);
+  summary["singularity_margin_min"] = number_or_null(ws.maps.singularity_margin_min);
+  summary["stiffness_min_min"] = number_or_null(ws.maps.stiffness_min_min);
+  summary["stiffness_min_mean"] = number_or_null(ws.maps.stiffness_min_mean);
+  summary["max_leg_force"] = number_or_null(ws.maps.max_leg_force);
+  summary["tcp_error_max"] = number_or_null(ws.maps.tcp_error_max);
+  summary["envelope_volume"] = optional_json(ws.envelope_volume);
+  summary["envelope_ratio"] = optional_json(ws.envelope_ratio);
+  summary["resolution"] = ws.resolution;
+  summary["grid_nodes"] = {ws.grid_nodes(0), ws.grid_nodes(1), ws.grid_nodes(2)};
+  summary["inside_nodes"] = ws.inside_nodes;
+  summary["boundary_vertices"] = ws.boundary.vertices.size();
+  summary["boundary_triangles"] = ws.boundary.triangles.size();
+  summary["search_box"] = box_json(ws.search_box);
+  summary["bounding_box"] = ws.bounding_box.isEmpty() ? nullptr : box_json(ws.bounding_box);
+  summary["touches_search_box"] = ws.touches_search_box;
+  summary["slice"] = {{"axis", std::string(1, slice.normal_axis)},
+                      {"offset", slice.offset},
+                      {"metric", slice_metric_name(metric)},
+                      {"pixel", slice.pixel},
+                      {"width", slice.width},
+                      {"height", slice.height}};
+  summary["seconds"] = seconds;
+  return summary.dump(2) + "\n";
+}
+
+std::vector<std::pair<std::string, std::string>> workspace_files(const WorkspaceResult& ws,
+                                                                 const WorkspaceSlice& slice,
+                                                                 SliceMetric metric,
+                                                                 const std::string& summary_json) {
+  const std::string slice_name = fmt::format("slice_{}", slice.normal_axis);
+  std::vector<std::pair<std::string, std::string>> files;
+  files.emplace_back("boundary.ply", boundary_ply(ws.boundary));
+  files.emplace_back("boundary.stl", boundary_stl(ws.boundary));
+  files.emplace_back("points.csv", point_cloud_csv(ws.points));
+  files.emplace_back(slice_name + ".svg", slice_svg(slice, metric));
+  files.emplace_back(slice_name + ".png", slice_png(slice, metric));
+  files.emplace_back("summary.json", summary_json);
+  return files;
 }
 
 }  // namespace pkmopt

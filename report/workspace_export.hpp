@@ -10,15 +10,27 @@
 //   slice_svg / slice_png         a plane section coloured by one metric (viridis, low = dark),
 //                                 axes in mm with ticks, a colour bar with its value range;
 //                                 grey = outside the workspace, black = infinite value (singular).
+//   workspace_summary_json        summary.json of `pkmopt workspace`: the request (machine,
+//                                 orientations in degrees as given, restrictions, wrench in N and
+//                                 N*m), the volumes (m^3), the map reductions, the grid, the boxes
+//                                 (m, base frame), the slice and the run time; non-finite numbers
+//                                 and absent values are null. docs/workspace.md lists every field.
+//   workspace_files               every file above under its name in the --out folder:
+//                                 boundary.ply, boundary.stl, points.csv, slice_<axis>.svg/.png,
+//                                 summary.json.
 //
 // Each function returns the file's bytes; the caller writes them atomically.
 //
 //   const std::string svg = pkmopt::slice_svg(slice, pkmopt::SliceMetric::kSingularityMargin);
+//   const std::string json = pkmopt::workspace_summary_json(request, ws, slice, metric, seconds);
+//   for (const auto& [name, bytes] : pkmopt::workspace_files(ws, slice, metric, json))
+//     pkmopt::write_file_atomically((dir / name).string(), bytes);
 #pragma once
 
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "models/workspace/workspace.hpp"
@@ -40,5 +52,32 @@ std::string point_cloud_csv(const std::vector<WorkspacePoint>& points);
 std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric);
 /// 8-bit RGB PNG (libpng).
 std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric);
+
+/// "constant_orientation" (no tilt, no yaw range), else "all_orientations" (Mode::kAll) or
+/// "some_orientation" (Mode::kSome).
+std::string workspace_kind(const OrientationSet& set);
+
+/// What summary.json repeats of a workspace request. The angles are the user's degrees, written
+/// unconverted (options.orientations holds them in radians).
+struct WorkspaceRequest {
+  std::string machine_file;  ///< the machine file as named by the user
+  std::string model;         ///< Machine::model()
+  WorkspaceOptions options;  ///< orientations, min margin and stiffness, wrench
+  double tilt_deg = 0.0;
+  double yaw_range_deg = 0.0;
+  double orientation_step_deg = 5.0;
+};
+
+/// summary.json (two-space indented, ending in a newline) of a workspace, its slice coloured by
+/// `metric`, computed in `seconds` (s).
+std::string workspace_summary_json(const WorkspaceRequest& request, const WorkspaceResult& ws,
+                                   const WorkspaceSlice& slice, SliceMetric metric, double seconds);
+
+/// The files of `pkmopt workspace --out DIR` as (name, bytes), in the order they are written;
+/// `summary_json` is workspace_summary_json's text.
+std::vector<std::pair<std::string, std::string>> workspace_files(const WorkspaceResult& ws,
+                                                                 const WorkspaceSlice& slice,
+                                                                 SliceMetric metric,
+                                                                 const std::string& summary_json);
 
 }  // namespace pkmopt

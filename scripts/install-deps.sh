@@ -5,7 +5,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git python3
   libeigen3-dev
   coinor-libipopt-dev
   libnlopt-cxx-dev

@@ -10,29 +10,60 @@
 #include <stdexcept>
 
 #include "io/csv.hpp"
+#include "io/field_list.hpp"
 #include "io/input_error.hpp"
 #include "io/output_file.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 
 namespace pkmopt {
+
+/// The `problem:` section of a benchmark study, in file form.
+struct BenchmarkProblemSection {
+  std::string benchmark;
+  std::size_t variables = 0;   ///< 0: the problem's default
+  std::size_t objectives = 0;  ///< 0: the problem's default
+};
+
+template <class Fields>
+void describe_fields(Fields& f, BenchmarkProblemSection& p) {
+  f.field("benchmark", p.benchmark,
+          {.required = true,
+           .expected = "zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1, dtlz2, dtlz3, dtlz4, dtlz7, bnh, srn, "
+                       "tnk, osy, hs71 or rosenbrock",
+           .doc = "the benchmark problem (formulas in problems/benchmarks.hpp)"});
+  f.field("variables", p.variables,
+          {.min = 1,
+           .zero_is_unset = true,
+           .default_text = "ZDT1–3: 30, ZDT4/6: 10, DTLZ: m + k − 1 (k = 5 DTLZ1, 10 DTLZ2–4, 20 "
+                           "DTLZ7), Rosenbrock: 10",
+           .doc = "number of variables (fixed-size problems accept only their own)"});
+  f.field("objectives", p.objectives,
+          {.min = 2,
+           .zero_is_unset = true,
+           .default_text = "3",
+           .doc = "number of objectives (DTLZ only)"});
+}
+
+std::string benchmark_problem_fields_markdown() {
+  return fields_markdown(BenchmarkProblemSection{});
+}
+
 namespace {
 
-std::size_t read_count(const YamlValue& value, long long minimum) {
-  const long long n = value.as_int();
-  if (n < minimum) value.fail(fmt::format("an integer >= {}", minimum), value.describe());
-  return static_cast<std::size_t>(n);
+BenchmarkProblemSection read_problem_section(const YamlValue& section) {
+  BenchmarkProblemSection p;
+  read_fields(section, p);
+  return p;
 }
 
 }  // namespace
 
 std::unique_ptr<BenchmarkProblem> read_benchmark_problem(const YamlValue& section) {
-  section.check_keys({"benchmark", "variables", "objectives"});
+  const BenchmarkProblemSection p = read_problem_section(section);
   const YamlValue name = section.required("benchmark");
-  std::size_t variables = 0, objectives = 0;
-  if (auto v = section.optional("variables")) variables = read_count(*v, 1);
-  if (auto v = section.optional("objectives")) objectives = read_count(*v, 2);
-  const std::string key = name.as_string();
+  const std::size_t variables = p.variables, objectives = p.objectives;
+  const std::string key = p.benchmark;
   const std::vector<std::string> known = benchmark_names();
   if (std::find(known.begin(), known.end(), key) == known.end()) {
     std::string list;
@@ -67,13 +98,8 @@ BenchmarkStudy load_benchmark_study(const std::string& path) {
   std::string resolved = fmt::format("study: {}\n", nlohmann::json(study.name).dump());
   if (auto v = root.optional("description"))
     resolved += fmt::format("description: {}\n", nlohmann::json(v->as_string()).dump());
-  const YamlValue problem = root.required("problem");
-  resolved += fmt::format("problem: {{benchmark: {}", problem.required("benchmark").as_string());
-  if (auto v = problem.optional("variables"))
-    resolved += fmt::format(", variables: {}", v->as_int());
-  if (auto v = problem.optional("objectives"))
-    resolved += fmt::format(", objectives: {}", v->as_int());
-  resolved += "}\noptimizer: " + optimizer_section_yaml(study.optimizer) + "\n";
+  resolved += "problem: " + fields_flow_map(read_problem_section(root.required("problem"))) +
+              "\noptimizer: " + optimizer_section_yaml(study.optimizer) + "\n";
   if (!study.reference_point.empty()) {
     std::string list;
     for (double r : study.reference_point) list += (list.empty() ? "" : ", ") + format_number(r);

@@ -51,6 +51,10 @@ struct BenchmarkStudy {
 /// The `problem:` section of benchmark kind: keys benchmark (name), variables, objectives.
 std::unique_ptr<BenchmarkProblem> read_benchmark_problem(const YamlValue& problem_section);
 
+/// The docs table of the `problem:` section, from the field list its reader and the resolved
+/// writer use.
+std::string benchmark_problem_fields_markdown();
+
 /// The optional `indicators:` section: reference_point with one value per objective.
 std::vector<double> read_indicators_section(const YamlValue& indicators_section,
                                             std::size_t num_objectives);

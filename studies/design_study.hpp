@@ -5,7 +5,7 @@
 //   study: hexapod-quick                      # name, required
 //   description: "..."                        # optional
 //   machine:
-//     model: hexapod                          # hexapod, delta, linear_delta or hexaglide
+//     model: hexapod                          # or a leg-chain model, see below
 //     parameters:                             # every key optional; a number = fixed,
 //       base_radius: {min: 0.45, max: 0.75}   #   {min, max} = free (m; *_deg in degrees)
 //       platform_radius: 0.25
@@ -38,7 +38,8 @@
 // nsga2 uses the aggregate (derivative-free) formulation; every other algorithm the smooth one
 // (see problems/hexapod_design.hpp).
 //
-// Leg-chain models (delta, linear_delta, hexaglide) load into a MachineDesignProblem
+// The leg-chain models (delta, linear_delta, hexaglide, tripod_3prs, lathe_16k20f3) load into a
+// MachineDesignProblem
 // (problems/machine_design.hpp): `parameters:` takes the family's parameters (number = fixed,
 // {min, max} = free), and every other key of the model's machine file
 // (io/machine_file_leg_chain.hpp) may follow except the keys the parameters set:
@@ -67,18 +68,20 @@
 //   JournaledProblem journaled(study.optimization_problem(), journal);
 //   RunOutcome outcome = run_optimizer(journaled, study.optimizer, 0);
 //   write_design_outputs("out", study, outcome, {.threads = 0});
+// (studies/run_study.hpp does all of this, with the result folder's checks.)
 #pragma once
 
 #include <array>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
-#include "studies/optimizer_spec.hpp"
-#include "studies/journal.hpp"
 #include "problems/hexapod_design.hpp"
 #include "problems/machine_design.hpp"
+#include "studies/journal.hpp"
+#include "studies/optimizer_spec.hpp"
 
 namespace pkmopt {
 
@@ -145,5 +148,9 @@ struct DesignRunFacts {
 /// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`.
 void write_design_outputs(const std::string& directory, const DesignStudy& study,
                           const RunOutcome& outcome, const DesignRunFacts& facts);
+
+/// The docs table of a study section described by a field list ("task.orientations",
+/// "task.workspace", "output"), from the same list its reader and the resolved writer use.
+std::string design_study_fields_markdown(std::string_view section);
 
 }  // namespace pkmopt

@@ -164,12 +164,12 @@ JournalContents read_journal(const std::string& path) {
 }
 
 JournaledProblem::JournaledProblem(const Problem& inner, JournalOptions options)
-    : inner_(inner), options_(std::move(options)) {
+    : ForwardingProblem(inner), options_(std::move(options)) {
   namespace fs = std::filesystem;
   const fs::path dir(options_.directory);
   const std::string journal_path = (dir / "journal.txt").string();
   const std::string csv_path = (dir / "evaluations.csv").string();
-  const std::size_t n = inner_.num_variables(), m = inner_.fitness_size();
+  const std::size_t n = inner.num_variables(), m = inner.fitness_size();
   if (options_.resume && fs::exists(journal_path)) {
     JournalContents contents = read_journal(journal_path);
     if (contents.study_hash != options_.study_hash)
@@ -192,7 +192,7 @@ JournaledProblem::JournaledProblem(const Problem& inner, JournalOptions options)
   for (std::size_t k = 0; k < entries_.size(); ++k) {
     index_.emplace(key_of(entries_[k].x), k);
     if (!entries_[k].note.empty()) ++failed_;
-    if (is_feasible(inner_, entries_[k]))
+    if (is_feasible(inner, entries_[k]))
       add_non_dominated(feasible_front_,
                         std::vector<double>(entries_[k].fitness.begin(),
                                             entries_[k].fitness.begin() +
@@ -242,7 +242,7 @@ void JournaledProblem::append(std::span<const JournalEntry> fresh) const {
     entries_.push_back(entry);
     index_.emplace(key_of(entry.x), k);
     if (!entry.note.empty()) ++failed_;
-    if (is_feasible(inner_, entry))
+    if (is_feasible(inner(), entry))
       add_non_dominated(feasible_front_,
                         std::vector<double>(
                             entry.fitness.begin(),
@@ -283,12 +283,12 @@ std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::ve
     if (options_.evaluate) {
       fresh[i] = options_.evaluate(x);
     } else {
-      fresh[i].fitness = inner_.fitness(x);
+      fresh[i].fitness = inner().fitness(x);
     }
     fresh[i].x = x;
   };
   const int thread_count = resolve_thread_count(threads);
-  if (thread_count <= 1 || inner_.thread_safety() == ThreadSafety::none || misses.size() < 2) {
+  if (thread_count <= 1 || inner().thread_safety() == ThreadSafety::none || misses.size() < 2) {
     for (std::size_t i = 0; i < misses.size(); ++i) evaluate_one(i);
   } else {
     std::exception_ptr first_error;
@@ -305,10 +305,10 @@ std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::ve
     if (first_error) std::rethrow_exception(first_error);
   }
   for (std::size_t i = 0; i < misses.size(); ++i) {
-    if (fresh[i].fitness.size() != inner_.fitness_size())
+    if (fresh[i].fitness.size() != inner().fitness_size())
       throw std::runtime_error(fmt::format("problem '{}': fitness returned {} values, expected {}",
-                                           inner_.name(), fresh[i].fitness.size(),
-                                           inner_.fitness_size()));
+                                           inner().name(), fresh[i].fitness.size(),
+                                           inner().fitness_size()));
     result[misses[i]] = fresh[i].fitness;
   }
   for (std::size_t k = 0; k < xs.size(); ++k)

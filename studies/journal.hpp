@@ -1,13 +1,14 @@
 // The evaluation journal of `pkmopt run`: every evaluation recorded as it happens, a cache of
 // identical evaluations, resume after a kill, evaluations.csv and the progress display.
 //
-// JournaledProblem decorates the problem a study optimises. Every fitness request goes through
-// it: a design x seen before (bit-identical) is served from the cache; the others are evaluated
-// (in parallel for batches), appended to DIR/journal.txt and to DIR/evaluations.csv in request
-// order (one write per batch), then returned. Because the optimizers are deterministic for a
-// given seed, re-running a killed study with the journal loaded replays the same requests:
-// everything recorded comes from the cache, the rest is evaluated and appended, and the run ends
-// with the same front as one never killed. Gradients are not journaled (recomputed on resume).
+// JournaledProblem decorates the problem a study optimises (a ForwardingProblem: only fitness and
+// batch fitness differ from the inner problem). Every fitness request goes through it: a design x
+// seen before (bit-identical) is served from the cache; the others are evaluated (in parallel for
+// batches), appended to DIR/journal.txt and to DIR/evaluations.csv in request order (one write per
+// batch), then returned. Because the optimizers are deterministic for a given seed, re-running a
+// killed study with the journal loaded replays the same requests: everything recorded comes from
+// the cache, the rest is evaluated and appended, and the run ends with the same front as one never
+// killed. Gradients are not journaled (recomputed on resume).
 //
 // DIR/journal.txt (text, append-only, bit-exact):
 //   pkmopt-journal 1 <study hash, 16 hex digits> <n variables> <fitness size>
@@ -91,7 +92,7 @@ struct JournalOptions {
   int threads = 0;  ///< for the display only; batches use the threads the optimizer passes
 };
 
-class JournaledProblem final : public Problem {
+class JournaledProblem final : public ForwardingProblem {
  public:
   /// Opens (or, with resume, reloads and truncates to its last complete line) DIR/journal.txt
   /// and DIR/evaluations.csv. Throws InputError when resuming a journal of another study.
@@ -100,20 +101,10 @@ class JournaledProblem final : public Problem {
   JournaledProblem(const JournaledProblem&) = delete;
   JournaledProblem& operator=(const JournaledProblem&) = delete;
 
-  Bounds bounds() const override { return inner_.bounds(); }
-  std::size_t num_objectives() const override { return inner_.num_objectives(); }
-  std::size_t num_equality() const override { return inner_.num_equality(); }
-  std::size_t num_inequality() const override { return inner_.num_inequality(); }
+  /// Served from the cache or evaluated and journaled; everything else is forwarded.
   std::vector<double> fitness(const std::vector<double>& x) const override;
   std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
                                                  int threads) const override;
-  bool has_gradient() const override { return inner_.has_gradient(); }
-  std::vector<double> gradient(const std::vector<double>& x) const override {
-    return inner_.gradient(x);
-  }
-  SparsityPattern gradient_sparsity() const override { return inner_.gradient_sparsity(); }
-  std::string name() const override { return inner_.name(); }
-  ThreadSafety thread_safety() const override { return inner_.thread_safety(); }
 
   /// Entries recorded so far (loaded ones first), in journal order.
   const std::vector<JournalEntry>& entries() const { return entries_; }
@@ -132,7 +123,6 @@ class JournaledProblem final : public Problem {
   void append(std::span<const JournalEntry> fresh) const;
   void report_progress(bool force) const;
 
-  const Problem& inner_;
   JournalOptions options_;
   int journal_fd_ = -1;
   int csv_fd_ = -1;

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -99,6 +100,10 @@ OptimizerSpec read_optimizer_section(const YamlValue& optimizer_section, const P
 /// The resolved `optimizer:` section as a YAML flow map (every option of the algorithm with its
 /// value; reading it back gives the same OptimizerSpec).
 std::string optimizer_section_yaml(const OptimizerSpec& spec);
+
+/// The docs table of an algorithm's keys (nsga2, hybrid, epsilon_constraint, nbi, ipopt, nlopt),
+/// from the same field list the reader and writer use (studies/optimizer_fields.hpp).
+std::string optimizer_fields_markdown(std::string_view algorithm);
 
 /// Runs the optimizer of `spec` on `problem` (`threads` = 0: OpenMP's default). A solver that
 /// does not converge is a result (its status in RunOutcome::status), not an exception.

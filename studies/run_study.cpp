@@ -81,6 +81,24 @@ void benchmark_csv(JournalOptions& options, const Problem& problem) {
   };
 }
 
+StudyRunResult run_result(const std::string& name, const OptimizerSpec& spec,
+                          const RunOutcome& outcome, const JournaledProblem& journaled,
+                          bool resumed, double wall_seconds) {
+  StudyRunResult result;
+  result.name = name;
+  result.algorithm = spec.name();
+  result.status = outcome.status;
+  result.message = outcome.front.message;
+  result.designs = outcome.front.x.size();
+  result.evaluations = outcome.front.fitness_evaluations;
+  result.from_cache = journaled.cache_hits();
+  result.failed = journaled.failed();
+  result.optimizer_seconds = outcome.front.seconds;
+  result.wall_seconds = wall_seconds;
+  result.resumed = resumed;
+  return result;
+}
+
 }  // namespace
 
 StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptions& options) {
@@ -95,7 +113,6 @@ StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptio
     throw InputError(fmt::format("--threads: expected an integer >= 0, found {}", opt.threads));
   if (opt.resume && opt.force)
     throw InputError("--resume and --force: expected one of them, found both");
-  StudyRunResult result;
   if (is_design_study_file(study_file)) {
     const DesignStudy design = load_design_study(study_file);
     const bool resumed = prepare_output_directory(opt);
@@ -112,18 +129,9 @@ StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptio
     facts.journal = &journaled;
     facts.wall_seconds = wall_seconds();
     write_design_outputs(opt.out, design, outcome, facts);
+    StudyRunResult result =
+        run_result(design.name, design.optimizer, outcome, journaled, resumed, facts.wall_seconds);
     result.design_study = true;
-    result.name = design.name;
-    result.algorithm = design.optimizer.name();
-    result.status = outcome.status;
-    result.message = outcome.front.message;
-    result.designs = outcome.front.x.size();
-    result.evaluations = outcome.front.fitness_evaluations;
-    result.from_cache = journaled.cache_hits();
-    result.failed = journaled.failed();
-    result.optimizer_seconds = outcome.front.seconds;
-    result.wall_seconds = facts.wall_seconds;
-    result.resumed = resumed;
     return result;
   }
   const BenchmarkStudy study = load_benchmark_study(study_file);
@@ -147,18 +155,9 @@ StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptio
   extra["wall_seconds"] = wall_seconds();
   write_run_outputs(opt.out, study.name, *study.problem, study.optimizer, outcome, opt.threads,
                     study.reference_point, reference_front, extra);
-  result.name = study.name;
-  result.algorithm = study.optimizer.name();
+  StudyRunResult result =
+      run_result(study.name, study.optimizer, outcome, journaled, resumed, wall_seconds());
   result.problem = study.problem->name();
-  result.status = outcome.status;
-  result.message = outcome.front.message;
-  result.designs = outcome.front.x.size();
-  result.evaluations = outcome.front.fitness_evaluations;
-  result.from_cache = journaled.cache_hits();
-  result.failed = journaled.failed();
-  result.optimizer_seconds = outcome.front.seconds;
-  result.wall_seconds = wall_seconds();
-  result.resumed = resumed;
   return result;
 }
 

@@ -1,8 +1,11 @@
-// Named sample machines and seeded random geometries shared by the tests.
+// Named sample machines and seeded random geometries shared by the tests. The seeded stream
+// Uniform is bench/uniform_stream.hpp's (the benchmarks draw their poses from the same one); the
+// conventions hexapod is models/sample_machines.hpp's.
 #pragma once
 
 #include <cstdint>
 
+#include "bench/uniform_stream.hpp"
 #include "models/hexapod.hpp"
 #include "models/sample_machines.hpp"
 
@@ -28,22 +31,6 @@ inline Eigen::Matrix<double, 6, 1> dietmaier_legs() {
   return (Eigen::Matrix<double, 6, 1>() << 1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071)
       .finished();
 }
-
-/// A seeded stream of uniform numbers (splitmix64), identical on every platform.
-class Uniform {
- public:
-  explicit Uniform(std::uint64_t seed) : state_(seed) {}
-  double operator()(double lo, double hi) {
-    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-
- private:
-  std::uint64_t state_;
-};
 
 /// A general 6-6 hexapod: joints scattered around semi-regular hexagons (non-planar), random
 /// TCP, stiffness either constant or E*A with an actuator in series.

@@ -7,15 +7,15 @@
 #include <iostream>
 #include <memory>
 
-#include "io/calibration_files.hpp"
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
+#include "io/calibration_files.hpp"
+#include "io/calibration_output.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
-#include "io/machine_file.hpp"
 #include "io/output_file.hpp"
 #include "io/pose_csv.hpp"
-#include "io/yaml_reader.hpp"
+#include "problems/calibration_candidates.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -29,13 +29,6 @@ void make_output_directory(const std::string& dir) {
   }
 }
 
-HexapodDesign read_hexapod_machine(const std::string& path) {
-  const YamlValue machine = YamlValue::load_file(path);
-  const YamlValue model = machine.required("model");
-  if (model.as_string() != "hexapod") model.fail("'hexapod' (calibration)", model.describe());
-  return read_hexapod_design(machine);
-}
-
 // ---- calibrate --------------------------------------------------------------------------------
 
 struct CalibrateOptions {
@@ -45,22 +38,16 @@ struct CalibrateOptions {
 
 void run_calibrate(const CalibrateOptions& opt) {
   const CalibrationSetup setup = read_calibration_setup(opt.file);
-  std::vector<CalibrationMeasurement> fitted;
-  for (int k : setup.fit) fitted.push_back(setup.measurements[static_cast<std::size_t>(k)]);
   CalibrationResult result;
   try {
-    result = calibrate(setup.nominal_design, setup.nominal, fitted, setup.options);
+    result =
+        calibrate(setup.nominal_design, setup.nominal, fitted_measurements(setup), setup.options);
   } catch (const CalibrationError& e) {
     throw InputError(fmt::format("{}: {}", opt.file, e.what()));
   }
   const nlohmann::json report = calibration_report_json(setup, result);
   const std::string text = calibration_report_text(report);
-  HexapodDesign calibrated = calibrated_design(setup.nominal_design, result.estimate);
-  std::string machine = fmt::format(
-      "# Calibrated by pkmopt calibrate {}.\n# Leg offsets (leg length at reading 0, m) and "
-      "gain errors are in report.json: leg length = offset + (1 + gain) * reading * {} m.\n",
-      opt.file, format_number(setup.unit_scale));
-  machine += hexapod_design_to_yaml(calibrated);
+  const std::string machine = calibrated_machine_yaml(setup, result);
   make_output_directory(opt.out);
   const std::filesystem::path dir(opt.out);
   write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
@@ -90,7 +77,7 @@ struct SimulateOptions {
 };
 
 void run_simulate(const SimulateOptions& opt) {
-  const HexapodDesign design = read_hexapod_machine(opt.machine);
+  const HexapodDesign design = read_calibration_machine(opt.machine);
   if (opt.model != "42" && opt.model != "48") {
     throw InputError(fmt::format("--model: expected 42 or 48, found '{}'", opt.model));
   }
@@ -132,51 +119,18 @@ void run_simulate(const SimulateOptions& opt) {
   } catch (const CalibrationError& e) {
     throw InputError(fmt::format("{}: {}", opt.machine, e.what()));
   }
-  const double scale = opt.unit == "mm" ? 1e-3 : 1.0;
-  std::string csv = "x,y,z,rx,ry,rz,q_1,q_2,q_3,q_4,q_5,q_6\n";
-  for (const auto& m : data.measurements) {
-    const Eigen::Vector3d angles = rad_to_deg(m.pose.angles);
-    csv +=
-        fmt::format("{},{},{},{},{},{}", format_number(m.pose.position(0)),
-                    format_number(m.pose.position(1)), format_number(m.pose.position(2)),
-                    format_number(angles(0)), format_number(angles(1)), format_number(angles(2)));
-    for (int i = 0; i < 6; ++i) csv += "," + format_number(m.stroke(i) / scale);
-    csv += "\n";
-  }
-  const double mean_sigma = std::max(data.mean_position_sigma, 1e-9);
-  const double orientation = std::max(opt.orientation_sigma_deg, 1e-9);
-  const double actuator = std::max(opt.actuator_sigma, 1e-12) / scale;
-  std::string yaml = fmt::format(
-      "# Calibration of simulated measurements (pkmopt simulate-measurements --seed {}).\n"
-      "machine: nominal.yaml\n"
-      "measurements: measurements.csv\n"
-      "frame: base\n"
-      "actuators: {{unit: {}, zero_length: {}}}\n"
-      "noise: {{position: {}, orientation_deg: {}, actuator: {}}}\n"
-      "model: {}\n"
-      "gauge: auto\n"
-      "loss: {{type: huber, scale: 5}}\n"
-      "validation: {{every: {}}}\n",
-      opt.seed, opt.unit, format_number(opt.zero_length), format_number(mean_sigma),
-      format_number(orientation), format_number(actuator), opt.model,
-      std::max(2, opt.holdout_every));
-  nlohmann::json truth;
-  truth["seed"] = opt.seed;
-  truth["outlier_rows"] = nlohmann::json::array();
-  for (int k : data.outliers) truth["outlier_rows"].push_back(k + 1);
-  for (int i = 0; i < kCalibrationMachineParameters; ++i) {
-    truth["parameters"][calibration_parameter_name(i)] = data.truth(i);
-  }
-  truth["mean_position_sigma"] = data.mean_position_sigma;
+  SimulationFileSettings settings;
+  settings.seed = opt.seed;
+  settings.unit = opt.unit;
+  settings.zero_length = opt.zero_length;
+  settings.orientation_sigma_deg = opt.orientation_sigma_deg;
+  settings.actuator_sigma = opt.actuator_sigma;
+  settings.model = opt.model;
+  settings.holdout_every = opt.holdout_every;
+  const auto files = simulated_measurement_files(design, data, settings);
   make_output_directory(opt.out);
   const std::filesystem::path dir(opt.out);
-  write_file_atomically((dir / "measurements.csv").string(), csv);
-  write_file_atomically((dir / "nominal.yaml").string(), hexapod_design_to_yaml(design));
-  write_file_atomically((dir / "truth.yaml").string(),
-                        "# The true machine the measurements were drawn from.\n" +
-                            hexapod_design_to_yaml(calibrated_design(design, data.truth)));
-  write_file_atomically((dir / "truth.json").string(), truth.dump(2) + "\n");
-  write_file_atomically((dir / "calibration.yaml").string(), yaml);
+  for (const auto& [name, content] : files) write_file_atomically((dir / name).string(), content);
   fmt::print("wrote {} poses ({} outliers) to {}\n", data.measurements.size(), data.outliers.size(),
              opt.out);
 }
@@ -201,7 +155,7 @@ struct PosesOptions {
 };
 
 void run_poses(const PosesOptions& opt) {
-  const HexapodDesign design = read_hexapod_machine(opt.machine);
+  const HexapodDesign design = read_calibration_machine(opt.machine);
   if (opt.model != "42" && opt.model != "48") {
     throw InputError(fmt::format("--model: expected 42 or 48, found '{}'", opt.model));
   }
@@ -209,47 +163,24 @@ void run_poses(const PosesOptions& opt) {
     throw InputError("calibration-poses: expected exactly one of --candidates FILE or --grid");
   }
   const Hexapod hexapod(design);
-  auto data = hexapod.make_data();
-  std::vector<Pose> candidates;
-  std::vector<int> candidate_lines;
-  int unreachable = 0;
+  CalibrationCandidates candidates;
   if (!opt.candidates.empty()) {
-    const CsvTable table = read_csv_file(opt.candidates);
-    const PoseColumns columns = find_pose_columns(table);
-    for (const CsvRow& row : table.rows) {
-      const Pose pose = pose_of_row(table, row, columns);
-      if (!hexapod.reachable(*data, pose)) {
-        ++unreachable;
-        continue;
-      }
-      candidates.push_back(pose);
-      candidate_lines.push_back(row.line);
-    }
+    const PoseTable table = read_pose_csv(opt.candidates);
+    std::vector<int> lines;
+    for (const CsvRow& row : table.table.rows) lines.push_back(row.line);
+    candidates = reachable_candidates(hexapod, table.poses, lines);
   } else {
     const auto z = parse_number_list("--z-range", opt.z_range, 2);
     if (opt.steps < 2 || opt.steps > 7) {
       throw InputError(fmt::format("--steps: expected an integer in 2..7, found {}", opt.steps));
     }
-    auto level = [&](double lo, double hi, int i) { return lo + (hi - lo) * i / (opt.steps - 1); };
-    const double a = deg_to_rad(opt.angle_range_deg);
-    const int n = opt.steps;
-    for (int ix = 0; ix < n; ++ix)
-      for (int iy = 0; iy < n; ++iy)
-        for (int iz = 0; iz < n; ++iz)
-          for (int ia = 0; ia < n; ++ia)
-            for (int ib = 0; ib < n; ++ib)
-              for (int ic = 0; ic < n; ++ic) {
-                Pose pose;
-                pose.position = {level(-opt.xy_range, opt.xy_range, ix),
-                                 level(-opt.xy_range, opt.xy_range, iy), level(z[0], z[1], iz)};
-                pose.angles = {level(-a, a, ia), level(-a, a, ib), level(-a, a, ic)};
-                if (!hexapod.reachable(*data, pose)) {
-                  ++unreachable;
-                  continue;
-                }
-                candidates.push_back(pose);
-                candidate_lines.push_back(static_cast<int>(candidates.size()));
-              }
+    CandidateGrid grid;
+    grid.xy_range = opt.xy_range;
+    grid.z_min = z[0];
+    grid.z_max = z[1];
+    grid.angle_range = deg_to_rad(opt.angle_range_deg);
+    grid.steps = opt.steps;
+    candidates = grid_candidates(hexapod, grid);
   }
   CalibrationOptions options;
   options.free =
@@ -262,22 +193,14 @@ void run_poses(const PosesOptions& opt) {
       nominal_calibration_vector(design, Vec6<double>::Constant(opt.zero_length));
   PoseSelection selection;
   try {
-    selection = select_calibration_poses(nominal, design.tcp, candidates, opt.count, options);
+    selection = select_calibration_poses(nominal, design.tcp, candidates.poses, opt.count, options);
   } catch (const CalibrationError& e) {
     throw InputError(
         fmt::format("calibration-poses ({} reachable candidates, {} unreachable "
                     "skipped): {}",
-                    candidates.size(), unreachable, e.what()));
+                    candidates.poses.size(), candidates.unreachable, e.what()));
   }
-  std::string csv = "x,y,z,rx,ry,rz,candidate\n";
-  for (int c : selection.selected) {
-    const Pose& pose = candidates[static_cast<std::size_t>(c)];
-    const Eigen::Vector3d deg = rad_to_deg(pose.angles);
-    csv += fmt::format("{},{},{},{},{},{},{}\n", format_number(pose.position(0)),
-                       format_number(pose.position(1)), format_number(pose.position(2)),
-                       format_number(deg(0)), format_number(deg(1)), format_number(deg(2)),
-                       candidate_lines[static_cast<std::size_t>(c)]);
-  }
+  const std::string csv = selected_poses_csv(candidates, selection);
   if (opt.out.empty()) {
     std::cout << csv;
     std::cout.flush();
@@ -288,8 +211,9 @@ void run_poses(const PosesOptions& opt) {
   fmt::print(stderr,
              "calibration-poses: {} of {} reachable candidates ({} unreachable skipped), {} "
              "exchanges; rank {} of {}, log det {:.6g}, O1 {:.6g}, O3 {:.6g}, O4 {:.6g}\n",
-             selection.selected.size(), candidates.size(), unreachable, selection.exchanges,
-             id.rank, id.free_indices.size(), selection.log_det, id.O1, id.O3, id.O4);
+             selection.selected.size(), candidates.poses.size(), candidates.unreachable,
+             selection.exchanges, id.rank, id.free_indices.size(), selection.log_det, id.O1, id.O3,
+             id.O4);
 }
 
 }  // namespace

@@ -9,14 +9,12 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "app/commands.hpp"
 #include "io/input_error.hpp"
 #include "io/output_file.hpp"
-#include "report/pareto_report.hpp"
-#include "report/workspace_export.hpp"
+#include "io/pareto_json.hpp"
+#include "report/pareto_export.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -30,14 +28,8 @@ struct ExportCommandOptions {
 
 void run_export(const ExportCommandOptions& opt) {
   namespace fs = std::filesystem;
-  std::string default_name;
-  if (opt.format == "csv") {
-    default_name = "pareto_export.csv";
-  } else if (opt.format == "json") {
-    default_name = "pareto_export.json";
-  } else if (opt.format == "html") {
-    default_name = "report.html";
-  } else {
+  const std::optional<ExportFormat> format = parse_export_format(opt.format);
+  if (!format) {
     throw InputError(
         fmt::format("--format: expected csv, json or html, found {}", quote_found(opt.format)));
   }
@@ -51,31 +43,13 @@ void run_export(const ExportCommandOptions& opt) {
         fmt::format("--out: expected a file name, found the folder {}", quote_found(opt.out)));
   }
   const ParetoFront front = read_pareto_json((dir / "pareto.json").string());
-  const fs::path out_file = opt.out.empty() ? dir / default_name : fs::path(opt.out);
+  const fs::path out_file =
+      opt.out.empty() ? dir / default_export_name(*format) : fs::path(opt.out);
   const fs::path plot_dir = out_file.has_parent_path() ? out_file.parent_path() : fs::path(".");
 
   // Everything is rendered before the first file is written.
-  std::vector<std::pair<fs::path, std::string>> files;
-  const bool plots = opt.plots || opt.format == "html";
-  std::optional<WorkspaceSlice> slice;
-  if (plots || opt.format == "html") slice = knee_workspace_slice(front, dir.string());
-  if (opt.format == "csv") {
-    files.emplace_back(out_file, pareto_csv(front));
-  } else if (opt.format == "json") {
-    files.emplace_back(out_file, pareto_json(front));
-  } else {
-    files.emplace_back(out_file, report_html(front, slice ? &*slice : nullptr));
-  }
-  if (plots) {
-    files.emplace_back(plot_dir / "pareto.svg", pareto_plot_svg(front));
-    files.emplace_back(plot_dir / "pareto.png", pareto_plot_png(front));
-    if (slice) {
-      files.emplace_back(plot_dir / "knee_slice.svg",
-                         slice_svg(*slice, SliceMetric::kSingularityMargin));
-      files.emplace_back(plot_dir / "knee_slice.png",
-                         slice_png(*slice, SliceMetric::kSingularityMargin));
-    }
-  }
+  const bool plots = opt.plots || *format == ExportFormat::kHtml;
+  const auto files = pareto_export_files(front, dir.string(), *format, out_file, plot_dir, plots);
   for (const auto& [path, content] : files) write_file_atomically(path.string(), content);
   fmt::print(
       "export: {} Pareto designs{} -> {}{}\n", front.designs.size(),

@@ -6,7 +6,7 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/csv.hpp"
+#include "io/fk_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 
@@ -43,13 +43,7 @@ void run_fk(const FkCommandOptions& opt) {
   FkOptions fk_options;
   fk_options.max_iterations = opt.max_iterations;
   const FkResult r = machine->forward_kinematics(q, guess, fk_options);
-  const Eigen::Vector3d angles = rad_to_deg(r.pose.angles);
-  std::cout << "x,y,z,rx,ry,rz,converged,iterations,residual\n";
-  std::cout << format_number(r.pose.position(0)) << ',' << format_number(r.pose.position(1)) << ','
-            << format_number(r.pose.position(2)) << ',' << format_number(angles(0)) << ','
-            << format_number(angles(1)) << ',' << format_number(angles(2)) << ','
-            << (r.converged ? 1 : 0) << ',' << r.iterations << ',' << format_number(r.residual)
-            << '\n';
+  std::cout << fk_csv(r);
   std::cout.flush();
   if (!r.converged) std::cerr << "pkmopt: fk: " << r.message << '\n';
 }

@@ -8,16 +8,15 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "io/output_file.hpp"
-#include "io/pose_csv.hpp"
+#include "io/trajectory_files.hpp"
 #include "models/trajectory.hpp"
 
 namespace pkmopt::cli {
@@ -49,12 +48,6 @@ Eigen::Vector3d vector3_option(std::string_view option, const std::string& text)
   return {v[0], v[1], v[2]};
 }
 
-// The path from a CSV file: t (s), x, y, z (m), optional rx, ry, rz (deg).
-SampledPath read_path_file(const std::string& file) {
-  PoseTable path = read_timed_pose_csv(file, 2);
-  return SampledPath(std::move(path.times), std::move(path.poses));
-}
-
 HelixParameters read_helix(const TrajectoryCommandOptions& opt) {
   HelixParameters h;
   if (!opt.helix_centre.empty()) h.centre = vector3_option("--helix-centre", opt.helix_centre);
@@ -81,12 +74,6 @@ HelixParameters read_helix(const TrajectoryCommandOptions& opt) {
     h.angular_frequency = *opt.helix_frequency;
   }
   return h;
-}
-
-std::string joined(const Eigen::VectorXd& v, double scale) {
-  std::string s;
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += ',' + format_number(v(i) * scale);
-  return s;
 }
 
 void run_trajectory(const TrajectoryCommandOptions& opt) {
@@ -137,17 +124,13 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
                    *opt.dt);
       }
       // The step is kept; the last sample is t_end (a shorter last step if dt does not divide).
-      for (double t = h.t_start; t < h.t_end - 1e-9 * *opt.dt;
-           t = h.t_start + static_cast<double>(times.size()) * *opt.dt) {
-        times.push_back(t);
-      }
-      times.push_back(h.t_end);
+      times = stepped_times(h.t_start, h.t_end, *opt.dt);
     } else {
       times = uniform_times(h.t_start, h.t_end, count);
     }
     path = std::make_unique<HelixPath>(h);
   } else {
-    auto sampled = std::make_unique<SampledPath>(read_path_file(opt.path_file));
+    auto sampled = std::make_unique<SampledPath>(read_path_csv(opt.path_file));
     times = sampled->times();
     path = std::move(sampled);
   }
@@ -155,108 +138,25 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
 
   const TrajectoryResult result = evaluate_trajectory(*machine, *path, times);
 
-  const int na = machine->num_actuators();
-  const double q_scale = machine->revolute_actuators() ? kRadToDeg : 1.0;
-  std::ostringstream out;
-  out << "t,x,y,z,rx,ry,rz,vx,vy,vz,wx,wy,wz,reachable,singular";
-  for (int j = 1; j <= na; ++j) out << ",q_" << j;
-  for (int j = 1; j <= na; ++j) out << ",q_dot_" << j;
-  for (int j = 1; j <= na; ++j) out << ",q_dot_fd_" << j;
-  out << ",singularity_margin,det_j";
-  if (opt.jacobian) {
-    for (int r = 1; r <= na; ++r) {
-      for (int c = 1; c <= 6; ++c) out << ",J_" << r << '_' << c;
-    }
-  }
-  out << '\n';
-  for (const TrajectorySample& s : result.samples) {
-    std::string line = format_number(s.t);
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(s.pose.position(k));
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(rad_to_deg(s.pose.angles(k)));
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(s.twist(k));
-    for (int k = 3; k < 6; ++k) line += ',' + format_number(rad_to_deg(s.twist(k)));
-    line += s.metrics.reachable ? ",1" : ",0";
-    line += s.metrics.singular ? ",1" : ",0";
-    line += joined(s.metrics.q, q_scale);
-    line += joined(s.q_dot, q_scale);
-    line += joined(s.q_dot_fd, q_scale);
-    line += ',' + format_number(s.metrics.singularity_margin);
-    line += ',' + format_number(s.metrics.det_j);
-    if (opt.jacobian) {
-      for (int r = 0; r < na; ++r) {
-        for (int c = 0; c < 6; ++c) {
-          line += ',' + format_number(s.jacobian_ok ? s.J(r, c)
-                                                    : std::numeric_limits<double>::infinity());
-        }
-      }
-    }
-    out << line << '\n';
-  }
-
-  std::ostringstream singular;
-  singular << "t,x,y,z,rx,ry,rz,kind,singularity_margin,det_j_before,det_j_after\n";
-  for (const SingularPose& p : result.singular_poses) {
-    singular << format_number(p.t);
-    for (int k = 0; k < 3; ++k) singular << ',' << format_number(p.pose.position(k));
-    for (int k = 0; k < 3; ++k) singular << ',' << format_number(rad_to_deg(p.pose.angles(k)));
-    singular << ',' << (p.kind == SingularPose::Kind::kSample ? "sample" : "det_j_sign_change");
-    singular << ',' << format_number(p.singularity_margin) << ',' << format_number(p.det_j_before)
-             << ',' << format_number(p.det_j_after) << '\n';
-  }
-
+  const std::string table = trajectory_csv(*machine, result, opt.jacobian);
   // The summary: ranges along the path, the agreement of q_dot with the IK differences, and the
   // singular poses. On stdout when the table goes to a file, else on stderr.
-  std::ostringstream summary;
-  std::size_t reachable = 0;
-  double worst_mismatch = 0.0;
-  Eigen::VectorXd q_min = Eigen::VectorXd::Constant(na, std::numeric_limits<double>::infinity());
-  Eigen::VectorXd q_max = -q_min;
-  Eigen::VectorXd q_dot_max = Eigen::VectorXd::Zero(na);
-  double margin_min = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < result.samples.size(); ++k) {
-    const TrajectorySample& s = result.samples[k];
-    const bool interior = k > 0 && k + 1 < result.samples.size();
-    if (s.metrics.reachable) ++reachable;
-    q_min = q_min.cwiseMin(s.metrics.q);
-    q_max = q_max.cwiseMax(s.metrics.q);
-    q_dot_max = q_dot_max.cwiseMax(s.q_dot.cwiseAbs());
-    margin_min = std::min(margin_min, s.metrics.singularity_margin);
-    if (s.jacobian_ok && interior)
-      worst_mismatch = std::max(worst_mismatch, (s.q_dot - s.q_dot_fd).cwiseAbs().maxCoeff());
-  }
-  const char* q_unit = machine->revolute_actuators() ? "deg" : "m";
-  summary << fmt::format(
-      "trajectory: {} samples, t {} .. {} s, {} reachable, min singularity_margin {:.4g}\n",
-      result.samples.size(), format_number(times.front()), format_number(times.back()), reachable,
-      margin_min);
-  for (int i = 0; i < na; ++i) {
-    summary << fmt::format("  q_{}: {:.6g} .. {:.6g} {}, max |q_dot| {:.4g} {}/s\n", i + 1,
-                           q_min(i) * q_scale, q_max(i) * q_scale, q_unit, q_dot_max(i) * q_scale,
-                           q_unit);
-  }
-  summary << fmt::format("  max |q_dot - q_dot_fd| {:.3g} {}/s (interior samples)\n",
-                         worst_mismatch * q_scale, q_unit);
-  summary << fmt::format("  singular poses: {}\n", result.singular_poses.size());
-  for (const SingularPose& p : result.singular_poses) {
-    summary << fmt::format(
-        "    t = {:.12g} s ({}): x,y,z = {:.6g},{:.6g},{:.6g} m, rx,ry,rz = {:.6g},{:.6g},{:.6g} "
-        "deg, det_j {:.3g} -> {:.3g}\n",
-        p.t, p.kind == SingularPose::Kind::kSample ? "singular sample" : "det_j changes sign",
-        p.pose.position(0), p.pose.position(1), p.pose.position(2), rad_to_deg(p.pose.angles(0)),
-        rad_to_deg(p.pose.angles(1)), rad_to_deg(p.pose.angles(2)), p.det_j_before, p.det_j_after);
-  }
+  const std::string summary = trajectory_summary_text(
+      *machine, result, summarize_trajectory(result, machine->num_actuators()));
 
   if (opt.out_file.empty()) {
-    std::cout << out.str();
+    std::cout << table;
     std::cout.flush();
   } else {
-    write_file_atomically(opt.out_file, out.str());
+    write_file_atomically(opt.out_file, table);
   }
-  if (!opt.singular_out_file.empty()) write_file_atomically(opt.singular_out_file, singular.str());
+  if (!opt.singular_out_file.empty()) {
+    write_file_atomically(opt.singular_out_file, singular_poses_csv(result));
+  }
   if (opt.out_file.empty()) {
-    std::cerr << summary.str();
+    std::cerr << summary;
   } else {
-    std::cout << summary.str();
+    std::cout << summary;
     std::cout.flush();
   }
 }

@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 
@@ -19,8 +18,9 @@
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "io/output_file.hpp"
-#include "report/workspace_export.hpp"
+#include "models/workspace/slice_plane.hpp"
 #include "models/workspace/workspace.hpp"
+#include "report/workspace_export.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -42,14 +42,6 @@ struct WorkspaceCommandOptions {
   std::optional<double> slice_pixel;
   std::string out_dir;
 };
-
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
-nlohmann::json vector_json(const Eigen::Vector3d& v) {
-  return nlohmann::json::array({number_or_null(v(0)), number_or_null(v(1)), number_or_null(v(2))});
-}
 
 void run_workspace(const WorkspaceCommandOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
@@ -139,81 +131,17 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   }
 
   // The slice: through the middle of the workspace unless --slice-at is given.
-  const char axis = opt.slice_axis[0];
-  const int axis_index = axis - 'x';
-  Eigen::AlignedBox3d slice_box = ws.bounding_box.isEmpty() ? ws.search_box : ws.bounding_box;
-  const Eigen::Vector3d pad =
-      0.05 * slice_box.sizes() + Eigen::Vector3d::Constant(options.resolution);
-  slice_box = Eigen::AlignedBox3d(slice_box.min() - pad, slice_box.max() + pad);
-  const double slice_at = opt.slice_at ? *opt.slice_at : slice_box.center()(axis_index);
-  Eigen::Vector3d in_plane = slice_box.sizes();
-  in_plane(axis_index) = 0.0;
-  const double pixel = opt.slice_pixel ? *opt.slice_pixel : in_plane.maxCoeff() / 300.0;
-  const double pixel_count = (slice_box.sizes()(axis_index == 0 ? 1 : 0) / pixel) *
-                             (slice_box.sizes()(axis_index == 2 ? 1 : 2) / pixel);
-  if (pixel_count > 4e6) {
+  const SlicePlane plane =
+      choose_slice_plane(ws, options.resolution, opt.slice_axis[0], opt.slice_at, opt.slice_pixel);
+  if (plane.pixel_count > 4e6) {
     throw InputError(fmt::format(
         "--slice-pixel: expected at most 4e6 pixels in the slice, found {:.3g} (pixel {} m)",
-        pixel_count, pixel));
+        plane.pixel_count, plane.pixel));
   }
-  const WorkspaceSlice slice =
-      compute_workspace_slice(*machine, options, slice_box, axis, slice_at, pixel);
+  const WorkspaceSlice slice = compute_workspace_slice(
+      *machine, options, plane.box, plane.normal_axis, plane.offset, plane.pixel);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  const OrientationSet& set = options.orientations;
-  const std::string kind =
-      set.constant()
-          ? "constant_orientation"
-          : (set.mode == OrientationSet::Mode::kAll ? "all_orientations" : "some_orientation");
-  nlohmann::ordered_json summary;
-  summary["machine"] = opt.machine_file;
-  summary["model"] = std::string(machine->model());
-  summary["kind"] = kind;
-  summary["orientation_deg"] = vector_json(rad_to_deg(set.nominal_angles));
-  summary["tilt_deg"] = opt.tilt_deg;
-  summary["yaw_range_deg"] = opt.yaw_range_deg;
-  summary["orientation_step_deg"] = opt.orientation_step_deg;
-  summary["orientation_count"] = ws.orientation_count;
-  summary["min_singularity_margin"] =
-      opt.min_margin ? nlohmann::json(*opt.min_margin) : nlohmann::json(nullptr);
-  summary["min_stiffness"] =
-      opt.min_stiffness ? nlohmann::json(*opt.min_stiffness) : nlohmann::json(nullptr);
-  summary["wrench"] = std::vector<double>(options.wrench.data(), options.wrench.data() + 6);
-  summary["volume"] = ws.volume;
-  summary["surface_volume"] = ws.surface_volume;
-  summary["convex_hull_volume"] = ws.convex_hull_volume;
-  summary["voxel_volume"] = ws.voxel_volume;
-  summary["convexity"] =
-      ws.convex_hull_volume > 0.0 ? nlohmann::json(ws.volume / ws.convex_hull_volume) : nullptr;
-  summary["global_conditioning_index"] = number_or_null(ws.maps.global_conditioning_index);
-  summary["singularity_margin_min"] = number_or_null(ws.maps.singularity_margin_min);
-  summary["stiffness_min_min"] = number_or_null(ws.maps.stiffness_min_min);
-  summary["stiffness_min_mean"] = number_or_null(ws.maps.stiffness_min_mean);
-  summary["max_leg_force"] = number_or_null(ws.maps.max_leg_force);
-  summary["tcp_error_max"] = number_or_null(ws.maps.tcp_error_max);
-  summary["envelope_volume"] =
-      ws.envelope_volume ? nlohmann::json(*ws.envelope_volume) : nlohmann::json(nullptr);
-  summary["envelope_ratio"] =
-      ws.envelope_ratio ? nlohmann::json(*ws.envelope_ratio) : nlohmann::json(nullptr);
-  summary["resolution"] = ws.resolution;
-  summary["grid_nodes"] = {ws.grid_nodes(0), ws.grid_nodes(1), ws.grid_nodes(2)};
-  summary["inside_nodes"] = ws.inside_nodes;
-  summary["boundary_vertices"] = ws.boundary.vertices.size();
-  summary["boundary_triangles"] = ws.boundary.triangles.size();
-  summary["search_box"] = {{"min", vector_json(ws.search_box.min())},
-                           {"max", vector_json(ws.search_box.max())}};
-  if (ws.bounding_box.isEmpty()) {
-    summary["bounding_box"] = nullptr;
-  } else {
-    summary["bounding_box"] = {{"min", vector_json(ws.bounding_box.min())},
-                               {"max", vector_json(ws.bounding_box.max())}};
-  }
-  summary["touches_search_box"] = ws.touches_search_box;
-  summary["slice"] = {{"axis", std::string(1, axis)}, {"offset", slice_at},
-                      {"metric", opt.slice_metric},   {"pixel", pixel},
-                      {"width", slice.width},         {"height", slice.height}};
-  summary["seconds"] = seconds;
 
   if (!opt.out_dir.empty()) {
     std::error_code ec;
@@ -223,23 +151,22 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
                                    quote_found(opt.out_dir), ec.message()));
     }
     // Everything is rendered first; then each file is written whole or not at all.
-    const std::string slice_name = fmt::format("slice_{}", axis);
-    const std::pair<std::string, std::string> files[] = {
-        {"boundary.ply", boundary_ply(ws.boundary)},
-        {"boundary.stl", boundary_stl(ws.boundary)},
-        {"points.csv", point_cloud_csv(ws.points)},
-        {slice_name + ".svg", slice_svg(slice, *metric)},
-        {slice_name + ".png", slice_png(slice, *metric)},
-        {"summary.json", summary.dump(2) + "\n"},
-    };
-    for (const auto& [name, content] : files) {
+    const WorkspaceRequest request{.machine_file = opt.machine_file,
+                                   .model = std::string(machine->model()),
+                                   .options = options,
+                                   .tilt_deg = opt.tilt_deg,
+                                   .yaw_range_deg = opt.yaw_range_deg,
+                                   .orientation_step_deg = opt.orientation_step_deg};
+    const std::string summary = workspace_summary_json(request, ws, slice, *metric, seconds);
+    for (const auto& [name, content] : workspace_files(ws, slice, *metric, summary)) {
       write_file_atomically((out_dir / name).string(), content);
     }
   }
   fmt::print(
       "workspace ({}): volume {:.6g} m^3, convex hull {:.6g} m^3, GCI {:.4g}, "
       "envelope ratio {}, resolution {} m, {:.3g} s{}\n",
-      kind, ws.volume, ws.convex_hull_volume, ws.maps.global_conditioning_index,
+      workspace_kind(options.orientations), ws.volume, ws.convex_hull_volume,
+      ws.maps.global_conditioning_index,
       ws.envelope_ratio ? fmt::format("{:.4g}", *ws.envelope_ratio) : "n/a", ws.resolution, seconds,
       opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
   if (ws.touches_search_box) {

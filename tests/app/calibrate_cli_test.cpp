@@ -2,7 +2,6 @@
 // the calibrated machine file, and bad calibration inputs giving exit status 2, one message
 // and no output files.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +16,7 @@
 
 #include "io/csv.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace {
 
@@ -25,26 +25,13 @@ namespace fs = std::filesystem;
 using cli_runner::CliRun;
 using cli_runner::read_text;
 
-class CalibrateCli : public ::testing::Test {
+class CalibrateCli : public scratch::ScratchDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pkmopt_calibrate_cli_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     machine_ = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml").string();
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return path(name);
-  }
-
-  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, args); }
+  CliRun run(const std::string& args) { return run_cli(args); }
 
   // Simulated measurements (40 poses, 3 outliers) in dir_/sim; returns the CSV lines.
   std::vector<std::string> simulate() {
@@ -74,7 +61,6 @@ class CalibrateCli : public ::testing::Test {
     EXPECT_FALSE(fs::exists(out_dir));
   }
 
-  fs::path dir_;
   std::string machine_;
 };
 

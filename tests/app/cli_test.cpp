@@ -1,7 +1,6 @@
 // Tests of the pkmopt binary: analyze and fk end to end, and every kind of bad input giving
 // one clear message, exit status 2 and no output file.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include "models/hexapod.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/sample_machines.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace {
 
@@ -22,27 +22,16 @@ namespace fs = std::filesystem;
 using cli_runner::CliRun;
 using cli_runner::read_text;
 
-class Cli : public ::testing::Test {
+class Cli : public scratch::ScratchDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pkmopt_cli_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     machine_ =
         write("machine.yaml", read_text(fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml"));
     poses_ = write("poses.csv",
                    "x,y,z,rx,ry,rz,label\n0,0,0.9,0,0,0,home\n0.1,-0.05,0.85,5,-3,10,\"a,b\"\n");
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-
-  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, args); }
+  CliRun run(const std::string& args) { return run_cli(args); }
 
   // A bad-input run: status 2, one line on stderr containing `fragment`, no output file and
   // no temporary left in the folder.
@@ -58,7 +47,6 @@ class Cli : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
   std::string machine_, poses_;
 };
 

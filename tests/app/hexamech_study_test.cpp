@@ -4,16 +4,17 @@
 // of the follow rule, the statics and the series stiffness along the bed, the clamped axis past
 // its travel, and the helix the axis carries out of the bare hexapod's reach.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "io/csv.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
@@ -22,25 +23,21 @@ namespace fs = std::filesystem;
 
 class HexamechStudy : public ::testing::Test {
  protected:
+  // The study runs once for the suite, into the suite's scratch folder.
   static void SetUpTestSuite() {
-    out_ = fs::temp_directory_path() / ("pkmopt_hexamech_study_" + std::to_string(::getpid()));
-    fs::remove_all(out_);
-    fs::create_directories(out_);
-    const std::string command = "PKMOPT=" + std::string(PKMOPT_CLI) + " bash " +
-                                std::string(PKMOPT_SOURCE_DIR) +
-                                "/studies/library/hexamech-long-axis/run.sh " + (out_ / "r").string() +
-                                " 0.04 61 >" + (out_ / "log.txt").string() + " 2>&1";
-    status_ = std::system(command.c_str());
+    out_ = std::make_unique<scratch::ScratchDir>("HexamechStudy");
+    run_ = cli_runner::run_script(out_->path(), "studies/library/hexamech-long-axis/run.sh",
+                                  (*out_ / "r").string() + " 0.04 61");
   }
-  static void TearDownTestSuite() { fs::remove_all(out_); }
-  void SetUp() override { ASSERT_EQ(status_, 0) << cli_runner::read_text(out_ / "log.txt"); }
-  static fs::path result(const std::string& name) { return out_ / "r" / name; }
+  static void TearDownTestSuite() { out_.reset(); }
+  void SetUp() override { ASSERT_EQ(run_.status, 0) << run_.out << run_.err; }
+  static fs::path result(const std::string& name) { return *out_ / "r" / name; }
   static double cell(const CsvTable& t, std::size_t row, const std::string& column) {
     return t.number(t.rows[row], t.require_column(column));
   }
 
-  static inline fs::path out_;
-  static inline int status_ = -1;
+  static inline std::unique_ptr<scratch::ScratchDir> out_;
+  static inline cli_runner::CliRun run_;
 };
 
 TEST_F(HexamechStudy, StructureClasses) {
@@ -76,7 +73,7 @@ TEST_F(HexamechStudy, TheAxisAddsItsTravelToTheWorkspace) {
 TEST_F(HexamechStudy, AlongTheBed) {
   const CsvTable h = read_csv_file(result("line-hybrid.csv").string());
   const CsvTable b = read_csv_file(result("line-hexapod.csv").string());
-  ASSERT_EQ(h.rows.size(), 29u);
+  ASSERT_EQ(h.rows.size(), 29u);  // run.sh: x = 0.1 i m for i = -14 .. 14
   ASSERT_EQ(b.rows.size(), 29u);
   std::size_t home = 0;
   for (std::size_t r = 0; r < h.rows.size(); ++r)

@@ -1,10 +1,9 @@
-// Tests of the 16K20F3 lathe-conversion study (studies/library/lathe-16k20f3/) in its reduced form, through
-// the CLI: the machine file (app/machine_file_lathe) loads and `pkmopt analyze` gives the study's
-// forces and stiffness, the computed minimal strut length reaches the task and 1% less does not,
-// the cylinders' load picks the catalog entry of the README, the turret centre's workspace, and
-// bad machine files exit with status 2.
+// Tests of the 16K20F3 lathe-conversion study (studies/library/lathe-16k20f3/) in its reduced form,
+// through the CLI: the machine file (app/machine_file_lathe) loads and `pkmopt analyze` gives the
+// study's forces and stiffness, the computed minimal strut length reaches the task and 1% less does
+// not, the cylinders' load picks the catalog entry of the README, the turret centre's workspace,
+// and bad machine files exit with status 2.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,12 +18,13 @@
 
 #include "io/actuator_catalog_file.hpp"
 #include "io/machine_file.hpp"
-#include "io/machine_file_writer.hpp"
 #include "io/machine_file_lathe.hpp"
+#include "io/machine_file_writer.hpp"
 #include "models/lathe_conversion.hpp"
 #include "problems/actuator_catalog.hpp"
 #include "problems/lathe_design.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
@@ -32,7 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 using cli_runner::CliRun;
 
-const fs::path kStudy = fs::path(PKMOPT_SOURCE_DIR) / "studies" / "lathe-16k20f3";
+const fs::path kStudy = fs::path(PKMOPT_SOURCE_DIR) / "studies" / "library" / "lathe-16k20f3";
 // The seeds' turning load at the optimal approach angle (problems/cutting_load.hpp), N.
 const char* kWrench = "1186.63,0,6633.45,0,0,0";
 
@@ -69,17 +69,8 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
-class Lathe : public ::testing::Test {
+class Lathe : public scratch::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pkmopt_lathe_study_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // lathe.yaml with `strut_length: L`.
   std::string machine_with_strut(double length) {
     std::ifstream in(kStudy / "lathe.yaml");
@@ -94,12 +85,9 @@ class Lathe : public ::testing::Test {
   }
 
   CliRun analyze(const std::string& machine, const std::string& extra = "") {
-    return cli_runner::run_cli(dir_, "analyze " + machine + " --poses " +
-                                         (kStudy / "task.csv").string() + " --out " +
-                                         (dir_ / "out.csv").string() + " " + extra);
+    return run_cli("analyze " + machine + " --poses " + (kStudy / "task.csv").string() + " --out " +
+                   (dir_ / "out.csv").string() + " " + extra);
   }
-
-  fs::path dir_;
 };
 
 TEST_F(Lathe, MachineFileIsTheModelsDefaultDesign) {
@@ -125,18 +113,30 @@ TEST_F(Lathe, StudyDesignCarriesTheTurningLoadWithTheCatalogsCylinder) {
   const auto c = columns(cli_runner::read_text(dir_ / "out.csv"));
   ASSERT_EQ(c.at("reachable").size(), 75u);
   for (double r : c.at("reachable")) EXPECT_EQ(r, 1.0);
-  // Pinned (README, step 3): the electro-cylinders carry at most 7417 N, the carriage drives
-  // 2495 N; the worst-direction stiffness over the task is 10.36 N/um.
+  // README, step 3: the electro-cylinders carry at most 7417 N, the carriage drives 2495 N; the
+  // worst-direction stiffness over the task is 10.36 N/um.
   const double cylinder = std::max(max_abs(c.at("tau_3")), max_abs(c.at("tau_4")));
   const double carriage = std::max(max_abs(c.at("tau_1")), max_abs(c.at("tau_2")));
+  // Regression pin (not an independent check): value from
+  // `QUICK=1 PKMOPT=build/bin/pkmopt sh studies/library/lathe-16k20f3/run.sh OUT`,
+  // cylinder_force_max_N in OUT/forces_summary.csv.
   EXPECT_NEAR(cylinder, 7416.6, 0.5);
+  // Regression pin (not an independent check): value from
+  // `QUICK=1 PKMOPT=build/bin/pkmopt sh studies/library/lathe-16k20f3/run.sh OUT`,
+  // carriage_force_max_N in OUT/forces_summary.csv.
   EXPECT_NEAR(carriage, 2494.7, 0.5);
+  // Regression pin (not an independent check): value from
+  // `QUICK=1 PKMOPT=build/bin/pkmopt sh studies/library/lathe-16k20f3/run.sh OUT`,
+  // stiffness_min_N_per_m in OUT/forces_summary.csv.
   EXPECT_NEAR(*std::min_element(c.at("stiffness_min").begin(), c.at("stiffness_min").end()),
               1.03585e7, 1e3);
   const double stroke_used = std::max(*std::max_element(c.at("q_3").begin(), c.at("q_3").end()),
                                       *std::max_element(c.at("q_4").begin(), c.at("q_4").end())) -
                              std::min(*std::min_element(c.at("q_3").begin(), c.at("q_3").end()),
                                       *std::min_element(c.at("q_4").begin(), c.at("q_4").end()));
+  // Regression pin (not an independent check): value from
+  // `QUICK=1 PKMOPT=build/bin/pkmopt sh studies/library/lathe-16k20f3/run.sh OUT`, the two
+  // numbers of cylinder_length_range_m in OUT/forces_summary.csv (max - min).
   EXPECT_NEAR(stroke_used, 0.3278, 5e-4);
   // The cheapest SEW entry that carries the force over the designed 350 mm stroke.
   const ActuatorCatalog catalog =
@@ -144,7 +144,7 @@ TEST_F(Lathe, StudyDesignCarriesTheTurningLoadWithTheCatalogsCylinder) {
   const ActuatorChoice choice = choose_actuator(catalog, {cylinder, 0.35, 0.0});
   ASSERT_NE(choice.entry, nullptr);
   EXPECT_EQ(choice.entry->name, "CMS71L/350");
-  EXPECT_NEAR(choice.force_reserve, 17000.0 / 7416.6, 1e-3);
+  EXPECT_NEAR(choice.force_reserve, 17000.0 / 7416.6, 1e-3);  // the entry's 17 kN / the force
   // CMS63S would carry the force but its 200 mm stroke is too short for the 328 mm used.
   EXPECT_FALSE(carries(*find_actuator(catalog, "CMS63S/200"), {cylinder, stroke_used, 0.0}));
 }
@@ -153,8 +153,16 @@ TEST_F(Lathe, ComputedMinimalStrutReachesTheTaskAndOnePercentLessDoesNot) {
   const std::vector<Pose> task = lathe_task_poses(LatheTask{});
   const auto l_min = minimal_strut_length(Lathe16k20f3Design{}, task, 0.4, 0.8, 1e-6);
   ASSERT_TRUE(l_min);
-  EXPECT_NEAR(*l_min, 0.72052, 2e-5);  // README, step 2
-  // The seeds' formula with the study's inputs (README, step 1) is 42% shorter.
+  // Regression pin (not an independent check): value from
+  // `minimal_strut_length(Lathe16k20f3Design{}, lathe_task_poses(LatheTask{}), 0.4, 0.8, 1e-6)`
+  // (README, step 2; `sh studies/library/lathe-16k20f3/run.sh OUT` bisects the same to 1e-4 into
+  // minimal_strut_length_m of OUT/strut_length.csv). The loop below checks what makes it the
+  // minimum: the task reachable at it, not at 1% less.
+  EXPECT_NEAR(*l_min, 0.72052, 2e-5);
+  // The seeds' formula with the study's inputs (README, step 1) is 42% shorter:
+  // L = sqrt(X_K^2 + (Y_D + D/2 + Y_xx - Y_I)^2 + (Z_D + D/2 + Z_xx - Z_I)^2)
+  //   = sqrt(0.2^2 + (0.16 + 0.02 - 0.10)^2 + (0.16 + 0.02 + 0.175)^2) = sqrt(0.172425).
+  EXPECT_NEAR(std::sqrt(0.172425), 0.41524, 1e-5);
   EXPECT_NEAR(seeds_strut_length({0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175}), 0.41524, 1e-5);
   for (const auto& [length, all] :
        {std::pair{*l_min + 1e-6, true}, std::pair{0.99 * *l_min, false}}) {
@@ -167,13 +175,15 @@ TEST_F(Lathe, ComputedMinimalStrutReachesTheTaskAndOnePercentLessDoesNot) {
 }
 
 TEST_F(Lathe, TurretCentreWorkspace) {
-  const CliRun run =
-      cli_runner::run_cli(dir_, "workspace " + (kStudy / "turret-centre.yaml").string() +
-                                    " --resolution 0.05 --out " + (dir_ / "ws").string());
+  const CliRun run = run_cli("workspace " + (kStudy / "turret-centre.yaml").string() +
+                             " --resolution 0.05 --out " + (dir_ / "ws").string());
   ASSERT_EQ(run.status, 0) << run.err;
   const auto summary = nlohmann::json::parse(cli_runner::read_text(dir_ / "ws" / "summary.json"));
   const double volume = summary["volume"].get<double>();
-  // Pinned (README, step 4: 0.635 m^3 at 0.02 m; run.sh QUICK=1 uses 0.05 m).
+  // README, step 4: 0.635 m^3 at 0.02 m; run.sh QUICK=1 uses 0.05 m.
+  // Regression pin (not an independent check): value from `pkmopt workspace
+  // studies/library/lathe-16k20f3/turret-centre.yaml --resolution 0.05 --out OUT`, "volume" in
+  // OUT/summary.json.
   EXPECT_NEAR(volume, 0.632495, 1e-6);
   const auto lower = summary["bounding_box"]["min"].get<std::vector<double>>();
   const auto upper = summary["bounding_box"]["max"].get<std::vector<double>>();
@@ -214,8 +224,8 @@ TEST_F(Lathe, ReducedParetoStudyRuns) {
   study.replace(study.find(full), full.size(), "population: 8, generations: 2");
   const fs::path file = dir_ / "pareto.yaml";
   std::ofstream(file) << study;
-  const CliRun run = cli_runner::run_cli(
-      dir_, "run " + file.string() + " --out " + (dir_ / "out").string() + " --no-progress");
+  const CliRun run =
+      run_cli("run " + file.string() + " --out " + (dir_ / "out").string() + " --no-progress");
   ASSERT_EQ(run.status, 0) << run.err;
   const auto c = columns(cli_runner::read_text(dir_ / "out" / "pareto.csv"));
   ASSERT_FALSE(c.at("strut_length").empty());

@@ -3,7 +3,6 @@
 // `leg_chain` form and the tripod_3prs head: results agree with the library, revolute
 // coordinates are in degrees, bad input exits with status 2 and one message.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -19,6 +18,7 @@
 #include "io/machine_file_leg_chain.hpp"
 #include "models/leg_chain.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
@@ -46,30 +46,14 @@ std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
-class LegChainCli : public ::testing::Test {
+class LegChainCli : public scratch::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pkmopt_leg_chain_cli_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
-  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, args); }
+  CliRun run(const std::string& args) { return run_cli(args); }
   void expect_input_error(const CliRun& r, const std::string& fragment) {
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find(fragment), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(LegChainCli, ExampleFilesLoad) {

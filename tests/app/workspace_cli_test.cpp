@@ -1,8 +1,6 @@
 // Tests of `pkmopt workspace`: the files it writes and bad options failing with exit status 2,
 // one message, and nothing written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -15,6 +13,7 @@
 #include "io/machine_file.hpp"
 #include "models/workspace/workspace.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace {
 
@@ -23,19 +22,13 @@ namespace fs = std::filesystem;
 using cli_runner::CliRun;
 using cli_runner::read_text;
 
-class WorkspaceCli : public ::testing::Test {
+class WorkspaceCli : public scratch::ScratchDirTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pkmopt_workspace_cli_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     machine_ = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod.yaml").string();
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, "workspace " + args); }
+  CliRun run(const std::string& args) { return run_cli("workspace " + args); }
 
   void expect_input_error(const std::string& args, const std::string& fragment) {
     const fs::path out_dir = dir_ / "result";
@@ -46,7 +39,6 @@ class WorkspaceCli : public ::testing::Test {
     EXPECT_FALSE(fs::exists(out_dir)) << args;
   }
 
-  fs::path dir_;
   std::string machine_;
 };
 

@@ -12,7 +12,7 @@ if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=cc
 cmake -S "$src/tests/consumer" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$scratch/prefix" "${launcher[@]}" >/dev/null
 cmake --build "$scratch/build" -j2 >/dev/null
-sed 's/population: 60, generations: 80/population: 8, generations: 2/' \
+sed 's/population: 60, generations: 80/population: 40, generations: 5/' \
   "$src/studies/library/hexapod-quick.yaml" >"$scratch/study.yaml"
 "$scratch/build/consumer" "$src/examples/hexapod.yaml" "$scratch/study.yaml" "$scratch/out"
 test -s "$scratch/out/pareto.csv"

@@ -1,9 +1,11 @@
-// Tests of io/actuator_catalog_file: the shipped catalog loads, and bad files give exact
-// messages.
+// Tests of io/actuator_catalog_file: the shipped catalog loads, bad files give exact messages,
+// every key of the field lists is read, and README.md carries the table generated from them.
 #include "io/actuator_catalog_file.hpp"
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "io/input_error.hpp"
@@ -21,8 +23,8 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(ActuatorCatalogFile, ShippedSewCatalogLoads) {
-  const ActuatorCatalog catalog =
-      load_actuator_catalog(std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml");
+  const ActuatorCatalog catalog = load_actuator_catalog(std::string(PKMOPT_SOURCE_DIR) +
+                                                        "/studies/library/catalogs/sew-cms.yaml");
   EXPECT_EQ(catalog.name, "sew-cms");
   ASSERT_EQ(catalog.entries.size(), 7u);
   EXPECT_EQ(check_actuator_catalog(catalog), "");
@@ -58,6 +60,55 @@ TEST(ActuatorCatalogFile, BadFilesGiveExactMessages) {
                      "drive_types:\n  - {name: x, speed: [2, 1], accuracy: [1e-6, 1e-5]}\n"),
             "cat.yaml:5:22: drive_types[0].speed: expected [min, max] with 0 < min <= max, found "
             "a list of 2");
+}
+
+TEST(ActuatorCatalogFile, ReadsEveryKey) {
+  const ActuatorCatalog catalog = read_actuator_catalog(YamlValue::load_string(
+      "catalog: c\ndescription: \"test\"\nentries:\n"
+      "  - {name: A, type: electric_cylinder, max_force: 100, stroke: 0.1, max_speed: 0.2,\n"
+      "     accuracy: 1e-5, stiffness: 1.5e8, cost: 2}\n"
+      "  - {name: B, type: linear_motor, max_force: 50, stroke: 0.3, max_speed: 3}\n"
+      "drive_types:\n  - {name: x, speed: [1, 1], accuracy: [1e-6, 1e-5], note: \"a, b\"}\n"
+      "  - {name: y, speed: [0.5, 2], accuracy: [2e-6, 2e-6]}\n",
+      "cat.yaml"));
+  EXPECT_EQ(catalog.name, "c");
+  ASSERT_EQ(catalog.entries.size(), 2u);
+  const ActuatorEntry& a = catalog.entries[0];
+  EXPECT_EQ(a.name, "A");
+  EXPECT_EQ(a.type, "electric_cylinder");
+  EXPECT_EQ(a.max_force, 100.0);
+  EXPECT_EQ(a.stroke, 0.1);
+  EXPECT_EQ(a.max_speed, 0.2);
+  EXPECT_EQ(a.accuracy, 1e-5);
+  EXPECT_EQ(a.stiffness, 1.5e8);
+  EXPECT_EQ(a.cost, 2.0);
+  EXPECT_FALSE(catalog.entries[1].accuracy.has_value());
+  EXPECT_FALSE(catalog.entries[1].stiffness.has_value());
+  EXPECT_FALSE(catalog.entries[1].cost.has_value());
+  ASSERT_EQ(catalog.drive_types.size(), 2u);
+  EXPECT_EQ(catalog.drive_types[0].speed_min, 1.0);  // min == max allowed
+  EXPECT_EQ(catalog.drive_types[0].speed_max, 1.0);
+  EXPECT_EQ(catalog.drive_types[0].accuracy_min, 1e-6);
+  EXPECT_EQ(catalog.drive_types[0].accuracy_max, 1e-5);
+  EXPECT_EQ(catalog.drive_types[0].note, "a, b");
+  EXPECT_EQ(catalog.drive_types[1].note, "");
+  EXPECT_EQ(error_of("catalog: c\nentries:\n  - {name: '', type: e, max_force: 5, stroke: 0.1, "
+                     "max_speed: 0.2}\n"),
+            "cat.yaml:3:12: entries[0].name: expected a non-empty name, found ''");
+  EXPECT_EQ(error_of("catalog: c\nentries:\n  - {name: A, type: e, max_force: 5, stroke: 0.1, "
+                     "max_speed: 0.2, cost: 0}\n"),
+            "cat.yaml:3:73: entries[0].cost: expected a number > 0, found '0'");
+}
+
+TEST(ActuatorCatalogFile, ReadmeTableMatchesTheFieldLists) {
+  std::ifstream in(std::string(PKMOPT_SOURCE_DIR) + "/README.md");
+  std::stringstream readme;
+  readme << in.rdbuf();
+  const std::string block = "<!-- fields: actuator_catalog -->\n" +
+                            actuator_catalog_fields_markdown() + "<!-- /fields -->\n";
+  EXPECT_NE(readme.str().find(block), std::string::npos)
+      << "README.md lacks the generated catalog table:\n"
+      << block;
 }
 
 }  // namespace

@@ -10,24 +10,15 @@
 
 #include "io/input_error.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
 
 const std::string kExamples = std::string(PKMOPT_SOURCE_DIR) + "/examples/";
 
-class MachineDescriptionTest : public ::testing::Test {
+class MachineDescriptionTest : public scratch::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ =
-        std::filesystem::temp_directory_path() / ("pkmopt_describe_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
   std::string error_of(const std::string& text) {
     try {
       describe_machine_file(write("m.yaml", text));
@@ -36,7 +27,6 @@ class MachineDescriptionTest : public ::testing::Test {
     }
     return "no error";
   }
-  std::filesystem::path dir_;
 };
 
 TEST_F(MachineDescriptionTest, FiveAxisSerialMachineIsP5Z0) {
@@ -75,8 +65,8 @@ TEST_F(MachineDescriptionTest, TripodLatheAndSchoenfliesMobilities) {
   EXPECT_EQ(schoenflies.translations, 3);
   EXPECT_EQ(schoenflies.rotations, 1);
   EXPECT_EQ(schoenflies.structure, "P0З4");
-  const MachineDescription lathe =
-      describe_machine_file(std::string(PKMOPT_SOURCE_DIR) + "/studies/library/lathe-16k20f3/lathe.yaml");
+  const MachineDescription lathe = describe_machine_file(
+      std::string(PKMOPT_SOURCE_DIR) + "/studies/library/lathe-16k20f3/lathe.yaml");
   EXPECT_EQ(lathe.translations, 3);  // the turret: x, y, z and the turn about the spindle axis
   EXPECT_EQ(lathe.rotations, 1);
   EXPECT_EQ(lathe.parallel_drives, 4);
@@ -109,11 +99,10 @@ TEST_F(MachineDescriptionTest, BadFilesNameTheKey) {
 }
 
 TEST_F(MachineDescriptionTest, CliPrintsTheDescriptionAndRejectsBadFiles) {
-  cli_runner::CliRun run =
-      cli_runner::run_cli(dir_, "describe " + kExamples + "serial_641236.yaml");
+  cli_runner::CliRun run = run_cli("describe " + kExamples + "serial_641236.yaml");
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("structure_class: P5З0"), std::string::npos);
-  run = cli_runner::run_cli(dir_, "describe " + write("bad.yaml", "model: serial\n"));
+  run = run_cli("describe " + write("bad.yaml", "model: serial\n"));
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.err.find("missing required key 'code'"), std::string::npos) << run.err;
 }

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+#include <string>
+
 #include "tests/sample_machines.hpp"
 
 namespace pkmopt {
@@ -106,6 +110,70 @@ TEST(MachineFile, UnknownModelIsAnError) {
                  "hexaglide, tripod_3prs, leg_chain, lathe_16k20f3, hybrid), found 'octopod'");
   }
   EXPECT_THROW(load_machine_file("/nonexistent/machine.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace pkmopt
+
+namespace pkmopt {
+namespace {
+
+// README.md carries the hexapod machine file's key table exactly as the field list generates
+// it; the failure message shows the block to paste.
+TEST(MachineFileFields, ReadmeTableMatchesTheFieldList) {
+  std::ifstream in(std::string(PKMOPT_SOURCE_DIR) + "/README.md");
+  std::stringstream readme;
+  readme << in.rdbuf();
+  const std::string block =
+      "<!-- fields: hexapod -->\n" + hexapod_machine_fields_markdown() + "<!-- /fields -->\n";
+  EXPECT_NE(readme.str().find(block), std::string::npos)
+      << "README.md lacks the generated hexapod table:\n"
+      << block;
+}
+
+// The writer and the reader come from one field list: a design with every optional key set
+// (joint limits, custom axes, an actuator in series, L) is written and read back unchanged.
+TEST(MachineFileFields, WriterAndReaderRoundTripEveryKey) {
+  HexapodDesign d = semi_regular_hexapod(0.6, deg_to_rad(20), 0.25, deg_to_rad(30));
+  d.min_length = 0.7;
+  d.max_length = 1.15;
+  d.stiffness.E = 2.1e11;
+  d.stiffness.area = 3e-4;
+  d.stiffness.actuator_stiffness = 2e8;
+  d.joints.base_max_angle = deg_to_rad(45);
+  d.joints.platform_max_angle = deg_to_rad(50);
+  d.joints.base_axis = Eigen::Vector3d(0, 0.6, 0.8);
+  d.tcp = Eigen::Vector3d(0, 0, -0.1);
+  d.characteristic_length = 0.3;
+  d.actuator_error = 2e-5;
+  const std::string text = hexapod_design_to_yaml(d);
+  const HexapodDesign back = read_hexapod_design(YamlValue::load_string(text, "rt.yaml"));
+  EXPECT_EQ(back.base_joints, d.base_joints);
+  EXPECT_EQ(back.platform_joints, d.platform_joints);
+  EXPECT_EQ(back.min_length, d.min_length);
+  EXPECT_EQ(back.max_length, d.max_length);
+  EXPECT_EQ(back.stiffness.E, d.stiffness.E);
+  EXPECT_EQ(back.stiffness.area, d.stiffness.area);
+  EXPECT_EQ(back.stiffness.actuator_stiffness, d.stiffness.actuator_stiffness);
+  EXPECT_NEAR(back.joints.base_max_angle, d.joints.base_max_angle, 1e-15);
+  EXPECT_NEAR(back.joints.platform_max_angle, d.joints.platform_max_angle, 1e-15);
+  EXPECT_TRUE(back.joints.base_axis.isApprox(d.joints.base_axis, 1e-15));
+  EXPECT_EQ(back.joints.platform_axis, d.joints.platform_axis);
+  EXPECT_EQ(back.tcp, d.tcp);
+  EXPECT_EQ(back.characteristic_length, d.characteristic_length);
+  EXPECT_EQ(back.actuator_error, d.actuator_error);
+  // Written in block style, the custom axes both present, the limits in degrees.
+  EXPECT_NE(text.find("joints:\n  base_max_angle_deg: 45\n  platform_max_angle_deg: 50\n"
+                      "  base_axis: [0, 0.6, 0.8]\n  platform_axis: [0, 0, -1]\n"),
+            std::string::npos)
+      << text;
+  // A constant axial stiffness is written alone (no E or area).
+  d.stiffness.axial_stiffness = 5e7;
+  const std::string axial = hexapod_design_to_yaml(d);
+  EXPECT_NE(axial.find("  axial_stiffness: 50000000\n  actuator_stiffness: 200000000\n"),
+            std::string::npos)
+      << axial;
+  EXPECT_EQ(axial.find("  E: "), std::string::npos) << axial;
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "io/input_error.hpp"
@@ -115,6 +117,27 @@ TEST(TaskWrenchFile, BadInputGivesExactMessages) {
                      "  feed_direction: [0, 0, 1]\n"),
             "study.yaml:3:19: wrench.feed_direction: expected a non-zero direction in the base "
             "x-y plane [x, y, 0], found a list of 3");
+}
+
+}  // namespace
+}  // namespace pkmopt
+
+namespace pkmopt {
+namespace {
+
+// docs/design-studies.md carries the cutting models' key tables exactly as the reader's field
+// lists generate them; the failure message shows the block to paste.
+TEST(TaskWrenchFile, DocsTablesMatchTheFieldLists) {
+  std::ifstream in(std::string(PKMOPT_SOURCE_DIR) + "/docs/design-studies.md");
+  std::stringstream docs;
+  docs << in.rdbuf();
+  for (const char* model : {"turning", "milling"}) {
+    const std::string block = std::string("<!-- fields: ") + model + " -->\n" +
+                              cutting_model_fields_markdown(model) + "<!-- /fields -->\n";
+    EXPECT_NE(docs.str().find(block), std::string::npos)
+        << "docs/design-studies.md lacks the generated table of '" << model << "':\n"
+        << block;
+  }
 }
 
 }  // namespace

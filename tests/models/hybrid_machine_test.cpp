@@ -24,6 +24,7 @@
 #include "models/workspace/workspace.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/sample_machines.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
@@ -474,20 +475,10 @@ TEST(HybridMachine, WorkspaceOfAGantryCarryingATripod) {
 // ------------------------------------------------------------------------------------------
 // Machine files and the CLI.
 
-class HybridFiles : public ::testing::Test {
+class HybridFiles : public scratch::ScratchDirTest {
  protected:
   void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("pkmopt_hybrid_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
     std::filesystem::copy_file(examples_ / "hexapod.yaml", dir_ / "hexapod.yaml");
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
   }
   // The message of loading a hybrid file with the given serial and parallel sections.
   std::string error_of(const std::string& text) {
@@ -498,7 +489,6 @@ class HybridFiles : public ::testing::Test {
     }
     return "no error";
   }
-  std::filesystem::path dir_;
   const std::filesystem::path examples_ = std::filesystem::path(PKMOPT_SOURCE_DIR) / "examples";
 };
 
@@ -508,11 +498,11 @@ TEST_F(HybridFiles, ExamplesLoadAndDescribe) {
   EXPECT_EQ(hexamech->num_actuators(), 7);
   const auto gantry = load_machine_file((examples_ / "hybrid_gantry_3prs.yaml").string());
   EXPECT_EQ(gantry->num_actuators(), 5);
-  cli_runner::CliRun run = cli_runner::run_cli(
-      dir_, "describe " + (examples_ / "hybrid_long_axis_hexapod.yaml").string());
+  cli_runner::CliRun run =
+      run_cli("describe " + (examples_ / "hybrid_long_axis_hexapod.yaml").string());
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("structure_class: P1З6"), std::string::npos) << run.out;
-  run = cli_runner::run_cli(dir_, "describe " + (examples_ / "hybrid_gantry_3prs.yaml").string());
+  run = run_cli("describe " + (examples_ / "hybrid_gantry_3prs.yaml").string());
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("structure_class: P2З3"), std::string::npos) << run.out;
 }
@@ -520,22 +510,22 @@ TEST_F(HybridFiles, ExamplesLoadAndDescribe) {
 TEST_F(HybridFiles, AnalyzeFkAndWorkspaceOnTheLongAxis) {
   const std::string machine = (examples_ / "hybrid_long_axis_hexapod.yaml").string();
   const std::string poses = write("p.csv", "x,y,z,rx,ry,rz\n0.7,0,0.9,0,0,0\n1.1,0,0.9,0,0,0\n");
-  cli_runner::CliRun run = cli_runner::run_cli(
-      dir_, "analyze " + machine + " --poses " + poses + " --wrench 0,0,-1000,0,0,0");
+  cli_runner::CliRun run =
+      run_cli("analyze " + machine + " --poses " + poses + " --wrench 0,0,-1000,0,0,0");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("q_7,tau_1"), std::string::npos);
   // X at 0.7, then clamped at 1.0; the X drive carries no part of a vertical load.
   EXPECT_NE(run.out.find("\n0.7,0,0.9,0,0,0,1,0.7,"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("\n1.1,0,0.9,0,0,0,1,1,"), std::string::npos) << run.out;
-  run = cli_runner::run_cli(dir_, "fk " + machine +
-                                      " --q 0.7,1.0921019490250472,1.0921019490250472,"
-                                      "1.0921019490250472,1.0921019490250472,1.0921019490250472,"
-                                      "1.0921019490250472");
+  run = run_cli("fk " + machine +
+                " --q 0.7,1.0921019490250472,1.0921019490250472,"
+                "1.0921019490250472,1.0921019490250472,1.0921019490250472,"
+                "1.0921019490250472");
   ASSERT_EQ(run.status, 0) << run.err;
   const std::size_t line = run.out.find('\n');
   ASSERT_NE(line, std::string::npos);
   EXPECT_NEAR(std::stod(run.out.substr(line + 1)), 0.7, 1e-12) << run.out;
-  run = cli_runner::run_cli(dir_, "workspace " + machine + " --resolution 0.05");
+  run = run_cli("workspace " + machine + " --resolution 0.05");
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("workspace (constant_orientation): volume"), std::string::npos);
 }
@@ -605,12 +595,12 @@ TEST_F(HybridFiles, BadFilesNameTheKey) {
             std::string::npos);
   // The CLI exits 2 and names the key.
   const cli_runner::CliRun run =
-      cli_runner::run_cli(dir_, "analyze " +
-                                    write("bad.yaml",
-                                          "model: hybrid\nserial: {code: \"1\", range: [[-1, 1]], "
-                                          "error: [1e-6, 2e-6]}\n" +
-                                              par) +
-                                    " --poses " + write("p.csv", "x,y,z\n0,0,0.9\n"));
+      run_cli("analyze " +
+              write("bad.yaml",
+                    "model: hybrid\nserial: {code: \"1\", range: [[-1, 1]], "
+                    "error: [1e-6, 2e-6]}\n" +
+                        par) +
+              " --poses " + write("p.csv", "x,y,z\n0,0,0.9\n"));
   EXPECT_EQ(run.status, 2);
   EXPECT_NE(run.err.find("serial.error: expected a list of 1, found a list of 2"),
             std::string::npos)

@@ -144,6 +144,9 @@ TEST(LatheConversion, MinimalStrutLengthReachesTheTaskAndOnePercentLessDoesNot) 
       d, lathe_task_poses(LatheTask{{-0.5, 0.0, 0.0}, {0.5, 0.18, 0.18}, {5, 5, 5}}), 0.2, 0.8,
       1e-6);
   ASSERT_TRUE(l_seeds);
+  // Regression pin (not an independent check): value from `minimal_strut_length(
+  // Lathe16k20f3Design{}, lathe_task_poses(LatheTask{{-0.5, 0, 0}, {0.5, 0.18, 0.18}, {5, 5, 5}}),
+  // 0.2, 0.8, 1e-6)`, the call above (README, step 2).
   EXPECT_NEAR(*l_seeds, 0.52765, 2e-5);
   EXPECT_GT(*l_seeds, seeds_strut_length({0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175}));
   // Too short an upper end: nothing found.

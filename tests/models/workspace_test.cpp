@@ -180,6 +180,20 @@ TEST(ConvexHull, UnitCubeAndDegenerateInput) {
   EXPECT_EQ(convex_hull_volume(flat), 0.0);
 }
 
+// A grid of points has many coplanar hull facets, which CGAL may triangulate differently; the
+// volume is summed exactly, so it is the correctly rounded exact value and the same every call.
+TEST(ConvexHull, GridOfCoplanarPointsGivesTheExactVolumeEveryTime) {
+  std::vector<Eigen::Vector3d> grid;
+  for (int i = 0; i <= 10; ++i)
+    for (int j = 0; j <= 10; ++j)
+      for (int k = 0; k <= 4; ++k) grid.emplace_back(0.1 * i, 0.3 * j, 0.7 * k);
+  // The hull is the box of the extreme coordinates; its volume computed here independently.
+  const double a = 0.1 * 10, b = 0.3 * 10, c = 0.7 * 4;
+  const double first = convex_hull_volume(grid);
+  EXPECT_NEAR(first, a * b * c, 1e-14 * a * b * c);
+  for (int repeat = 0; repeat < 20; ++repeat) EXPECT_EQ(convex_hull_volume(grid), first);
+}
+
 TEST(Orientations, SamplesStayInTheConeAndReachItsRimAndYawEnds) {
   OrientationSet set;
   set.nominal_angles = deg_to_rad(Eigen::Vector3d(5, -10, 30));

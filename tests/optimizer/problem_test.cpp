@@ -80,6 +80,49 @@ TEST(Problem, BatchFitnessRethrows) {
   EXPECT_THROW(Throwing().batch_fitness(xs, 2), std::runtime_error);
 }
 
+// A decorator built on ForwardingProblem changes only what it overrides: everything else is the
+// inner problem's, including a sparsity pattern and thread safety that differ from the defaults.
+class SparseSerialProblem : public SmallProblem {
+ public:
+  SparsityPattern gradient_sparsity() const override { return {{0, 0}, {0, 1}, {1, 1}, {2, 0}}; }
+  ThreadSafety thread_safety() const override { return ThreadSafety::none; }
+  std::size_t num_equality() const override { return 0; }
+};
+
+class NegatedFirstObjective : public ForwardingProblem {
+ public:
+  using ForwardingProblem::ForwardingProblem;
+  std::vector<double> fitness(const std::vector<double>& x) const override {
+    std::vector<double> f = inner().fitness(x);
+    f[0] = -f[0];
+    return f;
+  }
+};
+
+TEST(Problem, ForwardingProblemForwardsEverythingItDoesNotOverride) {
+  const SparseSerialProblem inner;
+  const NegatedFirstObjective decorated(inner);
+  EXPECT_EQ(decorated.bounds().lower, inner.bounds().lower);
+  EXPECT_EQ(decorated.bounds().upper, inner.bounds().upper);
+  EXPECT_EQ(decorated.num_objectives(), 2u);
+  EXPECT_EQ(decorated.num_inequality(), 1u);
+  EXPECT_EQ(decorated.num_equality(), 0u);
+  EXPECT_TRUE(decorated.has_gradient());
+  EXPECT_EQ(decorated.gradient({0.5, 0.25}), inner.gradient({0.5, 0.25}));
+  EXPECT_EQ(decorated.gradient_sparsity(), inner.gradient_sparsity());
+  EXPECT_EQ(decorated.thread_safety(), ThreadSafety::none);
+  EXPECT_EQ(decorated.name(), "small");
+  EXPECT_EQ(&decorated.inner(), &inner);
+  const std::vector<double> x{0.5, 0.25};
+  EXPECT_EQ(decorated.fitness(x)[0], -inner.fitness(x)[0]);
+  EXPECT_EQ(decorated.fitness(x)[1], inner.fitness(x)[1]);
+  // Batches evaluate the decorator's own fitness, not the inner problem's batch.
+  const std::vector<std::vector<double>> xs{{0.5, 0.25}, {-1.0, 1.5}, {0.0, 0.0}};
+  const auto batch = decorated.batch_fitness(xs, 2);
+  ASSERT_EQ(batch.size(), xs.size());
+  for (std::size_t k = 0; k < xs.size(); ++k) EXPECT_EQ(batch[k], decorated.fitness(xs[k]));
+}
+
 TEST(Problem, CountingProblemCounts) {
   SmallProblem problem;
   CountingProblem counted(problem);

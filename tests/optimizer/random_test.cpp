@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "bench/uniform_stream.hpp"
+
 namespace pkmopt {
 namespace {
 
@@ -24,6 +26,25 @@ TEST(Random, SplitmixReferenceValue) {
   // splitmix64 from state 0: first output 0xE220A8397B1DCDAF (Vigna's reference code).
   std::uint64_t state = 0;
   EXPECT_EQ(splitmix64(state), 0xE220A8397B1DCDAFULL);
+}
+
+// The sample stream of the tests and benchmarks (bench/uniform_stream.hpp) draws
+// lo + (hi - lo) * (w >> 11) 2^-53 from the splitmix64 words w of its seed: here with splitmix64
+// written out again (Steele, Lea & Flood 2014), so the benchmarks' poses stay the same numbers.
+TEST(Random, SampleUniformStreamIsSplitmix64) {
+  for (const std::uint64_t seed : {0ULL, 7ULL, 42ULL, 12345ULL}) {
+    sample_machines::Uniform uniform(seed);
+    std::uint64_t state = seed;
+    for (int k = 0; k < 1000; ++k) {
+      std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+      z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+      z ^= z >> 31;
+      const double lo = -0.5 * k, hi = 1.0 + k;
+      EXPECT_EQ(uniform(lo, hi), lo + (hi - lo) * static_cast<double>(z >> 11) * 0x1.0p-53)
+          << "seed " << seed << " draw " << k;
+    }
+  }
 }
 
 TEST(Random, UniformMomentsAndRange) {

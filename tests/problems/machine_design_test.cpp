@@ -8,9 +8,6 @@
 #include <numbers>
 #include <random>
 
-#include "io/machine_file_leg_chain.hpp"
-#include "io/machine_file_writer.hpp"
-#include "io/yaml_reader.hpp"
 #include "models/hexapod.hpp"
 
 namespace pkmopt {
@@ -174,36 +171,8 @@ TEST(MachineDesign, TripodFamilyRecoversItsTemplateAndSetsItsParameters) {
               *expected->envelope_volume(), 1e-12);
 }
 
-TEST(MachineDesign, MachineFilesLoadBackToTheSameMachine) {
-  // The written machine file, read by the machine-file reader, gives the evaluated machine.
-  const std::vector<std::pair<DesignFamily, std::vector<double>>> cases = {
-      {delta_family(DeltaDesign{}), {0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0}},
-      {linear_delta_family(LinearDeltaDesign{}), {0.4, 0.05, 0.8, 0.7, deg_to_rad(12), 0.0}},
-      {hexaglide_family(HexaglideDesign{}),
-       {0.2, deg_to_rad(25), 0.2, 0.9, 1.6, deg_to_rad(5), 0.1}},
-      {tripod_3prs_family(Tripod3PrsDesign{}), {0.32, 0.14, 0.6, 0.9, 0.0}}};
-  const std::vector<Pose> poses = {
-      Pose{{0.02, 0.03, -0.75}, {0, 0, 0}}, Pose{{0.02, 0.03, -0.55}, {0, 0, 0}},
-      Pose{{0.05, -0.02, 0.45}, {0.03, 0.02, -0.01}}, Pose{{0.0, 0.0, 1.0}, {0.2, -0.1, 0.0}}};
-  for (std::size_t c = 0; c < cases.size(); ++c) {
-    const auto& [family, p] = cases[c];
-    const std::string text = family_machine_file(family.design(p));
-    const YamlValue root = YamlValue::load_string(text, family.model + ".yaml");
-    const std::unique_ptr<Machine> loaded = load_leg_chain_machine(root, family.model);
-    ASSERT_NE(loaded, nullptr) << text;
-    const std::unique_ptr<Machine> built = family.build(p);
-    EXPECT_EQ(loaded->model(), family.model);
-    EXPECT_NEAR(*loaded->envelope_volume() / *built->envelope_volume(), 1.0, 1e-12);
-    PoseMetrics a, b;
-    loaded->analyze(*loaded->make_data(), poses[c], Wrench::Constant(50.0), a);
-    built->analyze(*built->make_data(), poses[c], Wrench::Constant(50.0), b);
-    ASSERT_FALSE(b.singular) << family.model;
-    EXPECT_EQ(a.reachable, b.reachable) << family.model;
-    EXPECT_NEAR((a.q - b.q).norm(), 0.0, 1e-9) << family.model;
-    EXPECT_NEAR((a.tau - b.tau).norm() / b.tau.norm(), 0.0, 1e-9) << family.model;
-    EXPECT_NEAR(a.stiffness_min / b.stiffness_min, 1.0, 1e-9) << family.model;
-  }
-}
+// The family designs' machine files (io/machine_file_writer) are tested in
+// tests/io/machine_file_writer_test.cpp.
 
 TEST(MachineDesign, FailuresGivePenaltyRowsAndAReason) {
   {  // an impossible machine: the drive range is empty

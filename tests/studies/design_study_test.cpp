@@ -2,7 +2,6 @@
 #include "studies/design_study.hpp"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -19,6 +18,7 @@
 #include "io/machine_file.hpp"
 #include "io/machine_file_writer.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
@@ -47,30 +47,29 @@ const char* const kStudy =
     "  - {metric: leg_force_max, max: 10500}\n"
     "optimizer: {algorithm: nsga2, population: 12, generations: 4, seed: 5}\n";
 
-fs::path write_study(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("pkmopt_study_design_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::ofstream(dir / "study.yaml") << text;
-  return dir;
-}
-
-std::string load_error(const std::string& name, const std::string& text) {
-  const fs::path dir = write_study(name, text);
-  try {
-    load_design_study((dir / "study.yaml").string());
-  } catch (const InputError& error) {
-    return error.what();
+// Every test has its own scratch folder; write_study(name, text) writes <dir_>/<name>/study.yaml.
+class DesignStudyTest : public scratch::ScratchDirTest {
+ protected:
+  fs::path write_study(const std::string& name, const std::string& text) const {
+    write(fs::path(name) / "study.yaml", text);
+    return dir_ / name;
   }
-  return "no error";
-}
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+  std::string load_error(const std::string& name, const std::string& text) const {
+    const fs::path dir = write_study(name, text);
+    try {
+      load_design_study((dir / "study.yaml").string());
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return "no error";
+  }
+};
+// The suites keep their names; the study type is therefore pkmopt::DesignStudy in this file.
+class DesignStudy : public DesignStudyTest {};
+class LegChainDesignStudy : public DesignStudyTest {};
+
+using cli_runner::read_text;
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);
@@ -78,9 +77,9 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text.replace(at, from.size(), to);
 }
 
-TEST(DesignStudy, LoadsTheProblemItDescribes) {
+TEST_F(DesignStudy, LoadsTheProblemItDescribes) {
   const fs::path dir = write_study("load", kStudy);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   EXPECT_EQ(study.name, "tiny");
   EXPECT_TRUE(is_design_study_file((dir / "study.yaml").string()));
   const HexapodDesignProblem& problem = *study.problem;
@@ -95,14 +94,15 @@ TEST(DesignStudy, LoadsTheProblemItDescribes) {
   EXPECT_EQ(study.optimizer.seed, 5u);
 }
 
-TEST(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
-  const std::string catalog = std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
+TEST_F(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
+  const std::string catalog =
+      std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
   std::string text = replaced(kStudy, "  - {metric: leg_force_max, max: 10500}\n",
                               "  - {actuator: CMS71L/350, catalog: " + catalog + "}\n");
   text = replaced(text, "    base_radius: {min: 0.5, max: 0.7}\n",
                   "    base_radius: {min: 0.5, max: 0.7}\n    stroke: {min: 0.30, max: 0.45}\n");
   const fs::path dir = write_study("actuator", text);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   const HexapodDesignSpec& spec = study.problem->spec();
   ASSERT_EQ(spec.constraints.size(), 1u);
   EXPECT_EQ(spec.constraints[0].metric, DesignMetric::leg_force_max);
@@ -114,7 +114,7 @@ TEST(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
   EXPECT_EQ(spec.parameters[static_cast<std::size_t>(stroke)].upper, 0.35);  // capped
   // The resolved study (absolute catalog path) loads to the same problem.
   const fs::path again = write_study("actuator_resolved", study.resolved_yaml);
-  const DesignStudy reloaded = load_design_study((again / "study.yaml").string());
+  const pkmopt::DesignStudy reloaded = load_design_study((again / "study.yaml").string());
   EXPECT_EQ(reloaded.resolved_yaml, study.resolved_yaml);
   EXPECT_EQ(reloaded.problem->spec().constraints[0].bound, 17000.0);
 
@@ -141,7 +141,7 @@ TEST(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
 
 // {actuator: cheapest, catalog: FILE}: every design gets the cheapest entry that carries its
 // legs; actuator_cost can be minimised; pareto.csv/json and the report name the entry.
-TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
+TEST_F(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   const std::string catalog_path =
       std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
   std::string text = replaced(kStudy, "  - {metric: leg_force_max, max: 10500}\n",
@@ -154,7 +154,7 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   text = replaced(text, "  - minimize: machine_size\n", "  - minimize: actuator_cost\n");
   text = replaced(text, "wrench: [0, 0, -3000, 0, 0, 0]", "wrench: [2000, 0, -20000, 0, 0, 0]");
   const fs::path dir = write_study("cheapest", text);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   const HexapodDesignSpec& spec = study.problem->spec();
   ASSERT_TRUE(spec.actuator_catalog.has_value());
   EXPECT_EQ(spec.actuator_catalog->entries.size(), 7u);
@@ -165,19 +165,16 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   const fs::path again = write_study("cheapest_resolved", study.resolved_yaml);
   EXPECT_EQ(load_design_study((again / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
 
-  const std::string validate = std::string(PKMOPT_CLI) + " validate " +
-                               (dir / "study.yaml").string() + " > " +
-                               (dir / "validate.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(validate.c_str()), 0);
-  EXPECT_NE(read_text(dir / "validate.txt")
-                .find("actuators: each design's cheapest entry of catalog 'sew-cms' (7 entries, "
-                      "by force rating) that carries its legs"),
+  const cli_runner::CliRun validate = run_cli("validate " + (dir / "study.yaml").string());
+  ASSERT_EQ(validate.status, 0) << validate.err;
+  const std::string validate_text = validate.out + validate.err;
+  EXPECT_NE(validate_text.find("actuators: each design's cheapest entry of catalog 'sew-cms' (7 "
+                               "entries, by force rating) that carries its legs"),
             std::string::npos)
-      << read_text(dir / "validate.txt");
-  const std::string command = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
-                              " --out " + (dir / "out").string() + " --threads 2 > " +
-                              (dir / "log.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir / "log.txt");
+      << validate_text;
+  const cli_runner::CliRun run = run_cli("run " + (dir / "study.yaml").string() + " --out " +
+                                         (dir / "out").string() + " --threads 2");
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
   std::ifstream csv(dir / "out" / "pareto.csv");
   std::string header;
   std::getline(csv, header);
@@ -212,9 +209,7 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   }
   EXPECT_FALSE(names.empty());
   // The report lists the chosen entries.
-  const std::string export_command = std::string(PKMOPT_CLI) + " export " + (dir / "out").string() +
-                                     " --format html > /dev/null 2>&1";
-  ASSERT_EQ(std::system(export_command.c_str()), 0);
+  ASSERT_EQ(run_cli("export " + (dir / "out").string() + " --format html").status, 0);
   const std::string report = read_text(dir / "out" / "report.html");
   EXPECT_NE(report.find("<th>actuator</th>"), std::string::npos);
   EXPECT_NE(report.find("<td>" + *names.begin() + "</td>"), std::string::npos);
@@ -229,11 +224,11 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
                            "{actuator: cheapest, catalog: FILE}"),
             std::string::npos)
       << no_choice;
-  const fs::path priced_dir = write_study("cheapest_priced", "");
+  const fs::path priced_dir =
+      write_study("cheapest_priced", replaced(text, catalog_path, "cat.yaml"));
   std::string priced = read_text(catalog_path);
   priced = replaced(priced, "max_speed: 0.375}", "max_speed: 0.375, cost: 3}");
-  std::ofstream(priced_dir / "cat.yaml") << priced;
-  std::ofstream(priced_dir / "study.yaml") << replaced(text, catalog_path, "cat.yaml");
+  write("cheapest_priced/cat.yaml", priced);
   try {
     load_design_study((priced_dir / "study.yaml").string());
     ADD_FAILURE() << "no error";
@@ -245,7 +240,7 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   }
   std::string named = read_text(catalog_path);
   named = replaced(named, "name: CMS50S/70,", "name: cheapest,");
-  std::ofstream(priced_dir / "cat.yaml") << named;
+  write("cheapest_priced/cat.yaml", named);
   try {
     load_design_study((priced_dir / "study.yaml").string());
     ADD_FAILURE() << "no error";
@@ -259,10 +254,10 @@ TEST(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
 
 // The shipped actuator-choice study, reduced (population 12, 3 generations), through the CLI:
 // it resolves to itself and every feasible front design names the catalog entry it chose.
-TEST(DesignStudy, ShippedActuatorChoiceStudyRunsReduced) {
+TEST_F(DesignStudy, ShippedActuatorChoiceStudyRunsReduced) {
   const std::string source =
       std::string(PKMOPT_SOURCE_DIR) + "/studies/library/hexapod-actuator-choice.yaml";
-  const DesignStudy study = load_design_study(source);
+  const pkmopt::DesignStudy study = load_design_study(source);
   // Resolved again it is the same but for the comment on where the milling wrench came from.
   auto without_comments = [](const std::string& yaml) {
     std::istringstream in(yaml);
@@ -274,15 +269,15 @@ TEST(DesignStudy, ShippedActuatorChoiceStudyRunsReduced) {
   const fs::path resolved = write_study("actuator_choice_resolved", study.resolved_yaml);
   EXPECT_EQ(load_design_study((resolved / "study.yaml").string()).resolved_yaml,
             without_comments(study.resolved_yaml));
-  const std::string text = replaced(
-      replaced(read_text(source), "population: 80, generations: 50",
-               "population: 12, generations: 3"),
-      "catalogs/sew-cms.yaml", std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml");
+  const std::string text =
+      replaced(replaced(read_text(source), "population: 80, generations: 50",
+                        "population: 12, generations: 3"),
+               "catalogs/sew-cms.yaml",
+               std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml");
   const fs::path dir = write_study("actuator_choice", text);
-  const std::string command = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
-                              " --out " + (dir / "out").string() + " > " +
-                              (dir / "log.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << read_text(dir / "log.txt");
+  const cli_runner::CliRun run =
+      run_cli("run " + (dir / "study.yaml").string() + " --out " + (dir / "out").string());
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
   const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
   EXPECT_EQ(pareto["actuator_catalog"]["name"], "sew-cms");
   for (const nlohmann::json& d : pareto["designs"]) {
@@ -292,7 +287,7 @@ TEST(DesignStudy, ShippedActuatorChoiceStudyRunsReduced) {
   }
 }
 
-TEST(DesignStudy, WrenchFromTheMillingModel) {
+TEST_F(DesignStudy, WrenchFromTheMillingModel) {
   const std::string text =
       replaced(kStudy, "  wrench: [0, 0, -3000, 0, 0, 0]\n",
                "  wrench:\n"
@@ -300,7 +295,7 @@ TEST(DesignStudy, WrenchFromTheMillingModel) {
                "              feed_per_tooth_mm: 0.15, width_mm: 63, depth_mm: 3, k_c1: 1700}\n"
                "    factor: 2\n");
   const fs::path dir = write_study("milling", text);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   // Full slot: F_t = a_p a_e f_z z k_c / (pi D), k_c = 1700 (2 f_z / pi)^-0.25; times 2.
   const double k_c = 1700.0 * std::pow(2.0 * 0.15 / M_PI, -0.25);
   const double F_t = 3.0 * 63.0 * 0.15 * 5 * k_c / (M_PI * 63.0);
@@ -314,28 +309,24 @@ TEST(DesignStudy, WrenchFromTheMillingModel) {
   EXPECT_EQ(load_design_study((again / "study.yaml").string()).problem->spec().task.wrench, w);
 }
 
-TEST(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
-  const std::string file =
-      (fs::temp_directory_path() / "pkmopt_study_design_test_e1" / "study.yaml").string();
+TEST_F(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
+  const std::string file = (dir_ / "e1" / "study.yaml").string();
   EXPECT_EQ(load_error("e1", replaced(kStudy, "    base_radius:", "    base_radiu:")),
             file +
                 ":5:5: machine.parameters.base_radiu: unknown key 'base_radiu'; allowed keys here: "
                 "base_radius, platform_radius, base_pair_separation_deg, "
                 "platform_pair_separation_deg, min_length, stroke, home_height");
-  const std::string file2 =
-      (fs::temp_directory_path() / "pkmopt_study_design_test_e2" / "study.yaml").string();
+  const std::string file2 = (dir_ / "e2" / "study.yaml").string();
   EXPECT_EQ(
       load_error("e2", replaced(kStudy, "maximize: stiffness_min", "maximize: stifness")),
       file2 +
           ":15:15: objectives[0].maximize: expected one of stiffness_min, "
           "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
           "conditioning_index, machine_size, actuator_cost, actuator_overload, found 'stifness'");
-  const std::string file3 =
-      (fs::temp_directory_path() / "pkmopt_study_design_test_e3" / "study.yaml").string();
+  const std::string file3 = (dir_ / "e3" / "study.yaml").string();
   EXPECT_EQ(load_error("e3", replaced(kStudy, "{min: 0.5, max: 0.7}", "{min: 0.7, max: 0.5}")),
             file3 + ":5:34: machine.parameters.base_radius.max: expected max > min, found '0.5'");
-  const std::string file4 =
-      (fs::temp_directory_path() / "pkmopt_study_design_test_e4" / "study.yaml").string();
+  const std::string file4 = (dir_ / "e4" / "study.yaml").string();
   EXPECT_EQ(
       load_error("e4", replaced(kStudy, "task:\n", "tasks:\n")),
       file4 +
@@ -343,12 +334,11 @@ TEST(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
           "task, objectives, constraints, optimizer, output");
 }
 
-TEST(DesignStudy, SmallStudyEndToEnd) {
+TEST_F(DesignStudy, SmallStudyEndToEnd) {
   const fs::path dir = write_study("run", kStudy);
-  const std::string command = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
-                              " --out " + (dir / "out").string() + " --threads 1 > " +
-                              (dir / "log.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0);
+  const cli_runner::CliRun run = run_cli("run " + (dir / "study.yaml").string() + " --out " +
+                                         (dir / "out").string() + " --threads 1");
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
   std::ifstream csv(dir / "out" / "pareto.csv");
   std::string header, row;
   std::getline(csv, header);
@@ -389,7 +379,7 @@ TEST(DesignStudy, SmallStudyEndToEnd) {
 
   // summary.json: user-sign hypervolume with its reference point; counts of evaluations.
   const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
-  EXPECT_EQ(summary["evaluations"], 12 * 5);
+  EXPECT_EQ(summary["evaluations"], 12 * 5);  // population 12 x (4 generations + 1)
   EXPECT_EQ(summary["evaluations_from_cache"].get<long long>() +
                 summary["evaluations_distinct"].get<long long>(),
             12 * 5);
@@ -414,17 +404,16 @@ TEST(DesignStudy, SmallStudyEndToEnd) {
   EXPECT_EQ(evaluation_rows, summary["evaluations_distinct"].get<long long>());
 
   // A second run into the same folder is refused without --resume or --force.
-  const std::string again = std::string(PKMOPT_CLI) + " run " + (dir / "study.yaml").string() +
-                            " --out " + (dir / "out").string() + " > /dev/null 2>&1";
-  const int status = std::system(again.c_str());
-  EXPECT_EQ(WEXITSTATUS(status), 2);
+  const cli_runner::CliRun again =
+      run_cli("run " + (dir / "study.yaml").string() + " --out " + (dir / "out").string());
+  EXPECT_EQ(again.status, 2);
 }
 
-TEST(DesignStudy, ResolvedStudyLoadsToTheSameProblem) {
+TEST_F(DesignStudy, ResolvedStudyLoadsToTheSameProblem) {
   const fs::path dir = write_study("resolved", kStudy);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
-  std::ofstream(dir / "resolved.yaml") << study.resolved_yaml;
-  const DesignStudy again = load_design_study((dir / "resolved.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
+  write("resolved/resolved.yaml", study.resolved_yaml);
+  const pkmopt::DesignStudy again = load_design_study((dir / "resolved.yaml").string());
   EXPECT_EQ(again.resolved_yaml, study.resolved_yaml);  // a fixed point: nothing left to fill in
   const HexapodDesignProblem& a = *study.problem;
   const HexapodDesignProblem& b = *again.problem;
@@ -443,9 +432,9 @@ TEST(DesignStudy, ResolvedStudyLoadsToTheSameProblem) {
   EXPECT_EQ(a.fitness(x), b.fitness(x));
 }
 
-TEST(DesignStudy, EvaluationRowsRecordFailuresWithoutNumbers) {
+TEST_F(DesignStudy, EvaluationRowsRecordFailuresWithoutNumbers) {
   const fs::path dir = write_study("rows", kStudy);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   const JournalOptions options = design_journal_options(study);
   EXPECT_EQ(options.csv_header,
             "index,base_radius,platform_pair_separation_deg,stiffness_min,machine_size,"
@@ -468,8 +457,8 @@ TEST(DesignStudy, EvaluationRowsRecordFailuresWithoutNumbers) {
                 ",,,,,0,\"singular at task pose 2 (x 0.1, y 0, z 0.9 m)\"");
 }
 
-TEST(DesignStudy, ShippedQuickStudyResolvesToItself) {
-  const DesignStudy study =
+TEST_F(DesignStudy, ShippedQuickStudyResolvesToItself) {
+  const pkmopt::DesignStudy study =
       load_design_study(std::string(PKMOPT_SOURCE_DIR) + "/studies/library/hexapod-quick.yaml");
   const fs::path dir = write_study("quick_resolved", study.resolved_yaml);
   EXPECT_EQ(load_design_study((dir / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
@@ -501,9 +490,9 @@ const char* const kLinearDeltaStudy =
     "  - {metric: singularity_margin, min: 0.02}\n"
     "optimizer: {algorithm: nsga2, population: 12, generations: 4, seed: 3}\n";
 
-TEST(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) {
+TEST_F(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) {
   const fs::path dir = write_study("lc_load", kLinearDeltaStudy);
-  const DesignStudy study = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   EXPECT_EQ(study.model, "linear_delta");
   EXPECT_EQ(study.problem, nullptr);
   ASSERT_NE(study.machine_problem, nullptr);
@@ -514,28 +503,27 @@ TEST(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) {
   EXPECT_EQ(study.parameters[4].unit, "deg");
   EXPECT_EQ(study.parameters[4].min, 10.0);
   // The template keys reach the machine: the written design file carries them.
-  const std::string file = family_machine_file(problem.family().design(problem.parameters_of({0.7, 0.6, 0.0})));
+  const std::string file =
+      family_machine_file(problem.family().design(problem.parameters_of({0.7, 0.6, 0.0})));
   EXPECT_NE(file.find("rods: {E: 210000000000, area: 0.00015}"), std::string::npos) << file;
   EXPECT_NE(file.find("carriage_stiffness: 200000000"), std::string::npos) << file;
   EXPECT_NE(file.find("tcp: [0, 0, -0.05]"), std::string::npos) << file;
   EXPECT_NE(file.find("inclination_deg: 10"), std::string::npos) << file;
   // study.resolved.yaml loads to the same problem.
   const fs::path again = write_study("lc_load_resolved", study.resolved_yaml);
-  const DesignStudy reloaded = load_design_study((again / "study.yaml").string());
+  const pkmopt::DesignStudy reloaded = load_design_study((again / "study.yaml").string());
   EXPECT_EQ(reloaded.resolved_yaml, study.resolved_yaml);
   EXPECT_EQ(reloaded.machine_problem->fitness({0.7, 0.6, 0.05}), problem.fitness({0.7, 0.6, 0.05}));
 }
 
-TEST(LegChainDesignStudy, SchemaErrors) {
-  const std::string file =
-      (fs::temp_directory_path() / "pkmopt_study_design_test_lc_e1" / "study.yaml").string();
+TEST_F(LegChainDesignStudy, SchemaErrors) {
+  const std::string file = (dir_ / "lc_e1" / "study.yaml").string();
   EXPECT_EQ(
       load_error("lc_e1", replaced(kLinearDeltaStudy, "model: linear_delta", "model: tripod")),
       file +
           ":3:10: machine.model: expected one of hexapod, delta, linear_delta, hexaglide, "
           "tripod_3prs, lathe_16k20f3 (the models with a design family), found 'tripod'");
-  const std::string file2 =
-      (fs::temp_directory_path() / "pkmopt_study_design_test_lc_e2" / "study.yaml").string();
+  const std::string file2 = (dir_ / "lc_e2" / "study.yaml").string();
   EXPECT_EQ(load_error("lc_e2", replaced(kLinearDeltaStudy, "    rod:", "    rods:")),
             file2 +
                 ":5:5: machine.parameters.rods: unknown key 'rods'; allowed keys here: "
@@ -574,25 +562,25 @@ TEST(LegChainDesignStudy, SchemaErrors) {
                                                      "population: 12, "
                                                      "generations: 4, seed: 3",
                                                      "algorithm: nlopt:SLSQP"));
-  const cli_runner::CliRun run = cli_runner::run_cli(
-      dir, "run " + (dir / "study.yaml").string() + " --out " + (dir / "out").string());
+  const cli_runner::CliRun run =
+      run_cli("run " + (dir / "study.yaml").string() + " --out " + (dir / "out").string());
   EXPECT_EQ(run.status, 2) << run.err;
   EXPECT_NE(run.err.find("expected nsga2"), std::string::npos) << run.err;
   EXPECT_FALSE(fs::exists(dir / "out" / "pareto.csv"));
 }
 
-TEST(LegChainDesignStudy, SmallStudyEndToEndThroughTheCli) {
+TEST_F(LegChainDesignStudy, SmallStudyEndToEndThroughTheCli) {
   const fs::path dir = write_study("lc_run", kLinearDeltaStudy);
   const std::string study = (dir / "study.yaml").string();
   const std::string out = (dir / "out").string();
-  const cli_runner::CliRun validate = cli_runner::run_cli(dir, "validate " + study);
+  const cli_runner::CliRun validate = run_cli("validate " + study);
   ASSERT_EQ(validate.status, 0) << validate.err;
   EXPECT_NE(validate.out.find("(model linear_delta) is valid"), std::string::npos) << validate.out;
   EXPECT_NE(validate.out.find("free parameters (3): rod [0.5, 0.9]"), std::string::npos)
       << validate.out;
 
   const cli_runner::CliRun run =
-      cli_runner::run_cli(dir, "run " + study + " --out " + out + " --threads 2 --no-progress");
+      run_cli("run " + study + " --out " + out + " --threads 2 --no-progress");
   ASSERT_EQ(run.status, 0) << run.err;
   std::ifstream csv(dir / "out" / "pareto.csv");
   std::string header, row;
@@ -618,10 +606,10 @@ TEST(LegChainDesignStudy, SmallStudyEndToEndThroughTheCli) {
   EXPECT_EQ(pareto["constraints"][1]["name"], "g_task_reachable");
   const nlohmann::json summary = nlohmann::json::parse(read_text(dir / "out" / "summary.json"));
   EXPECT_EQ(summary["model"], "linear_delta");
-  EXPECT_EQ(summary["evaluations"], 12 * 5);
+  EXPECT_EQ(summary["evaluations"], 12 * 5);  // population 12 x (4 generations + 1)
 
   // Every design file is a machine file `pkmopt analyze` loads, and it is the design evaluated.
-  const DesignStudy loaded = load_design_study(study);
+  const pkmopt::DesignStudy loaded = load_design_study(study);
   for (const auto& d : pareto["designs"]) {
     const fs::path machine_file = dir / "out" / d["machine_file"].get<std::string>();
     const auto machine = load_machine_file(machine_file.string());
@@ -635,48 +623,48 @@ TEST(LegChainDesignStudy, SmallStudyEndToEndThroughTheCli) {
     EXPECT_NEAR(*machine->envelope_volume(), d["objectives"]["machine_size"].get<double>(), 1e-12);
   }
   const std::string first = (dir / "out" / "designs" / "d0000.yaml").string();
-  std::ofstream(dir / "poses.csv") << "x,y,z\n0,0,-0.3\n";
+  write("lc_run/poses.csv", "x,y,z\n0,0,-0.3\n");
   const cli_runner::CliRun analyze =
-      cli_runner::run_cli(dir, "analyze " + first + " --poses " + (dir / "poses.csv").string() +
-                                   " --out " + (dir / "analysis.csv").string());
+      run_cli("analyze " + first + " --poses " + (dir / "poses.csv").string() + " --out " +
+              (dir / "analysis.csv").string());
   EXPECT_EQ(analyze.status, 0) << analyze.err;
 
   // --resume of a finished run gives the same front; the html report reads it.
   const std::string before = read_text(dir / "out" / "pareto.csv");
-  const cli_runner::CliRun resumed = cli_runner::run_cli(
-      dir, "run " + study + " --out " + out + " --threads 1 --resume --no-progress");
+  const cli_runner::CliRun resumed =
+      run_cli("run " + study + " --out " + out + " --threads 1 --resume --no-progress");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   EXPECT_EQ(read_text(dir / "out" / "pareto.csv"), before);
-  const cli_runner::CliRun html = cli_runner::run_cli(
-      dir, "export " + out + " --format html --out " + (dir / "report.html").string());
+  const cli_runner::CliRun html =
+      run_cli("export " + out + " --format html --out " + (dir / "report.html").string());
   EXPECT_EQ(html.status, 0) << html.err;
   EXPECT_NE(read_text(dir / "report.html").find("linear_delta"), std::string::npos);
 }
 
-TEST(LegChainDesignStudy, ShippedComparisonStudiesResolveToThemselves) {
+TEST_F(LegChainDesignStudy, ShippedComparisonStudiesResolveToThemselves) {
   for (const char* name : {"hexapod", "hexaglide", "linear-delta"}) {
-    const DesignStudy study = load_design_study(std::string(PKMOPT_SOURCE_DIR) +
-                                                "/studies/library/compare-300/" + name + ".yaml");
+    const pkmopt::DesignStudy study = load_design_study(
+        std::string(PKMOPT_SOURCE_DIR) + "/studies/library/compare-300/" + name + ".yaml");
     const fs::path dir = write_study(std::string("compare_") + name, study.resolved_yaml);
     EXPECT_EQ(load_design_study((dir / "study.yaml").string()).resolved_yaml, study.resolved_yaml)
         << name;
   }
 }
 
-TEST(LegChainDesignStudy, TripodStudyRunsReducedThroughTheCli) {
-  std::string text = read_text(fs::path(PKMOPT_SOURCE_DIR) / "studies" / "tripod-z3.yaml");
+TEST_F(LegChainDesignStudy, TripodStudyRunsReducedThroughTheCli) {
+  std::string text =
+      read_text(fs::path(PKMOPT_SOURCE_DIR) / "studies" / "library" / "tripod-z3.yaml");
   const std::string full = "population: 40, generations: 40";
   ASSERT_NE(text.find(full), std::string::npos);
   text.replace(text.find(full), full.size(), "population: 12, generations: 6");
   const fs::path dir = write_study("tripod_run", text);
-  const cli_runner::CliRun run =
-      cli_runner::run_cli(dir, "run " + (dir / "study.yaml").string() + " --out " +
-                                   (dir / "out").string() + " --no-progress");
+  const cli_runner::CliRun run = run_cli("run " + (dir / "study.yaml").string() + " --out " +
+                                         (dir / "out").string() + " --no-progress");
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
   EXPECT_EQ(pareto["model"], "tripod_3prs");
   ASSERT_GT(pareto["designs"].size(), 0u);
-  const DesignStudy loaded = load_design_study((dir / "study.yaml").string());
+  const pkmopt::DesignStudy loaded = load_design_study((dir / "study.yaml").string());
   for (const auto& d : pareto["designs"]) {
     EXPECT_TRUE(d["feasible"].get<bool>());
     const auto machine =
@@ -696,6 +684,27 @@ TEST(LegChainDesignStudy, TripodStudyRunsReducedThroughTheCli) {
       worst = std::min(worst, m.stiffness_min);
     }
     EXPECT_NEAR(worst / d["objectives"]["stiffness_min"].get<double>(), 1.0, 1e-12);
+  }
+}
+
+}  // namespace
+}  // namespace pkmopt
+
+namespace pkmopt {
+namespace {
+
+// docs/design-studies.md carries the tables of the sections described by field lists exactly as
+// generated; the failure message shows the block to paste.
+TEST(DesignStudyFields, DocsTablesMatchTheFieldLists) {
+  std::ifstream in(std::string(PKMOPT_SOURCE_DIR) + "/docs/design-studies.md");
+  std::stringstream docs;
+  docs << in.rdbuf();
+  for (const char* section : {"task.orientations", "task.workspace", "output"}) {
+    const std::string block = std::string("<!-- fields: ") + section + " -->\n" +
+                              design_study_fields_markdown(section) + "<!-- /fields -->\n";
+    EXPECT_NE(docs.str().find(block), std::string::npos)
+        << "docs/design-studies.md lacks the generated table of '" << section << "':\n"
+        << block;
   }
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "io/input_error.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace pkmopt {
 namespace {
@@ -33,12 +34,14 @@ class CountedPair : public Problem {
   mutable std::atomic<int> calls{0};
 };
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("pkmopt_study_journal_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+// Every test has its own scratch folder; fresh_dir(name) is a new folder in it.
+class StudyJournal : public scratch::ScratchDirTest {
+ protected:
+  fs::path fresh_dir(const std::string& name) const {
+    fs::create_directories(dir_ / name);
+    return dir_ / name;
+  }
+};
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -64,7 +67,7 @@ JournalOptions options_for(const fs::path& dir, std::uint64_t hash, bool resume)
   return options;
 }
 
-TEST(StudyJournal, LinesAreBitExact) {
+TEST_F(StudyJournal, LinesAreBitExact) {
   JournalEntry entry;
   entry.x = {0.1, -0.0, 5e-324, 1.0 / 3.0};
   entry.fitness = {std::numeric_limits<double>::infinity(), 1e20, -2.5e-300};
@@ -86,13 +89,13 @@ TEST(StudyJournal, LinesAreBitExact) {
   EXPECT_FALSE(parse_journal_line(std::string_view(line).substr(0, 20), 4, 3, back));
 }
 
-TEST(StudyJournal, StudyHashIsFnv1a) {
+TEST_F(StudyJournal, StudyHashIsFnv1a) {
   // FNV-1a 64 of "" and "a" (the published test vectors of the algorithm).
   EXPECT_EQ(study_hash(""), 0xcbf29ce484222325ull);
   EXPECT_EQ(study_hash("a"), 0xaf63dc4c8601ec8cull);
 }
 
-TEST(StudyJournal, CachesIdenticalDesignsAndRecordsEachOnce) {
+TEST_F(StudyJournal, CachesIdenticalDesignsAndRecordsEachOnce) {
   const fs::path dir = fresh_dir("cache");
   CountedPair inner;
   JournaledProblem journaled(inner, options_for(dir, 7, false));
@@ -111,7 +114,7 @@ TEST(StudyJournal, CachesIdenticalDesignsAndRecordsEachOnce) {
   EXPECT_EQ(line_count(dir / "evaluations.csv"), 3u);  // header + 2 evaluations
 }
 
-TEST(StudyJournal, ResumeServesRecordedDesignsAndDropsACutLine) {
+TEST_F(StudyJournal, ResumeServesRecordedDesignsAndDropsACutLine) {
   const fs::path dir = fresh_dir("resume");
   CountedPair inner;
   {
@@ -139,7 +142,7 @@ TEST(StudyJournal, ResumeServesRecordedDesignsAndDropsACutLine) {
   EXPECT_EQ(csv.substr(0, 14), "index,x_1,x_2\n");
 }
 
-TEST(StudyJournal, ResumeRefusesAnotherStudy) {
+TEST_F(StudyJournal, ResumeRefusesAnotherStudy) {
   const fs::path dir = fresh_dir("refuse");
   CountedPair inner;
   { JournaledProblem journaled(inner, options_for(dir, 1, false)); }
@@ -155,7 +158,7 @@ TEST(StudyJournal, ResumeRefusesAnotherStudy) {
   }
 }
 
-TEST(StudyJournal, JournalDoesNotDependOnThreads) {
+TEST_F(StudyJournal, JournalDoesNotDependOnThreads) {
   std::vector<std::vector<double>> batch;
   for (int k = 0; k < 40; ++k) batch.push_back({std::sin(k) * 0.9, std::cos(3 * k) * 0.9});
   std::string texts[2];

@@ -1,32 +1,28 @@
-// Tests of trajectories (models/trajectory.hpp) and `pkmopt trajectory`: the angular velocity map
-// against the derivative of the rotation, the helix formula and its derivative, q_dot = J xi
-// against finite differences of the IK (hexapod and delta), singular poses located where they
-// are (Fichter's 90 deg yaw singularity, architecturally singular hexapods), the hexapod-450
-// study in its reduced form through the CLI, and bad input.
+// Tests of models/trajectory: the angular velocity map against the derivative of the rotation,
+// the helix formula and its derivative, q_dot = J xi against finite differences of the IK
+// (hexapod and delta), sampled paths, and singular poses located where they are (Fichter's
+// 90 deg yaw singularity, architecturally singular hexapods). `pkmopt trajectory` is tested in
+// tests/app/trajectory_cli_test.cpp.
 #include "models/trajectory.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
 #include "io/machine_file.hpp"
 #include "models/hexapod.hpp"
-#include "tests/cli_runner.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace pkmopt;
-using cli_runner::CliRun;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -137,7 +133,8 @@ void expect_rates_match_ik(const Machine& machine, const TcpPath& path, int samp
 }
 
 TEST(Trajectory, HexapodLegRatesMatchDifferencesOfTheIkAlongTheHelix) {
-  const auto machine = load_machine_file(source_path("studies/library/hexapod-450/hexapod-450.yaml"));
+  const auto machine =
+      load_machine_file(source_path("studies/library/hexapod-450/hexapod-450.yaml"));
   HelixParameters hp = seeds_helix();
   hp.angle_amplitudes = deg_to_rad(Eigen::Vector3d(15, 10, 20));  // large angles: E(a) matters
   expect_rates_match_ik(*machine, HelixPath(hp), 401, 1e-7, 2e-3);
@@ -169,7 +166,8 @@ TEST(Trajectory, DeltaDriveRatesMatchDifferencesOfTheIkAlongATranslationalHelix)
 // A sampled path's rates are central differences: q_dot from them converges to the IK
 // differences as the samples get denser.
 TEST(Trajectory, SampledPathFollowsTheHelix) {
-  const auto machine = load_machine_file(source_path("studies/library/hexapod-450/hexapod-450.yaml"));
+  const auto machine =
+      load_machine_file(source_path("studies/library/hexapod-450/hexapod-450.yaml"));
   const HelixPath helix(seeds_helix());
   const std::vector<double> times = uniform_times(0.0, 2 * kPi, 401);
   std::vector<Pose> poses;
@@ -255,147 +253,73 @@ TEST(Trajectory, ArchitecturallySingularHexapodIsSingularAtEverySample) {
   }
 }
 
-class TrajectoryCli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pkmopt_trajectory_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    machine_ = source_path("studies/library/hexapod-450/hexapod-450.yaml");
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+// stepped_times and summarize_trajectory on small hand-made inputs.
+using pkmopt::TrajectoryResult;
+using pkmopt::TrajectorySample;
 
-  CliRun run(const std::string& args) { return cli_runner::run_cli(dir_, args); }
-
-  void expect_input_error(const std::string& args, const std::string& fragment) {
-    const fs::path out = dir_ / "out.csv";
-    const CliRun r = run("trajectory " + args + " --out " + out.string());
-    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
-    EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\nstderr: " << r.err;
-    EXPECT_FALSE(fs::exists(out)) << args;
-  }
-
-  fs::path dir_;
-  std::string machine_;
-};
-
-// The study in its reduced form: studies/library/hexapod-450/run.sh with 20 mm workspaces and 61 helix
-// samples. Every helix pose reachable and regular, the file's q columns equal to the IK, and
-// the study's numbers pinned (README.md of the study quotes them at full resolution).
-TEST_F(TrajectoryCli, Hexapod450StudyReducedForm) {
-  const fs::path out = dir_ / "study";
-  const std::string command = "PKMOPT=" + std::string(PKMOPT_CLI) + " bash " +
-                              source_path("studies/library/hexapod-450/run.sh") + " " + out.string() +
-                              " 0.02 61 >" + (dir_ / "log.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << cli_runner::read_text(dir_ / "log.txt");
-  const std::string level_summary = cli_runner::read_text(out / "helix-level.txt");
-  EXPECT_NE(level_summary.find("61 reachable"), std::string::npos) << level_summary;
-  EXPECT_NE(level_summary.find("singular poses: 0"), std::string::npos) << level_summary;
-
-  const CsvTable table = read_csv_file((out / "helix-level.csv").string());
-  ASSERT_EQ(table.rows.size(), 61u);
-  EXPECT_EQ(table.header.size(), 15u + 3 * 6 + 2 + 36);
-  EXPECT_EQ(read_csv_file((out / "helix-level-singular.csv").string()).rows.size(), 0u);
-  const Hexapod hexapod(read_hexapod_design(YamlValue::load_file(machine_)));
-  Eigen::VectorXd q_min = Eigen::VectorXd::Constant(6, 1e9), q_max = -q_min;
-  double q_dot_max = 0.0;
-  for (const CsvRow& row : table.rows) {
-    EXPECT_EQ(table.number(row, table.column("reachable")), 1.0);
-    EXPECT_EQ(table.number(row, table.column("singular")), 0.0);
-    Pose pose;
-    pose.position = {table.number(row, 1), table.number(row, 2), table.number(row, 3)};
-    pose.angles = deg_to_rad(
-        Eigen::Vector3d(table.number(row, 4), table.number(row, 5), table.number(row, 6)));
-    const Vec6<double> q = hexapod.inverse_kinematics(pose);
-    for (int i = 0; i < 6; ++i) {
-      const double qi = table.number(row, table.column("q_" + std::to_string(i + 1)));
-      EXPECT_NEAR(qi, q(i), 1e-12);
-      q_min(i) = std::min(q_min(i), qi);
-      q_max(i) = std::max(q_max(i), qi);
-      q_dot_max = std::max(
-          q_dot_max, std::abs(table.number(row, table.column("q_dot_" + std::to_string(i + 1)))));
-    }
-  }
-  // Pinned study numbers (leg lengths along the path, m; largest leg rate, m/s).
-  const double pinned_min[] = {0.8862244946703823, 0.8872466401016851, 0.9048626874035955,
-                               0.8944034026417963, 0.894772376010191,  0.901138047948807};
-  const double pinned_max[] = {0.9493480749070337, 0.9498780705533946, 0.9420710700564493,
-                               0.9553694837455221, 0.9563738753609948, 0.9419858925305947};
-  for (int i = 0; i < 6; ++i) {
-    EXPECT_NEAR(q_min(i), pinned_min[i], 1e-9) << "leg " << i + 1;
-    EXPECT_NEAR(q_max(i), pinned_max[i], 1e-9) << "leg " << i + 1;
-  }
-  EXPECT_NEAR(q_dot_max, 0.04607295905449005, 1e-9);
-
-  // The workspaces (20 mm grid): level and at a constant 40 deg tilt, pinned; the tilted one
-  // far smaller and shifted off the axis; empty with 45 deg platform joints.
-  const CsvTable ws = read_csv_file((out / "workspaces.csv").string());
-  auto value = [&](const std::string& name, const std::string& column) {
-    for (const CsvRow& row : ws.rows) {
-      if (row.cells[0] == name) return ws.number(row, ws.require_column(column));
-    }
-    ADD_FAILURE() << "no workspace " << name;
-    return 0.0;
-  };
-  const double level = value("level", "volume");
-  const double tilted = value("tilt-y40", "volume");
-  EXPECT_NEAR(level, 0.10492625779098329, 1e-9);
-  EXPECT_NEAR(tilted, 0.00024610712626390126, 1e-11);
-  EXPECT_NEAR(value("tilt-x40", "volume"), 0.00036170388042771544, 1e-11);
-  EXPECT_LT(tilted, 0.01 * level);
-  EXPECT_NEAR(value("level", "centroid_x"), 0.0, 1e-3);
-  EXPECT_NEAR(value("tilt-y40", "centroid_x"), 0.1838, 1e-4);
-  EXPECT_NEAR(value("tilt-y40", "centroid_y"), 0.0025, 1e-4);
-  EXPECT_EQ(value("joints-45-45-tilt-y40", "volume"), 0.0);
-  EXPECT_NEAR(value("joints-89-89-tilt-y40", "volume"), 0.03551649237824182, 1e-9);
+TEST(SteppedTimes, KeepsTheStepAndEndsAtTEnd) {
+  const auto t = pkmopt::stepped_times(0.0, 1.0, 0.3);
+  ASSERT_EQ(t.size(), 5u);  // 0, 0.3, 0.6, 0.9 and a shorter last step to 1
+  EXPECT_EQ(t[0], 0.0);
+  EXPECT_DOUBLE_EQ(t[1], 0.3);
+  EXPECT_DOUBLE_EQ(t[2], 0.6);
+  EXPECT_DOUBLE_EQ(t[3], 0.9);
+  EXPECT_EQ(t[4], 1.0);
+  EXPECT_EQ(t[3], 0.0 + 3 * 0.3);  // k * dt, not a running sum
 }
 
-TEST_F(TrajectoryCli, PathFileGivesTheSameRatesAsTheHelix) {
-  const fs::path path = dir_ / "path.csv", out = dir_ / "out.csv";
-  {
-    const HelixPath helix(seeds_helix());
-    std::string text = "t,x,y,z,rx,ry,rz,label\n";
-    for (double t : uniform_times(0, 2 * kPi, 201)) {
-      const Pose p = helix.at(t).pose;
-      text += format_number(t);
-      for (int k = 0; k < 3; ++k) text += ',' + format_number(p.position(k));
-      for (int k = 0; k < 3; ++k) text += ',' + format_number(rad_to_deg(p.angles(k)));
-      text += ",a\n";
-    }
-    std::ofstream(path) << text;
-  }
-  const CliRun r =
-      run("trajectory " + machine_ + " --path " + path.string() + " --out " + out.string());
-  ASSERT_EQ(r.status, 0) << r.err;
-  const CsvTable table = read_csv_file(out.string());
-  ASSERT_EQ(table.rows.size(), 201u);
-  for (std::size_t k = 1; k + 1 < table.rows.size(); ++k) {
-    for (int i = 1; i <= 6; ++i) {
-      const double q_dot = table.number(table.rows[k], table.column("q_dot_" + std::to_string(i)));
-      const double fd = table.number(table.rows[k], table.column("q_dot_fd_" + std::to_string(i)));
-      EXPECT_NEAR(q_dot, fd, 2e-5) << "row " << k << " leg " << i;
-    }
-  }
+TEST(SteppedTimes, ADividingStepDoesNotRepeatTEnd) {
+  const auto t = pkmopt::stepped_times(1.0, 2.0, 0.25);
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t[3], 1.75);
+  EXPECT_EQ(t[4], 2.0);
 }
 
-TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
-  const fs::path path = dir_ / "path.csv";
-  std::ofstream(path) << "t,x,y,z\n0,0,0,0.7\n0.5,0,0,0.71\n0.4,0,0,0.72\n";
-  expect_input_error(machine_ + " --path " + path.string(),
-                     "path.csv:4: column 1 't': expected a time greater than");
-  expect_input_error(machine_, "expected --path PATH.csv or --helix, found neither");
-  expect_input_error(machine_ + " --helix --path " + path.string(), "found both");
-  expect_input_error(machine_ + " --helix --samples 1", "--samples: expected");
-  expect_input_error(machine_ + " --helix --samples 10 --dt 0.1", "--samples and --dt");
-  expect_input_error(machine_ + " --helix --t-end -1", "--t-end: expected");
-  expect_input_error(machine_ + " --helix --helix-radius 0.01", "--helix-radius: expected 2");
-  expect_input_error(machine_ + " --path " + path.string() + " --samples 5", "only with --helix");
-  expect_input_error(source_path("examples/missing.yaml") + " --helix", "missing.yaml");
-  const fs::path no_t = dir_ / "no_t.csv";
-  std::ofstream(no_t) << "x,y,z\n0,0,0.7\n0,0,0.71\n";
-  expect_input_error(machine_ + " --path " + no_t.string(), "'t'");
+TEST(SteppedTimes, RejectsBadSpansAndSteps) {
+  EXPECT_THROW(pkmopt::stepped_times(0.0, 1.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(pkmopt::stepped_times(1.0, 1.0, 0.1), std::invalid_argument);
+  EXPECT_THROW(pkmopt::stepped_times(0.0, std::nan(""), 0.1), std::invalid_argument);
+}
+
+TrajectorySample sample(double q1, double q2, double qd1, double qd2, double fd1, double fd2,
+                        bool reachable, double margin, bool jacobian_ok) {
+  TrajectorySample s;
+  s.metrics.q = Eigen::Vector2d(q1, q2);
+  s.q_dot = Eigen::Vector2d(qd1, qd2);
+  s.q_dot_fd = Eigen::Vector2d(fd1, fd2);
+  s.metrics.reachable = reachable;
+  s.metrics.singularity_margin = margin;
+  s.jacobian_ok = jacobian_ok;
+  return s;
+}
+
+TEST(SummarizeTrajectory, RangesAndInteriorMismatch) {
+  TrajectoryResult r;
+  // The ends disagree by 10 (ignored: not interior); interior samples by 0.5 and 0.25; the
+  // third sample's Jacobian failed, so its 7 does not count.
+  r.samples.push_back(sample(1.0, -2.0, 0.1, -3.0, 10.1, -3.0, true, 0.4, true));
+  r.samples.push_back(sample(1.5, -1.0, -0.6, 0.2, -0.1, 0.2, false, 0.2, true));
+  r.samples.push_back(sample(0.5, -4.0, 0.0, 0.0, 7.0, 0.0, true, 0.3, false));
+  r.samples.push_back(sample(2.0, -3.0, 0.5, 0.25, 0.5, 0.0, true, 0.6, true));
+  r.samples.push_back(sample(1.0, -1.5, 0.0, 0.0, 0.0, 20.0, true, 0.9, true));
+  const pkmopt::TrajectorySummary s = pkmopt::summarize_trajectory(r, 2);
+  EXPECT_EQ(s.samples, 5u);
+  EXPECT_EQ(s.reachable, 4u);
+  EXPECT_EQ(s.singularity_margin_min, 0.2);
+  EXPECT_EQ(s.q_min, Eigen::Vector2d(0.5, -4.0));
+  EXPECT_EQ(s.q_max, Eigen::Vector2d(2.0, -1.0));
+  EXPECT_EQ(s.q_dot_max, Eigen::Vector2d(0.6, 3.0));
+  EXPECT_DOUBLE_EQ(s.q_dot_mismatch_max, 0.5);  // |-0.6 - (-0.1)| at sample 1
+}
+
+TEST(SummarizeTrajectory, NoSamples) {
+  const pkmopt::TrajectorySummary s = pkmopt::summarize_trajectory(TrajectoryResult{}, 3);
+  EXPECT_EQ(s.samples, 0u);
+  EXPECT_EQ(s.q_min.size(), 3);
+  EXPECT_TRUE(std::isinf(s.q_min(0)) && s.q_min(0) > 0);
+  EXPECT_TRUE(std::isinf(s.q_max(2)) && s.q_max(2) < 0);
+  EXPECT_EQ(s.q_dot_max, Eigen::Vector3d::Zero());
+  EXPECT_EQ(s.q_dot_mismatch_max, 0.0);
 }
 
 }  // namespace

@@ -1,4 +1,8 @@
-// Tests of report/pareto_report (reading pareto.json, CSV/JSON/HTML/plots) and `pkmopt export`.
+// Tests of report/pareto_report (plots, the knee slice, the HTML report) and `pkmopt export`
+// (CSV, JSON and HTML of a results folder; bad input). Reading and writing pareto.json and the
+// CSV of a front (io/pareto_json) are tested in tests/io/pareto_json_test.cpp.
+#include "report/pareto_report.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,13 +11,11 @@
 #include <string>
 
 #include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "report/pareto_report.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 using cli_runner::read_text;
-using cli_runner::run_cli;
 
 namespace {
 
@@ -23,35 +25,22 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
-const fs::path kFixtures = fs::path(PKMOPT_SOURCE_DIR) / "tests/report/data/export";
+// pareto.json fixtures, shared with tests/io/pareto_json_test.cpp.
+const fs::path kFixtures = fs::path(PKMOPT_SOURCE_DIR) / "tests/io/data/pareto_json";
 
-class ExportTest : public ::testing::Test {
+class ExportTest : public scratch::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    scratch_ = fs::temp_directory_path() / (std::string("pkmopt_export_test_") + info->name() +
-                                            "_" + std::to_string(::getpid()));
-    fs::remove_all(scratch_);
-    fs::create_directories(scratch_);
-  }
-  void TearDown() override { fs::remove_all(scratch_); }
-
   // A copy of a fixture folder in the scratch folder (outputs land next to pareto.json).
   fs::path fixture(const std::string& name) {
-    const fs::path target = scratch_ / name;
+    const fs::path target = dir_ / name;
     fs::copy(kFixtures / name, target, fs::copy_options::recursive);
     return target;
-  }
-  static void write(const fs::path& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
   }
   static std::size_t file_count(const fs::path& dir) {
     std::size_t n = 0;
     for (const auto& entry : fs::recursive_directory_iterator(dir)) n += entry.is_regular_file();
     return n;
   }
-
-  fs::path scratch_;
 };
 
 nlohmann::json load_json(const fs::path& path) { return nlohmann::json::parse(read_text(path)); }
@@ -68,87 +57,6 @@ TEST(Base64, Rfc4648TestVectors) {
   EXPECT_EQ(pkmopt::base64("fooba"), "Zm9vYmE=");
   EXPECT_EQ(pkmopt::base64("foobar"), "Zm9vYmFy");
   EXPECT_EQ(pkmopt::base64(std::string("\xff\x00\x80", 3)), "/wCA");
-}
-
-TEST(ReadParetoJson, ReadsEveryField) {
-  const auto front = pkmopt::read_pareto_json((kFixtures / "two/pareto.json").string());
-  EXPECT_EQ(front.study, "fixture-two");
-  ASSERT_EQ(front.parameters.size(), 2u);
-  EXPECT_EQ(front.parameters[1].name, "platform_pair_separation_deg");
-  EXPECT_EQ(front.parameters[1].unit, "deg");
-  EXPECT_EQ(front.parameters[1].max, 40.0);
-  ASSERT_EQ(front.fixed_parameters.size(), 2u);
-  ASSERT_EQ(front.objectives.size(), 2u);
-  EXPECT_EQ(front.objectives[0].sense, "maximize");
-  ASSERT_EQ(front.constraints.size(), 2u);
-  EXPECT_EQ(front.constraints[0].bound, 10500.0);
-  EXPECT_EQ(front.constraints[1].kind, "reachable");
-  EXPECT_EQ(front.task.centre.z(), 0.9);
-  EXPECT_EQ(front.task.wrench[2], -3000.0);
-  EXPECT_EQ(front.task.tilt_deg, 20.0);
-  ASSERT_EQ(front.designs.size(), 4u);
-  EXPECT_EQ(front.designs[0].parameters[1], 12.345678901234567);
-  EXPECT_EQ(front.designs[0].objectives[1], 0.30000000000000004);
-  EXPECT_FALSE(front.designs[3].feasible);
-  EXPECT_EQ(front.designs[1].machine_file, std::optional<std::string>("designs/d0001.yaml"));
-  EXPECT_FALSE(front.designs[2].machine_file.has_value());
-  EXPECT_EQ(front.knee, std::optional<std::string>("d0001"));
-  EXPECT_FALSE(front.home_height_is_parameter());
-}
-
-TEST(ReadParetoJson, NullIsNaNAndWritesBackAsNull) {
-  const auto front = pkmopt::read_pareto_json((kFixtures / "three/pareto.json").string());
-  EXPECT_TRUE(std::isnan(front.designs[1].constraints[0]));
-  EXPECT_TRUE(front.home_height_is_parameter());
-  const auto again = nlohmann::json::parse(pkmopt::pareto_json(front));
-  EXPECT_TRUE(again["designs"][1]["constraints"]["g_singularity_margin_min"].is_null());
-}
-
-// A front whose study chose catalog actuators: the chosen entry is read, written back by
-// pareto_json and pareto_csv, and a malformed one names its key.
-TEST(ReadParetoJson, ChosenActuatorsRoundTrip) {
-  nlohmann::json root = load_json(kFixtures / "two/pareto.json");
-  root["actuator_catalog"] = {
-      {"name", "sew-cms"}, {"entries", 7}, {"cost", "rank by force rating"}};
-  root["designs"][0]["actuator"] = {{"name", "CMS63S/200"},    {"type", "electric_cylinder"},
-                                    {"max_force", 10500.0},    {"stroke", 0.2},
-                                    {"max_speed", 0.45},       {"cost", 5.0},
-                                    {"leg_force_max", 7000.0}, {"force_reserve", 1.5}};
-  for (std::size_t d = 1; d < root["designs"].size(); ++d) root["designs"][d]["actuator"] = nullptr;
-  const fs::path dir =
-      fs::temp_directory_path() / ("pkmopt_export_actuator_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  std::ofstream(dir / "pareto.json") << root.dump(2);
-  const auto front = pkmopt::read_pareto_json((dir / "pareto.json").string());
-  ASSERT_EQ(front.actuator_catalog, std::optional<std::string>("sew-cms"));
-  ASSERT_TRUE(front.designs[0].actuator.has_value());
-  EXPECT_EQ(front.designs[0].actuator->name, "CMS63S/200");
-  EXPECT_EQ(front.designs[0].actuator->max_force, 10500.0);
-  EXPECT_EQ(front.designs[0].actuator->stroke, 0.2);
-  EXPECT_EQ(front.designs[0].actuator->cost, 5.0);
-  EXPECT_EQ(front.designs[0].actuator->force_reserve, 1.5);
-  EXPECT_FALSE(front.designs[1].actuator.has_value());
-  const nlohmann::json again = nlohmann::json::parse(pkmopt::pareto_json(front));
-  EXPECT_EQ(again["actuator_catalog"]["name"], "sew-cms");
-  EXPECT_EQ(again["designs"][0]["actuator"]["name"], "CMS63S/200");
-  EXPECT_EQ(again["designs"][0]["actuator"]["force_reserve"], 1.5);
-  EXPECT_TRUE(again["designs"][1]["actuator"].is_null());
-  const std::string csv = pkmopt::pareto_csv(front);
-  const std::string header = csv.substr(0, csv.find('\n'));
-  EXPECT_NE(header.find(",actuator,feasible,knee"), std::string::npos) << header;
-  EXPECT_NE(csv.find(",CMS63S/200,"), std::string::npos) << csv;
-  // A chosen actuator without its name.
-  root["designs"][0]["actuator"].erase("name");
-  std::ofstream(dir / "pareto.json") << root.dump(2);
-  try {
-    pkmopt::read_pareto_json((dir / "pareto.json").string());
-    ADD_FAILURE() << "no error";
-  } catch (const pkmopt::InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("designs[0].actuator.name: expected a string"),
-              std::string::npos)
-        << e.what();
-  }
-  fs::remove_all(dir);
 }
 
 TEST(ParetoPlot, PngAndSvgHaveOnePointPerDesignAndNamedAxes) {
@@ -185,7 +93,7 @@ TEST(KneeSlice, IsTakenAtTheTaskCentreHeightOfTheKneeMachine) {
 TEST_F(ExportTest, CsvRoundTripsEveryValue) {
   for (const std::string name : {"two", "three"}) {
     const fs::path dir = fixture(name);
-    const auto r = run_cli(scratch_, "export " + dir.string() + " --format csv");
+    const auto r = run_cli("export " + dir.string() + " --format csv");
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json source = load_json(dir / "pareto.json");
     const pkmopt::CsvTable csv = pkmopt::read_csv_file((dir / "pareto_export.csv").string());
@@ -227,9 +135,8 @@ TEST_F(ExportTest, CsvRoundTripsEveryValue) {
 TEST_F(ExportTest, JsonIsTheSameFrontNormalised) {
   for (const std::string name : {"two", "three"}) {
     const fs::path dir = fixture(name);
-    const fs::path out = scratch_ / (name + "_front.json");
-    const auto r =
-        run_cli(scratch_, "export " + dir.string() + " --format json --out " + out.string());
+    const fs::path out = dir_ / (name + "_front.json");
+    const auto r = run_cli("export " + dir.string() + " --format json --out " + out.string());
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_FALSE(fs::exists(dir / "pareto_export.json"));
     // The file parses to exactly the source JSON (every key, every number bit for bit).
@@ -241,7 +148,7 @@ TEST_F(ExportTest, JsonIsTheSameFrontNormalised) {
 
 TEST_F(ExportTest, HtmlIsSelfContainedWithOnePointPerDesignAndTheKneeSlice) {
   const fs::path dir = fixture("two");
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format html");
+  const auto r = run_cli("export " + dir.string() + " --format html");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string html = read_text(dir / "report.html");
   EXPECT_EQ(html.find("http"), std::string::npos);  // no URL of any kind
@@ -273,9 +180,8 @@ TEST_F(ExportTest, HtmlIsSelfContainedWithOnePointPerDesignAndTheKneeSlice) {
 
 TEST_F(ExportTest, HtmlWithThreeObjectivesHasParallelCoordinates) {
   const fs::path dir = fixture("three");
-  const fs::path out = scratch_ / "three.html";
-  const auto r =
-      run_cli(scratch_, "export " + dir.string() + " --format html --out " + out.string());
+  const fs::path out = dir_ / "three.html";
+  const auto r = run_cli("export " + dir.string() + " --format html --out " + out.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string html = read_text(out);
   EXPECT_EQ(html.find("http"), std::string::npos);
@@ -283,13 +189,13 @@ TEST_F(ExportTest, HtmlWithThreeObjectivesHasParallelCoordinates) {
   EXPECT_EQ(count(html, "<polyline class=\"pc"), 3u);
   EXPECT_NE(html.find("<polyline class=\"pc knee\" data-id=\"b\""), std::string::npos);
   EXPECT_NE(html.find("No workspace slice"), std::string::npos);
-  EXPECT_TRUE(fs::exists(scratch_ / "pareto.svg"));  // next to --out
+  EXPECT_TRUE(fs::exists(dir_ / "pareto.svg"));  // next to --out
   EXPECT_FALSE(fs::exists(dir / "pareto.svg"));
 }
 
 TEST_F(ExportTest, PlotsFlagWritesThePlotsWithCsv) {
   const fs::path dir = fixture("three");
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format csv --plots");
+  const auto r = run_cli("export " + dir.string() + " --format csv --plots");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir / "pareto.svg"));
   EXPECT_TRUE(fs::exists(dir / "pareto.png"));
@@ -303,13 +209,13 @@ TEST_F(ExportTest, EndToEndRunThenHtmlReport) {
   ASSERT_NE(study.find(optimizer), std::string::npos);
   study.replace(study.find(optimizer), optimizer.size(),
                 "optimizer: {algorithm: nsga2, population: 16, generations: 10");
-  write(scratch_ / "tiny.yaml", study);
-  const fs::path dir = scratch_ / "tiny";
-  const auto run = run_cli(scratch_, "run " + (scratch_ / "tiny.yaml").string() + " --out " +
-                                         dir.string() + " --threads 1");
+  write(dir_ / "tiny.yaml", study);
+  const fs::path dir = dir_ / "tiny";
+  const auto run =
+      run_cli("run " + (dir_ / "tiny.yaml").string() + " --out " + dir.string() + " --threads 1");
   ASSERT_EQ(run.status, 0) << run.err;
   ASSERT_TRUE(fs::exists(dir / "pareto.json"));
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format html");
+  const auto r = run_cli("export " + dir.string() + " --format html");
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json front = load_json(dir / "pareto.json");
   ASSERT_GT(front["designs"].size(), 0u);
@@ -323,7 +229,7 @@ TEST_F(ExportTest, EndToEndRunThenHtmlReport) {
     EXPECT_TRUE(fs::exists(dir / "knee_slice.png"));
   }
   // The CSV export has the same designs as the run's own pareto.csv.
-  ASSERT_EQ(run_cli(scratch_, "export " + dir.string() + " --format csv").status, 0);
+  ASSERT_EQ(run_cli("export " + dir.string() + " --format csv").status, 0);
   const auto exported = pkmopt::read_csv_file((dir / "pareto_export.csv").string());
   const auto original = pkmopt::read_csv_file((dir / "pareto.csv").string());
   ASSERT_EQ(exported.rows.size(), original.rows.size());
@@ -340,8 +246,8 @@ TEST_F(ExportTest, EndToEndRunThenHtmlReport) {
 // ---- Bad input: exit 2, one exact message, no file written ----------------------------------
 
 TEST_F(ExportTest, MissingFolder) {
-  const fs::path dir = scratch_ / "nothing";
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format csv");
+  const fs::path dir = dir_ / "nothing";
+  const auto r = run_cli("export " + dir.string() + " --format csv");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "pkmopt: error: " + dir.string() +
                        ": expected a results folder of `pkmopt run`, found no such folder\n");
@@ -349,9 +255,9 @@ TEST_F(ExportTest, MissingFolder) {
 }
 
 TEST_F(ExportTest, MissingParetoJson) {
-  const fs::path dir = scratch_ / "empty";
+  const fs::path dir = dir_ / "empty";
   fs::create_directories(dir);
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format html");
+  const auto r = run_cli("export " + dir.string() + " --format html");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "pkmopt: error: " + (dir / "pareto.json").string() +
                        ": cannot open the file (does it exist and is it readable?)\n");
@@ -361,7 +267,7 @@ TEST_F(ExportTest, MissingParetoJson) {
 TEST_F(ExportTest, MalformedJson) {
   const fs::path dir = fixture("two");
   write(dir / "pareto.json", "{\n  \"format\": \"pkmopt-pareto-1\",\n  \"study\": ,\n}\n");
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format html");
+  const auto r = run_cli("export " + dir.string() + " --format html");
   EXPECT_EQ(r.status, 2);
   const std::string prefix = "pkmopt: error: " + (dir / "pareto.json").string() +
                              ":3:12: expected JSON, found a syntax error (";
@@ -411,7 +317,7 @@ TEST_F(ExportTest, MissingOrWrongKeys) {
     }
     write(dir / "pareto.json", edited.dump(2));
     for (const char* format : {"csv", "json", "html"}) {
-      const auto r = run_cli(scratch_, "export " + dir.string() + " --format " + format);
+      const auto r = run_cli("export " + dir.string() + " --format " + format);
       EXPECT_EQ(r.status, 2) << c.edit_path;
       EXPECT_EQ(r.err,
                 "pkmopt: error: " + (dir / "pareto.json").string() + ": " + c.message + "\n");
@@ -422,7 +328,7 @@ TEST_F(ExportTest, MissingOrWrongKeys) {
 
 TEST_F(ExportTest, UnknownFormat) {
   const fs::path dir = fixture("two");
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format xml");
+  const auto r = run_cli("export " + dir.string() + " --format xml");
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err, "pkmopt: error: --format: expected csv, json or html, found 'xml'\n");
   EXPECT_EQ(file_count(dir), 2u);
@@ -431,7 +337,7 @@ TEST_F(ExportTest, UnknownFormat) {
 TEST_F(ExportTest, BrokenKneeMachineFileWritesNothing) {
   const fs::path dir = fixture("two");
   write(dir / "designs/d0001.yaml", "model: hexapod\nbase: {radius: abc}\n");
-  const auto r = run_cli(scratch_, "export " + dir.string() + " --format html");
+  const auto r = run_cli("export " + dir.string() + " --format html");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find((dir / "designs/d0001.yaml").string()), std::string::npos) << r.err;
   EXPECT_EQ(file_count(dir), 2u);

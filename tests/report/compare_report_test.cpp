@@ -2,8 +2,9 @@
 // The results folders are written by the tests (pareto.json by hand, in the pkmopt-pareto-1
 // format); hypervolumes are checked against inclusion-exclusion over the points (exact for the
 // few points used here and independent of optimizer/indicators).
+#include "report/compare_report.hpp"
+
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -14,13 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "report/compare_report.hpp"
 #include "io/input_error.hpp"
 #include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
 
 namespace fs = std::filesystem;
 using cli_runner::read_text;
-using cli_runner::run_cli;
 
 namespace {
 
@@ -78,11 +78,6 @@ std::string pareto_json_text(const std::string& study, const std::string& model,
   root["knee"] =
       knee >= 0 ? nlohmann::json("d" + std::to_string(10000 + knee).substr(1)) : nlohmann::json();
   return root.dump(2) + "\n";
-}
-
-void write(const fs::path& path, const std::string& text) {
-  fs::create_directories(path.parent_path());
-  std::ofstream(path, std::ios::binary) << text;
 }
 
 // Exact hypervolume by inclusion-exclusion (minimisation): sum over non-empty subsets S of
@@ -156,27 +151,20 @@ const std::vector<DesignSpec> kRunB{{{0.35, 900, 2.5e7}, true},  // (size, force
                                     {{kNaN, 700, 4.5e7}, true}};
 const std::vector<DesignSpec> kRunC{{{1.0e7, 0.30}, true}, {{2.2e7, 0.45}, true}};
 
-class CompareTest : public ::testing::Test {
+class CompareTest : public scratch::ScratchDirTest {
  protected:
+  // Three results folders a, b and c in the test's scratch folder.
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    scratch_ = fs::temp_directory_path() / (std::string("pkmopt_compare_test_") + info->name() +
-                                            "_" + std::to_string(::getpid()));
-    fs::remove_all(scratch_);
-    fs::create_directories(scratch_);
-    write(scratch_ / "a/pareto.json",
+    write("a/pareto.json",
           pareto_json_text("hexapod-box", "hexapod", {kStiffness, kSize}, kRunA, 1));
-    write(scratch_ / "a/summary.json", R"({"algorithm": "nsga2", "evaluations": 4800})");
-    write(scratch_ / "b/pareto.json",
+    write("a/summary.json", R"({"algorithm": "nsga2", "evaluations": 4800})");
+    write("b/pareto.json",
           pareto_json_text("hexaglide-box", "hexaglide", {kSize, kForce, kStiffness}, kRunB, 0));
-    write(scratch_ / "c/pareto.json",
+    write("c/pareto.json",
           pareto_json_text("linear-delta-box", "linear_delta", {kStiffness, kSize}, kRunC, -1));
   }
-  void TearDown() override { fs::remove_all(scratch_); }
-
   std::string dirs() const {
-    return (scratch_ / "a").string() + " " + (scratch_ / "b").string() + " " +
-           (scratch_ / "c").string();
+    return (dir_ / "a").string() + " " + (dir_ / "b").string() + " " + (dir_ / "c").string();
   }
   // The expected hypervolume of each run over (stiffness_min, machine_size): feasible designs
   // with finite values in minimisation form, reference = worst of the union + 10 % of its range.
@@ -203,8 +191,6 @@ class CompareTest : public ::testing::Test {
       out.push_back(inclusion_exclusion_hypervolume(points, reference));
     return out;
   }
-
-  fs::path scratch_;
 };
 
 // ---- Library ------------------------------------------------------------------------------
@@ -218,7 +204,7 @@ TEST(InclusionExclusion, KnownStaircase) {
 
 TEST_F(CompareTest, SharedObjectivesAndHypervolumesInACommonReference) {
   const pkmopt::RunComparison c = pkmopt::load_run_comparison(
-      {(scratch_ / "a").string(), (scratch_ / "b").string(), (scratch_ / "c").string()}, "", "");
+      {(dir_ / "a").string(), (dir_ / "b").string(), (dir_ / "c").string()}, "", "");
   ASSERT_EQ(c.runs.size(), 3u);
   ASSERT_EQ(c.shared_objectives.size(), 2u);
   EXPECT_EQ(c.shared_objectives[0].name, "stiffness_min");  // the first run's order
@@ -263,10 +249,10 @@ TEST_F(CompareTest, ThreeSharedObjectivesGiveAThreeDimensionalHypervolume) {
   const std::vector<DesignSpec> d2{{{2, 1.5, 2.5}, true}, {{0.5, 0.5, 0.5}, false}};
   const std::vector<ObjectiveSpec> objectives{
       {"f1", "maximize", ""}, {"f2", "minimize", "m"}, {"f3", "minimize", "N"}};
-  write(scratch_ / "p/pareto.json", pareto_json_text("p", "hexapod", objectives, d1, 0));
-  write(scratch_ / "q/pareto.json", pareto_json_text("q", "delta", objectives, d2, 0));
+  write("p/pareto.json", pareto_json_text("p", "hexapod", objectives, d1, 0));
+  write("q/pareto.json", pareto_json_text("q", "delta", objectives, d2, 0));
   const auto c =
-      pkmopt::load_run_comparison({(scratch_ / "p").string(), (scratch_ / "q").string()}, "f3", "");
+      pkmopt::load_run_comparison({(dir_ / "p").string(), (dir_ / "q").string()}, "f3", "");
   EXPECT_EQ(c.x_objective, 2u);
   EXPECT_EQ(c.y_objective, 0u);
   // Union (minimisation form): f1 -3..-1, f2 0.5..2, f3 1..3 -> reference (-0.8, 2.15, 3.2).
@@ -282,24 +268,24 @@ TEST_F(CompareTest, ThreeSharedObjectivesGiveAThreeDimensionalHypervolume) {
 TEST_F(CompareTest, RunsWithoutFeasibleDesignsHaveNoHypervolume) {
   const std::vector<DesignSpec> infeasible{{{1e7, 0.5}, false}};
   for (const std::string name : {"x", "y"}) {
-    write(scratch_ / name / "pareto.json",
+    write(name + "/pareto.json",
           pareto_json_text(name, "hexapod", {kStiffness, kSize}, infeasible, 0));
   }
   const auto only_infeasible =
-      pkmopt::load_run_comparison({(scratch_ / "x").string(), (scratch_ / "y").string()}, "", "");
+      pkmopt::load_run_comparison({(dir_ / "x").string(), (dir_ / "y").string()}, "", "");
   EXPECT_TRUE(std::isnan(only_infeasible.runs[0].hypervolume));
   EXPECT_TRUE(only_infeasible.reference_point.empty());
   EXPECT_NE(pkmopt::comparison_html(only_infeasible).find("no hypervolume"), std::string::npos);
   const auto mixed =
-      pkmopt::load_run_comparison({(scratch_ / "x").string(), (scratch_ / "c").string()}, "", "");
+      pkmopt::load_run_comparison({(dir_ / "x").string(), (dir_ / "c").string()}, "", "");
   EXPECT_EQ(mixed.runs[0].hypervolume, 0.0);
   EXPECT_GT(mixed.runs[1].hypervolume, 0.0);
 }
 
 TEST_F(CompareTest, RunsOfTheSameStudyAreLabelledWithTheirFolders) {
-  fs::copy(scratch_ / "a", scratch_ / "a2", fs::copy_options::recursive);
-  const std::string a = (scratch_ / "a").string(), a2 = (scratch_ / "a2").string();
-  const auto c = pkmopt::load_run_comparison({a, a2, (scratch_ / "c").string()}, "", "");
+  fs::copy(dir_ / "a", dir_ / "a2", fs::copy_options::recursive);
+  const std::string a = (dir_ / "a").string(), a2 = (dir_ / "a2").string();
+  const auto c = pkmopt::load_run_comparison({a, a2, (dir_ / "c").string()}, "", "");
   EXPECT_EQ(c.runs[0].label, "hexapod-box (hexapod, " + a + ")");
   EXPECT_EQ(c.runs[1].label, "hexapod-box (hexapod, " + a2 + ")");
   EXPECT_EQ(c.runs[2].label, "linear-delta-box (linear_delta)");
@@ -317,22 +303,22 @@ TEST_F(CompareTest, IncompatibleRunsAreInputErrors) {
       EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
   };
-  const std::string a = (scratch_ / "a").string(), c = (scratch_ / "c").string();
+  const std::string a = (dir_ / "a").string(), c = (dir_ / "c").string();
   expect_error({a}, "", "", "expected at least two results folders, found 1");
   expect_error({a, c}, "workspace_volume", "", "--x: expected an objective of every run");
   expect_error({a, c}, "", "leg_force_max", "--y: expected an objective of every run");
   expect_error({a, c}, "machine_size", "machine_size", "--y: expected an objective other");
   write(
-      scratch_ / "u/pareto.json",
+      dir_ / "u/pareto.json",
       pareto_json_text("u", "hexapod", {kStiffness, {"machine_size", "minimize", "m"}}, kRunC, 0));
-  expect_error({a, (scratch_ / "u").string()}, "", "",
-               (scratch_ / "u/pareto.json").string() + ": objectives[1].unit: expected 'm^3'");
-  write(scratch_ / "s/pareto.json",
+  expect_error({a, (dir_ / "u").string()}, "", "",
+               (dir_ / "u/pareto.json").string() + ": objectives[1].unit: expected 'm^3'");
+  write("s/pareto.json",
         pareto_json_text("s", "hexapod", {{"stiffness_min", "minimize", "N/m"}, kSize}, kRunC, 0));
-  expect_error({a, (scratch_ / "s").string()}, "", "", "objectives[0].sense: expected 'maximize'");
-  write(scratch_ / "one/pareto.json",
+  expect_error({a, (dir_ / "s").string()}, "", "", "objectives[0].sense: expected 'maximize'");
+  write("one/pareto.json",
         pareto_json_text("one", "hexapod", {kStiffness, kForce}, {{{1e7, 500}, true}}, 0));
-  expect_error({a, (scratch_ / "one").string()}, "", "",
+  expect_error({a, (dir_ / "one").string()}, "", "",
                "expected at least two objectives shared by every run, found 1");
   expect_error({a, a}, "", "", "same folder");
 }
@@ -340,11 +326,11 @@ TEST_F(CompareTest, IncompatibleRunsAreInputErrors) {
 // ---- CLI ------------------------------------------------------------------------------------
 
 TEST_F(CompareTest, CliWritesOnePageWithEveryRun) {
-  const fs::path html_path = scratch_ / "out/compare.html";
+  const fs::path html_path = dir_ / "out/compare.html";
   fs::create_directories(html_path.parent_path());
-  const auto run = run_cli(scratch_, "compare " + dirs() + " --out " + html_path.string() +
-                                         " --png " + (scratch_ / "out/c.png").string() + " --svg " +
-                                         (scratch_ / "out/c.svg").string());
+  const auto run =
+      run_cli("compare " + dirs() + " --out " + html_path.string() + " --png " +
+              (dir_ / "out/c.png").string() + " --svg " + (dir_ / "out/c.svg").string());
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("compare: hexapod-box (hexapod, 4 designs)"), std::string::npos)
       << run.out;
@@ -381,18 +367,18 @@ TEST_F(CompareTest, CliWritesOnePageWithEveryRun) {
   ASSERT_EQ(found.size(), 3u);
   for (std::size_t r = 0; r < 3; ++r) EXPECT_NEAR(found[r], expected[r], 1e-9 * expected[r]);
 
-  const std::string png = read_text(scratch_ / "out/c.png");
+  const std::string png = read_text(dir_ / "out/c.png");
   ASSERT_GE(png.size(), 8u);
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
-  const std::string svg = read_text(scratch_ / "out/c.svg");
+  const std::string svg = read_text(dir_ / "out/c.svg");
   EXPECT_NE(svg.find("xmlns=\"http://www.w3.org/2000/svg\""), std::string::npos);
   EXPECT_EQ(count(svg, " data-id="), 8u);
 }
 
 TEST_F(CompareTest, CliChoosesTheAxes) {
-  const fs::path html_path = scratch_ / "axes.html";
-  const auto run = run_cli(scratch_, "compare " + dirs() + " --out " + html_path.string() +
-                                         " --x machine_size --y stiffness_min");
+  const fs::path html_path = dir_ / "axes.html";
+  const auto run = run_cli("compare " + dirs() + " --out " + html_path.string() +
+                           " --x machine_size --y stiffness_min");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("on machine_size x stiffness_min"), std::string::npos) << run.out;
   const std::string html = read_text(html_path);
@@ -401,50 +387,47 @@ TEST_F(CompareTest, CliChoosesTheAxes) {
 }
 
 TEST_F(CompareTest, CliErrorsExitTwoAndWriteNothing) {
-  write(scratch_ / "bad/pareto.json", "{\"format\": \"pkmopt-pareto-1\",\n  \"study\": }\n");
-  write(scratch_ / "nofront/summary.json", "{}");
-  write(scratch_ / "badsummary/pareto.json",
-        pareto_json_text("bs", "hexapod", {kStiffness, kSize}, kRunC, 0));
-  write(scratch_ / "badsummary/summary.json", "{ not json");
+  write("bad/pareto.json", "{\"format\": \"pkmopt-pareto-1\",\n  \"study\": }\n");
+  write("nofront/summary.json", "{}");
+  write("badsummary/pareto.json", pareto_json_text("bs", "hexapod", {kStiffness, kSize}, kRunC, 0));
+  write("badsummary/summary.json", "{ not json");
   write(
-      scratch_ / "units/pareto.json",
+      dir_ / "units/pareto.json",
       pareto_json_text("u", "hexapod", {kStiffness, {"machine_size", "minimize", "m"}}, kRunC, 0));
-  const std::string a = (scratch_ / "a").string();
+  const std::string a = (dir_ / "a").string();
   struct Case {
     std::string args, message;
   };
   const std::vector<Case> cases{
       {a, "expected at least two results folders, found 1"},
-      {a + " " + (scratch_ / "missing").string(), "missing: expected a results folder"},
-      {a + " " + (scratch_ / "nofront").string(), "nofront/pareto.json: expected the Pareto front"},
-      {a + " " + (scratch_ / "bad").string(), "bad/pareto.json:2:"},
-      {a + " " + (scratch_ / "badsummary").string(), "badsummary/summary.json: expected a JSON"},
-      {a + " " + (scratch_ / "units").string(), "units/pareto.json: objectives[1].unit"},
+      {a + " " + (dir_ / "missing").string(), "missing: expected a results folder"},
+      {a + " " + (dir_ / "nofront").string(), "nofront/pareto.json: expected the Pareto front"},
+      {a + " " + (dir_ / "bad").string(), "bad/pareto.json:2:"},
+      {a + " " + (dir_ / "badsummary").string(), "badsummary/summary.json: expected a JSON"},
+      {a + " " + (dir_ / "units").string(), "units/pareto.json: objectives[1].unit"},
       {dirs() + " --x workspace_volume", "--x: expected an objective of every run"},
   };
   for (const Case& c : cases) {
-    const auto run =
-        run_cli(scratch_, "compare " + c.args + " --out " + (scratch_ / "e.html").string() +
-                              " --png " + (scratch_ / "e.png").string());
+    const auto run = run_cli("compare " + c.args + " --out " + (dir_ / "e.html").string() +
+                             " --png " + (dir_ / "e.png").string());
     EXPECT_EQ(run.status, 2) << c.args << "\n" << run.err;
     EXPECT_NE(run.err.find(c.message), std::string::npos) << run.err;
-    EXPECT_FALSE(fs::exists(scratch_ / "e.html")) << c.args;
-    EXPECT_FALSE(fs::exists(scratch_ / "e.png")) << c.args;
+    EXPECT_FALSE(fs::exists(dir_ / "e.html")) << c.args;
+    EXPECT_FALSE(fs::exists(dir_ / "e.png")) << c.args;
   }
-  const auto folder_out = run_cli(scratch_, "compare " + dirs() + " --out " + scratch_.string() +
-                                                " --png " + (scratch_ / "e.png").string());
+  const auto folder_out = run_cli("compare " + dirs() + " --out " + dir_.string() + " --png " +
+                                  (dir_ / "e.png").string());
   EXPECT_EQ(folder_out.status, 2);
   EXPECT_NE(folder_out.err.find("--out: expected a file name"), std::string::npos)
       << folder_out.err;
-  EXPECT_FALSE(fs::exists(scratch_ / "e.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "e.png"));
   // A plot in a folder that does not exist: not even the HTML page is written.
-  const auto no_folder =
-      run_cli(scratch_, "compare " + dirs() + " --out " + (scratch_ / "e.html").string() +
-                            " --png " + (scratch_ / "nowhere/e.png").string());
+  const auto no_folder = run_cli("compare " + dirs() + " --out " + (dir_ / "e.html").string() +
+                                 " --png " + (dir_ / "nowhere/e.png").string());
   EXPECT_EQ(no_folder.status, 2);
   EXPECT_NE(no_folder.err.find("--png: expected a file in an existing folder"), std::string::npos)
       << no_folder.err;
-  EXPECT_FALSE(fs::exists(scratch_ / "e.html"));
+  EXPECT_FALSE(fs::exists(dir_ / "e.html"));
 }
 
 }  // namespace
@@ -464,15 +447,15 @@ TEST_F(CompareTest, EndToEndTwoRealRuns) {
     std::string text = study;
     text.replace(text.find("study: hexapod-quick"), 20, "study: " + name);
     if (name == "quick-2") text.replace(text.find("seed: 1"), 7, "seed: 2");
-    write(scratch_ / (name + ".yaml"), text);
-    dirs.push_back(scratch_ / name);
-    const auto run = run_cli(scratch_, "run " + (scratch_ / (name + ".yaml")).string() + " --out " +
-                                           dirs.back().string() + " --threads 1");
+    write(name + ".yaml", text);
+    dirs.push_back(dir_ / name);
+    const auto run = run_cli("run " + (dir_ / (name + ".yaml")).string() + " --out " +
+                             dirs.back().string() + " --threads 1");
     ASSERT_EQ(run.status, 0) << run.err;
   }
-  const fs::path html_path = scratch_ / "real.html";
-  const auto r = run_cli(scratch_, "compare " + dirs[0].string() + " " + dirs[1].string() +
-                                       " --out " + html_path.string());
+  const fs::path html_path = dir_ / "real.html";
+  const auto r = run_cli("compare " + dirs[0].string() + " " + dirs[1].string() + " --out " +
+                         html_path.string());
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string html = read_text(html_path);
   std::vector<std::vector<std::vector<double>>> minimised(2);

@@ -1,0 +1,108 @@
+#include "io/calibration_output.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "io/csv.hpp"
+#include "io/machine_file.hpp"
+
+namespace pkmopt {
+namespace {
+
+// x,y,z (m),rx,ry,rz (deg) of a pose, without a trailing comma.
+std::string pose_fields(const Pose& pose) {
+  const Eigen::Vector3d deg = rad_to_deg(pose.angles);
+  return fmt::format("{},{},{},{},{},{}", format_number(pose.position(0)),
+                     format_number(pose.position(1)), format_number(pose.position(2)),
+                     format_number(deg(0)), format_number(deg(1)), format_number(deg(2)));
+}
+
+}  // namespace
+
+std::string calibrated_machine_yaml(const CalibrationSetup& setup,
+                                    const CalibrationResult& result) {
+  std::string machine = fmt::format(
+      "# Calibrated by pkmopt calibrate {}.\n# Leg offsets (leg length at reading 0, m) and "
+      "gain errors are in report.json: leg length = offset + (1 + gain) * reading * {} m.\n",
+      setup.file, format_number(setup.unit_scale));
+  machine += hexapod_design_to_yaml(calibrated_design(setup.nominal_design, result.estimate));
+  return machine;
+}
+
+std::string measurement_csv(const std::vector<CalibrationMeasurement>& measurements,
+                            double unit_scale) {
+  std::string csv = "x,y,z,rx,ry,rz,q_1,q_2,q_3,q_4,q_5,q_6\n";
+  for (const auto& m : measurements) {
+    csv += pose_fields(m.pose);
+    for (int i = 0; i < 6; ++i) csv += "," + format_number(m.stroke(i) / unit_scale);
+    csv += "\n";
+  }
+  return csv;
+}
+
+double reading_unit_scale(const SimulationFileSettings& settings) {
+  return settings.unit == "mm" ? 1e-3 : 1.0;
+}
+
+std::string simulated_calibration_yaml(const SimulationFileSettings& settings,
+                                       double mean_position_sigma) {
+  const double position = std::max(mean_position_sigma, 1e-9);
+  const double orientation = std::max(settings.orientation_sigma_deg, 1e-9);
+  const double actuator = std::max(settings.actuator_sigma, 1e-12) / reading_unit_scale(settings);
+  return fmt::format(
+      "# Calibration of simulated measurements (pkmopt simulate-measurements --seed {}).\n"
+      "machine: nominal.yaml\n"
+      "measurements: measurements.csv\n"
+      "frame: base\n"
+      "actuators: {{unit: {}, zero_length: {}}}\n"
+      "noise: {{position: {}, orientation_deg: {}, actuator: {}}}\n"
+      "model: {}\n"
+      "gauge: auto\n"
+      "loss: {{type: huber, scale: 5}}\n"
+      "validation: {{every: {}}}\n",
+      settings.seed, settings.unit, format_number(settings.zero_length), format_number(position),
+      format_number(orientation), format_number(actuator), settings.model,
+      std::max(2, settings.holdout_every));
+}
+
+std::string simulation_truth_json(std::uint64_t seed, const SimulatedMeasurements& data) {
+  nlohmann::json truth;
+  truth["seed"] = seed;
+  truth["outlier_rows"] = nlohmann::json::array();
+  for (int k : data.outliers) truth["outlier_rows"].push_back(k + 1);
+  for (int i = 0; i < kCalibrationMachineParameters; ++i) {
+    truth["parameters"][calibration_parameter_name(i)] = data.truth(i);
+  }
+  truth["mean_position_sigma"] = data.mean_position_sigma;
+  return truth.dump(2) + "\n";
+}
+
+std::vector<std::pair<std::string, std::string>> simulated_measurement_files(
+    const HexapodDesign& nominal, const SimulatedMeasurements& data,
+    const SimulationFileSettings& settings) {
+  std::vector<std::pair<std::string, std::string>> files;
+  files.emplace_back("measurements.csv",
+                     measurement_csv(data.measurements, reading_unit_scale(settings)));
+  files.emplace_back("nominal.yaml", hexapod_design_to_yaml(nominal));
+  files.emplace_back("truth.yaml",
+                     "# The true machine the measurements were drawn from.\n" +
+                         hexapod_design_to_yaml(calibrated_design(nominal, data.truth)));
+  files.emplace_back("truth.json", simulation_truth_json(settings.seed, data));
+  files.emplace_back("calibration.yaml",
+                     simulated_calibration_yaml(settings, data.mean_position_sigma));
+  return files;
+}
+
+std::string selected_poses_csv(const CalibrationCandidates& candidates,
+                               const PoseSelection& selection) {
+  std::string csv = "x,y,z,rx,ry,rz,candidate\n";
+  for (int c : selection.selected) {
+    const auto i = static_cast<std::size_t>(c);
+    csv += fmt::format("{},{}\n", pose_fields(candidates.poses[i]), candidates.labels[i]);
+  }
+  return csv;
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,402 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/actuator_catalog_file.hpp"
+#include "io/csv.hpp"
+#include "io/input_error.hpp"
+#include "io/machine_file.hpp"
+#include "io/machine_file_lathe.hpp"
+#include "io/machine_file_leg_chain.hpp"
+#include "io/machine_file_writer.hpp"
+#include "io/output_file.hpp"
+#include "io/task_wrench_file.hpp"
+#include "optimizer/indicators.hpp"
+#include "pkmopt/version.hpp"
+#include "problems/lathe_design.hpp"
+#include "studies/design_study.hpp"
+
+namespace pkmopt {
+
+std::string_view design_metric_unit(DesignMetric metric) {
+  switch (metric) {
+    case DesignMetric::stiffness_min:
+      return "N/m";
+    case DesignMetric::leg_force_max:
+      return "N";
+    case DesignMetric::tcp_error_max:
+      return "m";
+    case DesignMetric::workspace_volume:
+    case DesignMetric::machine_size:
+      return "m^3";
+    case DesignMetric::actuator_overload:
+      return "N";
+    case DesignMetric::singularity_margin:
+    case DesignMetric::conditioning_index:
+    case DesignMetric::actuator_cost:
+      return "";
+  }
+  return "";
+}
+
+namespace {
+
+double sense_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
+
+std::vector<std::string> constraint_names(const DesignStudy& study) {
+  std::vector<std::string> names;
+  for (const DesignConstraint& c : study.constraints())
+    names.push_back(fmt::format("g_{}_{}", design_metric_name(c.metric),
+                                c.relation == Relation::less_equal ? "max" : "min"));
+  if (study.require_reachable()) names.emplace_back("g_task_reachable");
+  return names;
+}
+
+// Indices (into study.parameters) of the variables, in variable order.
+std::vector<int> free_parameter_indices(const DesignStudy& study) {
+  return study.problem ? study.problem->free_parameters()
+                       : study.machine_problem->free_parameters();
+}
+
+// Every parameter of a variable vector in file units (study.parameters order).
+std::vector<double> file_parameters(const DesignStudy& study, const std::vector<double>& x) {
+  std::vector<double> values;
+  if (study.problem) {
+    const std::array<double, kNumDesignParameters> p = study.problem->parameters_of(x);
+    for (int i = 0; i < kNumDesignParameters; ++i)
+      values.push_back(design_parameter_in_degrees(i) ? rad_to_deg(p[i]) : p[i]);
+  } else {
+    const std::vector<double> p = study.machine_problem->parameters_of(x);
+    const DesignFamily& family = study.machine_problem->family();
+    for (std::size_t i = 0; i < p.size(); ++i) values.push_back(family.parameters[i].to_file(p[i]));
+  }
+  return values;
+}
+
+// A design measured for the outputs, whichever problem the study has.
+struct MeasuredDesign {
+  std::vector<double> x;
+  std::vector<double> parameters;  // every parameter, file units (study.parameters order)
+  double home_height = 0.0;        // m
+  DesignMetrics metrics{};
+  std::vector<double> aggregate;  // [objectives internal | constraint rows]
+  std::string failure;
+  std::string machine_file;  // YAML of the machine (when asked for)
+  int actuator = -1;         // chosen catalog entry (hexapod studies choosing the cheapest)
+  bool ok() const { return failure.empty(); }
+};
+
+MeasuredDesign measure_design(const DesignStudy& study, const std::vector<double>& x,
+                              bool machine_file) {
+  MeasuredDesign d;
+  d.x = x;
+  d.parameters = file_parameters(study, x);
+  if (study.problem) {
+    const DesignEvaluation ev = study.problem->evaluate(x);
+    d.home_height = ev.parameters[kHomeHeight];
+    d.metrics = ev.metrics;
+    d.aggregate = study.problem->aggregate_fitness(ev);
+    d.failure = ev.failure;
+    d.actuator = ev.actuator;
+    if (machine_file && ev.ok())
+      d.machine_file = hexapod_design_to_yaml(study.problem->design_of(ev.parameters));
+  } else {
+    const MachineDesignProblem& problem = *study.machine_problem;
+    const MachineDesignEvaluation ev = problem.evaluate(x);
+    d.home_height = problem.home_height_of(ev.parameters);
+    d.metrics = ev.metrics;
+    d.aggregate = problem.aggregate_fitness(ev);
+    d.failure = ev.failure;
+    if (machine_file && ev.ok())
+      d.machine_file = family_machine_file(problem.family().design(ev.parameters));
+  }
+  return d;
+}
+
+}  // namespace
+
+JournalOptions design_journal_options(const DesignStudy& study) {
+  const bool aggregate = study.aggregate();
+  JournalOptions options;
+  std::string header = "index";
+  const std::vector<int> free = free_parameter_indices(study);
+  for (int i : free) header += "," + study.parameters[static_cast<std::size_t>(i)].name;
+  for (const DesignObjective& o : study.objectives())
+    header += fmt::format(",{}", design_metric_name(o.metric));
+  if (aggregate)
+    for (const std::string& name : constraint_names(study)) header += "," + name;
+  else
+    header += ",g_max";
+  header += ",feasible,failure";
+  options.csv_header = header;
+  const DesignStudy* s = &study;
+  if (aggregate)
+    options.evaluate = [s](const std::vector<double>& x) {
+      const MeasuredDesign d = measure_design(*s, x, false);
+      JournalEntry entry;
+      entry.fitness = d.aggregate;
+      entry.note = d.failure;
+      return entry;
+    };
+  options.csv_row = [s, free, aggregate](std::size_t index, const JournalEntry& e) {
+    const std::vector<DesignObjective>& objectives = s->objectives();
+    std::string row = std::to_string(index);
+    const std::vector<double> parameters = file_parameters(*s, e.x);
+    for (int i : free) row += "," + format_number(parameters[static_cast<std::size_t>(i)]);
+    const bool failed = !e.note.empty();
+    bool feasible = !failed;
+    for (std::size_t k = 0; k < objectives.size(); ++k) {
+      const double f = e.fitness[k];
+      feasible = feasible && std::isfinite(f);
+      row += failed || !std::isfinite(f) ? ","
+                                         : "," + format_number(sense_sign(objectives[k].sense) * f);
+    }
+    double g_max = -std::numeric_limits<double>::infinity();
+    for (std::size_t r = objectives.size(); r < e.fitness.size(); ++r) {
+      const double g = e.fitness[r];
+      feasible = feasible && g <= 0.0;
+      g_max = std::max(g_max, g);
+      if (aggregate) row += failed || !std::isfinite(g) ? "," : "," + format_number(g);
+    }
+    if (!aggregate)
+      row += e.fitness.size() == objectives.size() || !std::isfinite(g_max)
+                 ? ","
+                 : "," + format_number(g_max);
+    row += feasible ? ",1," : ",0,";
+    row += csv_field(e.note);
+    return row;
+  };
+  return options;
+}
+
+namespace {
+
+nlohmann::json json_number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+void write_design_outputs(const std::string& directory, const DesignStudy& study,
+                          const RunOutcome& outcome, const DesignRunFacts& facts) {
+  namespace fs = std::filesystem;
+  const std::vector<DesignObjective>& objectives_spec = study.objectives();
+  const std::vector<DesignConstraint>& constraints_spec = study.constraints();
+  const std::size_t m = objectives_spec.size();
+  const std::vector<int> free = free_parameter_indices(study);
+  const int home_index = [&] {
+    for (std::size_t i = 0; i < study.parameters.size(); ++i)
+      if (study.parameters[i].name == "home_height") return static_cast<int>(i);
+    return -1;
+  }();
+  const bool home_free =
+      home_index >= 0 && study.parameters[static_cast<std::size_t>(home_index)].free();
+
+  // Re-measure the front designs (aggregate metrics in user units for every formulation); a
+  // failed design never enters the front.
+  std::vector<MeasuredDesign> front(outcome.front.x.size());
+  const long long count = static_cast<long long>(front.size());
+#pragma omp parallel for num_threads(resolve_thread_count(facts.threads)) schedule(dynamic)
+  for (long long k = 0; k < count; ++k)
+    front[static_cast<std::size_t>(k)] =
+        measure_design(study, outcome.front.x[static_cast<std::size_t>(k)], study.write_designs);
+  std::erase_if(front, [](const MeasuredDesign& d) { return !d.ok(); });
+  ObjectiveSet objectives;  // internal (minimised) sign
+  for (const MeasuredDesign& d : front)
+    objectives.emplace_back(d.aggregate.begin(),
+                            d.aggregate.begin() + static_cast<std::ptrdiff_t>(m));
+  const std::vector<std::string> g_names = constraint_names(study);
+  auto id_of = [](std::size_t k) { return fmt::format("d{:04}", k); };
+  // The catalog the optimiser chose actuators from ({actuator: cheapest, catalog: FILE}).
+  const ActuatorCatalog* catalog = study.problem && study.problem->spec().actuator_catalog
+                                       ? &*study.problem->spec().actuator_catalog
+                                       : nullptr;
+
+  // pareto.csv
+  std::ostringstream csv;
+  csv << "id";
+  for (int i : free) csv << ',' << study.parameters[static_cast<std::size_t>(i)].name;
+  if (!home_free) csv << ",home_height";
+  for (const DesignObjective& o : objectives_spec) csv << ',' << design_metric_name(o.metric);
+  for (const std::string& g : g_names) csv << ',' << g;
+  if (catalog) csv << ",actuator";
+  csv << ",feasible,failure\n";
+  if (study.write_designs) fs::create_directories(fs::path(directory) / "designs");
+  nlohmann::json designs = nlohmann::json::array();
+  for (std::size_t k = 0; k < front.size(); ++k) {
+    const MeasuredDesign& d = front[k];
+    const std::string id = id_of(k);
+    nlohmann::json design;
+    design["id"] = id;
+    csv << id;
+    nlohmann::json parameters = nlohmann::json::object();
+    for (int i : free) {
+      const double value = d.parameters[static_cast<std::size_t>(i)];
+      csv << ',' << format_number(value);
+      parameters[study.parameters[static_cast<std::size_t>(i)].name] = json_number(value);
+    }
+    if (!home_free) csv << ',' << format_number(d.home_height);
+    design["parameters"] = parameters;
+    design["home_height"] = json_number(d.home_height);
+    nlohmann::json objective_values = nlohmann::json::object();
+    for (const DesignObjective& o : objectives_spec) {
+      const double value = d.metrics[static_cast<int>(o.metric)];
+      csv << ',' << format_number(value);
+      objective_values[std::string(design_metric_name(o.metric))] = json_number(value);
+    }
+    design["objectives"] = objective_values;
+    nlohmann::json constraint_values = nlohmann::json::object();
+    bool feasible = true;
+    for (std::size_t r = 0; r < g_names.size(); ++r) {
+      const double g = d.aggregate[m + r];
+      csv << ',' << format_number(g);
+      constraint_values[g_names[r]] = json_number(g);
+      feasible = feasible && g <= 0.0;
+    }
+    design["constraints"] = constraint_values;
+    if (catalog) {
+      if (d.actuator >= 0) {
+        const ActuatorEntry& e = catalog->entries[static_cast<std::size_t>(d.actuator)];
+        const double force = d.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+        csv << ',' << csv_field(e.name);
+        design["actuator"] = {{"name", e.name},
+                              {"type", e.type},
+                              {"max_force", e.max_force},
+                              {"stroke", e.stroke},
+                              {"max_speed", e.max_speed},
+                              {"cost", d.metrics[static_cast<int>(DesignMetric::actuator_cost)]},
+                              {"leg_force_max", json_number(force)},
+                              {"force_reserve", json_number(e.max_force / force)}};
+      } else {
+        csv << ",";
+        design["actuator"] = nullptr;
+      }
+    }
+    design["feasible"] = feasible;
+    csv << ',' << (feasible ? 1 : 0) << ",\"\"\n";
+    if (study.write_designs) {
+      write_file_atomically(directory + "/designs/" + id + ".yaml", d.machine_file);
+      design["machine_file"] = "designs/" + id + ".yaml";
+    }
+    designs.push_back(design);
+  }
+
+  // pareto.json (pkmopt-pareto-1, docs/design-studies.md)
+  nlohmann::json pareto;
+  pareto["format"] = "pkmopt-pareto-1";
+  pareto["pkmopt_version"] = kVersion;
+  pareto["study"] = study.name;
+  pareto["description"] = study.description;
+  pareto["model"] = study.model;
+  nlohmann::json parameter_list = nlohmann::json::array();
+  nlohmann::json fixed = nlohmann::json::object();
+  for (const StudyParameter& p : study.parameters) {
+    if (!p.free())
+      fixed[p.name] = p.min;
+    else
+      parameter_list.push_back(
+          {{"name", p.name}, {"unit", p.unit}, {"min", p.min}, {"max", p.max}});
+  }
+  pareto["parameters"] = parameter_list;
+  pareto["fixed_parameters"] = fixed;
+  nlohmann::json objective_list = nlohmann::json::array();
+  for (const DesignObjective& o : objectives_spec)
+    objective_list.push_back({{"name", design_metric_name(o.metric)},
+                              {"sense", o.sense == Sense::maximize ? "maximize" : "minimize"},
+                              {"unit", design_metric_unit(o.metric)}});
+  pareto["objectives"] = objective_list;
+  nlohmann::json constraint_list = nlohmann::json::array();
+  for (std::size_t r = 0; r < constraints_spec.size(); ++r) {
+    const DesignConstraint& c = constraints_spec[r];
+    constraint_list.push_back({{"name", g_names[r]},
+                               {"metric", design_metric_name(c.metric)},
+                               {"kind", c.relation == Relation::less_equal ? "max" : "min"},
+                               {"bound", c.bound},
+                               {"unit", design_metric_unit(c.metric)}});
+  }
+  if (study.require_reachable())
+    constraint_list.push_back({{"name", "g_task_reachable"},
+                               {"metric", "task_reachable"},
+                               {"kind", "reachable"},
+                               {"bound", 0},
+                               {"unit", ""}});
+  pareto["constraints"] = constraint_list;
+  if (catalog) {
+    pareto["actuator_catalog"] = {
+        {"name", catalog->name},
+        {"entries", catalog->entries.size()},
+        {"cost", catalog->entries.front().cost ? "catalog cost" : "rank by force rating"}};
+  }
+  const Wrench& wrench = study.task().wrench;
+  pareto["task"] = {{"centre", study.task_centre},
+                    {"wrench", std::vector<double>(wrench.data(), wrench.data() + 6)},
+                    {"tilt_deg", study.task_tilt_deg},
+                    {"yaw_deg", study.task_yaw_deg}};
+  pareto["designs"] = designs;
+  nlohmann::json knee = nullptr;
+  if (!objectives.empty()) knee = id_of(knee_point(objectives));
+  pareto["knee"] = knee;
+
+  // summary.json: hypervolume in user sign and units.
+  nlohmann::json summary;
+  summary["study"] = study.name;
+  summary["description"] = study.description;
+  summary["model"] = study.model;
+  summary["version"] = kVersion;
+  summary["algorithm"] = study.optimizer.name();
+  summary["formulation"] = study.aggregate() ? "aggregate" : "smooth";
+  summary["status"] = front.empty() ? std::string("no_feasible_design") : outcome.status;
+  summary["message"] = outcome.front.message;
+  summary["seed"] = study.optimizer.seed;
+  summary["threads"] = resolve_thread_count(facts.threads);
+  summary["resumed"] = facts.resumed;
+  summary["evaluations"] = outcome.front.fitness_evaluations;
+  summary["gradient_evaluations"] = outcome.front.gradient_evaluations;
+  if (facts.journal) {
+    const JournaledProblem& j = *facts.journal;
+    summary["evaluations_from_cache"] = j.cache_hits();
+    summary["evaluations_distinct"] = j.entries().size();
+    summary["evaluations_loaded_from_journal"] = j.loaded_entries();
+    summary["evaluations_new"] = j.entries().size() - j.loaded_entries();
+    summary["evaluations_failed"] = j.failed();
+  }
+  summary["subproblems"] = outcome.front.subproblems;
+  summary["failed_subproblems"] = outcome.front.failed_subproblems;
+  summary["dominated_subproblems"] = outcome.front.dominated_subproblems;
+  if (outcome.single) {
+    summary["solver_status"] = outcome.status;
+    summary["iterations"] = outcome.single->iterations;
+  }
+  summary["points"] = front.size();
+  summary["objectives"] = objective_list;
+  if (!objectives.empty() && m >= 2) {
+    const std::vector<double> reference = reference_point_from(objectives);
+    std::vector<double> user_reference(m);
+    for (std::size_t i = 0; i < m; ++i)
+      user_reference[i] = sense_sign(objectives_spec[i].sense) * reference[i];
+    summary["reference_point"] = user_reference;
+    summary["reference_point_rule"] =
+        "front's worst value of each objective moved 10% of the front's range (1 when the "
+        "range is 0) further away from the front";
+    summary["hypervolume"] = json_number(hypervolume(objectives, reference));
+  } else {
+    summary["reference_point"] = nullptr;
+    summary["hypervolume"] = nullptr;
+  }
+  summary["knee"] = knee;
+  summary["time_seconds"] = outcome.front.seconds;
+  summary["wall_seconds"] = facts.wall_seconds;
+
+  write_file_atomically(directory + "/pareto.csv", csv.str());
+  write_file_atomically(directory + "/pareto.json", pareto.dump(2) + "\n");
+  write_file_atomically(directory + "/summary.json", summary.dump(2) + "\n");
+}
+
+}  // namespace pkmopt

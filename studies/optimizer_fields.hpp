@@ -1,0 +1,116 @@
+// The keys of each algorithm in a study's `optimizer:` section, described once
+// (io/field_list.hpp): the reader, the resolved-file writer and the tables of docs/optimizer.md
+// all come from these lists. Besides its algorithm's keys every section has `algorithm`
+// (required) and `seed` (integer >= 0, default 1).
+//
+// Example:
+//   Nsga2Spec spec;
+//   read_fields(section, spec);                      // strict, located errors
+//   std::string table = fields_markdown(Nsga2Spec{});  // the docs table
+#pragma once
+
+#include "io/field_list.hpp"
+#include "studies/optimizer_spec.hpp"
+
+namespace pkmopt {
+
+template <class Fields>
+void describe_fields(Fields& f, Nsga2Options& o) {
+  f.field("population", o.population,
+          {.min = 4, .even = true, .doc = "individuals per generation"});
+  f.field("generations", o.generations,
+          {.min = 0,
+           .doc = "generations after the first; evaluations = population × (generations + 1)"});
+  f.field("crossover_probability", o.crossover_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "SBX crossover probability per pair"});
+  f.field("crossover_eta", o.crossover_eta,
+          {.min = 0, .min_exclusive = true, .doc = "SBX distribution index (Deb et al. 2002)"});
+  f.field("mutation_probability", o.mutation_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
+  f.field("mutation_eta", o.mutation_eta,
+          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, IpoptOptions& o) {
+  f.field("max_iterations", o.max_iterations,
+          {.min = 1, .doc = "Ipopt iterations per solve (max_iter)"});
+  f.field("tolerance", o.tolerance,
+          {.min = 0,
+           .min_exclusive = true,
+           .doc = "Ipopt convergence tolerance (tol, scaled NLP error)"});
+}
+
+template <class Fields>
+void describe_start(Fields& f, std::vector<double>& start) {
+  f.field("start", start,
+          {.unit = "variable units",
+           .default_text = "the bounds' centre",
+           .doc = "start point, one value per variable within the bounds"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, Nsga2Spec& s) {
+  describe_fields(f, s.options);
+}
+
+template <class Fields>
+void describe_fields(Fields& f, HybridSpec& s) {
+  describe_fields(f, s.options.nsga2);
+  f.field("polish_iterations", s.options.ipopt.max_iterations,
+          {.min = 1, .doc = "Ipopt iterations per polished front design"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, EpsilonConstraintSpec& s) {
+  f.field("points", s.options.points, {.min = 2, .doc = "front points (epsilon levels)"});
+  std::size_t primary = s.options.primary_objective + 1;
+  f.field("primary_objective", primary,
+          {.min = 1,
+           .expected = "an objective number from 1 to the number of objectives",
+           .doc = "the objective minimised; the others are bounded (1-based)"});
+  s.options.primary_objective = primary - 1;
+  describe_fields(f, s.options.ipopt);
+  describe_start(f, s.options.start);
+}
+
+template <class Fields>
+void describe_fields(Fields& f, NbiSpec& s) {
+  f.field("points", s.options.points, {.min = 2, .doc = "front points (lattice points)"});
+  f.field("equality_form", s.options.equality_form,
+          {.doc = "the NBI line as an equality (Das & Dennis 1998) instead of ≤"});
+  describe_fields(f, s.options.ipopt);
+  describe_start(f, s.options.start);
+}
+
+template <class Fields>
+void describe_fields(Fields& f, IpoptSpec& s) {
+  describe_fields(f, s.options);
+  describe_start(f, s.start);
+}
+
+template <class Fields>
+void describe_fields(Fields& f, NloptSpec& s) {
+  f.field("max_evaluations", s.options.max_evaluations,
+          {.min = 1, .doc = "objective evaluations at most"});
+  f.field("tolerance", s.options.relative_tolerance_x,
+          {.min = 0,
+           .min_exclusive = true,
+           .zero_is_unset = true,
+           .doc = "relative tolerance on x (xtol_rel)"});
+  f.field("population", s.options.population,
+          {.min = 1,
+           .zero_is_unset = true,
+           .doc = "population of the stochastic global algorithms (NLopt's default when unset)"});
+  f.field("local_algorithm", s.options.local_algorithm,
+          {.expected = "an NLopt algorithm name", .doc = "the local algorithm of MLSL and AUGLAG"});
+  describe_start(f, s.start);
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,234 @@
+// Tests of `pkmopt trajectory`: the hexapod-450 study in its reduced form through the CLI (its
+// numbers checked against an independent computation or labelled as regression pins), a path
+// file giving the same rates as the built-in helix, and bad input exiting with status 2.
+// The library (models/trajectory) is tested in tests/models/trajectory_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "io/csv.hpp"
+#include "io/machine_file.hpp"
+#include "models/hexapod.hpp"
+#include "models/trajectory.hpp"
+#include "tests/cli_runner.hpp"
+#include "tests/hexapod_reference.hpp"
+#include "tests/scratch_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace pkmopt;
+using cli_runner::CliRun;
+
+constexpr double kPi = std::numbers::pi;
+
+std::string source_path(const std::string& relative) {
+  return (fs::path(PKMOPT_SOURCE_DIR) / relative).string();
+}
+
+// The seeds' helix (as in tests/models/trajectory_test.cpp).
+HelixParameters seeds_helix() {
+  HelixParameters h;
+  h.centre = {0.0, 0.0, 0.70};
+  h.angle_amplitudes = deg_to_rad(Eigen::Vector3d(5, 5, 5));
+  return h;
+}
+
+class TrajectoryCli : public scratch::ScratchDirTest {
+ protected:
+  void SetUp() override { machine_ = source_path("studies/library/hexapod-450/hexapod-450.yaml"); }
+
+  CliRun run(const std::string& args) { return run_cli(args); }
+
+  void expect_input_error(const std::string& args, const std::string& fragment) {
+    const fs::path out = dir_ / "out.csv";
+    const CliRun r = run("trajectory " + args + " --out " + out.string());
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\nstderr: " << r.err;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+
+  std::string machine_;
+};
+
+// The study in its reduced form: studies/library/hexapod-450/run.sh with 20 mm workspaces and 61
+// helix samples. Every helix pose reachable and regular, the file's q columns equal to the IK, and
+// the study's numbers pinned (README.md of the study quotes them at full resolution).
+TEST_F(TrajectoryCli, Hexapod450StudyReducedForm) {
+  const fs::path out = dir_ / "study";
+  const CliRun study =
+      cli_runner::run_script(dir_, "studies/library/hexapod-450/run.sh", out.string() + " 0.02 61");
+  ASSERT_EQ(study.status, 0) << study.out << study.err;
+  const std::string level_summary = cli_runner::read_text(out / "helix-level.txt");
+  EXPECT_NE(level_summary.find("61 reachable"), std::string::npos) << level_summary;
+  EXPECT_NE(level_summary.find("singular poses: 0"), std::string::npos) << level_summary;
+
+  const CsvTable table = read_csv_file((out / "helix-level.csv").string());
+  ASSERT_EQ(table.rows.size(), 61u);
+  EXPECT_EQ(table.header.size(), 15u + 3 * 6 + 2 + 36);
+  EXPECT_EQ(read_csv_file((out / "helix-level-singular.csv").string()).rows.size(), 0u);
+  const Hexapod hexapod(read_hexapod_design(YamlValue::load_file(machine_)));
+  Eigen::VectorXd q_min = Eigen::VectorXd::Constant(6, 1e9), q_max = -q_min;
+  double q_dot_max = 0.0;
+  for (const CsvRow& row : table.rows) {
+    EXPECT_EQ(table.number(row, table.column("reachable")), 1.0);
+    EXPECT_EQ(table.number(row, table.column("singular")), 0.0);
+    Pose pose;
+    pose.position = {table.number(row, 1), table.number(row, 2), table.number(row, 3)};
+    pose.angles = deg_to_rad(
+        Eigen::Vector3d(table.number(row, 4), table.number(row, 5), table.number(row, 6)));
+    const Vec6<double> q = hexapod.inverse_kinematics(pose);
+    for (int i = 0; i < 6; ++i) {
+      const double qi = table.number(row, table.column("q_" + std::to_string(i + 1)));
+      EXPECT_NEAR(qi, q(i), 1e-12);
+      q_min(i) = std::min(q_min(i), qi);
+      q_max(i) = std::max(q_max(i), qi);
+      q_dot_max = std::max(
+          q_dot_max, std::abs(table.number(row, table.column("q_dot_" + std::to_string(i + 1)))));
+    }
+  }
+  // The study's numbers (leg lengths along the path, m; largest leg rate, m/s), each checked
+  // twice: the program's output against the number, and the number against an independent
+  // computation below.
+  const double pinned_min[] = {0.8862244946703823, 0.8872466401016851, 0.9048626874035955,
+                               0.8944034026417963, 0.894772376010191,  0.901138047948807};
+  const double pinned_max[] = {0.9493480749070337, 0.9498780705533946, 0.9420710700564493,
+                               0.9553694837455221, 0.9563738753609948, 0.9419858925305947};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(q_min(i), pinned_min[i], 1e-9) << "leg " << i + 1;
+    EXPECT_NEAR(q_max(i), pinned_max[i], 1e-9) << "leg " << i + 1;
+  }
+  EXPECT_NEAR(q_dot_max, 0.04607295905449005, 1e-9);
+  // Independent derivation of the pinned numbers: the helix of HelixFormulaAtPinnedTimes about
+  // (0, 0, 0.70) with 5 deg amplitudes at the 61 times 2 pi k / 60; leg lengths
+  // |p + R (b_i - tcp) - a_i| with R = Rz Ry Rx from Eigen's angle-axis products
+  // (hexapod_reference::rotation) and the machine file's joints; leg rates by central
+  // differences in t (h = 1e-5: truncation ~1e-12 m/s, rounding ~1e-11 m/s).
+  const HexapodDesign& d = hexapod.design();
+  auto legs_at = [&](double t) {
+    const double amp = 0.01 + 0.02 * t / (2 * kPi);
+    const Eigen::Vector3d p(amp * std::cos(t), amp * std::sin(t),
+                            0.70 + 0.01 + 0.01 * t * t / (4 * kPi * kPi));
+    const Eigen::Vector3d angles =
+        Eigen::Vector3d(5 * std::sin(t), 5 * std::cos(t), 5 * std::sin(2 * t)) * (kPi / 180);
+    const Eigen::Matrix3d R = hexapod_reference::rotation(angles);
+    Vec6<double> l;
+    for (int i = 0; i < 6; ++i)
+      l(i) = (p + R * (d.platform_joints.col(i) - d.tcp) - d.base_joints.col(i)).norm();
+    return l;
+  };
+  Vec6<double> l_min = Vec6<double>::Constant(1e9), l_max = -l_min;
+  double l_dot_max = 0.0;
+  for (int k = 0; k <= 60; ++k) {
+    const double t = 2 * kPi * k / 60, h = 1e-5;
+    const Vec6<double> l = legs_at(t);
+    l_min = l_min.cwiseMin(l);
+    l_max = l_max.cwiseMax(l);
+    l_dot_max =
+        std::max(l_dot_max, ((legs_at(t + h) - legs_at(t - h)) / (2 * h)).cwiseAbs().maxCoeff());
+  }
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(l_min(i), pinned_min[i], 1e-9) << "leg " << i + 1 << " (independent)";
+    EXPECT_NEAR(l_max(i), pinned_max[i], 1e-9) << "leg " << i + 1 << " (independent)";
+  }
+  EXPECT_NEAR(l_dot_max, 0.04607295905449005, 1e-9);
+
+  // The workspaces (20 mm grid): level and at a constant 40 deg tilt, pinned; the tilted one
+  // far smaller and shifted off the axis; empty with 45 deg platform joints.
+  const CsvTable ws = read_csv_file((out / "workspaces.csv").string());
+  auto value = [&](const std::string& name, const std::string& column) {
+    for (const CsvRow& row : ws.rows) {
+      if (row.cells[0] == name) return ws.number(row, ws.require_column(column));
+    }
+    ADD_FAILURE() << "no workspace " << name;
+    return 0.0;
+  };
+  const double level = value("level", "volume");
+  const double tilted = value("tilt-y40", "volume");
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row level,
+  // column volume of OUT/workspaces.csv.
+  EXPECT_NEAR(level, 0.10492625779098329, 1e-9);
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row tilt-y40,
+  // column volume of OUT/workspaces.csv.
+  EXPECT_NEAR(tilted, 0.00024610712626390126, 1e-11);
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row tilt-x40,
+  // column volume of OUT/workspaces.csv.
+  EXPECT_NEAR(value("tilt-x40", "volume"), 0.00036170388042771544, 1e-11);
+  EXPECT_LT(tilted, 0.01 * level);
+  // The level workspace is symmetric about x = 0 (three-fold symmetric machine, level platform).
+  EXPECT_NEAR(value("level", "centroid_x"), 0.0, 1e-3);
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row tilt-y40,
+  // column centroid_x of OUT/workspaces.csv.
+  EXPECT_NEAR(value("tilt-y40", "centroid_x"), 0.1838, 1e-4);
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row tilt-y40,
+  // column centroid_y of OUT/workspaces.csv.
+  EXPECT_NEAR(value("tilt-y40", "centroid_y"), 0.0025, 1e-4);
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row
+  // joints-45-45-tilt-y40, column volume of OUT/workspaces.csv (README: 45 deg joints cannot
+  // hold the 40 deg tilt anywhere).
+  EXPECT_EQ(value("joints-45-45-tilt-y40", "volume"), 0.0);
+  // Regression pin (not an independent check): value from
+  // `PKMOPT=build/bin/pkmopt bash studies/library/hexapod-450/run.sh OUT 0.02 61`, row
+  // joints-89-89-tilt-y40, column volume of OUT/workspaces.csv.
+  EXPECT_NEAR(value("joints-89-89-tilt-y40", "volume"), 0.03551649237824182, 1e-9);
+}
+
+TEST_F(TrajectoryCli, PathFileGivesTheSameRatesAsTheHelix) {
+  const fs::path path = dir_ / "path.csv", out = dir_ / "out.csv";
+  {
+    const HelixPath helix(seeds_helix());
+    std::string text = "t,x,y,z,rx,ry,rz,label\n";
+    for (double t : uniform_times(0, 2 * kPi, 201)) {
+      const Pose p = helix.at(t).pose;
+      text += format_number(t);
+      for (int k = 0; k < 3; ++k) text += ',' + format_number(p.position(k));
+      for (int k = 0; k < 3; ++k) text += ',' + format_number(rad_to_deg(p.angles(k)));
+      text += ",a\n";
+    }
+    std::ofstream(path) << text;
+  }
+  const CliRun r =
+      run("trajectory " + machine_ + " --path " + path.string() + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const CsvTable table = read_csv_file(out.string());
+  ASSERT_EQ(table.rows.size(), 201u);
+  for (std::size_t k = 1; k + 1 < table.rows.size(); ++k) {
+    for (int i = 1; i <= 6; ++i) {
+      const double q_dot = table.number(table.rows[k], table.column("q_dot_" + std::to_string(i)));
+      const double fd = table.number(table.rows[k], table.column("q_dot_fd_" + std::to_string(i)));
+      EXPECT_NEAR(q_dot, fd, 2e-5) << "row " << k << " leg " << i;
+    }
+  }
+}
+
+TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
+  const fs::path path = dir_ / "path.csv";
+  std::ofstream(path) << "t,x,y,z\n0,0,0,0.7\n0.5,0,0,0.71\n0.4,0,0,0.72\n";
+  expect_input_error(machine_ + " --path " + path.string(),
+                     "path.csv:4: column 1 't': expected a time greater than");
+  expect_input_error(machine_, "expected --path PATH.csv or --helix, found neither");
+  expect_input_error(machine_ + " --helix --path " + path.string(), "found both");
+  expect_input_error(machine_ + " --helix --samples 1", "--samples: expected");
+  expect_input_error(machine_ + " --helix --samples 10 --dt 0.1", "--samples and --dt");
+  expect_input_error(machine_ + " --helix --t-end -1", "--t-end: expected");
+  expect_input_error(machine_ + " --helix --helix-radius 0.01", "--helix-radius: expected 2");
+  expect_input_error(machine_ + " --path " + path.string() + " --samples 5", "only with --helix");
+  expect_input_error(source_path("examples/missing.yaml") + " --helix", "missing.yaml");
+  const fs::path no_t = dir_ / "no_t.csv";
+  std::ofstream(no_t) << "x,y,z\n0,0,0.7\n0,0,0.71\n";
+  expect_input_error(machine_ + " --path " + no_t.string(), "'t'");
+}
+
+}  // namespace

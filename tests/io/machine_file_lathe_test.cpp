@@ -1,0 +1,132 @@
+// Tests of io/machine_file_lathe: the field list of the lathe machine file gives the docs table of
+// docs/machines.md, the writer built on it (io/machine_file_writer) gives a file the reader reads
+// back to the same design with every key away from its default, and bad values keep their
+// messages.
+#include "io/machine_file_lathe.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "io/input_error.hpp"
+#include "io/machine_file_writer.hpp"
+
+namespace pkmopt {
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    (void)read_lathe_16k20f3_design(YamlValue::load_string(text, "l.yaml"));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(LatheMachineFileFields, DocsCarryTheGeneratedTable) {
+  std::ifstream in(std::string(PKMOPT_SOURCE_DIR) + "/docs/machines.md");
+  std::stringstream docs;
+  docs << in.rdbuf();
+  const std::string block =
+      "<!-- fields: lathe_16k20f3 -->\n" + lathe_machine_fields_markdown() + "<!-- /fields -->\n";
+  EXPECT_NE(docs.str().find(block), std::string::npos)
+      << "docs/machines.md lacks the generated lathe table:\n"
+      << block;
+}
+
+TEST(LatheMachineFileFields, WriterAndReaderRoundTripEveryKey) {
+  Lathe16k20f3Design d;
+  d.centre_height = 0.22;
+  d.tool_reach = 0.17;
+  d.approach_angle = deg_to_rad(30.0);
+  d.strut_length = 0.65;
+  d.guide_y = 0.18;
+  d.guide_z = -0.17;
+  d.strut_joint_spread = 0.11;
+  d.strut_joint_y = 0.16;
+  d.strut_joint_z = -0.09;
+  d.carriage_min = -1.2;
+  d.carriage_max = 1.3;
+  d.strut_max_angle = deg_to_rad(65.0);
+  d.strut_E = 2.0e11;
+  d.strut_area = 4.5e-4;
+  d.carriage_stiffness = 1.4e8;
+  d.leg_base_x = 0.01;
+  d.leg_base_y = -0.05;
+  d.leg_base_z = 1.62;
+  d.leg_base_spacing = 0.42;
+  d.leg_joint_spacing = 0.38;
+  d.leg_joint_z = 0.11;
+  d.leg_min_length = 1.2;
+  d.leg_max_length = 1.6;
+  d.leg_max_angle = deg_to_rad(35.0);
+  d.leg_E = 2.0e11;
+  d.leg_area = 1.6e-3;
+  d.leg_actuator_stiffness = 1.2e8;
+  d.actuator_error = 2e-5;
+  const std::string text = lathe_16k20f3_machine_file(d);
+  const Lathe16k20f3Design r = read_lathe_16k20f3_design(YamlValue::load_string(text, "l.yaml"));
+  EXPECT_EQ(r.centre_height, d.centre_height);
+  EXPECT_EQ(r.tool_reach, d.tool_reach);
+  EXPECT_NEAR(r.approach_angle, d.approach_angle, 1e-15);
+  EXPECT_EQ(r.strut_length, d.strut_length);
+  EXPECT_EQ(r.guide_y, d.guide_y);
+  EXPECT_EQ(r.guide_z, d.guide_z);
+  EXPECT_EQ(r.strut_joint_spread, d.strut_joint_spread);
+  EXPECT_EQ(r.strut_joint_y, d.strut_joint_y);
+  EXPECT_EQ(r.strut_joint_z, d.strut_joint_z);
+  EXPECT_EQ(r.carriage_min, d.carriage_min);
+  EXPECT_EQ(r.carriage_max, d.carriage_max);
+  EXPECT_NEAR(r.strut_max_angle, d.strut_max_angle, 1e-15);
+  EXPECT_EQ(r.strut_E, d.strut_E);
+  EXPECT_EQ(r.strut_area, d.strut_area);
+  EXPECT_EQ(r.carriage_stiffness, d.carriage_stiffness);
+  EXPECT_EQ(r.leg_base_x, d.leg_base_x);
+  EXPECT_EQ(r.leg_base_y, d.leg_base_y);
+  EXPECT_EQ(r.leg_base_z, d.leg_base_z);
+  EXPECT_EQ(r.leg_base_spacing, d.leg_base_spacing);
+  EXPECT_EQ(r.leg_joint_spacing, d.leg_joint_spacing);
+  EXPECT_EQ(r.leg_joint_z, d.leg_joint_z);
+  EXPECT_EQ(r.leg_min_length, d.leg_min_length);
+  EXPECT_EQ(r.leg_max_length, d.leg_max_length);
+  EXPECT_NEAR(r.leg_max_angle, d.leg_max_angle, 1e-15);
+  EXPECT_EQ(r.leg_E, d.leg_E);
+  EXPECT_EQ(r.leg_area, d.leg_area);
+  EXPECT_EQ(r.leg_actuator_stiffness, d.leg_actuator_stiffness);
+  EXPECT_EQ(r.actuator_error, d.actuator_error);
+  EXPECT_EQ(lathe_16k20f3_machine_file(r), text);
+  // Every key is written, one line each, in the list's order.
+  EXPECT_EQ(text.substr(0, text.find("approach_angle_deg")),
+            "model: lathe_16k20f3\ncentre_height: 0.22\ntool_reach: 0.17\n");
+  EXPECT_NE(text.find("\ncarriage_travel: [-1.2, 1.3]\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nleg_length: [1.2, 1.6]\n"), std::string::npos) << text;
+}
+
+TEST(LatheMachineFileFields, BadValuesKeepTheirMessages) {
+  EXPECT_EQ(error_of("model: lathe_16k20f3\n"), "no error");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\napproach_angle_deg: 90\n"),
+            "l.yaml:2:21: approach_angle_deg: expected an angle in degrees in (-90, 90), found "
+            "'90'");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\nstrut_max_angle_deg: 0\n"),
+            "l.yaml:2:22: strut_max_angle_deg: expected an angle in degrees in (0, 90), found '0'");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\ncarriage_travel: [1, -1]\n"),
+            "l.yaml:2:18: carriage_travel: expected [low, high] with low < high (m), found a list "
+            "of 2");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\nleg_length: [0, 1.5]\n"),
+            "l.yaml:2:13: leg_length: expected [low, high] with 0 < low < high (m), found a list "
+            "of 2");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\nstrut_E: 0\n"),
+            "l.yaml:2:10: strut_E: expected a number > 0, found '0'");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\ntool_reach: -0.1\n"),
+            "l.yaml:2:13: tool_reach: expected a number >= 0, found '-0.1'");
+  const std::string unknown = error_of("model: lathe_16k20f3\ncolour: red\n");
+  EXPECT_NE(unknown.find("l.yaml:2:1: colour: unknown key 'colour'; allowed keys here: model, "
+                         "name, description, centre_height, tool_reach, approach_angle_deg,"),
+            std::string::npos)
+      << unknown;
+}
+
+}  // namespace
+}  // namespace pkmopt
