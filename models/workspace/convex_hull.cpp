@@ -2,8 +2,8 @@
 // exact arithmetic. The hull of grid-based boundary points has many coplanar facets, which CGAL
 // may triangulate differently from run to run; an inexact sum over the triangles then differs
 // in its last bits. The exact sum (rounded once to double) is the same for every triangulation.
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Mpzf.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
@@ -28,20 +28,26 @@ double convex_hull_volume(const std::vector<Eigen::Vector3d>& points) {
   if (hull.number_of_faces() < 4 || !CGAL::is_closed(hull) || !CGAL::is_triangle_mesh(hull)) {
     return 0.0;
   }
-  using Exact = CGAL::Exact_predicates_exact_constructions_kernel;
-  Exact::FT six_volume = 0;
+  // Each tetrahedron (origin, p0, p1, p2) times 6 is a 3x3 determinant of doubles; summed in
+  // exact binary floating point (CGAL::Mpzf, GMP) it does not depend on the order or the
+  // triangulation of the facets.
+  using Exact = CGAL::Mpzf;  // exact for +, - and *
+  Exact six_volume = 0;
   for (const auto face : hull.faces()) {
-    Exact::Point_3 p[3];
+    Exact c[3][3];
     int k = 0;
     for (const auto v : CGAL::vertices_around_face(hull.halfedge(face), hull)) {
       const Point& q = hull.point(v);
-      p[k++] = Exact::Point_3(q.x(), q.y(), q.z());
+      c[k][0] = q.x();
+      c[k][1] = q.y();
+      c[k][2] = q.z();
+      ++k;
     }
-    // Signed volume of the tetrahedron (origin, p0, p1, p2), times 6.
-    six_volume += CGAL::determinant(p[0].x(), p[0].y(), p[0].z(), p[1].x(), p[1].y(), p[1].z(),
-                                    p[2].x(), p[2].y(), p[2].z());
+    six_volume += c[0][0] * (c[1][1] * c[2][2] - c[1][2] * c[2][1]) -
+                  c[0][1] * (c[1][0] * c[2][2] - c[1][2] * c[2][0]) +
+                  c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
   }
-  return std::abs(CGAL::to_double(six_volume / 6));
+  return std::abs(CGAL::to_double(six_volume)) / 6.0;
 }
 
 }  // namespace pkmopt
