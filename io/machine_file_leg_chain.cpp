@@ -66,35 +66,46 @@ void describe_model(Fields& f, std::string_view model) {
   f.note("description", "a text", "", "none", "free text");
 }
 
-// `{E, area}` or `{axial_stiffness}` of the links (check_links checks the choice).
+// The docs lines of a link stiffness: E, area and axial_stiffness.
+struct LinkStiffnessDocs {
+  std::string_view E, area, axial_stiffness;
+};
+
+// `{E, area}` or `{axial_stiffness}` of a link (the readers check the choice); the members are
+// those of a LinkStiffness or of one leg of the generic form.
 template <class Fields>
-void describe_link_stiffness(Fields& g, LinkStiffness& k, std::string_view per) {
-  g.field("E", k.E,
+void describe_link_stiffness(Fields& g, double& E, double& area, double& axial_stiffness,
+                             const LinkStiffnessDocs& docs) {
+  g.field("E", E,
           {.min = 0,
            .min_exclusive = true,
            .unit = "Pa",
            .default_text = "required (or axial_stiffness)",
-           .doc = "Young's modulus of the links (with area)",
-           .omit_when = [&k] { return k.axial_stiffness > 0.0; }});
-  g.field("area", k.area,
+           .doc = docs.E,
+           .omit_when = [&axial_stiffness] { return axial_stiffness > 0.0; }});
+  g.field("area", area,
           {.min = 0,
            .min_exclusive = true,
            .unit = "m²",
            .default_text = "required (or axial_stiffness)",
-           .doc = per,
-           .omit_when = [&k] { return k.axial_stiffness > 0.0; }});
-  g.field("axial_stiffness", k.axial_stiffness,
+           .doc = docs.area,
+           .omit_when = [&axial_stiffness] { return axial_stiffness > 0.0; }});
+  g.field("axial_stiffness", axial_stiffness,
           {.min = 0,
            .min_exclusive = true,
            .zero_is_unset = true,
            .unit = "N/m",
            .default_text = "required (or E and area)",
-           .doc = "constant axial stiffness of a link instead of E and area"});
+           .doc = docs.axial_stiffness});
 }
 
 template <class Fields>
 void describe_links(Fields& f, std::string_view key, LinkStiffness& k, std::string_view per) {
-  f.section(key, {.required = true}, [&](auto& g) { describe_link_stiffness(g, k, per); });
+  f.section(key, {.required = true}, [&](auto& g) {
+    describe_link_stiffness(g, k.E, k.area, k.axial_stiffness,
+                            {"Young's modulus of the links (with area)", per,
+                             "constant axial stiffness of a link instead of E and area"});
+  });
 }
 
 template <class Fields>
@@ -369,27 +380,10 @@ void describe_fields(Fields& f, LegChainLegFields& fields) {
   }
   f.field("range", range, range_rule);
   f.section("link", {.required = true}, [&](auto& g) {
-    g.field("E", leg.E,
-            {.min = 0,
-             .min_exclusive = true,
-             .unit = "Pa",
-             .default_text = "required (or axial_stiffness)",
-             .doc = "Young's modulus of the link's rods (with area)",
-             .omit_when = [&leg] { return leg.axial_stiffness > 0.0; }});
-    g.field("area", leg.area,
-            {.min = 0,
-             .min_exclusive = true,
-             .unit = "m²",
-             .default_text = "required (or axial_stiffness)",
-             .doc = "cross-section of a rod",
-             .omit_when = [&leg] { return leg.axial_stiffness > 0.0; }});
-    g.field("axial_stiffness", leg.axial_stiffness,
-            {.min = 0,
-             .min_exclusive = true,
-             .zero_is_unset = true,
-             .unit = "N/m",
-             .default_text = "required (or E and area)",
-             .doc = "constant axial stiffness of the link instead of E and area"});
+    describe_link_stiffness(
+        g, leg.E, leg.area, leg.axial_stiffness,
+        {"Young's modulus of the link's rods (with area)", "cross-section of a rod",
+         "constant axial stiffness of the link instead of E and area"});
     g.field("rods", leg.rods,
             {.min = 1,
              .max = 16,
