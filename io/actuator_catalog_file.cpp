@@ -1,7 +1,12 @@
 #include "io/actuator_catalog_file.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "io/field_list.hpp"
@@ -89,6 +94,24 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
 
 ActuatorCatalog load_actuator_catalog(const std::string& path) {
   return read_actuator_catalog(YamlValue::load_file(path));
+}
+
+std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog) {
+  auto flow_map = [](auto item) {  // "{key: value, ...}" of an entry or a drive type
+    FieldWriter w;
+    describe_fields(w, item);
+    return w.flow_map();
+  };
+  ActuatorCatalog copy = catalog;
+  FieldWriter top;  // catalog
+  describe_fields(top, copy);
+  std::string out = top.flow_lines();
+  // The lists by hand, as the reader takes them (no description: the catalog holds none).
+  out += catalog.entries.empty() ? "entries: []\n" : "entries:\n";
+  for (const ActuatorEntry& entry : catalog.entries) out += "  - " + flow_map(entry) + "\n";
+  if (!catalog.drive_types.empty()) out += "drive_types:\n";
+  for (const DriveType& type : catalog.drive_types) out += "  - " + flow_map(type) + "\n";
+  return out;
 }
 
 std::string actuator_catalog_fields_markdown() {

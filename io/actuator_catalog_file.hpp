@@ -11,7 +11,9 @@
 // SI units: N, m, m/s, N/m. Strict: unknown keys, missing keys, non-finite or non-positive
 // numbers, repeated names -> InputError "file:line:col: key: expected ..., found ...". The keys
 // of the catalog, its entries and its drive types are described once in field lists
-// (io/field_list.hpp): the reader and the docs table in README.md come from them.
+// (io/field_list.hpp): the reader, the writer (actuator_catalog_to_yaml: numbers in their shortest
+// round-trip form, texts quoted where YAML needs it; the catalog holds no description, so none is
+// written) and the docs table in README.md come from them.
 #pragma once
 
 #include <string>
@@ -23,6 +25,8 @@ namespace pkmopt {
 
 ActuatorCatalog read_actuator_catalog(const YamlValue& root);
 ActuatorCatalog load_actuator_catalog(const std::string& path);
+/// The catalog file text of a catalog (read back by read_actuator_catalog to the same catalog).
+std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog);
 
 /// The docs table of the catalog file's keys (entries' keys as `entries[].KEY`, drive types' as
 /// `drive_types[].KEY`), from the field lists the reader uses.

@@ -24,20 +24,6 @@ std::string resolve_path(const std::string& base_file, const std::string& path) 
   return (std::filesystem::path(base_file).parent_path() / p).lexically_normal().string();
 }
 
-Pose read_frame(const YamlValue& value) {
-  value.check_keys({"position", "angles_deg"});
-  Pose pose;
-  if (auto p = value.optional("position")) {
-    const auto v = p->as_doubles(3);
-    pose.position = {v[0], v[1], v[2]};
-  }
-  if (auto a = value.optional("angles_deg")) {
-    const auto v = a->as_doubles(3);
-    pose.angles = deg_to_rad(Eigen::Vector3d(v[0], v[1], v[2]));
-  }
-  return pose;
-}
-
 nlohmann::json errors_json(const CalibrationErrors& e) {
   nlohmann::json j;
   j["count"] = e.count;
@@ -123,76 +109,43 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   CalibrationSetup setup;
   setup.file = path;
   const YamlValue root = YamlValue::load_file(path);
-  root.check_keys({"machine", "measurements", "frame", "instrument", "target", "actuators", "noise",
-                   "model", "fixed", "gauge", "loss", "outlier_chi2", "validation",
-                   "max_iterations", "correlation_threshold", "parameter_scale"});
+  const CalibrationFile file = read_calibration_file(root);
 
   // Nominal machine.
-  setup.machine_file = resolve_path(path, root.required("machine").as_string());
+  setup.machine_file = resolve_path(path, file.machine);
   setup.nominal_design = read_calibration_machine(setup.machine_file);
 
   // Frames.
-  if (auto frame = root.optional("frame")) {
-    setup.frame = frame->as_string();
-    if (setup.frame != "base" && setup.frame != "instrument") {
-      frame->fail("'base' or 'instrument'", frame->describe());
-    }
-  }
-  Pose instrument, target;
-  if (auto value = root.optional("instrument")) {
-    if (setup.frame == "base")
-      value->fail(
-          "no instrument with frame: base (poses measured in the base frame); set frame: "
-          "instrument");
-    instrument = read_frame(*value);
-  }
-  if (auto value = root.optional("target")) target = read_frame(*value);
+  setup.frame = file.frame;
+  const Pose instrument{file.instrument_position, deg_to_rad(file.instrument_angles_deg)};
+  const Pose target{file.target_position, deg_to_rad(file.target_angles_deg)};
 
   // Actuators.
-  const YamlValue actuators = root.required("actuators");
-  actuators.check_keys({"unit", "lead", "counts_per_metre", "zero_length"});
-  const YamlValue unit = actuators.required("unit");
-  setup.unit = unit.as_string();
+  setup.unit = file.unit;
   if (setup.unit == "m") {
     setup.unit_scale = 1.0;
   } else if (setup.unit == "mm") {
     setup.unit_scale = 1e-3;
   } else if (setup.unit == "rev") {
-    setup.unit_scale = actuators.required("lead").as_positive();
-  } else if (setup.unit == "counts") {
-    setup.unit_scale = 1.0 / actuators.required("counts_per_metre").as_positive();
+    setup.unit_scale = file.lead;
   } else {
-    unit.fail("one of m, mm, rev, counts", unit.describe());
-  }
-  if (setup.unit != "rev" && actuators.has("lead")) {
-    actuators.required("lead").fail("no lead unless unit: rev");
-  }
-  if (setup.unit != "counts" && actuators.has("counts_per_metre")) {
-    actuators.required("counts_per_metre").fail("no counts_per_metre unless unit: counts");
+    setup.unit_scale = 1.0 / file.counts_per_metre;
   }
   Vec6<double> zero_length = Vec6<double>::Zero();
-  if (auto z = actuators.optional("zero_length")) {
-    if (z->is_sequence()) {
-      const auto v = z->as_doubles(6);
-      for (int i = 0; i < 6; ++i) zero_length(i) = v[static_cast<std::size_t>(i)];
-    } else {
-      zero_length.setConstant(z->as_double());
-    }
+  if (file.zero_length.size() == 6) {
+    for (int i = 0; i < 6; ++i) zero_length(i) = file.zero_length[static_cast<std::size_t>(i)];
+  } else if (file.zero_length.size() == 1) {
+    zero_length.setConstant(file.zero_length.front());
   }
   setup.nominal = nominal_calibration_vector(setup.nominal_design, zero_length, instrument, target);
 
   // Noise.
-  const YamlValue noise = root.required("noise");
-  noise.check_keys({"position", "orientation_deg", "actuator"});
-  setup.options.sigma_position = noise.required("position").as_positive();
-  setup.options.sigma_orientation = deg_to_rad(noise.required("orientation_deg").as_positive());
-  setup.options.sigma_actuator = noise.required("actuator").as_positive() * setup.unit_scale;
+  setup.options.sigma_position = file.noise_position;
+  setup.options.sigma_orientation = deg_to_rad(file.noise_orientation_deg);
+  setup.options.sigma_actuator = file.noise_actuator * setup.unit_scale;
 
   // Free parameters.
-  if (auto model = root.optional("model")) {
-    setup.model = model->as_string();
-    if (setup.model != "42" && setup.model != "48") model->fail("42 or 48", model->describe());
-  }
+  setup.model = file.model;
   setup.options.free =
       model_free_mask(setup.model == "42" ? CalibrationModelKind::k42 : CalibrationModelKind::k48);
   if (setup.frame == "instrument") {
@@ -200,91 +153,43 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
       setup.options.free[static_cast<std::size_t>(i)] = true;
     }
   }
-  if (auto fixed = root.optional("fixed")) {
-    for (const YamlValue& item : fixed->elements()) {
-      const std::string name = item.as_string();
-      const int index = calibration_parameter_index(name);
-      if (index < 0) {
-        item.fail(
-            "a parameter name (a1.x .. b6.z, offset1..6, gain1..6, instrument.x..rz, "
-            "target.x..rz)",
-            item.describe());
-      }
-      setup.options.free[static_cast<std::size_t>(index)] = false;
-      setup.fixed.push_back(index);
-    }
+  for (const std::string& name : file.fixed) {
+    const int index = calibration_parameter_index(name);  // a known name (read_calibration_file)
+    setup.options.free[static_cast<std::size_t>(index)] = false;
+    setup.fixed.push_back(index);
   }
-  if (auto gauge = root.optional("gauge")) {
-    setup.gauge = gauge->as_string();
-    if (setup.gauge != "auto" && setup.gauge != "none") {
-      gauge->fail("'auto' or 'none'", gauge->describe());
-    }
-  }
+  setup.gauge = file.gauge;
 
   // Solver.
-  if (auto loss = root.optional("loss")) {
-    loss->check_keys({"type", "scale"});
-    const YamlValue type = loss->required("type");
-    const std::string name = type.as_string();
-    if (name == "huber") {
-      setup.options.loss = CalibrationLoss::kHuber;
-    } else if (name == "cauchy") {
-      setup.options.loss = CalibrationLoss::kCauchy;
-    } else if (name == "none") {
-      setup.options.loss = CalibrationLoss::kNone;
-    } else {
-      type.fail("huber, cauchy or none", type.describe());
-    }
-    if (auto scale = loss->optional("scale")) setup.options.loss_scale = scale->as_positive();
-  }
-  if (auto chi2 = root.optional("outlier_chi2")) setup.options.outlier_chi2 = chi2->as_positive();
-  if (auto iterations = root.optional("max_iterations")) {
-    const long long n = iterations->as_int();
-    if (n < 1 || n > 100000) iterations->fail("an integer in 1..100000", iterations->describe());
-    setup.options.max_iterations = static_cast<int>(n);
-  }
-  if (auto threshold = root.optional("correlation_threshold")) {
-    const double t = threshold->as_double();
-    if (!(t > 0.0 && t <= 1.0)) threshold->fail("a number in (0, 1]", threshold->describe());
-    setup.options.correlation_threshold = t;
-  }
-
-  if (auto scale = root.optional("parameter_scale")) {
-    scale->check_keys({"length", "gain", "frame_position", "frame_angle_deg"});
-    double length = 1e-3, gain = 2e-4, frame_position = 5e-3, frame_angle = 1e-3;
-    if (auto v = scale->optional("length")) length = v->as_positive();
-    if (auto v = scale->optional("gain")) gain = v->as_positive();
-    if (auto v = scale->optional("frame_position")) frame_position = v->as_positive();
-    if (auto v = scale->optional("frame_angle_deg")) frame_angle = deg_to_rad(v->as_positive());
-    setup.options.parameter_scale =
-        calibration_parameter_scale(length, gain, frame_position, frame_angle);
-  }
+  setup.options.loss = file.loss;
+  setup.options.loss_scale = file.loss_scale;
+  setup.options.outlier_chi2 = file.outlier_chi2;
+  setup.options.max_iterations = file.max_iterations;
+  setup.options.correlation_threshold = file.correlation_threshold;
+  setup.options.parameter_scale = calibration_parameter_scale(
+      file.length_scale, file.gain_scale, file.frame_position_scale,
+      file.frame_angle_scale_deg ? deg_to_rad(*file.frame_angle_scale_deg) : 1e-3);
 
   // Measurements.
-  const YamlValue measurements = root.required("measurements");
-  setup.measurement_file = resolve_path(path, measurements.as_string());
+  setup.measurement_file = resolve_path(path, file.measurements);
   setup.measurements = read_measurement_csv(setup.measurement_file, setup.unit_scale);
   const int num_rows = static_cast<int>(setup.measurements.size());
 
-  // Validation rows.
+  // Validation rows (`rows` checked against the number of data rows here).
   std::set<int> held_out;
-  if (auto validation = root.optional("validation")) {
-    validation->check_keys({"every", "rows"});
-    if (auto every = validation->optional("every")) {
-      const long long n = every->as_int();
-      if (n < 2) every->fail("an integer >= 2", every->describe());
-      for (int k = 0; k < num_rows; ++k) {
-        if ((k + 1) % n == 0) held_out.insert(k);
-      }
+  if (file.every > 0) {
+    for (int k = 0; k < num_rows; ++k) {
+      if ((k + 1) % file.every == 0) held_out.insert(k);
     }
-    if (auto rows = validation->optional("rows")) {
-      for (const YamlValue& item : rows->elements()) {
-        const long long row = item.as_int();
-        if (row < 1 || row > num_rows) {
-          item.fail(fmt::format("a data row number in 1..{}", num_rows), item.describe());
-        }
-        held_out.insert(static_cast<int>(row - 1));
+  }
+  if (!file.rows.empty()) {
+    const std::vector<YamlValue> items = root.required("validation").required("rows").elements();
+    for (std::size_t i = 0; i < file.rows.size(); ++i) {
+      const long long row = file.rows[i];
+      if (row < 1 || row > num_rows) {
+        items[i].fail(fmt::format("a data row number in 1..{}", num_rows), items[i].describe());
       }
+      held_out.insert(static_cast<int>(row - 1));
     }
   }
   for (int k = 0; k < num_rows; ++k) {

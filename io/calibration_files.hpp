@@ -24,6 +24,10 @@
 //
 // The nominal machine of a calibration must be a hexapod machine file (io/machine_file.hpp).
 //
+// The keys are described once (io/calibration_setup_fields.cpp): read_calibration_file reads
+// them strictly, calibration_file_yaml writes them, calibration_fields_markdown is the table of
+// docs/calibration.md. read_calibration_setup adds what needs the machine and the measurements.
+//
 // Example:
 //   CalibrationSetup setup = read_calibration_setup("calibration.yaml");   // InputError
 //   CalibrationResult result = calibrate(setup.nominal_design, setup.nominal,
@@ -31,14 +35,67 @@
 //   std::string text = calibration_report_text(calibration_report_json(setup, result));
 #pragma once
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "io/yaml_reader.hpp"
 #include "models/hexapod.hpp"
 #include "problems/calibration.hpp"
 
 namespace pkmopt {
+
+/// The keys of a calibration YAML as the file holds them (paths as written, angles in degrees,
+/// noise.actuator in the actuator unit). One field list (io/calibration_setup_fields.cpp)
+/// reads, writes and documents them; the defaults are those of CalibrationOptions.
+struct CalibrationFile {
+  std::string machine;       ///< nominal machine file, relative to the calibration file
+  std::string measurements;  ///< measurement CSV, relative to the calibration file
+  std::string frame = "base";
+  Eigen::Vector3d instrument_position = Eigen::Vector3d::Zero();    ///< m
+  Eigen::Vector3d instrument_angles_deg = Eigen::Vector3d::Zero();  ///< deg
+  Eigen::Vector3d target_position = Eigen::Vector3d::Zero();        ///< m
+  Eigen::Vector3d target_angles_deg = Eigen::Vector3d::Zero();      ///< deg
+  std::string unit;                                                 ///< m, mm, rev or counts
+  double lead = 0.0;                   ///< m per revolution (unit rev); 0: not given
+  double counts_per_metre = 0.0;       ///< unit counts; 0: not given
+  std::vector<double> zero_length;     ///< m; empty: 0; one number for every leg, or six
+  double noise_position = 0.0;         ///< m
+  double noise_orientation_deg = 0.0;  ///< deg
+  double noise_actuator = 0.0;         ///< actuator unit
+  std::string model = "48";
+  std::vector<std::string> fixed;  ///< parameter names
+  std::string gauge = "auto";
+  CalibrationLoss loss = CalibrationLoss::kHuber;
+  double loss_scale = 5.0;
+  double outlier_chi2 = 27.86;
+  int max_iterations = 200;
+  double correlation_threshold = 0.9;
+  double length_scale = 1e-3;                   ///< m
+  double gain_scale = 2e-4;                     ///< 1
+  double frame_position_scale = 5e-3;           ///< m
+  std::optional<double> frame_angle_scale_deg;  ///< deg; unset: 1e-3 rad
+  long long every = 0;                          ///< every n-th data row held out; 0: none
+  std::vector<long long> rows;                  ///< 1-based data rows held out
+};
+
+/// Reads the keys of a calibration YAML with every check that needs no other file (unknown keys,
+/// bounds, unit and lead, instrument only with frame: instrument, parameter names). Throws
+/// InputError naming file, line, column, key, expected and found.
+CalibrationFile read_calibration_file(const YamlValue& root);
+
+/// The calibration YAML of `file`, one "key: value" line per top-level key (maps as flow maps,
+/// in the order of docs/calibration.md; numbers in the shortest text that reads back the same).
+/// Left out: keys not given (lead, zero_length, fixed, validation, ...), instrument and target
+/// positions and angles at zero, instrument with frame: base, and outlier_chi2, max_iterations,
+/// correlation_threshold and parameter_scale at their defaults; frame, model, gauge and loss are
+/// always written. Reads back to the same keys (texts are written unquoted).
+std::string calibration_file_yaml(const CalibrationFile& file);
+
+/// The key table of the calibration YAML in docs/calibration.md (a test compares them).
+std::string calibration_fields_markdown();
 
 /// Everything a calibration run needs, read and validated.
 struct CalibrationSetup {

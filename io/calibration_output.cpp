@@ -48,23 +48,25 @@ double reading_unit_scale(const SimulationFileSettings& settings) {
 
 std::string simulated_calibration_yaml(const SimulationFileSettings& settings,
                                        double mean_position_sigma) {
-  const double position = std::max(mean_position_sigma, 1e-9);
-  const double orientation = std::max(settings.orientation_sigma_deg, 1e-9);
-  const double actuator = std::max(settings.actuator_sigma, 1e-12) / reading_unit_scale(settings);
+  CalibrationFile file;
+  file.machine = "nominal.yaml";
+  file.measurements = "measurements.csv";
+  file.frame = "base";
+  file.unit = settings.unit;
+  file.zero_length = {settings.zero_length};
+  file.noise_position = std::max(mean_position_sigma, 1e-9);
+  file.noise_orientation_deg = std::max(settings.orientation_sigma_deg, 1e-9);
+  file.noise_actuator = std::max(settings.actuator_sigma, 1e-12) / reading_unit_scale(settings);
+  file.model = settings.model;
+  file.gauge = "auto";
+  file.loss = CalibrationLoss::kHuber;
+  file.loss_scale = 5.0;
+  file.every = std::max(2, settings.holdout_every);
   return fmt::format(
-      "# Calibration of simulated measurements (pkmopt simulate-measurements --seed {}).\n"
-      "machine: nominal.yaml\n"
-      "measurements: measurements.csv\n"
-      "frame: base\n"
-      "actuators: {{unit: {}, zero_length: {}}}\n"
-      "noise: {{position: {}, orientation_deg: {}, actuator: {}}}\n"
-      "model: {}\n"
-      "gauge: auto\n"
-      "loss: {{type: huber, scale: 5}}\n"
-      "validation: {{every: {}}}\n",
-      settings.seed, settings.unit, format_number(settings.zero_length), format_number(position),
-      format_number(orientation), format_number(actuator), settings.model,
-      std::max(2, settings.holdout_every));
+             "# Calibration of simulated measurements (pkmopt simulate-measurements --seed "
+             "{}).\n",
+             settings.seed) +
+         calibration_file_yaml(file);
 }
 
 std::string simulation_truth_json(std::uint64_t seed, const SimulatedMeasurements& data) {

@@ -10,7 +10,8 @@
 //   simulated_calibration_yaml   calibration.yaml naming nominal.yaml and measurements.csv, with
 //                                the noise of the simulation (floored at 1e-9 m, 1e-9 deg and
 //                                1e-12 m so that the file is valid), huber loss, gauge auto and
-//                                every n-th row held out (n >= 2).
+//                                every n-th row held out (n >= 2); a comment line, then
+//                                calibration_file_yaml (io/calibration_files.hpp).
 //   simulation_truth_json        truth.json: seed, outlier_rows (1-based data rows), the 48 true
 //                                machine parameters by name (m, rad, relative gain),
 //                                mean_position_sigma (m).

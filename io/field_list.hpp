@@ -21,10 +21,12 @@
 //   std::string table = fields_markdown(Options{});  // the docs table
 //
 // A member is a number, a bool, a text, an optional number, an [x, y, z] vector, a list of
-// numbers (std::vector<double>, std::array<double, N>), a 3 x N point list, or one of the views
-// below that stand for several members or for a coded member: FieldRange (two members as one key
-// `[low, high]`), FieldChoice (a member set by name), FieldColumn (one number per referenced
-// member) and a std::vector<FieldRange> (one range per element).
+// numbers (std::vector<double>, std::array<double, N>), a list of integers (std::array<int, N>),
+// a 3 x N point list, or one of the views below that stand for several members or for a coded
+// member: FieldRange (two members as one key `[low, high]`), FieldBounds (a number or
+// `{min, max}`: a design parameter, fixed or free), FieldChoice (a member set by name),
+// FieldColumn (one number per referenced member) and a std::vector<FieldRange> (one range per
+// element).
 //   FieldRange drive{d.theta_min, d.theta_max};
 //   f.field("drive_range_deg", drive, {.min = -180, .max = 180, .degrees = true});
 //   FieldChoice<int> branch{d.branch, {{"elbow_out", 1}, {"elbow_in", -1}}};
@@ -35,6 +37,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -102,6 +105,45 @@ struct FieldColumn {
   std::vector<double*> members;
 };
 
+/// A design parameter's bounds as one key: a number (fixed, min == max) or `{min: a, max: b}`
+/// (free, a < b). Both ends are checked against the rule's bounds (file units, no conversion).
+/// Messages: "max > min" at the max key, "values > 0" (the rule as "values ...", or its
+/// `expected`) at the key. Written as the number when fixed, as `{min: a, max: b}` when free.
+struct FieldBounds {
+  double& min;
+  double& max;
+};
+
+/// A text as a YAML scalar: plain when it reads back as that text (a letter, then letters,
+/// digits and _ . / + - :, not ending in ':', not `null`), otherwise double-quoted with escapes.
+inline std::string yaml_scalar(const std::string& text) {
+  auto plain_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '/' ||
+           c == '+' || c == '-' || c == ':';
+  };
+  bool plain = !text.empty() && std::isalpha(static_cast<unsigned char>(text.front())) &&
+               text.back() != ':' && text != "null" && text != "Null" && text != "NULL";
+  for (char c : text) plain = plain && plain_char(c);
+  if (plain) return text;
+  std::string out = "\"";
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (u < 0x20 || u == 0x7f) {
+      out += fmt::format("\\x{:02x}", u);
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 namespace field_detail {
 
 template <class T>
@@ -113,6 +155,12 @@ template <class T>
 struct IsArray : std::false_type {};
 template <std::size_t N>
 struct IsArray<std::array<double, N>> : std::true_type {};
+
+/// std::array<int, N>: a list of exactly N integers (grid counts).
+template <class T>
+struct IsIntArray : std::false_type {};
+template <std::size_t N>
+struct IsIntArray<std::array<int, N>> : std::true_type {};
 
 /// Eigen::Matrix<double, 3, N> with a fixed N > 1: a list of N points [x, y, z].
 template <class T>
@@ -164,6 +212,29 @@ inline std::string element_text(FieldRule r) {
   return expected_text<double>(r);
 }
 
+/// "values > 0", "values in [0, 120)" (what both ends of FieldBounds must be).
+inline std::string bounds_values_text(const FieldRule& r) {
+  if (!r.expected.empty()) return std::string(r.expected);
+  const std::string e = element_text(r);
+  if (e.rfind("a number ", 0) == 0) return "values " + e.substr(9);
+  return "finite values";
+}
+
+/// What one integer of a list must be ("an integer in [1, 1000]").
+inline std::string element_int_text(FieldRule r) {
+  r.expected = {};
+  return expected_text<int>(r);
+}
+
+/// "a list of 3 integers in [1, 1000]".
+inline std::string int_list_text(const FieldRule& r, long long count) {
+  if (!r.expected.empty()) return std::string(r.expected);
+  const std::string e = element_int_text(r);
+  const std::string n = std::to_string(count);
+  if (e == "an integer") return "a list of " + n + " integers";
+  return "a list of " + n + " integers " + e.substr(std::string("an integer ").size());
+}
+
 /// "a list of 6 finite numbers", "a list of numbers >= 0" (`count` < 0: any length).
 inline std::string list_text(const FieldRule& r, long long count) {
   if (!r.expected.empty()) return std::string(r.expected);
@@ -211,6 +282,10 @@ template <class T>
 std::string allowed_text(const FieldRule& r, const T& member) {
   if constexpr (std::is_same_v<T, FieldRange>) {
     return range_text(r, member.closed);
+  } else if constexpr (std::is_same_v<T, FieldBounds>) {
+    return "a number (fixed) or {min, max} with min < max (free); " + bounds_values_text(r);
+  } else if constexpr (IsIntArray<T>::value) {
+    return int_list_text(r, static_cast<long long>(std::tuple_size_v<T>));
   } else if constexpr (IsChoice<T>::value) {
     return choice_text(r, member);
   } else if constexpr (std::is_same_v<T, FieldColumn>) {
@@ -250,7 +325,7 @@ std::string value_text(const T& value, const FieldRule& r = {}) {
   if constexpr (std::is_same_v<T, bool>) {
     return value ? "true" : "false";
   } else if constexpr (std::is_same_v<T, std::string>) {
-    return value;
+    return yaml_scalar(value);
   } else if constexpr (std::is_same_v<T, std::vector<double>>) {
     std::string list;
     for (double v : value) list += (list.empty() ? "" : ", ") + format_number(v);
@@ -262,6 +337,13 @@ std::string value_text(const T& value, const FieldRule& r = {}) {
     return value ? real_text(*value, r) : "";
   } else if constexpr (std::is_same_v<T, FieldRange>) {
     return fmt::format("[{}, {}]", real_text(value.low, r), real_text(value.high, r));
+  } else if constexpr (std::is_same_v<T, FieldBounds>) {
+    if (value.min == value.max) return real_text(value.min, r);
+    return fmt::format("{{min: {}, max: {}}}", real_text(value.min, r), real_text(value.max, r));
+  } else if constexpr (IsIntArray<T>::value) {
+    std::string list;
+    for (int v : value) list += (list.empty() ? "" : ", ") + std::to_string(v);
+    return "[" + list + "]";
   } else if constexpr (IsChoice<T>::value) {
     for (const auto& [name, option] : value.options)
       if (option == value.member) return std::string(name);
@@ -302,8 +384,8 @@ bool is_unset(const FieldRule& r, const T& value) {
       if (option.second == value.member) return false;
     return true;
   } else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, Eigen::Vector3d> ||
-                       std::is_same_v<T, FieldRange> || IsArray<T>::value ||
-                       IsPointList<T>::value) {
+                       std::is_same_v<T, FieldRange> || std::is_same_v<T, FieldBounds> ||
+                       IsArray<T>::value || IsIntArray<T>::value || IsPointList<T>::value) {
     return false;
   } else if constexpr (std::is_same_v<T, std::optional<double>>) {
     return !value.has_value();
@@ -343,6 +425,22 @@ inline void read_range(const YamlValue& v, const FieldRule& r, FieldRange& range
   range.high = from_file(x[1], r);
 }
 
+inline void read_bounds(const YamlValue& v, const FieldRule& r, FieldBounds& bounds) {
+  double lo = 0.0, hi = 0.0;
+  if (v.is_map()) {
+    v.check_keys({"min", "max"});
+    lo = v.required("min").as_double();
+    const YamlValue max = v.required("max");
+    hi = max.as_double();
+    if (!(lo < hi)) max.fail("max > min", max.describe());
+  } else {
+    lo = hi = v.as_double();
+  }
+  if (!within(r, lo) || !within(r, hi)) v.fail(bounds_values_text(r), v.describe());
+  bounds.min = lo;
+  bounds.max = hi;
+}
+
 }  // namespace field_detail
 
 /// Reads the keys of one YAML map into the members a field list names (see the header comment).
@@ -370,6 +468,17 @@ class FieldReader {
       if (rule.degrees) member *= std::numbers::pi / 180.0;
     } else if constexpr (std::is_same_v<T, FieldRange>) {
       field_detail::read_range(*v, rule, member);
+    } else if constexpr (std::is_same_v<T, FieldBounds>) {
+      field_detail::read_bounds(*v, rule, member);
+    } else if constexpr (field_detail::IsIntArray<T>::value) {
+      const std::vector<YamlValue> items = v->elements(static_cast<int>(member.size()));
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const long long n = items[i].as_int();
+        if (!field_detail::within(rule, n) || n < std::numeric_limits<int>::min() ||
+            n > std::numeric_limits<int>::max())
+          items[i].fail(field_detail::element_int_text(rule), items[i].describe());
+        member[i] = static_cast<int>(n);
+      }
     } else if constexpr (field_detail::IsChoice<T>::value) {
       const std::string name = v->as_string();
       for (const auto& [option_name, option] : member.options) {
@@ -488,6 +597,12 @@ class FieldWriter {
     nested_.push_back(false);
   }
 
+  /// A key whose value text is made by hand (a form no field kind covers), written verbatim.
+  void raw(std::string_view key, const std::string& text) {
+    items_.push_back(fmt::format("{}: {}", key, text));
+    nested_.push_back(false);
+  }
+
   /// A nested map, written as a flow map `key: {a: 1}` (or indented in block text); left out
   /// when none of its keys is written.
   template <class Describe>
@@ -497,7 +612,8 @@ class FieldWriter {
     if (inner.items_.empty() || (rule.omit_when && rule.omit_when())) return;
     items_.push_back(fmt::format("{}: {}", key, inner.flow_map()));
     nested_.push_back(true);
-    blocks_.emplace_back(std::string(key), inner.block(2));
+    block_keys_.emplace_back(key);
+    block_writers_.push_back(std::move(inner));
   }
 
   /// "key: value" lines, nested maps as indented blocks (YAML block style).
@@ -507,8 +623,8 @@ class FieldWriter {
     std::size_t next_block = 0;
     for (std::size_t i = 0; i < items_.size(); ++i) {
       if (nested_[i]) {
-        const auto& [key, text] = blocks_[next_block++];
-        out += pad + key + ":\n" + text;
+        out += pad + block_keys_[next_block] + ":\n" + block_writers_[next_block].block(indent + 2);
+        ++next_block;
       } else {
         out += pad + items_[i] + "\n";
       }
@@ -535,7 +651,8 @@ class FieldWriter {
  private:
   std::vector<std::string> items_;
   std::vector<bool> nested_;
-  std::vector<std::pair<std::string, std::string>> blocks_;
+  std::vector<std::string> block_keys_;
+  std::vector<FieldWriter> block_writers_;  ///< the nested maps, in order
 };
 
 /// One documented key.

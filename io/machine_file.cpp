@@ -7,6 +7,7 @@
 
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
+#include "io/hexapod_fields.hpp"
 #include "io/machine_file_hybrid.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
@@ -82,70 +83,17 @@ void describe_fields(Fields& f, HexapodDesign& d) {
              .unit = "m",
              .expected = "a number > legs.min_length",
              .doc = "longest leg length (stroke limit)"});
-    g.field("axial_stiffness", d.stiffness.axial_stiffness,
-            {.min = 0,
-             .min_exclusive = true,
-             .zero_is_unset = true,
-             .unit = "N/m",
-             .doc = "constant leg stiffness; give it, or E and area"});
-    g.field("E", d.stiffness.E,
-            {.min = 0,
-             .min_exclusive = true,
-             .zero_is_unset = true,
-             .unit = "Pa",
-             .doc = "Young's modulus of the leg (with area): k = E·area/q, q the leg length",
-             .omit_when = [&d] { return d.stiffness.axial_stiffness > 0.0; }});
-    g.field("area", d.stiffness.area,
-            {.min = 0,
-             .min_exclusive = true,
-             .zero_is_unset = true,
-             .unit = "m²",
-             .doc = "cross-section of the leg",
-             .omit_when = [&d] { return d.stiffness.axial_stiffness > 0.0; }});
-    g.field(
-        "actuator_stiffness", d.stiffness.actuator_stiffness,
-        {.min = 0,
-         .min_exclusive = true,
-         .zero_is_unset = true,
-         .unit = "N/m",
-         .doc = "in series with the leg: k = 1/(1/k_leg + 1/actuator_stiffness); unset: rigid"});
+    describe_leg_stiffness(g, d.stiffness);
   });
-  HexapodJointLimits& j = d.joints;
-  const bool default_axes = j.base_axis.isApprox(Eigen::Vector3d(0, 0, 1), 0.0) &&
-                            j.platform_axis.isApprox(Eigen::Vector3d(0, 0, -1), 0.0);
-  f.section("joints", {}, [&](auto& g) {
-    const FieldRule angle{.min = 0,
-                          .max = 180,
-                          .min_exclusive = true,
-                          .infinite_is_unset = true,
-                          .degrees = true,
-                          .unit = "deg",
-                          .expected = "an angle in degrees in (0, 180]"};
-    FieldRule base = angle, platform = angle;
-    base.doc = "limit of the angle between the leg direction s_i and the base joint axis";
-    platform.doc = "limit of the angle between −s_i and R·platform_axis";
-    g.field("base_max_angle_deg", j.base_max_angle, base);
-    g.field("platform_max_angle_deg", j.platform_max_angle, platform);
-    g.field("base_axis", j.base_axis,
-            {.expected = "a non-zero vector",
-             .doc = "base joint axis in the base frame (unit after reading)",
-             .omit_when = [default_axes] { return default_axes; }});
-    g.field("platform_axis", j.platform_axis,
-            {.expected = "a non-zero vector",
-             .doc = "platform joint axis in the platform frame (unit after reading)",
-             .omit_when = [default_axes] { return default_axes; }});
-  });
-  f.section("tool", {}, [&](auto& g) {
-    g.field("tcp", d.tcp, {.unit = "m", .doc = "the TCP in the platform frame"});
-  });
+  f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, d.joints); });
+  f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, d.tcp); });
   f.field("characteristic_length", d.characteristic_length,
           {.min = 0,
            .min_exclusive = true,
            .unit = "m",
            .default_text = "mean distance from the TCP to the platform joints",
            .doc = "L of J_h = J·diag(1, 1, 1, 1/L, 1/L, 1/L) in singularity_margin"});
-  f.field("actuator_error", d.actuator_error,
-          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  describe_actuator_error(f, d.actuator_error);
 }
 
 HexapodDesign read_hexapod_design(const YamlValue& root) {
@@ -158,11 +106,6 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   design.base_joints = read_joints(root, "base", "base_joints", false);
   design.platform_joints = read_joints(root, "platform", "platform_joints", true);
   const YamlValue legs = root.required("legs");
-  {
-    const bool has_axial = legs.has("axial_stiffness");
-    if (has_axial && (legs.has("E") || legs.has("area")))
-      legs.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
-  }
   FieldReader reader(root);
   describe_fields(reader, design);
   if (!(design.max_length > design.min_length)) {
@@ -170,24 +113,8 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
     max_value.fail(fmt::format("a number > legs.min_length ({})", format_number(design.min_length)),
                    max_value.describe());
   }
-  if (design.stiffness.axial_stiffness == 0.0) {
-    if (legs.has("E") || legs.has("area")) {
-      (void)legs.required("E");  // both are needed: names the missing one
-      (void)legs.required("area");
-    } else {
-      legs.fail("missing the leg stiffness: give axial_stiffness (N/m), or E (Pa) and area (m^2)");
-    }
-  }
-  if (auto joints = root.optional("joints")) {
-    for (const char* key : {"base_axis", "platform_axis"}) {
-      if (auto v = joints->optional(key)) {
-        Eigen::Vector3d& axis =
-            std::string(key) == "base_axis" ? design.joints.base_axis : design.joints.platform_axis;
-        if (!(axis.norm() > 1e-12)) v->fail("a non-zero vector", v->describe());
-        axis.normalize();
-      }
-    }
-  }
+  check_leg_stiffness(legs, design.stiffness);
+  normalize_joint_axes(root, design.joints);
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)
   } catch (const std::invalid_argument& e) {

@@ -2,7 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -35,16 +40,25 @@ void describe_serial(Fields& g, HybridDesign& d) {
            .unit = "m",
            .expected = "[min, max] with min <= max (m)",
            .doc = "travel of each variable axis ([0, 0]: a fixed axis)"});
+  // The writer leaves a list out when every axis has the default 0.
+  auto all_zero = [&d](double HybridAxis::*member) {
+    return [&d, member] {
+      return std::all_of(d.axes.begin(), d.axes.end(),
+                         [member](const HybridAxis& a) { return a.*member == 0.0; });
+    };
+  };
   g.field("stiffness", stiffness,
           {.min = 0,
            .unit = "N/m",
            .default_text = "all 0 (rigid)",
-           .doc = "axial stiffness of each axis drive, one per axis (0: rigid)"});
+           .doc = "axial stiffness of each axis drive, one per axis (0: rigid)",
+           .omit_when = all_zero(&HybridAxis::stiffness)});
   g.field("error", error,
           {.min = 0,
            .unit = "m",
            .default_text = "all 0 (exact)",
-           .doc = "positioning error half-width of each axis, one per axis"});
+           .doc = "positioning error half-width of each axis, one per axis",
+           .omit_when = all_zero(&HybridAxis::error)});
 }
 
 template <class Fields>
@@ -66,6 +80,46 @@ void describe_fields(Fields& f, HybridDesign& d) {
             [&](auto& g) { describe_serial(g, d); });
   f.section("parallel", {.required = true, .doc = "the parallel module"},
             [&](auto& g) { describe_parallel(g, d); });
+}
+
+// A constant rotation (rad) as the degrees the reader converts back to exactly that value when
+// one exists (any value read from a file): 12 significant digits if they do, else the shortest
+// text of the double nearest to it among the neighbours of rad_to_deg(rad).
+std::string degrees_text(double rad) {
+  auto back = [](const std::string& text) {
+    return deg_to_rad(std::strtod(text.c_str(), nullptr));
+  };
+  const double deg = rad_to_deg(rad);
+  const std::string twelve = fmt::format("{:.12g}", deg);
+  if (back(twelve) == rad) return twelve;
+  std::string best = format_number(deg);
+  double best_miss = std::abs(back(best) - rad);
+  double up = deg;
+  double down = deg;
+  for (int k = 0; k < 8 && best_miss > 0.0; ++k) {
+    up = std::nextafter(up, std::numeric_limits<double>::infinity());
+    down = std::nextafter(down, -std::numeric_limits<double>::infinity());
+    for (const double x : {up, down}) {
+      const std::string text = format_number(x);
+      const double miss = std::abs(back(text) - rad);
+      if (miss < best_miss) {
+        best = text;
+        best_miss = miss;
+      }
+    }
+  }
+  return best;
+}
+
+// The chain as the reader's `serial.code`: a digit per element, constants as "k:v" (m, deg).
+std::string code_text(const SerialChain& chain) {
+  std::string code;
+  for (const ChainElement& e : chain.elements()) {
+    if (!code.empty()) code += ' ';
+    code += static_cast<char>('0' + e.motion);
+    if (!e.variable) code += ":" + (e.motion >= 4 ? degrees_text(e.value) : format_number(e.value));
+  }
+  return code;
 }
 
 template <class Describe>
@@ -156,6 +210,28 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
 
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root) {
   return std::make_unique<HybridMachine>(read_hybrid_design(root));
+}
+
+std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file) {
+  HybridDesign copy = design;
+  std::string out = "model: hybrid\nserial:\n";
+  // By hand, as the reader takes them: the code (with the constants), the axis names.
+  out += "  code: \"" + code_text(copy.chain) + "\"\n";
+  std::string names;
+  bool named = false;
+  for (const ChainElement& e : copy.chain.elements()) {
+    if (!e.variable) continue;
+    names += (names.empty() ? "" : ", ") + yaml_scalar(e.name);
+    named = named || !e.name.empty();
+  }
+  if (named) out += "  axes: [" + names + "]\n";
+  FieldWriter serial;  // range, stiffness, error
+  describe_serial(serial, copy);
+  out += serial.block(2);
+  out += "parallel:\n  file: " + yaml_scalar(module_file) + "\n";  // by hand
+  FieldWriter parallel;                                            // home
+  describe_parallel(parallel, copy);
+  return out + parallel.block(2);
 }
 
 std::string hybrid_machine_fields_markdown() {

@@ -18,12 +18,17 @@
 // min > max, variable rotary axes, linearly dependent axes, a module file that is missing, is
 // itself serial or hybrid, or has revolute drives (a delta) all throw InputError naming file, line,
 // column and key (exit 2). The keys are described once in a field list (io/field_list.hpp): the
-// reader and the docs table of docs/hybrid-machines.md come from it; the code, the axis names and
-// the module file are read by hand next to it.
+// reader, the writer (hybrid_design_to_yaml) and the docs table of docs/hybrid-machines.md come
+// from it; the code, the axis names and the module file are read and written by hand next to it.
+// The design holds the module as a machine, not as a file: the writer is given the module file to
+// name, and writes no name or description (the design has none). Numbers are written in their
+// shortest round-trip form and constant rotations in degrees that convert back to the same
+// radians, so reading a written file gives the same design.
 //
 // Example:
 //   YamlValue root = YamlValue::load_file("examples/hybrid_long_axis_hexapod.yaml");
 //   std::unique_ptr<Machine> machine = load_hybrid_machine(root);
+//   std::string yaml = hybrid_design_to_yaml(read_hybrid_design(root), "hexapod.yaml");
 #pragma once
 
 #include <memory>
@@ -36,6 +41,8 @@ namespace pkmopt {
 
 /// The design of a `model: hybrid` map; module file paths are relative to root.file().
 HybridDesign read_hybrid_design(const YamlValue& root);
+/// The machine file of a design, `module_file` as its parallel.file (relative to the written file).
+std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file);
 /// The machine of a `model: hybrid` map.
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
 

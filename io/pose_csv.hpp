@@ -9,7 +9,8 @@
 //
 // Example:
 //   const PoseTable poses = read_pose_csv("poses.csv");
-//   for (std::size_t i = 0; i < poses.poses.size(); ++i) machine.analyze(data, poses.poses[i], w, m);
+//   for (std::size_t i = 0; i < poses.poses.size(); ++i) machine.analyze(data, poses.poses[i], w,
+//   m);
 #pragma once
 
 #include <Eigen/Core>

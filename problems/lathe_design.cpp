@@ -8,10 +8,11 @@ namespace pkmopt {
 DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& t) {
   DesignFamily family;
   family.model = "lathe_16k20f3";
-  family.parameters = {{"strut_length", "m", t.strut_length, false, false},
-                       {"guide_y", "m", t.guide_y, true, true},
-                       {"leg_base_y", "m", t.leg_base_y, true, true},
-                       {"home_height", "m", 0.0, true, true}};
+  family.parameters = {
+      {"strut_length", "m", "strut length (machine_size = L³)", t.strut_length, false, false},
+      {"guide_y", "m", "the carriages' hinge line across the bed", t.guide_y, true, true},
+      {"leg_base_y", "m", "the cylinders' beam position", t.leg_base_y, true, true},
+      {"home_height", "m", "the task region is lifted by this along base z", 0.0, true, true}};
   family.parameter_keys = {"strut_length", "guide_y", "leg_base_y"};
   auto design = [t](const std::vector<double>& p) {
     Lathe16k20f3Design d = t;

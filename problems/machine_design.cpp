@@ -244,13 +244,16 @@ DesignFamily delta_family(const DeltaDesign& t) {
   DesignFamily family;
   family.model = "delta";
   family.translational = true;
-  family.parameters = {{"base_radius", "m", t.base_radius, false, false},
-                       {"platform_radius", "m", t.platform_radius, false, true},
-                       {"upper_arm", "m", t.upper_arm, false, false},
-                       {"rod", "m", t.rod, false, false},
-                       {"drive_min_deg", "deg", rad_to_deg(t.theta_min), true, true, 180.0},
-                       {"drive_max_deg", "deg", rad_to_deg(t.theta_max), true, true, 180.0},
-                       {"home_height", "m", 0.0, true, true}};
+  family.parameters = {
+      {"base_radius", "m", "centre to each drive pivot", t.base_radius, false, false},
+      {"platform_radius", "m", "TCP to each rod-pair centre", t.platform_radius, false, true},
+      {"upper_arm", "m", "crank length", t.upper_arm, false, false},
+      {"rod", "m", "parallelogram rod length", t.rod, false, false},
+      {"drive_min_deg", "deg", "lower end of the drive range (below drive_max_deg)",
+       rad_to_deg(t.theta_min), true, true, 180.0},
+      {"drive_max_deg", "deg", "upper end of the drive range", rad_to_deg(t.theta_max), true, true,
+       180.0},
+      {"home_height", "m", "the task region is lifted by this along base z", 0.0, true, true}};
   family.parameter_keys = {"base_radius", "platform_radius", "upper_arm", "rod", "drive_range_deg"};
   auto design = [t](const std::vector<double>& p) {
     DeltaDesign d = t;
@@ -271,12 +274,16 @@ DesignFamily linear_delta_family(const LinearDeltaDesign& t) {
   DesignFamily family;
   family.model = "linear_delta";
   family.translational = true;
-  family.parameters = {{"guide_radius", "m", t.guide_radius, false, false},
-                       {"platform_radius", "m", t.platform_radius, false, true},
-                       {"rod", "m", t.rod, false, false},
-                       {"stroke", "m", t.q_max - t.q_min, false, false},
-                       {"inclination_deg", "deg", rad_to_deg(t.inclination), true, true, 89.0},
-                       {"home_height", "m", 0.0, true, true}};
+  family.parameters = {
+      {"guide_radius", "m", "guide foot (z = 0) distance from the centre", t.guide_radius, false,
+       false},
+      {"platform_radius", "m", "TCP to each rod-pair centre", t.platform_radius, false, true},
+      {"rod", "m", "parallelogram rod length", t.rod, false, false},
+      {"stroke", "m", "carriage travel q ∈ [0, stroke] along each guide", t.q_max - t.q_min, false,
+       false},
+      {"inclination_deg", "deg", "guide tilt towards the centre", rad_to_deg(t.inclination), true,
+       true, 89.0},
+      {"home_height", "m", "the task region is lifted by this along base z", 0.0, true, true}};
   family.parameter_keys = {"guide_radius", "platform_radius", "rod", "stroke", "inclination_deg"};
   auto design = [t](const std::vector<double>& p) {
     LinearDeltaDesign d = t;
@@ -303,13 +310,18 @@ DesignFamily hexaglide_family(const HexaglideDesign& t) {
   const double offset = std::abs(t.guide_y[0] - b0.y());
   DesignFamily family;
   family.model = "hexaglide";
-  family.parameters = {{"platform_radius", "m", radius, false, false},
-                       {"pair_separation_deg", "deg", separation, false, true, 119.0},
-                       {"guide_offset", "m", offset, false, true},
-                       {"strut", "m", t.strut, false, false},
-                       {"stroke", "m", t.q_max - t.q_min, false, false},
-                       {"inclination_deg", "deg", rad_to_deg(t.inclination), true, true, 89.0},
-                       {"home_height", "m", 0.0, true, true}};
+  family.parameters = {
+      {"platform_radius", "m", "semi-regular platform (turned 90° about z)", radius, false, false},
+      {"pair_separation_deg", "deg", "angle between the joints of a pair", separation, false, true,
+       119.0},
+      {"guide_offset", "m", "guide i at y = b_i.y ± offset (outwards)", offset, false, true},
+      {"strut", "m", "constant strut length", t.strut, false, false},
+      {"stroke", "m", "carriages travel q ∈ [−stroke/2, stroke/2] along x", t.q_max - t.q_min,
+       false, false},
+      {"inclination_deg", "deg", "guide tilt about y", rad_to_deg(t.inclination), true, true, 89.0},
+      {"home_height", "m",
+       "lift of the task region along base z, added to the machine section's own home_height", 0.0,
+       true, true}};
   family.parameter_keys = {"guides", "strut", "platform", "platform_joints", "stroke"};
   auto design = [t](const std::vector<double>& p) {
     HexaglideDesign d = t;
@@ -335,11 +347,16 @@ DesignFamily hexaglide_family(const HexaglideDesign& t) {
 DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t) {
   DesignFamily family;
   family.model = "tripod_3prs";
-  family.parameters = {{"base_radius", "m", t.base_radius, false, false},
-                       {"platform_radius", "m", t.platform_radius, false, false},
-                       {"strut", "m", t.strut, false, false},
-                       {"stroke", "m", t.q_max - t.q_min, false, false},
-                       {"home_height", "m", 0.0, true, true}};
+  family.parameters = {
+      {"base_radius", "m", "head axis to each slide", t.base_radius, false, false},
+      {"platform_radius", "m", "platform centre to each spherical joint", t.platform_radius, false,
+       false},
+      {"strut", "m", "constant strut length", t.strut, false, false},
+      {"stroke", "m",
+       "slide travel q ∈ [q_min, q_min + stroke] (q_min of the machine section's stroke, default "
+       "0)",
+       t.q_max - t.q_min, false, false},
+      {"home_height", "m", "the task region is lifted by this along base z", 0.0, true, true}};
   family.parameter_keys = {"base_radius", "platform_radius", "strut", "stroke"};
   auto design = [t](const std::vector<double>& p) {
     Tripod3PrsDesign d = t;

@@ -225,6 +225,7 @@ using FamilyDesign = std::variant<DeltaDesign, LinearDeltaDesign, HexaglideDesig
 struct FamilyParameter {
   std::string name;      ///< as in study files: "rod", "inclination_deg"
   std::string unit;      ///< "m" or "deg" (file unit; "deg" parameters are rad inside)
+  std::string doc;       ///< one line for the docs: what the parameter sets
   double default_value;  ///< file units
   bool may_be_negative;  ///< otherwise values must be >= 0 ...
   bool may_be_zero;      ///< ... and > 0 unless this is set
@@ -271,7 +272,6 @@ DesignFamily delta_family(const DeltaDesign& design_template);
 DesignFamily linear_delta_family(const LinearDeltaDesign& design_template);
 DesignFamily hexaglide_family(const HexaglideDesign& design_template);
 DesignFamily tripod_3prs_family(const Tripod3PrsDesign& design_template);
-
 
 // ---------------------------------------------------------------------------------------------
 // The problem.

@@ -104,15 +104,17 @@ DesignStudy load_design_study(const std::string& path) {
   if (objective_list.empty()) objectives.fail("a list of at least one objective", "an empty list");
   yaml += "objectives:\n";
   for (const YamlValue& o : objective_list) {
-    o.check_keys({"minimize", "maximize"});
+    o.expect_map();
+    ObjectiveEntry entry;
+    read_fields(o, entry);
     if (o.keys().size() != 1) o.fail("one of minimize: METRIC or maximize: METRIC", o.describe());
-    const bool maximize = o.has("maximize");
+    const bool maximize = entry.maximize >= 0;
     const YamlValue metric_value = o.required(maximize ? "maximize" : "minimize");
-    goals.push_back({read_metric(metric_value), maximize ? Sense::maximize : Sense::minimize});
+    goals.push_back({static_cast<DesignMetric>(maximize ? entry.maximize : entry.minimize),
+                     maximize ? Sense::maximize : Sense::minimize});
     if (is_actuator_metric(goals.back().metric) && !actuator_metric_use)
       actuator_metric_use = metric_value;
-    yaml += fmt::format("  - {}: {}\n", maximize ? "maximize" : "minimize",
-                        design_metric_name(goals.back().metric));
+    yaml += "  - " + fields_flow_map(entry) + "\n";
   }
   bool require_reachable = false;
   std::string constraint_yaml;
@@ -136,16 +138,17 @@ DesignStudy load_design_study(const std::string& path) {
         constraint_yaml += read_actuator_constraint(c, path, spec, study);
         continue;
       }
-      c.check_keys({"metric", "max", "min"});
-      const DesignMetric metric = read_metric(c.required("metric"));
+      ConstraintEntry entry;
+      read_fields(c, entry);
+      const auto metric = static_cast<DesignMetric>(entry.metric);
       if (is_actuator_metric(metric) && !actuator_metric_use)
         actuator_metric_use = c.required("metric");
-      if (c.has("max") == c.has("min")) c.fail("exactly one of max and min", c.describe());
-      const bool upper = c.has("max");
+      if (entry.max.has_value() == entry.min.has_value())
+        c.fail("exactly one of max and min", c.describe());
+      const bool upper = entry.max.has_value();
       limits.push_back({metric, upper ? Relation::less_equal : Relation::greater_equal,
-                        c.required(upper ? "max" : "min").as_double()});
-      constraint_yaml += fmt::format("  - {{metric: {}, {}: {}}}\n", design_metric_name(metric),
-                                     upper ? "max" : "min", format_number(limits.back().bound));
+                        upper ? *entry.max : *entry.min});
+      constraint_yaml += "  - " + fields_flow_map(entry) + "\n";
     }
   }
   if (actuator_metric_use && !spec.actuator_catalog)
@@ -219,6 +222,14 @@ std::string design_study_fields_markdown(std::string_view section) {
   if (section == "task.orientations") return fields_markdown(TaskOrientationsSection{});
   if (section == "task.workspace") return fields_markdown(TaskWorkspaceSection{});
   if (section == "output") return fields_markdown(OutputSection{});
+  if (section == "task.region box") return fields_markdown(BoxRegionSection{});
+  if (section == "task.region cylinder") return fields_markdown(CylinderRegionSection{});
+  if (section == "objectives[]") return fields_markdown(ObjectiveEntry{});
+  if (section == "constraints[]") return fields_markdown(ConstraintEntry{});
+  if (section == "constraints[] actuator") return fields_markdown(ActuatorConstraintEntry{});
+  if (section == "machine hexapod") return hexapod_study_machine_markdown();
+  if (section.starts_with("machine.parameters "))
+    return family_parameters_markdown(std::string(section.substr(19)));
   throw std::invalid_argument("design_study_fields_markdown: unknown section '" +
                               std::string(section) + "'");
 }

@@ -149,8 +149,10 @@ struct DesignRunFacts {
 void write_design_outputs(const std::string& directory, const DesignStudy& study,
                           const RunOutcome& outcome, const DesignRunFacts& facts);
 
-/// The docs table of a study section described by a field list ("task.orientations",
-/// "task.workspace", "output"), from the same list its reader and the resolved writer use.
+/// The docs table of a study section described by a field list, from the same list its reader
+/// and the resolved writer use: "machine hexapod", "machine.parameters MODEL" (a leg-chain
+/// model), "task.region box", "task.region cylinder", "task.orientations", "task.workspace",
+/// "objectives[]", "constraints[]", "constraints[] actuator", "output".
 std::string design_study_fields_markdown(std::string_view section);
 
 }  // namespace pkmopt

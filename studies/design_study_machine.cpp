@@ -11,6 +11,8 @@
 
 #include "io/actuator_catalog_file.hpp"
 #include "io/csv.hpp"
+#include "io/field_list.hpp"
+#include "io/hexapod_fields.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "io/machine_file_lathe.hpp"
@@ -25,134 +27,130 @@
 
 namespace pkmopt::design_study_detail {
 
-int positive_int(const YamlValue& v) {
-  const long long value = v.as_int();
-  if (value < 1 || value > 1000) v.fail("an integer in 1..1000", v.describe());
-  return static_cast<int>(value);
-}
+namespace {
 
-double angle_deg(const YamlValue& v, double lo, double hi) {
-  const double value = v.as_double();
-  if (value < lo || value > hi)
-    v.fail(fmt::format("an angle in [{}, {}] degrees", lo, hi), v.describe());
-  return deg_to_rad(value);
-}
+// The doc line of each hexapod design parameter (in the order of DesignParameterIndex).
+constexpr const char* kHexapodParameterDocs[kNumDesignParameters] = {
+    "radius r_b of the base joint circle",
+    "radius r_p of the platform joint circle",
+    "angle between the two joints of a base pair",
+    "angle between the two joints of a platform pair",
+    "shortest leg",
+    "max_length = min_length + stroke",
+    "the task region is lifted by this along base z"};
 
-void read_parameters(const YamlValue& section, HexapodDesignSpec& spec, DesignStudy& study) {
-  std::vector<std::string> names;
-  for (int i = 0; i < kNumDesignParameters; ++i) names.emplace_back(design_parameter_name(i));
-  section.check_keys(names);
-  for (int i = 0; i < kNumDesignParameters; ++i) {
-    const auto v = section.optional(design_parameter_name(i));
-    if (!v) continue;
-    const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;
-    ParameterRange range;
-    if (v->is_map()) {
-      v->check_keys({"min", "max"});
-      study.parameter_ranges[i] = {v->required("min").as_double(), v->required("max").as_double()};
-      range.lower = study.parameter_ranges[i].first * scale;
-      range.upper = study.parameter_ranges[i].second * scale;
-      if (!(range.lower < range.upper))
-        v->required("max").fail("max > min", v->required("max").describe());
-    } else {
-      study.parameter_ranges[i] = {v->as_double(), v->as_double()};
-      range.lower = range.upper = study.parameter_ranges[i].first * scale;
-    }
-    const bool may_be_negative = i == kHomeHeight;
-    const bool may_be_zero = design_parameter_in_degrees(i);
-    if (!may_be_negative && (range.lower < 0.0 || (!may_be_zero && range.lower == 0.0)))
-      v->fail(may_be_zero ? "values >= 0" : "values > 0", v->describe());
-    if (design_parameter_in_degrees(i) && range.upper >= deg_to_rad(120))
-      v->fail("separations below 120 degrees", v->describe());
-    spec.parameters[i] = range;
+// The hexapod default design parameters (file units): the sample hexapod of docs/conventions.md.
+constexpr double kHexapodParameterDefaults[kNumDesignParameters] = {0.60, 0.25, 20, 20,
+                                                                    0.70, 0.45, 0.0};
+
+FieldRule hexapod_parameter_rule(int i) {
+  FieldRule rule{.unit = design_parameter_in_degrees(i) ? "deg" : "m",
+                 .doc = kHexapodParameterDocs[i]};
+  if (design_parameter_in_degrees(i)) {
+    rule.min = 0;
+    rule.max = 120;
+    rule.max_exclusive = true;
+  } else if (i != kHomeHeight) {
+    rule.min = 0;
+    rule.min_exclusive = true;
   }
+  return rule;
 }
 
-std::string triple(const double* v, int n) {
-  std::string text;
-  for (int i = 0; i < n; ++i) text += (i ? ", " : "") + format_number(v[i]);
-  return "[" + text + "]";
+}  // namespace
+
+template <class Fields>
+void describe_fields(Fields& f, HexapodStudyMachine& m) {
+  f.note("model", "hexapod", "", "required", "the machine model");
+  f.section("parameters", {}, [&](auto& g) {
+    for (int i = 0; i < kNumDesignParameters; ++i) {
+      auto& [lo, hi] = m.ranges[static_cast<std::size_t>(i)];
+      FieldBounds bounds{lo, hi};
+      g.field(design_parameter_name(i), bounds, hexapod_parameter_rule(i));
+    }
+  });
+  f.section("legs", {.required = true},
+            [&](auto& g) { describe_leg_stiffness(g, m.design.stiffness); });
+  f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, m.design.joints); });
+  f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, m.design.tcp); });
+  describe_actuator_error(f, m.design.actuator_error);
 }
 
-// Reads an angle in degrees (file value kept for the resolved study) and returns radians.
-double angle_deg_kept(const YamlValue& v, double lo, double hi, double& file_value) {
-  const double rad = angle_deg(v, lo, hi);
-  file_value = v.as_double();
-  return rad;
+HexapodStudyMachine default_hexapod_study_machine() {
+  HexapodStudyMachine m;
+  for (int i = 0; i < kNumDesignParameters; ++i)
+    m.ranges[static_cast<std::size_t>(i)] = {kHexapodParameterDefaults[i],
+                                             kHexapodParameterDefaults[i]};
+  m.design = HexapodDesignSpec{}.machine_template;
+  m.design.stiffness = LegStiffness{};
+  m.design.joints = HexapodJointLimits{};
+  m.design.tcp.setZero();
+  return m;
+}
+
+std::string hexapod_study_machine_markdown() {
+  HexapodStudyMachine m = default_hexapod_study_machine();
+  FieldDocs docs;
+  describe_fields(docs, m);
+  return docs.markdown();
 }
 
 void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy& study,
                   std::string& yaml) {
-  machine.check_keys({"model", "parameters", "legs", "joints", "tool", "actuator_error"});
+  HexapodStudyMachine m = default_hexapod_study_machine();
+  read_fields(machine, m);
   const YamlValue model = machine.required("model");
   if (model.as_string() != "hexapod") model.fail("'hexapod'", model.describe());
-  const std::array<double, kNumDesignParameters> defaults = {0.60, 0.25, 20, 20, 0.70, 0.45, 0.0};
+  check_leg_stiffness(machine.required("legs"), m.design.stiffness);
+  normalize_joint_axes(machine, m.design.joints);
+  study.parameter_ranges = m.ranges;
   for (int i = 0; i < kNumDesignParameters; ++i) {
-    study.parameter_ranges[i] = {defaults[i], defaults[i]};
     const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;
-    spec.parameters[i] = {defaults[i] * scale, defaults[i] * scale};
+    const auto [lo, hi] = m.ranges[static_cast<std::size_t>(i)];
+    spec.parameters[static_cast<std::size_t>(i)] = {lo * scale, hi * scale};
   }
-  if (auto v = machine.optional("parameters")) read_parameters(*v, spec, study);
-  HexapodDesign& d = spec.machine_template;
-  const YamlValue legs = machine.required("legs");
-  legs.check_keys({"axial_stiffness", "E", "area", "actuator_stiffness"});
-  d.stiffness = LegStiffness{};
-  if (auto v = legs.optional("axial_stiffness")) {
-    if (legs.has("E") || legs.has("area"))
-      v->fail("either axial_stiffness or E and area, not both");
-    d.stiffness.axial_stiffness = v->as_positive();
-  } else {
-    d.stiffness.E = legs.required("E").as_positive();
-    d.stiffness.area = legs.required("area").as_positive();
-  }
-  if (auto v = legs.optional("actuator_stiffness"))
-    d.stiffness.actuator_stiffness = v->as_positive();
-  d.joints = HexapodJointLimits{};
-  double base_deg = 0.0, platform_deg = 0.0;
-  if (auto joints = machine.optional("joints")) {
-    joints->check_keys({"base_max_angle_deg", "platform_max_angle_deg"});
-    if (auto v = joints->optional("base_max_angle_deg"))
-      d.joints.base_max_angle = angle_deg_kept(*v, 1, 179, base_deg);
-    if (auto v = joints->optional("platform_max_angle_deg"))
-      d.joints.platform_max_angle = angle_deg_kept(*v, 1, 179, platform_deg);
-  }
-  d.tcp.setZero();
-  if (auto tool = machine.optional("tool")) {
-    tool->check_keys({"tcp"});
-    const std::vector<double> tcp = tool->required("tcp").as_doubles(3);
-    d.tcp = Eigen::Vector3d(tcp[0], tcp[1], tcp[2]);
-  }
-  if (auto v = machine.optional("actuator_error")) d.actuator_error = v->as_positive();
+  spec.machine_template = m.design;
+  FieldWriter writer;
+  describe_fields(writer, m);
+  yaml += "machine:\n  model: hexapod\n" + writer.block(2);
+}
 
-  yaml += "machine:\n  model: hexapod\n  parameters:\n";
-  for (int i = 0; i < kNumDesignParameters; ++i) {
-    const auto [lo, hi] = study.parameter_ranges[i];
-    yaml += fmt::format(
-        "    {}: {}\n", design_parameter_name(i),
-        lo == hi ? format_number(lo)
-                 : fmt::format("{{min: {}, max: {}}}", format_number(lo), format_number(hi)));
+// The rule of a family parameter; `expected` holds the message text the rule points to.
+FieldRule family_parameter_rule(const FamilyParameter& p, std::string& expected) {
+  FieldRule rule{.unit = p.unit, .doc = p.doc};
+  if (!p.may_be_negative) {
+    rule.min = 0;
+    rule.min_exclusive = !p.may_be_zero;
   }
-  if (d.stiffness.axial_stiffness > 0.0)
-    yaml +=
-        fmt::format("  legs: {{axial_stiffness: {}", format_number(d.stiffness.axial_stiffness));
-  else
-    yaml += fmt::format("  legs: {{E: {}, area: {}", format_number(d.stiffness.E),
-                        format_number(d.stiffness.area));
-  if (d.stiffness.actuator_stiffness > 0.0)
-    yaml += fmt::format(", actuator_stiffness: {}", format_number(d.stiffness.actuator_stiffness));
-  yaml += "}\n";
-  std::string joints;
-  if (std::isfinite(d.joints.base_max_angle))
-    joints += fmt::format("base_max_angle_deg: {}", format_number(base_deg));
-  if (std::isfinite(d.joints.platform_max_angle))
-    joints += fmt::format("{}platform_max_angle_deg: {}", joints.empty() ? "" : ", ",
-                          format_number(platform_deg));
-  const bool unlimited =
-      !std::isfinite(d.joints.base_max_angle) || !std::isfinite(d.joints.platform_max_angle);
-  yaml += "  joints: {" + joints + "}" + (unlimited ? "  # a missing limit: unlimited" : "") + "\n";
-  const double tcp[3] = {d.tcp.x(), d.tcp.y(), d.tcp.z()};
-  yaml += "  tool: {tcp: " + triple(tcp) + "}\n";
-  yaml += "  actuator_error: " + format_number(d.actuator_error) + "\n";
+  if (std::isfinite(p.max_abs)) {
+    if (p.may_be_negative) rule.min = -p.max_abs;
+    rule.max = p.max_abs;
+    expected = p.may_be_negative
+                   ? fmt::format("values within [-{0}, {0}] {1}", format_number(p.max_abs), p.unit)
+                   : fmt::format("values within [0, {}] {}", format_number(p.max_abs), p.unit);
+    rule.expected = expected;
+  }
+  return rule;
+}
+
+template <class Fields>
+void describe_family_parameters(Fields& g, const DesignFamily& family, DesignStudy& study) {
+  for (std::size_t i = 0; i < family.parameters.size(); ++i) {
+    std::string expected;
+    FieldBounds bounds{study.parameters[i].min, study.parameters[i].max};
+    g.field(family.parameters[i].name, bounds,
+            family_parameter_rule(family.parameters[i], expected));
+  }
+}
+
+std::string family_parameters_markdown(const std::string& model) {
+  const DesignFamily family = *leg_chain_family(model, nullptr);
+  DesignStudy study;
+  for (const FamilyParameter& p : family.parameters)
+    study.parameters.push_back({p.name, p.unit, p.default_value, p.default_value});
+  FieldDocs docs;
+  describe_family_parameters(docs, family, study);
+  return docs.markdown();
 }
 
 // The design family of a leg-chain model built around a template design (nullopt: not one).
@@ -199,39 +197,16 @@ void read_leg_chain_machine(const YamlValue& machine, const std::string& model,
   for (const FamilyParameter& p : family.parameters)
     study.parameters.push_back({p.name, p.unit, p.default_value, p.default_value});
   if (auto section = machine.optional("parameters")) {
-    std::vector<std::string> names;
-    for (const FamilyParameter& p : family.parameters) names.push_back(p.name);
-    section->check_keys(names);
-    for (std::size_t i = 0; i < family.parameters.size(); ++i) {
-      const FamilyParameter& parameter = family.parameters[i];
-      const auto v = section->optional(parameter.name);
-      if (!v) continue;
-      double lo = 0.0, hi = 0.0;
-      if (v->is_map()) {
-        v->check_keys({"min", "max"});
-        lo = v->required("min").as_double();
-        hi = v->required("max").as_double();
-        if (!(lo < hi)) v->required("max").fail("max > min", v->required("max").describe());
-      } else {
-        lo = hi = v->as_double();
-      }
-      if (!parameter.may_be_negative && (lo < 0.0 || (!parameter.may_be_zero && lo == 0.0)))
-        v->fail(parameter.may_be_zero ? "values >= 0" : "values > 0", v->describe());
-      if (std::abs(lo) > parameter.max_abs || std::abs(hi) > parameter.max_abs)
-        v->fail(fmt::format("values within [-{0}, {0}] {1}", format_number(parameter.max_abs),
-                            parameter.unit),
-                v->describe());
-      study.parameters[i].min = lo;
-      study.parameters[i].max = hi;
-      spec.parameters[i] = {parameter.to_internal(lo), parameter.to_internal(hi)};
-    }
+    FieldReader::read_section(*section,
+                              [&](auto& g) { describe_family_parameters(g, family, study); });
+    for (std::size_t i = 0; i < family.parameters.size(); ++i)
+      if (section->has(family.parameters[i].name))
+        spec.parameters[i] = {family.parameters[i].to_internal(study.parameters[i].min),
+                              family.parameters[i].to_internal(study.parameters[i].max)};
   }
-  yaml += "machine:\n  model: " + model + "\n  parameters:\n";
-  for (const StudyParameter& p : study.parameters)
-    yaml += fmt::format(
-        "    {}: {}\n", p.name,
-        p.free() ? fmt::format("{{min: {}, max: {}}}", format_number(p.min), format_number(p.max))
-                 : format_number(p.min));
+  FieldWriter writer;
+  writer.section("parameters", {}, [&](auto& g) { describe_family_parameters(g, family, study); });
+  yaml += "machine:\n  model: " + model + "\n" + writer.block(2);
   // The template's own keys: the machine file of the defaults without the parameter keys.
   std::istringstream lines(family_machine_file(family.design(family.default_parameters())));
   for (std::string line; std::getline(lines, line);) {

@@ -2,6 +2,7 @@
 // schema and load_design_study, which calls these). Internal to the studies layer.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -28,6 +29,120 @@ struct TaskWorkspaceSection {
   double yaw_deg = 0.0;
   double step_deg = 5.0;
 };
+
+/// task.region with shape: box, in file units: a grid of points[a] positions along each axis
+/// (one: the centre) spanning size[a] around the centre.
+struct BoxRegionSection {
+  std::array<double, 3> centre{};
+  std::array<double, 3> size{};
+  std::array<int, 3> points{1, 1, 1};
+};
+
+/// task.region with shape: cylinder, in file units: the centre, `rings` rings of `per_ring`
+/// points each, on `layers` layers spanning `height` along z.
+struct CylinderRegionSection {
+  std::array<double, 3> centre{};
+  double radius = 0.0;
+  double height = 0.0;
+  int rings = 1;
+  int per_ring = 6;
+  int layers = 1;
+};
+
+/// The hexapod `machine:` section: the design parameters' ranges (file units: m and degrees;
+/// min == max for a fixed parameter) and the template design's stiffness, joints, tool and
+/// actuator error.
+struct HexapodStudyMachine {
+  std::array<std::pair<double, double>, kNumDesignParameters> ranges{};
+  HexapodDesign design;
+};
+
+/// One entry of `objectives:` (exactly one of the two keys; -1: not given).
+struct ObjectiveEntry {
+  int minimize = -1;
+  int maximize = -1;
+};
+
+/// One `{metric, max|min}` entry of `constraints:`.
+struct ConstraintEntry {
+  int metric = -1;
+  std::optional<double> max;
+  std::optional<double> min;
+};
+
+/// One `{actuator, catalog}` entry of `constraints:` (hexapod studies).
+struct ActuatorConstraintEntry {
+  std::string actuator;
+  std::string catalog;
+};
+
+/// "one of stiffness_min, singularity_margin, ...": every metric name, for messages.
+const std::string& metric_names_text();
+
+/// The metric names as a FieldChoice over DesignMetric codes.
+FieldChoice<int> metric_choice(int& member);
+
+template <class Fields>
+void describe_fields(Fields& f, BoxRegionSection& b) {
+  f.note("shape", "box or cylinder", "", "required", "the region's shape");
+  f.field("centre", b.centre,
+          {.required = true, .unit = "m", .doc = "centre of the region in the base frame"});
+  f.field("size", b.size,
+          {.min = 0, .required = true, .unit = "m", .doc = "edge lengths along x, y and z"});
+  f.field("points", b.points,
+          {.min = 1, .max = 1000, .doc = "grid points along x, y and z (1: the centre's value)"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, CylinderRegionSection& c) {
+  f.note("shape", "box or cylinder", "", "required", "the region's shape");
+  f.field("centre", c.centre,
+          {.required = true, .unit = "m", .doc = "centre of the region in the base frame"});
+  f.field("radius", c.radius,
+          {.min = 0, .required = true, .unit = "m", .doc = "radius of the outermost ring"});
+  f.field("height", c.height,
+          {.min = 0, .required = true, .unit = "m", .doc = "extent of the layers along z"});
+  f.field("rings", c.rings,
+          {.min = 0, .max = 100, .doc = "rings of points around the centre point, evenly spaced"});
+  f.field("per_ring", c.per_ring, {.min = 1, .max = 1000, .doc = "points on each ring"});
+  f.field("layers", c.layers, {.min = 1, .max = 1000, .doc = "layers along z"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, ObjectiveEntry& o) {
+  const std::string& names = metric_names_text();
+  FieldChoice<int> minimize = metric_choice(o.minimize);
+  FieldChoice<int> maximize = metric_choice(o.maximize);
+  f.field("minimize", minimize, {.expected = names, .doc = "a metric to minimise"});
+  f.field("maximize", maximize, {.expected = names, .doc = "a metric to maximise"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, ConstraintEntry& c) {
+  FieldChoice<int> metric = metric_choice(c.metric);
+  f.field("metric", metric,
+          {.required = true, .expected = metric_names_text(), .doc = "the bounded metric"});
+  f.field("max", c.max, {.doc = "upper bound g = metric − max ≤ 0 (give max or min)"});
+  f.field("min", c.min, {.doc = "lower bound g = min − metric ≤ 0"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, ActuatorConstraintEntry& a) {
+  f.field(
+      "actuator", a.actuator,
+      {.required = true,
+       .expected = "an entry name of the catalog, or cheapest",
+       .doc = "the legs are this catalog entry, or cheapest: the optimiser chooses per design"});
+  f.field("catalog", a.catalog,
+          {.required = true,
+           .expected = "a path",
+           .doc = "actuator catalog file, relative to the study file"});
+}
+
+/// The docs table of the hexapod machine section (defaults: the sample hexapod).
+std::string hexapod_study_machine_markdown();
+/// The docs table of a leg-chain family's `machine.parameters` (defaults: the model's design).
+std::string family_parameters_markdown(const std::string& model);
 
 /// output: which extra result files a run writes.
 struct OutputSection {
@@ -94,15 +209,6 @@ void describe_fields(Fields& f, OutputSection& o) {
 /// {actuator: cheapest, catalog: FILE}: the optimiser chooses the entry.
 inline constexpr const char* kCheapestActuator = "cheapest";
 
-/// An integer >= 1.
-int positive_int(const YamlValue& v);
-/// An angle in degrees within [lo, hi], returned in radians.
-double angle_deg(const YamlValue& v, double lo, double hi);
-/// An angle in degrees within [lo, hi] (radians returned); `file_value` keeps the degrees.
-double angle_deg_kept(const YamlValue& v, double lo, double hi, double& file_value);
-/// "[a, b, c]" of the first n values, numbers in their shortest round-trip form.
-std::string triple(const double* v, int n = 3);
-
 /// The hexapod `machine:` section (parameters, legs, joints, tool, actuator_error); appends its
 /// resolved YAML to `yaml`.
 void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy& study,
@@ -115,8 +221,6 @@ void read_leg_chain_machine(const YamlValue& machine, const std::string& model,
 
 /// The `task:` section; appends its resolved YAML to `yaml`.
 void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study, std::string& yaml);
-/// A metric name of an objective or constraint.
-DesignMetric read_metric(const YamlValue& v);
 /// {actuator: NAME | cheapest, catalog: FILE}; returns the resolved YAML line.
 std::string read_actuator_constraint(const YamlValue& c, const std::string& study_path,
                                      HexapodDesignSpec& spec, DesignStudy& study);

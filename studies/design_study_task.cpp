@@ -38,46 +38,28 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   const YamlValue region = task.required("region");
   region.expect_map();
   const YamlValue shape = region.required("shape");
-  const std::vector<double> c = region.required("centre").as_doubles(3);
-  const Eigen::Vector3d centre(c[0], c[1], c[2]);
-  study.task_centre = {c[0], c[1], c[2]};
   yaml += "task:\n";
   if (shape.as_string() == "box") {
-    region.check_keys({"shape", "centre", "size", "points"});
-    const YamlValue size_value = region.required("size");
-    const std::vector<double> size = size_value.as_doubles(3);
-    for (double s : size)
-      if (s < 0.0) size_value.fail("sizes >= 0 (m)", size_value.describe());
-    Eigen::Vector3i counts(1, 1, 1);
-    if (auto v = region.optional("points")) {
-      const std::vector<YamlValue> n = v->elements(3);
-      for (int a = 0; a < 3; ++a) counts(a) = positive_int(n[a]);
-    }
-    task_spec.poses = box_task_poses(centre, 0.5 * Eigen::Vector3d(size[0], size[1], size[2]),
-                                     counts, tilt, yaw, step);
-    study.task_positions = static_cast<std::size_t>(counts.prod());
-    yaml += fmt::format("  region: {{shape: box, centre: {}, size: {}, points: [{}, {}, {}]}}\n",
-                        triple(c.data()), triple(size.data()), counts(0), counts(1), counts(2));
-  } else if (shape.as_string() == "cylinder") {
-    region.check_keys({"shape", "centre", "radius", "height", "rings", "per_ring", "layers"});
-    const double radius = region.required("radius").as_double();
-    const double height = region.required("height").as_double();
-    if (radius < 0.0) region.required("radius").fail("a radius >= 0 (m)", "a negative number");
-    if (height < 0.0) region.required("height").fail("a height >= 0 (m)", "a negative number");
-    int rings = 1, per_ring = 6, layers = 1;
-    if (auto v = region.optional("rings")) {
-      rings = static_cast<int>(v->as_int());
-      if (rings < 0 || rings > 100) v->fail("an integer in 0..100", v->describe());
-    }
-    if (auto v = region.optional("per_ring")) per_ring = positive_int(*v);
-    if (auto v = region.optional("layers")) layers = positive_int(*v);
+    BoxRegionSection box;
+    read_fields(region, box);
+    const Eigen::Vector3d centre(box.centre[0], box.centre[1], box.centre[2]);
+    const Eigen::Vector3i counts(box.points[0], box.points[1], box.points[2]);
     task_spec.poses =
-        cylinder_task_poses(centre, radius, height, rings, per_ring, layers, tilt, yaw, step);
-    study.task_positions = static_cast<std::size_t>((1 + rings * per_ring) * layers);
-    yaml += fmt::format(
-        "  region: {{shape: cylinder, centre: {}, radius: {}, height: {}, rings: {}, per_ring: "
-        "{}, layers: {}}}\n",
-        triple(c.data()), format_number(radius), format_number(height), rings, per_ring, layers);
+        box_task_poses(centre, 0.5 * Eigen::Vector3d(box.size[0], box.size[1], box.size[2]), counts,
+                       tilt, yaw, step);
+    study.task_centre = box.centre;
+    study.task_positions = static_cast<std::size_t>(counts.prod());
+    yaml += "  region: {shape: box, " + fields_flow_map(box).substr(1) + "\n";
+  } else if (shape.as_string() == "cylinder") {
+    CylinderRegionSection cylinder;
+    read_fields(region, cylinder);
+    const Eigen::Vector3d centre(cylinder.centre[0], cylinder.centre[1], cylinder.centre[2]);
+    task_spec.poses = cylinder_task_poses(centre, cylinder.radius, cylinder.height, cylinder.rings,
+                                          cylinder.per_ring, cylinder.layers, tilt, yaw, step);
+    study.task_centre = cylinder.centre;
+    study.task_positions =
+        static_cast<std::size_t>((1 + cylinder.rings * cylinder.per_ring) * cylinder.layers);
+    yaml += "  region: {shape: cylinder, " + fields_flow_map(cylinder).substr(1) + "\n";
   } else {
     shape.fail("'box' or 'cylinder'", shape.describe());
   }
@@ -91,10 +73,9 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     task_spec.wrench = task_wrench.wrench;
     wrench_origin = task_wrench.origin;
   }
-  const double wrench[6] = {task_spec.wrench(0), task_spec.wrench(1), task_spec.wrench(2),
-                            task_spec.wrench(3), task_spec.wrench(4), task_spec.wrench(5)};
+  const std::vector<double> wrench(task_spec.wrench.data(), task_spec.wrench.data() + 6);
   if (!wrench_origin.empty()) yaml += "  # wrench from the cutting model: " + wrench_origin + "\n";
-  yaml += "  wrench: " + triple(wrench, 6) + "\n";
+  yaml += "  wrench: " + field_detail::value_text(wrench) + "\n";
   TaskWorkspaceSection workspace;
   if (auto w = task.optional("workspace")) read_fields(*w, workspace);
   task_spec.workspace.resolution = workspace.resolution;
@@ -104,14 +85,22 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   yaml += "  workspace: " + fields_flow_map(workspace) + "\n";
 }
 
-DesignMetric read_metric(const YamlValue& v) {
-  const std::optional<DesignMetric> metric = design_metric_from_name(v.as_string());
-  if (!metric)
-    v.fail(
-        "one of stiffness_min, singularity_margin, leg_force_max, tcp_error_max, "
-        "workspace_volume, conditioning_index, machine_size, actuator_cost, actuator_overload",
-        v.describe());
-  return *metric;
+const std::string& metric_names_text() {
+  static const std::string text = [] {
+    std::string names;
+    for (int m = 0; m < kNumDesignMetrics; ++m)
+      names += (m == 0 ? "one of " : ", ") +
+               std::string(design_metric_name(static_cast<DesignMetric>(m)));
+    return names;
+  }();
+  return text;
+}
+
+FieldChoice<int> metric_choice(int& member) {
+  FieldChoice<int> choice{member, {}};
+  for (int m = 0; m < kNumDesignMetrics; ++m)
+    choice.options.emplace_back(design_metric_name(static_cast<DesignMetric>(m)), m);
+  return choice;
 }
 
 // {actuator: NAME, catalog: FILE}: the legs are that catalog entry. Adds leg_force_max <= its
@@ -123,9 +112,10 @@ DesignMetric read_metric(const YamlValue& v) {
 // from anywhere).
 std::string read_actuator_constraint(const YamlValue& c, const std::string& study_path,
                                      HexapodDesignSpec& spec, DesignStudy& study) {
-  c.check_keys({"actuator", "catalog"});
+  ActuatorConstraintEntry entry_keys;
+  read_fields(c, entry_keys);
   const YamlValue catalog_value = c.required("catalog");
-  std::filesystem::path catalog_path = catalog_value.as_string();
+  std::filesystem::path catalog_path = entry_keys.catalog;
   if (catalog_path.is_relative())
     catalog_path = std::filesystem::path(study_path).parent_path() / catalog_path;
   if (!std::filesystem::exists(catalog_path))
@@ -134,7 +124,7 @@ std::string read_actuator_constraint(const YamlValue& c, const std::string& stud
   catalog_path = std::filesystem::absolute(catalog_path).lexically_normal();
   const ActuatorCatalog catalog = load_actuator_catalog(catalog_path.string());
   const YamlValue name_value = c.required("actuator");
-  const std::string name = name_value.as_string();
+  const std::string name = entry_keys.actuator;
   int stroke = -1;
   for (int i = 0; i < kNumDesignParameters; ++i) {
     if (design_parameter_name(i) == "stroke") stroke = i;

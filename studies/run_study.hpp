@@ -34,13 +34,13 @@ struct StudyRunOptions {
 /// What a finished run says about itself (the files in `out` hold the results).
 struct StudyRunResult {
   bool design_study = false;
-  std::string name;          ///< the study's name
-  std::string algorithm;     ///< as in the study file (nsga2, nlopt:SLSQP, ...)
-  std::string problem;       ///< the problem's name (benchmark studies)
-  std::string status;        ///< ok, no_feasible_design, or the single solver's status
-  std::string message;       ///< the optimizer's message (empty when it has none)
-  std::size_t designs = 0;   ///< points of the front
-  long long evaluations = 0; ///< fitness evaluations requested by the optimizer
+  std::string name;           ///< the study's name
+  std::string algorithm;      ///< as in the study file (nsga2, nlopt:SLSQP, ...)
+  std::string problem;        ///< the problem's name (benchmark studies)
+  std::string status;         ///< ok, no_feasible_design, or the single solver's status
+  std::string message;        ///< the optimizer's message (empty when it has none)
+  std::size_t designs = 0;    ///< points of the front
+  long long evaluations = 0;  ///< fitness evaluations requested by the optimizer
   std::size_t from_cache = 0;
   std::size_t failed = 0;
   double optimizer_seconds = 0.0;

@@ -310,6 +310,88 @@ TEST(FieldListKinds, WriterGivesFlowListsAndDegreesAndLeavesUnmatchedChoicesOut)
   EXPECT_EQ(nested.block(), "a: 1\nsub:\n  b: 2\n");
 }
 
+// A design-parameter section: FieldBounds (fixed or free) and an integer list.
+struct ParameterOptions {
+  double radius_lo = 0.5, radius_hi = 0.5;
+  double height_lo = 0.0, height_hi = 0.0;
+  std::array<int, 3> points{1, 1, 1};
+};
+
+template <class Fields>
+void describe_fields(Fields& f, ParameterOptions& o) {
+  FieldBounds radius{o.radius_lo, o.radius_hi};
+  FieldBounds height{o.height_lo, o.height_hi};
+  f.field("radius", radius, {.min = 0, .min_exclusive = true, .unit = "m", .doc = "r"});
+  f.field("height", height, {.doc = "h"});
+  f.field("points", o.points, {.min = 1, .max = 1000, .doc = "grid"});
+}
+
+std::string parameter_error_of(const std::string& yaml) {
+  try {
+    ParameterOptions o;
+    read_fields(YamlValue::load_string(yaml, "p.yaml"), o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(FieldListBounds, ReadsFixedAndFreeParametersAndIntegerLists) {
+  ParameterOptions o;
+  read_fields(
+      YamlValue::load_string(
+          "{radius: {min: 0.25, max: 0.75}, height: -0.125, points: [2, 3, 1000]}", "p.yaml"),
+      o);
+  EXPECT_EQ(o.radius_lo, 0.25);
+  EXPECT_EQ(o.radius_hi, 0.75);
+  EXPECT_EQ(o.height_lo, -0.125);
+  EXPECT_EQ(o.height_hi, -0.125);
+  EXPECT_EQ(o.points, (std::array<int, 3>{2, 3, 1000}));
+  // Written back: free as {min, max}, fixed as the number; and read again to the same values.
+  const std::string yaml = fields_flow_map(o);
+  EXPECT_EQ(yaml, "{radius: {min: 0.25, max: 0.75}, height: -0.125, points: [2, 3, 1000]}");
+  ParameterOptions again;
+  read_fields(YamlValue::load_string(yaml, "p.yaml"), again);
+  EXPECT_EQ(again.radius_lo, o.radius_lo);
+  EXPECT_EQ(again.radius_hi, o.radius_hi);
+  EXPECT_EQ(again.points, o.points);
+}
+
+TEST(FieldListBounds, BadBoundsAndCountsGiveLocatedMessages) {
+  EXPECT_EQ(parameter_error_of("{radius: {min: 0.5, max: 0.5}}"),
+            "p.yaml:1:26: radius.max: expected max > min, found '0.5'");
+  EXPECT_EQ(parameter_error_of("{radius: {min: 0, max: 0.5}}"),
+            "p.yaml:1:10: radius: expected values > 0, found a map");
+  EXPECT_EQ(parameter_error_of("{radius: -1}"),
+            "p.yaml:1:10: radius: expected values > 0, found '-1'");
+  EXPECT_EQ(parameter_error_of("{radius: {min: 0.1, mx: 0.5}}"),
+            "p.yaml:1:21: radius.mx: unknown key 'mx'; allowed keys here: min, max");
+  EXPECT_EQ(parameter_error_of("{points: [1, 0, 1]}"),
+            "p.yaml:1:14: points[1]: expected an integer in [1, 1000], found '0'");
+  EXPECT_EQ(parameter_error_of("{points: [1, 1.5, 1]}").find("points[1]: expected an integer"),
+            std::string("p.yaml:1:14: ").size());
+  EXPECT_EQ(parameter_error_of("{points: [1, 1]}"),
+            "p.yaml:1:10: points: expected a list of 3, found a list of 2");
+}
+
+TEST(FieldListBounds, DocsAndNestedBlocksIndentEachLevel) {
+  EXPECT_EQ(
+      fields_markdown(ParameterOptions{}),
+      "| key | allowed | unit | default | meaning |\n"
+      "| --- | --- | --- | --- | --- |\n"
+      "| `radius` | a number (fixed) or {min, max} with min < max (free); values > 0 | m | "
+      "0.5 | r |\n"
+      "| `height` | a number (fixed) or {min, max} with min < max (free); finite values | – | "
+      "0 | h |\n"
+      "| `points` | a list of 3 integers in [1, 1000] | – | [1, 1, 1] | grid |\n");
+  ParameterOptions o;
+  FieldWriter writer;
+  writer.section("outer", {},
+                 [&](auto& g) { g.section("inner", {}, [&](auto& h) { describe_fields(h, o); }); });
+  EXPECT_EQ(writer.block(2),
+            "  outer:\n    inner:\n      radius: 0.5\n      height: 0\n      points: [1, 1, 1]\n");
+}
+
 TEST(FieldListKinds, DocsTableDescribesEachKind) {
   EXPECT_EQ(
       fields_markdown(MachineOptions{}),

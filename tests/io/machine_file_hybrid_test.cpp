@@ -1,15 +1,18 @@
 // Tests of io/machine_file_hybrid: the field list of the hybrid machine file gives the docs table
 // of docs/hybrid-machines.md and the reader takes every key of it (the code, the axis names and the
-// module file are read by hand next to it).
+// module file are read by hand next to it); the writer's files read back to the same design.
 #include "io/machine_file_hybrid.hpp"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "io/input_error.hpp"
+#include "models/pose.hpp"
 
 namespace pkmopt {
 namespace {
@@ -80,6 +83,130 @@ TEST(HybridMachineFileFields, ListsHaveOneEntryPerAxis) {
             file +
                 "2:39: serial.colour: unknown key 'colour'; allowed keys here: code, axes, "
                 "range, stiffness, error");
+}
+
+// Every hybrid machine file shipped in the repo (a line `model: hybrid` in a .yaml file).
+std::vector<std::string> shipped_hybrid_files() {
+  std::vector<std::string> files;
+  for (const char* dir : {"examples", "studies", "tests"}) {
+    const std::filesystem::path root = std::filesystem::path(PKMOPT_SOURCE_DIR) / dir;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root)) {
+      if (!entry.is_regular_file() || entry.path().extension() != ".yaml") continue;
+      std::ifstream in(entry.path());
+      std::stringstream text;
+      text << in.rdbuf();
+      const std::string t = "\n" + text.str();
+      if (t.find("\nmodel: hybrid\n") != std::string::npos) files.push_back(entry.path().string());
+    }
+  }
+  return files;
+}
+
+// Every member equal (==); the module compared by what a machine tells about itself.
+void expect_same_design(const HybridDesign& a, const HybridDesign& b) {
+  ASSERT_EQ(a.chain.elements().size(), b.chain.elements().size());
+  for (std::size_t i = 0; i < a.chain.elements().size(); ++i) {
+    const ChainElement& x = a.chain.elements()[i];
+    const ChainElement& y = b.chain.elements()[i];
+    EXPECT_EQ(x.motion, y.motion) << "element " << i;
+    EXPECT_EQ(x.variable, y.variable) << "element " << i;
+    EXPECT_EQ(x.value, y.value) << "element " << i;
+    EXPECT_EQ(x.name, y.name) << "element " << i;
+  }
+  EXPECT_EQ(a.chain.num_variables(), b.chain.num_variables());
+  ASSERT_EQ(a.axes.size(), b.axes.size());
+  for (std::size_t i = 0; i < a.axes.size(); ++i) {
+    EXPECT_EQ(a.axes[i].min, b.axes[i].min) << "axis " << i;
+    EXPECT_EQ(a.axes[i].max, b.axes[i].max) << "axis " << i;
+    EXPECT_EQ(a.axes[i].stiffness, b.axes[i].stiffness) << "axis " << i;
+    EXPECT_EQ(a.axes[i].error, b.axes[i].error) << "axis " << i;
+  }
+  EXPECT_EQ(a.home, b.home);
+  ASSERT_NE(a.module, nullptr);
+  ASSERT_NE(b.module, nullptr);
+  EXPECT_EQ(a.module->model(), b.module->model());
+  EXPECT_EQ(a.module->num_actuators(), b.module->num_actuators());
+  EXPECT_EQ(a.module->revolute_actuators(), b.module->revolute_actuators());
+  EXPECT_EQ(a.module->envelope_volume(), b.module->envelope_volume());
+}
+
+// Written, then read by the strict reader as the file `path`; the design must be the same and
+// writing it again the same text.
+void expect_round_trip(const HybridDesign& design, const std::string& module_file,
+                       const std::string& path) {
+  const std::string text = hybrid_design_to_yaml(design, module_file);
+  SCOPED_TRACE(path + ":\n" + text);
+  HybridDesign again;
+  ASSERT_NO_THROW(again = read_hybrid_design(YamlValue::load_string(text, path)));
+  expect_same_design(design, again);
+  EXPECT_EQ(hybrid_design_to_yaml(again, module_file), text);
+}
+
+TEST(HybridMachineFileWriter, ShippedFilesRoundTripExactly) {
+  const std::vector<std::string> files = shipped_hybrid_files();
+  EXPECT_GE(files.size(), 2u);  // examples/hybrid_long_axis_hexapod.yaml, hybrid_gantry_3prs.yaml
+  for (const std::string& path : files) {
+    const YamlValue root = YamlValue::load_file(path);
+    const HybridDesign design = read_hybrid_design(root);
+    // Written next to the original: the module named as the original names it.
+    expect_round_trip(design, root.required("parallel").required("file").as_string(), path);
+  }
+}
+
+TEST(HybridMachineFileWriter, WritesEveryKey) {
+  HybridDesign design =
+      read_hybrid_design(yaml("model: hybrid\nserial: {code: \"1 2\", range: [[-1, 1], [-1, 1]]}\n"
+                              "parallel: {file: hexapod.yaml, home: [0, 0, 0.9]}\n"));
+  // Constants of every kind (a rotation whose degrees need more than 12 digits), names that
+  // YAML must quote, values without a short decimal form.
+  design.chain =
+      SerialChain({{.motion = 3, .variable = false, .value = -0.25, .name = ""},
+                   {.motion = 1, .variable = true, .value = 0.0, .name = "X"},
+                   {.motion = 4, .variable = false, .value = deg_to_rad(30.0), .name = ""},
+                   {.motion = 2, .variable = true, .value = 0.0, .name = "Y: \"second\" \\ axis"},
+                   {.motion = 6, .variable = false, .value = deg_to_rad(1.0 / 3.0), .name = ""},
+                   {.motion = 5, .variable = false, .value = deg_to_rad(-12.5), .name = ""},
+                   {.motion = 1, .variable = false, .value = 0.1 + 0.2, .name = ""}});
+  design.axes = {{.min = -1.5, .max = 1.0 / 3.0, .stiffness = 1.5e8, .error = 0.0},
+                 {.min = 0.0, .max = 0.0, .stiffness = 0.0, .error = 2e-6 / 3.0}};
+  design.home = Eigen::Vector3d(0.1, -0.2, 0.9 + 1e-12);
+  const std::string text = hybrid_design_to_yaml(design, "hexapod.yaml");
+  for (const char* key :
+       {"model: hybrid\n", "\n  code: ", "\n  axes: ", "\n  range: ", "\n  stiffness: ",
+        "\n  error: ", "\nparallel:\n  file: hexapod.yaml\n", "\n  home: "})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " missing in\n" << text;
+  EXPECT_NE(text.find("code: \"3:-0.25 1 4:30 2 6:"), std::string::npos) << text;
+  EXPECT_NE(text.find("axes: [X, \"Y: \\\"second\\\" \\\\ axis\"]"), std::string::npos) << text;
+  expect_round_trip(design, "hexapod.yaml", kExamples + "hybrid_test.yaml");
+}
+
+TEST(HybridMachineFileWriter, LeavesDefaultsOut) {
+  const HybridDesign design =
+      read_hybrid_design(yaml("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n"
+                              "parallel: {file: hexapod.yaml, home: [0, 0, 0.9]}\n"));
+  // No axis names, all axes rigid and exact: axes, stiffness and error are left out.
+  EXPECT_EQ(hybrid_design_to_yaml(design, "hexapod.yaml"),
+            "model: hybrid\nserial:\n  code: \"1\"\n  range: [[-1, 1]]\n"
+            "parallel:\n  file: hexapod.yaml\n  home: [0, 0, 0.9]\n");
+  expect_round_trip(design, "hexapod.yaml", kExamples + "hybrid_test.yaml");
+}
+
+TEST(HybridMachineFileWriter, ModuleFileIsResolvedFromTheWrittenFile) {
+  const std::string example = kExamples + "hybrid_gantry_3prs.yaml";
+  const HybridDesign design = read_hybrid_design(YamlValue::load_file(example));
+  // A file written to another directory names the module relative to that directory ...
+  const std::filesystem::path elsewhere =
+      std::filesystem::path(PKMOPT_SOURCE_DIR) / "tests" / "io" / "written.yaml";
+  const std::string relative =
+      std::filesystem::relative(kExamples + "tripod_3prs.yaml", elsewhere.parent_path()).string();
+  EXPECT_EQ(relative, "../../examples/tripod_3prs.yaml");
+  expect_round_trip(design, relative, elsewhere.string());
+  // ... or absolutely; the original's relative name does not resolve from there.
+  const std::string absolute = std::filesystem::absolute(kExamples + "tripod_3prs.yaml").string();
+  expect_round_trip(design, absolute, "/nonexistent/written.yaml");
+  EXPECT_THROW((void)read_hybrid_design(YamlValue::load_string(
+                   hybrid_design_to_yaml(design, "tripod_3prs.yaml"), elsewhere.string())),
+               InputError);
 }
 
 }  // namespace
