@@ -315,9 +315,20 @@ bool within(const FieldRule& r, T value) {
 }
 
 /// A real as written: degrees for angle fields, `digits` significant digits or the shortest text.
+/// Angle fields: the shortest degree text that reads back (times pi/180) to the same radians,
+/// so that 60 degrees read from a file is written as 60, not 59.99999999999999.
 inline std::string real_text(double value, const FieldRule& r) {
-  const double v = r.degrees ? value * (180.0 / std::numbers::pi) : value;
-  return r.digits > 0 ? fmt::format("{:.{}g}", v, r.digits) : format_number(v);
+  if (!r.degrees)
+    return r.digits > 0 ? fmt::format("{:.{}g}", value, r.digits) : format_number(value);
+  const double v = value * (180.0 / std::numbers::pi);
+  if (r.digits > 0) return fmt::format("{:.{}g}", v, r.digits);
+  if (!std::isfinite(v)) return format_number(v);
+  for (int digits = 1; digits <= 17; ++digits) {
+    const std::string text = fmt::format("{:.{}g}", v, digits);
+    if (std::stod(text) * (std::numbers::pi / 180.0) == value)
+      return format_number(std::stod(text));
+  }
+  return format_number(v);
 }
 
 template <class T>
