@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/compliance_metrics.hpp"
 #include "models/linalg.hpp"
 #include "models/pose_solver.hpp"
 #include "models/require.hpp"
@@ -31,10 +32,17 @@ std::string fmt_double(double v) {
   return os.str();
 }
 
-// 1 / k_i of a leg of length q (m/N): the leg and the actuator in series.
-double leg_compliance(const LegStiffness& k, double q) {
-  double compliance = k.axial_stiffness > 0.0 ? 1.0 / k.axial_stiffness : q / (k.E * k.area);
+// 1 / k_i of a leg of length q (m/N): the compliance chain in series (models/hexapod.hpp).
+double leg_compliance(const LegStiffness& k, double q, double q_min, double q_max) {
+  double compliance = 0.0;
+  if (k.axial_stiffness > 0.0)
+    compliance = 1.0 / k.axial_stiffness;
+  else if (k.E > 0.0 && k.area > 0.0)
+    compliance = q / (k.E * k.area);
   if (k.actuator_stiffness > 0.0) compliance += 1.0 / k.actuator_stiffness;
+  if (k.drive.any()) compliance += drive_compliance(k.drive, q, q_min, q_max, false);
+  if (k.base_joint_stiffness > 0.0) compliance += 1.0 / k.base_joint_stiffness;
+  if (k.platform_joint_stiffness > 0.0) compliance += 1.0 / k.platform_joint_stiffness;
   return compliance;
 }
 
@@ -97,8 +105,19 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
   require(std::isfinite(k.actuator_stiffness) && k.actuator_stiffness >= 0.0,
           "legs.actuator_stiffness must be a finite number >= 0, found " +
               fmt_double(k.actuator_stiffness));
-  require(k.axial_stiffness > 0.0 || (k.E > 0.0 && k.area > 0.0),
-          "legs need a stiffness: axial_stiffness > 0, or E > 0 and area > 0");
+  require(std::isfinite(k.base_joint_stiffness) && k.base_joint_stiffness >= 0.0,
+          "legs.base_joint_stiffness must be a finite number >= 0, found " +
+              fmt_double(k.base_joint_stiffness));
+  require(std::isfinite(k.platform_joint_stiffness) && k.platform_joint_stiffness >= 0.0,
+          "legs.platform_joint_stiffness must be a finite number >= 0, found " +
+              fmt_double(k.platform_joint_stiffness));
+  check_screw_drive(k.drive, "legs.drive", false);
+  require(k.axial_stiffness > 0.0 || (k.E > 0.0) == (k.area > 0.0),
+          "legs: the strut needs both E and area (or axial_stiffness)");
+  require(k.axial_stiffness > 0.0 || (k.E > 0.0 && k.area > 0.0) || k.actuator_stiffness > 0.0 ||
+              k.drive.any() || k.base_joint_stiffness > 0.0 || k.platform_joint_stiffness > 0.0,
+          "legs need a stiffness: axial_stiffness > 0, or E > 0 and area > 0, or a drive, "
+          "actuator or joint stiffness");
   const HexapodJointLimits& j = design_.joints;
   require(!std::isnan(j.base_max_angle) && j.base_max_angle > 0.0,
           "joints.base_max_angle_deg must be > 0");
@@ -134,7 +153,9 @@ std::unique_ptr<MachineData> Hexapod::make_data() const {
   return std::make_unique<HexapodData>(*this);
 }
 
-double Hexapod::leg_stiffness(double q) const { return 1.0 / leg_compliance(design_.stiffness, q); }
+double Hexapod::leg_stiffness(double q) const {
+  return 1.0 / leg_compliance(design_.stiffness, q, design_.min_length, design_.max_length);
+}
 
 bool Hexapod::compute_kinematics(HexapodData& d, const Pose& pose) const {
   return compute_kinematics(d, pose, rotation_zyx<double>(pose.angles));
@@ -185,7 +206,8 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   out.q = d.q;
   Vec6<double> compliance;  // 1 / k_i
   for (int i = 0; i < 6; ++i) {
-    compliance(i) = leg_compliance(design_.stiffness, d.q(i));
+    compliance(i) =
+        leg_compliance(design_.stiffness, d.q(i), design_.min_length, design_.max_length);
     d.leg_stiffness(i) = 1.0 / compliance(i);
   }
 
@@ -221,6 +243,7 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     out.stiffness_min = 0.0;
     out.tau = Vec6<double>::Constant(kInf);
     out.tcp_error_max = kInf;
+    set_singular_compliance_metrics(out);
     return;
   }
   out.singularity_margin = rcond;
@@ -267,6 +290,21 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   }
   const double best_norm2 = *std::max_element(best, best + 8);
   out.tcp_error_max = design_.actuator_error * std::sqrt(best_norm2);
+  compute_compliance_metrics(d, compliance, wrench, out);
+}
+
+void Hexapod::compute_compliance_metrics(const HexapodData& d, const Vec6<double>& compliance,
+                                         const Wrench& wrench, PoseMetrics& out) const {
+  // C = J^-1 diag(1/k) J^-T; the loaded stiffness adds each leg's geometric term under its
+  // force tau_i (models/compliance_metrics.hpp).
+  const Eigen::PartialPivLU<Matrix6d> lu(d.J);
+  const Matrix6d Jinv = lu.inverse();
+  const Matrix6d C = Jinv * compliance.asDiagonal() * Jinv.transpose();
+  fill_compliance_metrics(C, wrench, out);
+  Matrix6d G = Matrix6d::Zero();
+  for (int i = 0; i < 6; ++i) G += geometric_stiffness(out.tau(i), d.s.col(i), d.r.col(i), d.q(i));
+  out.stiffness_min_loaded =
+      loaded_stiffness_min(DofMatrix(C), DofMatrix(G), TwistMap(Matrix6d::Identity()));
 }
 
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,

@@ -8,8 +8,12 @@
 //   Inverse Jacobian (6x6, at the TCP, base axes): q_dot = J [v; omega],
 //   row i = [s_i^T, (r_i x s_i)^T].
 //   Leg forces for a wrench w at the TCP: J^T tau = w, tension positive.
-//   Leg stiffness: k_i = 1 / (1/k_leg_i + 1/actuator_stiffness), where k_leg_i is either
-//   the constant `axial_stiffness` or E * area / q_i; the actuator term is optional.
+//   Leg stiffness (the compliance chain, every term optional):
+//     1/k_i = 1/k_strut_i + 1/actuator_stiffness + c_drive(q_i) + 1/k_base_joint +
+//     1/k_platform_joint
+//   k_strut_i the constant `axial_stiffness` or E * area / q_i; c_drive the ball screw (its free
+//   length grows linearly with q_i from min to max length), nut, bearing and motor torsion
+//   (models/compliance_chain.hpp).
 //   Stiffness matrix K = J^T diag(k) J; compliance C = K^-1;
 //   stiffness_min = 1 / lambda_max(C_tt) (C_tt the translational 3x3 block of C).
 //   singularity_margin = 1 / cond(J_h), J_h = J diag(1, 1, 1, 1/L, 1/L, 1/L).
@@ -41,6 +45,7 @@
 #include <optional>
 #include <string>
 
+#include "models/compliance_chain.hpp"
 #include "models/machine.hpp"
 #include "models/pose.hpp"
 
@@ -49,13 +54,19 @@ namespace pkmopt {
 /// Below this reciprocal condition number of J_h a pose counts as singular.
 inline constexpr double kSingularRcond = 1e-12;
 
-/// How stiff each leg is along its axis.
+/// How stiff each leg is along its axis: the compliance chain strut + actuator + drive train +
+/// joints in series (every element optional, at least one given).
 struct LegStiffness {
-  /// Constant axial stiffness of the leg (N/m); used when > 0, instead of E * area / q.
+  /// Constant axial stiffness of the strut (N/m); used when > 0, instead of E * area / q.
   double axial_stiffness = 0.0;
-  double E = 0.0;                   ///< Young's modulus of the leg (Pa)
-  double area = 0.0;                ///< cross-section of the leg (m^2)
-  double actuator_stiffness = 0.0;  ///< in series with the leg (N/m); 0 = absent (rigid)
+  double E = 0.0;                   ///< Young's modulus of the strut (Pa)
+  double area = 0.0;                ///< cross-section of the strut (m^2)
+  double actuator_stiffness = 0.0;  ///< lumped actuator, in series (N/m); 0 = absent (rigid)
+  /// Ball screw (free length growing with the leg length between min and max_length), nut,
+  /// bearing and motor torsion (models/compliance_chain.hpp).
+  ScrewDrive drive{};
+  double base_joint_stiffness = 0.0;      ///< axial stiffness of the base joint (N/m); 0 = rigid
+  double platform_joint_stiffness = 0.0;  ///< axial stiffness of the platform joint (N/m)
 };
 
 /// Universal / spherical joint limits. An angle limit of +inf means unlimited.
@@ -198,6 +209,10 @@ class Hexapod final : public Machine {
 
  private:
   bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
+  /// compliance, tcp_deflection, tcp_rotation_deflection, stiffness_min_direction and
+  /// stiffness_min_loaded of a non-singular pose (after compute_metrics' kinematics and tau).
+  void compute_compliance_metrics(const HexapodData& data, const Vec6<double>& compliance,
+                                  const Wrench& wrench, PoseMetrics& out) const;
 
   HexapodDesign design_;
   Eigen::Matrix<double, 3, 6> platform_rel_;

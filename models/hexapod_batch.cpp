@@ -42,9 +42,15 @@ struct BatchConstants {
   double inv_characteristic_length;
   bool constant_stiffness;
   double constant_compliance;  // 1 / axial_stiffness
+  bool has_strut_EA;           // E and area given (and no axial_stiffness)
   double EA;                   // E * area
   bool has_actuator;
   double actuator_compliance;  // 1 / actuator_stiffness
+  bool has_chain;              // drive train or joint compliances given
+  double chain_compliance;     // nut, bearing, motor torsion and joints (constant part)
+  bool has_screw;
+  double screw_length_min, screw_length_slope;  // free length l0 + slope (q - min_length)
+  double screw_inv_EA;                          // 1 / (E_s pi d^2 / 4)
   double actuator_error;
 
   explicit BatchConstants(const Hexapod& hexapod) {
@@ -68,9 +74,28 @@ struct BatchConstants {
     inv_characteristic_length = 1.0 / hexapod.characteristic_length();
     constant_stiffness = d.stiffness.axial_stiffness > 0.0;
     constant_compliance = constant_stiffness ? 1.0 / d.stiffness.axial_stiffness : 0.0;
+    has_strut_EA = !constant_stiffness && d.stiffness.E > 0.0 && d.stiffness.area > 0.0;
     EA = d.stiffness.E * d.stiffness.area;
     has_actuator = d.stiffness.actuator_stiffness > 0.0;
     actuator_compliance = has_actuator ? 1.0 / d.stiffness.actuator_stiffness : 0.0;
+    // The drive train: its constant part (nut, bearing, torsion) is the drive's compliance
+    // without the screw; the screw's free length is linear in the leg length.
+    const ScrewDrive& drive = d.stiffness.drive;
+    ScrewDrive no_screw = drive;
+    no_screw.E = no_screw.root_diameter = 0.0;
+    chain_compliance = drive_compliance(no_screw, 0.0, d.min_length, d.max_length, false);
+    if (d.stiffness.base_joint_stiffness > 0.0)
+      chain_compliance += 1.0 / d.stiffness.base_joint_stiffness;
+    if (d.stiffness.platform_joint_stiffness > 0.0)
+      chain_compliance += 1.0 / d.stiffness.platform_joint_stiffness;
+    has_screw = drive.has_screw();
+    has_chain = has_screw || chain_compliance > 0.0;
+    screw_length_min = drive.free_length_at_min;
+    screw_length_slope =
+        (drive.free_length_at_max - drive.free_length_at_min) / (d.max_length - d.min_length);
+    screw_inv_EA =
+        has_screw ? 4.0 / (drive.E * std::numbers::pi * drive.root_diameter * drive.root_diameter)
+                  : 0.0;
     actuator_error = d.actuator_error;
   }
 };

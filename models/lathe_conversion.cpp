@@ -1,10 +1,11 @@
 #include "models/lathe_conversion.hpp"
-#include "models/require.hpp"
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "models/require.hpp"
 
 namespace pkmopt {
 namespace {
@@ -25,18 +26,18 @@ LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
   require_lathe(finite_positive(d.strut_joint_spread), "strut_joint_spread must be > 0");
   require_lathe(d.carriage_min < d.carriage_max, "carriage_min must be < carriage_max");
   require_lathe(finite_positive(d.leg_min_length) && d.leg_min_length < d.leg_max_length,
-          "leg lengths must satisfy 0 < leg_min_length < leg_max_length");
+                "leg lengths must satisfy 0 < leg_min_length < leg_max_length");
   require_lathe(finite_positive(d.leg_base_spacing), "leg_base_spacing must be > 0");
   require_lathe(finite_positive(d.leg_joint_spacing), "leg_joint_spacing must be > 0");
   require_lathe(finite_positive(d.strut_max_angle) && d.strut_max_angle < 0.5 * std::numbers::pi,
-          "strut_max_angle must be in (0, 90) deg");
+                "strut_max_angle must be in (0, 90) deg");
   require_lathe(finite_positive(d.leg_max_angle) && d.leg_max_angle < std::numbers::pi,
-          "leg_max_angle must be in (0, 180) deg");
-  require_lathe(finite_positive(d.strut_E) && finite_positive(d.strut_area) && finite_positive(d.leg_E) &&
-              finite_positive(d.leg_area),
-          "E and areas must be > 0");
+                "leg_max_angle must be in (0, 180) deg");
+  require_lathe(finite_positive(d.strut_E) && finite_positive(d.strut_area) &&
+                    finite_positive(d.leg_E) && finite_positive(d.leg_area),
+                "E and areas must be > 0");
   require_lathe(d.carriage_stiffness >= 0.0 && d.leg_actuator_stiffness >= 0.0,
-          "actuator stiffnesses must be >= 0");
+                "actuator stiffnesses must be >= 0");
 
   LegChainDesign design;
   design.model = "lathe_16k20f3";

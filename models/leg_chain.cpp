@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "models/compliance_metrics.hpp"
 #include "models/hexapod.hpp"  // kSingularRcond
 #include "models/leg_chain_detail.hpp"
 #include "models/linalg.hpp"
@@ -119,6 +120,10 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
             name + "stiffness values must be finite numbers >= 0 (rods >= 1)");
     require(leg.axial_stiffness > 0.0 || (leg.E > 0.0 && leg.area > 0.0),
             name + "a link stiffness is needed: axial_stiffness > 0, or E > 0 and area > 0");
+    require(std::isfinite(leg.base_joint_stiffness) && leg.base_joint_stiffness >= 0.0 &&
+                std::isfinite(leg.platform_joint_stiffness) && leg.platform_joint_stiffness >= 0.0,
+            name + "joint stiffnesses must be finite numbers >= 0");
+    check_screw_drive(leg.drive, name + "drive", leg.kind == LegKind::kRUS);
     require(!std::isnan(leg.base_max_angle) && leg.base_max_angle > 0.0 &&
                 !std::isnan(leg.platform_max_angle) && leg.platform_max_angle > 0.0,
             name + "joint angle limits must be > 0");
@@ -189,6 +194,8 @@ std::unique_ptr<MachineData> LegChainMachine::make_data() const {
   d->A.resize(n, n);
   d->T.resize(6, n);
   d->k.resize(n);
+  d->actuator_compliance.resize(n);
+  d->link_compliance.resize(n);
   return d;
 }
 
@@ -438,7 +445,22 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     const double length = leg.kind == LegKind::kUPS ? d.q(i) : leg.link_length;
     double compliance = leg.axial_stiffness > 0.0 ? 1.0 / leg.axial_stiffness
                                                   : length / (leg.E * leg.area * leg.rods);
-    if (leg.actuator_stiffness > 0.0) compliance += d.B(i) * d.B(i) / leg.actuator_stiffness;
+    double actuator = 0.0;  // in the actuator's own unit (m/N or rad/(N*m))
+    if (leg.actuator_stiffness > 0.0) {
+      actuator = 1.0 / leg.actuator_stiffness;
+      compliance += d.B(i) * d.B(i) / leg.actuator_stiffness;
+    }
+    if (leg.drive.any()) {
+      const double drive =
+          drive_compliance(leg.drive, d.q(i), leg.q_min, leg.q_max, leg.kind == LegKind::kRUS);
+      actuator += drive;
+      compliance += d.B(i) * d.B(i) * drive;
+    }
+    if (leg.base_joint_stiffness > 0.0) compliance += 1.0 / (leg.base_joint_stiffness * leg.rods);
+    if (leg.platform_joint_stiffness > 0.0)
+      compliance += 1.0 / (leg.platform_joint_stiffness * leg.rods);
+    d.actuator_compliance(i) = actuator;
+    d.link_compliance(i) = compliance - d.B(i) * d.B(i) * actuator;
     d.k(i) = compliance > 0.0 ? 1.0 / compliance : kInf;
   }
 
@@ -464,6 +486,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
+    set_singular_compliance_metrics(out);
     return;
   }
   out.singularity_margin = rcond;
@@ -508,7 +531,10 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
+    set_singular_compliance_metrics(out);
+    return;
   }
+  compute_compliance_metrics(d, f, wrench, out);
 }
 
 bool LegChainMachine::translational_maps(

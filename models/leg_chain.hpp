@@ -58,10 +58,12 @@
 //     the tripod's revolute joints). Equivalently the rod forces are
 //     f = A^-T T^T w (tension positive) and tau_i = B_i f_i.
 //   Axial stiffness of leg i, seen at the platform point along s_i:
-//     k_i = 1 / (B_i^2 / k_act_i + 1 / k_link_i),
-//     k_act_i the actuator stiffness (N/m, or N*m/rad for RUS; 0 = rigid), k_link_i the link's
-//     axial stiffness: axial_stiffness, or E * area * rods / length (length q_i for UPS, the
-//     constant strut/rod length otherwise; `rods` = 2 for a parallelogram pair).
+//     k_i = 1 / (B_i^2 c_act_i + 1 / k_link_i + (1/k_base_joint + 1/k_platform_joint) / rods),
+//     c_act_i = 1/actuator_stiffness + the drive train's compliance at q_i (ball screw, nut,
+//     bearing, motor torsion; models/compliance_chain.hpp), in m/N or rad/(N*m) for RUS; every
+//     term optional (0 = rigid). k_link_i the link's axial stiffness: axial_stiffness, or
+//     E * area * rods / length (length q_i for UPS, the constant strut/rod length otherwise;
+//     `rods` = 2 for a parallelogram pair).
 //     K = A^T diag(k) A on the platform DOF; C = K^-1; C_tt the translational 3x3 block of
 //     T C T^T; stiffness_min = 1 / lambda_max(C_tt) (N/m). (The passive constraints - parallelogram
 //     bars, the tripod's revolute joints - are taken as rigid.)
@@ -104,6 +106,7 @@
 #include <string>
 #include <vector>
 
+#include "models/compliance_chain.hpp"
 #include "models/machine.hpp"
 #include "models/pose.hpp"
 
@@ -136,6 +139,12 @@ struct LegChainLeg {
   double area = 0.0;
   int rods = 1;  ///< parallel rods of the link (2 for a parallelogram pair)
   double actuator_stiffness = 0.0;
+  /// The actuator's drive train in series with actuator_stiffness (models/compliance_chain.hpp):
+  /// ball screw (free length linear in q over [q_min, q_max]), nut, bearing and motor torsion
+  /// (N·m/rad through the lead); a revolute actuator takes the torsion only.
+  ScrewDrive drive{};
+  double base_joint_stiffness = 0.0;      ///< axial stiffness of each rod's base-side joint (N/m)
+  double platform_joint_stiffness = 0.0;  ///< ... of each rod's platform joint (N/m)
 
   // Joint limits (+inf: unlimited). base_axis: base frame (UPS, PUS), crank frame at q = 0 (RUS).
   double base_max_angle = std::numeric_limits<double>::infinity();
@@ -175,8 +184,12 @@ class LegChainData : public MachineData {
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> q;  ///< actuator coordinates
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> B;  ///< diag of B
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> A;  ///< m x m
-  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> T;     ///< full twist = T * DOF twist (6 x m)
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> k;     ///< axial leg stiffness (N/m)
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> T;  ///< full twist = T * DOF twist (6 x m)
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> k;  ///< axial leg stiffness (N/m)
+  /// The actuator side of each leg's compliance chain (m/N, rad/(N*m) for RUS; 0 = rigid) ...
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> actuator_compliance;
+  /// ... and the link side (rods and joints, m/N, along s_i).
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1> link_compliance;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();      ///< TCP position actually used
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< platform rotation actually used
   bool pose_ok = true;  ///< the given rotation is one the platform can take (parasitic solved)
@@ -261,6 +274,12 @@ class LegChainMachine final : public Machine {
   /// The home pose moved by the mean displacement of the actuated points from home to q.
   Pose default_fk_start(const Eigen::VectorXd& q) const;
   double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
+  /// compliance, tcp_deflection, tcp_rotation_deflection, stiffness_min_direction and
+  /// stiffness_min_loaded of a non-singular pose, from the rod forces f (models/
+  /// leg_chain_compliance.cpp).
+  void compute_compliance_metrics(const LegChainData& d,
+                                  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>& f,
+                                  const Wrench& wrench, PoseMetrics& out) const;
 
   LegChainDesign design_;
   int dof_ = 6;
@@ -281,10 +300,13 @@ std::unique_ptr<Machine> make_leg_chain_machine(const LegChainDesign& design);
 
 /// Stiffness data shared by the named models.
 struct LinkStiffness {
-  double axial_stiffness = 0.0;     ///< N/m per link (used when > 0)
-  double E = 2.1e11;                ///< Pa
-  double area = 1.0e-4;             ///< m^2 per rod
-  double actuator_stiffness = 0.0;  ///< N/m (prismatic) or N*m/rad (revolute); 0 = rigid
+  double axial_stiffness = 0.0;           ///< N/m per link (used when > 0)
+  double E = 2.1e11;                      ///< Pa
+  double area = 1.0e-4;                   ///< m^2 per rod
+  double actuator_stiffness = 0.0;        ///< N/m (prismatic) or N*m/rad (revolute); 0 = rigid
+  ScrewDrive drive{};                       ///< the actuator's drive train (LegChainLeg::drive)
+  double base_joint_stiffness = 0.0;      ///< N/m per rod; 0 = rigid
+  double platform_joint_stiffness = 0.0;  ///< N/m per rod; 0 = rigid
 };
 
 /// Rotary (Clavel) delta, docs/conventions.md: pivots at base_radius, azimuth -90+120(i-1) deg,
@@ -300,8 +322,8 @@ struct DeltaDesign {
   double rod = 1.244;                    ///< m, parallelogram rod length
   double theta_min = -60.0 * kDegToRad;  ///< rad, drive range
   double theta_max = 100.0 * kDegToRad;
-  int branch = 1;                                     ///< +1 elbow-out (default), -1 elbow-in
-  LinkStiffness stiffness{0.0, 7.0e10, 5.0e-5, 0.0};  ///< rods: 2 per parallelogram
+  int branch = 1;                                        ///< +1 elbow-out (default), -1 elbow-in
+  LinkStiffness stiffness{.E = 7.0e10, .area = 5.0e-5};  ///< rods: 2 per parallelogram
   double elbow_max_angle = std::numeric_limits<double>::infinity();     ///< rad
   double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
@@ -324,7 +346,7 @@ struct LinearDeltaDesign {
   double inclination = 0.0;       ///< rad, guide tilt towards the centre
   double q_min = 0.0;             ///< m, carriage stroke
   double q_max = 0.6;
-  LinkStiffness stiffness{0.0, 7.0e10, 3.0e-5, 2.0e7};
+  LinkStiffness stiffness{.E = 7.0e10, .area = 3.0e-5, .actuator_stiffness = 2.0e7};
   double carriage_max_angle = std::numeric_limits<double>::infinity();  ///< rad
   double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
@@ -351,7 +373,7 @@ struct HexaglideDesign {
   Eigen::Matrix<double, 3, 6> platform_joints;
   double q_min = -1.2;  ///< m
   double q_max = 1.2;
-  LinkStiffness stiffness{0.0, 2.1e11, 3.0e-4, 2.0e8};
+  LinkStiffness stiffness{.E = 2.1e11, .area = 3.0e-4, .actuator_stiffness = 2.0e8};
   double carriage_max_angle = std::numeric_limits<double>::infinity();  ///< rad
   double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
@@ -381,10 +403,12 @@ struct Tripod3PrsDesign {
   double strut = 0.55;            ///< m
   double q_min = 0.0;             ///< m, slide stroke
   double q_max = 0.95;
-  double tool_length = 0.20;                            ///< m, TCP beyond the platform centre
-  double revolute_max_angle = 50.0 * kDegToRad;         ///< rad, strut from the slide's +z
-  double platform_max_angle = 70.0 * kDegToRad;         ///< rad, strut from the platform normal
-  LinkStiffness stiffness{0.0, 2.1e11, 6.0e-4, 2.0e8};  ///< struts (steel), ball-screw drives
+  double tool_length = 0.20;                     ///< m, TCP beyond the platform centre
+  double revolute_max_angle = 50.0 * kDegToRad;  ///< rad, strut from the slide's +z
+  double platform_max_angle = 70.0 * kDegToRad;  ///< rad, strut from the platform normal
+  LinkStiffness stiffness{.E = 2.1e11,
+                          .area = 6.0e-4,
+                          .actuator_stiffness = 2.0e8};  ///< struts (steel), ball-screw drives
   std::optional<double> characteristic_length;
   double actuator_error = 1e-5;  ///< m
 };

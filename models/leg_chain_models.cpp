@@ -23,6 +23,9 @@ void apply_stiffness(LegChainLeg& leg, const LinkStiffness& k, int rods) {
   leg.area = k.area;
   leg.rods = rods;
   leg.actuator_stiffness = k.actuator_stiffness;
+  leg.drive = k.drive;
+  leg.base_joint_stiffness = k.base_joint_stiffness;
+  leg.platform_joint_stiffness = k.platform_joint_stiffness;
 }
 
 }  // namespace

@@ -18,6 +18,17 @@
 //   det_j         det of the inverse Jacobian J
 //   tcp_error_max the largest TCP position error (m) for actuator errors within the box
 //                 |dq_i| <= actuator_error; +inf if singular
+//   compliance    C = K^-1 (6x6, twist [dp; dtheta] per wrench [f; m] at the TCP, base axes);
+//                 for platforms with fewer than 6 DOF the directions the passive constraints
+//                 hold are rigid (zero rows and columns) unless link compliance is modelled
+//   tcp_deflection           |(C w)_t| (m): how far the TCP moves under the analysed wrench
+//   tcp_rotation_deflection  |(C w)_r| (rad): how far the tool turns under it
+//   stiffness_min_direction  the unit force direction of stiffness_min (the eigenvector of C_tt
+//                 for its largest eigenvalue; sign: largest component positive)
+//   stiffness_min_loaded     1 / sigma_max(C_T,tt), C_T = K_T^-1 the loaded (tangent) compliance
+//                 with the geometric term of the leg forces under the wrench; 0 when K_T is
+//                 not positive definite (the loaded mechanism is unstable)
+//   All of them +inf (stiffness: 0, direction: 0) at a singular pose.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,7 +52,12 @@ struct PoseMetrics {
   double singularity_margin = 0.0;
   double det_j = 0.0;
   double tcp_error_max = 0.0;
-  bool singular = false;  ///< J numerically singular (see the model's header for the test)
+  bool singular = false;        ///< J numerically singular (see the model's header for the test)
+  double tcp_deflection = 0.0;  ///< m, |(C w)_t| under the analysed wrench
+  double tcp_rotation_deflection = 0.0;  ///< rad, |(C w)_r|
+  double stiffness_min_loaded = 0.0;     ///< N/m, with the legs' loads (geometric term)
+  Eigen::Vector3d stiffness_min_direction = Eigen::Vector3d::Zero();  ///< unit, base axes
+  Matrix6d compliance = Matrix6d::Zero();  ///< C = K^-1 at the TCP (twist per wrench)
 };
 
 /// Options of the forward kinematics solve.

@@ -13,6 +13,7 @@
 #include <Eigen/SVD>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
@@ -629,6 +630,218 @@ TEST(HexapodFastPath, MatchesReferenceNearSingularities) {
     expect_matches_reference(hexapod, pose, random_wrench(u), "fichter " + std::to_string(g));
   }
   EXPECT_GT(near_singular, 300);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The compliance chain, the compliance, the deflection under the wrench and the loaded stiffness.
+
+TEST(HexapodCompliance, ChainElementsAddInSeries) {
+  HexapodDesign d = sample_machines::conventions_hexapod_design();
+  const double q = 0.9;
+  const double before = 1.0 / Hexapod(d).leg_stiffness(q);
+  d.stiffness.drive = ScrewDrive{.E = 2.1e11,
+                                 .root_diameter = 0.025,
+                                 .free_length_at_min = 0.1,
+                                 .free_length_at_max = 0.55,
+                                 .nut_stiffness = 6e8,
+                                 .bearing_stiffness = 9e8,
+                                 .torsional_stiffness = 3000,
+                                 .lead = 0.01};
+  d.stiffness.base_joint_stiffness = 4e8;
+  d.stiffness.platform_joint_stiffness = 5e8;
+  // Hand sum: q = 0.9 of [0.7, 1.15] puts the nut at 0.1 + 0.45 * 0.2 / 0.45 = 0.3 m.
+  const double screw = 0.3 / (2.1e11 * std::numbers::pi * 0.025 * 0.025 / 4);
+  const double torsion = std::pow(0.01 / (2 * std::numbers::pi), 2) / 3000;
+  const double expected = before + screw + 1 / 6e8 + 1 / 9e8 + torsion + 1 / 4e8 + 1 / 5e8;
+  EXPECT_NEAR(1.0 / Hexapod(d).leg_stiffness(q), expected, 1e-14);
+  // A leg of drive and joints only (no strut term) is allowed; nothing at all is not.
+  d.stiffness.E = d.stiffness.area = d.stiffness.actuator_stiffness = 0.0;
+  EXPECT_NO_THROW(Hexapod{d});
+  d.stiffness = LegStiffness{};
+  EXPECT_THROW(Hexapod{d}, std::invalid_argument);
+}
+
+// The twist displacement dx = [dp; dtheta] applied to a pose (rotation exp([dtheta]x) R).
+Pose displaced(const Pose& pose, const Vec6<double>& dx) {
+  const Eigen::Matrix3d R = rotation_from_vector(dx.tail<3>()) * rotation_zyx<double>(pose.angles);
+  return Pose{pose.position + dx.head<3>(), angles_from_rotation(R)};
+}
+
+TEST(HexapodCompliance, ComplianceIsTheInverseOfTheStiffnessAndGivesTheDeflection) {
+  Uniform u(31);
+  for (int g = 0; g < 10; ++g) {
+    const Hexapod hexapod(sample_machines::random_hexapod_design(u));
+    const Pose pose = sample_machines::random_pose(u);
+    const Wrench w = random_wrench(u);
+    HexapodData data;
+    PoseMetrics m;
+    hexapod.analyze(data, pose, w, m);
+    if (m.singular) continue;
+    const Matrix6d K = hexapod.stiffness_matrix(pose);
+    EXPECT_LT((m.compliance * K - Matrix6d::Identity()).norm(), 1e-8);
+    const Vec6<double> dx = K.lu().solve(w);
+    EXPECT_NEAR(m.tcp_deflection, dx.head<3>().norm(), 1e-9 * dx.head<3>().norm());
+    EXPECT_NEAR(m.tcp_rotation_deflection, dx.tail<3>().norm(), 1e-9 * dx.tail<3>().norm());
+    // The worst direction: the force along it gives exactly 1/stiffness_min of displacement
+    // along it.
+    const Eigen::Vector3d v = m.stiffness_min_direction;
+    EXPECT_NEAR(v.dot(m.compliance.topLeftCorner<3, 3>() * v), 1.0 / m.stiffness_min,
+                1e-9 / m.stiffness_min);
+  }
+}
+
+// The wrench the legs need from outside at a displaced pose when each leg's tension changes by
+// k_i (q_i - q_i0) from tau0 (the leg springs), J(x)^T tau(x).
+Wrench spring_wrench(const Hexapod& hexapod, const Pose& pose, const Vec6<double>& tau0,
+                     const Vec6<double>& q0, const Vec6<double>& dx) {
+  const Pose moved = displaced(pose, dx);
+  const Vec6<double> q = hexapod.inverse_kinematics(moved);
+  Vec6<double> tau;
+  for (int i = 0; i < 6; ++i) tau(i) = tau0(i) + hexapod.leg_stiffness(q0(i)) * (q(i) - q0(i));
+  return hexapod.inverse_jacobian(moved).transpose() * tau;
+}
+
+TEST(HexapodCompliance, LoadedStiffnessMatchesFiniteDifferencesOfTheLoadedEquilibrium) {
+  Uniform u(32);
+  int checked = 0;
+  for (int g = 0; g < 12; ++g) {
+    const Hexapod hexapod(sample_machines::random_hexapod_design(u));
+    const Pose pose = sample_machines::random_pose(u);
+    // A heavy wrench, so that the geometric term shows: 50 kN and 5 kN m.
+    Wrench w = random_wrench(u);
+    w.head<3>() *= 5e4 / w.head<3>().norm();
+    w.tail<3>() *= 5e3 / w.tail<3>().norm();
+    HexapodData data;
+    PoseMetrics m;
+    hexapod.analyze(data, pose, w, m);
+    if (m.singular || m.singularity_margin < 1e-3) continue;
+    const Vec6<double> q0 = hexapod.inverse_kinematics(pose);
+    Matrix6d KT;
+    const double h = 1e-7;
+    for (int j = 0; j < 6; ++j) {
+      Vec6<double> dx = Vec6<double>::Zero();
+      dx(j) = h;
+      KT.col(j) = (spring_wrench(hexapod, pose, m.tau, q0, dx) -
+                   spring_wrench(hexapod, pose, m.tau, q0, -dx)) /
+                  (2 * h);
+    }
+    // The finite-difference tangent reduces to the unloaded stiffness without load ...
+    const Matrix6d K = hexapod.stiffness_matrix(pose);
+    EXPECT_GT((KT - K).norm(), 1e-6 * K.norm()) << "the load must change the stiffness";
+    // ... and gives the loaded metric by its definition: 1 / sigma_max of (K_T^-1)_tt.
+    const Eigen::Matrix3d CTtt = KT.inverse().topLeftCorner<3, 3>();
+    const double expected = 1.0 / Eigen::JacobiSVD<Eigen::Matrix3d>(CTtt).singularValues()(0);
+    EXPECT_NEAR(m.stiffness_min_loaded, expected, 1e-5 * expected);
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+}
+
+TEST(HexapodCompliance, LoadedEqualsUnloadedWithoutLoadAndFallsUnderCompression) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  const Pose pose{{0, 0, 0.9}, {0, 0, 0}};
+  HexapodData data;
+  PoseMetrics free, pressed;
+  hexapod.analyze(data, pose, Wrench::Zero(), free);
+  EXPECT_NEAR(free.stiffness_min_loaded, free.stiffness_min, 1e-9 * free.stiffness_min);
+  EXPECT_EQ(free.tcp_deflection, 0.0);
+  // A downward force compresses every leg (tau < 0): compressed legs lose lateral stiffness
+  // (the geometric term -|tau| Pi / q), so the loaded stiffness is the lower one.
+  Wrench down = Wrench::Zero();
+  down(2) = -2e5;
+  hexapod.analyze(data, pose, down, pressed);
+  ASSERT_TRUE((pressed.tau.array() < 0).all());
+  EXPECT_LT(pressed.stiffness_min_loaded, pressed.stiffness_min);
+}
+
+TEST(HexapodCompliance, DeflectionIsTheDisplacementOfTheLoadedEquilibriumFoundByTheFk) {
+  // The legs stretch by tau_i / k_i under the wrench; the FK of the stretched lengths is the
+  // loaded pose. For a small wrench its displacement is C w to first order.
+  Uniform u(33);
+  for (int g = 0; g < 6; ++g) {
+    const Hexapod hexapod(sample_machines::random_hexapod_design(u));
+    const Pose pose = sample_machines::random_pose(u);
+    Wrench w = random_wrench(u);
+    w *= 10.0 / w.head<3>().norm();  // 10 N: deflections of micrometres
+    HexapodData data;
+    PoseMetrics m;
+    hexapod.analyze(data, pose, w, m);
+    if (m.singular || m.singularity_margin < 1e-2) continue;
+    const Vec6<double> q0 = hexapod.inverse_kinematics(pose);
+    Pose loaded = pose;
+    for (int iteration = 0; iteration < 20; ++iteration) {
+      // Equilibrium at the loaded pose: tau = J(x)^-T w, legs at q0 + tau / k.
+      const Vec6<double> tau =
+          hexapod.inverse_jacobian(loaded).transpose().fullPivLu().solve(Vec6<double>(w));
+      Eigen::VectorXd q(6);
+      for (int i = 0; i < 6; ++i) q(i) = q0(i) + tau(i) / hexapod.leg_stiffness(q0(i));
+      const FkResult fk = hexapod.forward_kinematics(q, loaded, FkOptions{.tolerance = 1e-15});
+      ASSERT_TRUE(fk.converged) << fk.message;
+      loaded = fk.pose;
+    }
+    const double moved = (loaded.position - pose.position).norm();
+    EXPECT_NEAR(m.tcp_deflection, moved, 1e-4 * moved) << "design " << g;
+  }
+}
+
+// Published case: the cubic (orthogonal) Gough-Stewart platform of Geng & Haynes, "Six
+// degree-of-freedom active vibration control using the Stewart platforms", IEEE Trans. Control
+// Systems Technology 2(1), 1994, and Preumont et al., "A six-axis single-stage active vibration
+// isolator based on Stewart platform", J. Sound and Vibration 300, 2007: with the legs along the
+// edges of a cube whose main diagonal is vertical, K = k diag(2, 2, 2, 1.5 Hc^2, 1.5 Hc^2, 6 Hc^2)
+// at the cube's centre (Hc the height of the legs' span). The numbers of T. Dehaeze's
+// stewart-simscape tables (org/cubic-configuration.org, Hc = 100 mm, k = 1 N/m): diag 2, 2, 2,
+// 0.015, 0.015, 0.06 at the centre; with the TCP 70 mm above it K15 = -0.14, K24 = 0.14 and
+// K44 = K55 = 0.025 (printed to two digits).
+TEST(HexapodCompliance, CubicConfigurationHasThePublishedStiffness) {
+  const double Hc = 0.1, L = Hc * std::sqrt(3.0);
+  Eigen::Matrix3d R;  // columns: the cube's axes turned so that its diagonal is vertical
+  R.col(0) = Eigen::Vector3d(2, -1, -1).normalized();
+  R.col(1) = Eigen::Vector3d(0, 1, -1).normalized();
+  R.col(2) = Eigen::Vector3d(1, 1, 1).normalized();
+  auto vertex = [&](double x, double y, double z) {
+    return Eigen::Vector3d(R.transpose() * Eigen::Vector3d(x, y, z) -
+                           Eigen::Vector3d(0, 0, 1.5 * Hc));
+  };
+  const Eigen::Vector3d bottom[6] = {vertex(0, 0, L), vertex(L, 0, 0), vertex(L, 0, 0),
+                                     vertex(0, L, 0), vertex(0, L, 0), vertex(0, 0, L)};
+  const Eigen::Vector3d top[6] = {vertex(L, 0, L), vertex(L, 0, L), vertex(L, L, 0),
+                                  vertex(L, L, 0), vertex(0, L, L), vertex(0, L, L)};
+  for (const double d : {0.0, 0.07}) {
+    HexapodDesign design;
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector3d s = (top[i] - bottom[i]).normalized();
+      design.base_joints.col(i) = bottom[i] - 0.05 * s;  // anywhere on the leg's line
+      design.platform_joints.col(i) = top[i];            // platform frame = cube frame at home
+    }
+    design.tcp = Eigen::Vector3d(0, 0, d);
+    design.min_length = 0.1;
+    design.max_length = 0.5;
+    design.stiffness.axial_stiffness = 1.0;  // k = 1 N/m, as in the tables
+    const Hexapod hexapod(design);
+    const Matrix6d K = hexapod.stiffness_matrix(Pose{{0, 0, d}, {0, 0, 0}});
+    Matrix6d expected = Matrix6d::Zero();
+    expected.diagonal() << 2, 2, 2, 1.5 * Hc * Hc + 2 * d * d, 1.5 * Hc * Hc + 2 * d * d,
+        6 * Hc * Hc;
+    expected(0, 4) = expected(4, 0) = -2 * d;
+    expected(1, 3) = expected(3, 1) = 2 * d;
+    EXPECT_LT((K - expected).norm(), 1e-12) << K;
+    if (d == 0.0) {
+      EXPECT_NEAR(K(3, 3), 0.015, 5e-4);
+      EXPECT_NEAR(K(5, 5), 0.06, 5e-3);
+    } else {
+      EXPECT_NEAR(K(0, 4), -0.14, 5e-3);
+      EXPECT_NEAR(K(1, 3), 0.14, 5e-3);
+      EXPECT_NEAR(K(3, 3), 0.025, 5e-4);
+    }
+    // Uniform translational stiffness 2k at the centre: stiffness_min = 2 N/m.
+    HexapodData data;
+    PoseMetrics m;
+    hexapod.analyze(data, Pose{{0, 0, d}, {0, 0, 0}}, Wrench::Zero(), m);
+    if (d == 0.0) {
+      EXPECT_NEAR(m.stiffness_min, 2.0, 1e-12);
+    }
+  }
 }
 
 }  // namespace
