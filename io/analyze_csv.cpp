@@ -5,7 +5,7 @@
 namespace pkmopt {
 
 std::string analyze_csv(const Machine& machine, const PoseTable& poses,
-                        const std::vector<PoseMetrics>& metrics) {
+                        const std::vector<PoseMetrics>& metrics, const AnalyzeCsvOptions& options) {
   const CsvTable& table = poses.table;
   const std::vector<int> passthrough = poses.other_columns();
   const int na = machine.num_actuators();
@@ -15,6 +15,11 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
   for (int j = 1; j <= na; ++j) out << ",q_" << j;
   for (int j = 1; j <= na; ++j) out << ",tau_" << j;
   out << ",stiffness_min,singularity_margin,det_j,tcp_error_max";
+  out << ",tcp_deflection,tcp_rotation_deflection_deg,stiffness_min_loaded,stiffness_dir_x,"
+         "stiffness_dir_y,stiffness_dir_z";
+  if (options.compliance)
+    for (int a = 1; a <= 6; ++a)
+      for (int b = 1; b <= 6; ++b) out << ",C_" << a << b;
   for (int c : passthrough) out << ',' << csv_field(table.header[static_cast<std::size_t>(c)]);
   out << '\n';
   for (std::size_t i = 0; i < metrics.size(); ++i) {
@@ -30,6 +35,13 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
     line += ',' + format_number(m.singularity_margin);
     line += ',' + format_number(m.det_j);
     line += ',' + format_number(m.tcp_error_max);
+    line += ',' + format_number(m.tcp_deflection);
+    line += ',' + format_number(m.tcp_rotation_deflection * kRadToDeg);
+    line += ',' + format_number(m.stiffness_min_loaded);
+    for (int k = 0; k < 3; ++k) line += ',' + format_number(m.stiffness_min_direction(k) + 0.0);
+    if (options.compliance)
+      for (int a = 0; a < 6; ++a)
+        for (int b = 0; b < 6; ++b) line += ',' + format_number(m.compliance(a, b) + 0.0);
     for (int c : passthrough)
       line += ',' + csv_field(table.rows[i].cells[static_cast<std::size_t>(c)]);
     out << line << '\n';

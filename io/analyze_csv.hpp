@@ -1,9 +1,14 @@
 // The output CSV of `pkmopt analyze`: one row per pose, the columns of docs/conventions.md.
 //
 //   x,y,z,rx,ry,rz,reachable,q_1..q_n,tau_1..tau_n,stiffness_min,singularity_margin,det_j,
-//   tcp_error_max, then every other column of the pose file, unchanged.
-// q_i in m for prismatic actuators and degrees for revolute ones; tau_i in N or N·m; numbers in
-// the shortest text that reads back to the same double (format_number).
+//   tcp_error_max,tcp_deflection,tcp_rotation_deflection_deg,stiffness_min_loaded,
+//   stiffness_dir_x,stiffness_dir_y,stiffness_dir_z[,C_11..C_66], then every other column of
+//   the pose file, unchanged.
+// q_i in m for prismatic actuators and degrees for revolute ones; tau_i in N or N·m;
+// tcp_deflection in m and tcp_rotation_deflection_deg in degrees under the analysed wrench;
+// stiffness_min_loaded in N/m; stiffness_dir the unit force direction of stiffness_min; C_ab the
+// compliance (row a, column b; m/N, m/(N·m), rad/N, rad/(N·m)) with `compliance`. Numbers in the
+// shortest text that reads back to the same double (format_number).
 //
 // Example:
 //   const PoseTable poses = read_pose_csv("poses.csv");
@@ -19,8 +24,13 @@
 
 namespace pkmopt {
 
+struct AnalyzeCsvOptions {
+  bool compliance = false;  ///< add the 36 columns C_11..C_66 of the compliance matrix
+};
+
 /// The whole CSV text (header and one row per pose; `metrics[i]` belongs to `poses.poses[i]`).
 std::string analyze_csv(const Machine& machine, const PoseTable& poses,
-                        const std::vector<PoseMetrics>& metrics);
+                        const std::vector<PoseMetrics>& metrics,
+                        const AnalyzeCsvOptions& options = {});
 
 }  // namespace pkmopt

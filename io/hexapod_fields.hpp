@@ -12,13 +12,15 @@
 
 #include <cmath>
 
+#include "io/compliance_fields.hpp"
 #include "io/field_list.hpp"
 #include "io/yaml_reader.hpp"
 #include "models/hexapod.hpp"
 
 namespace pkmopt {
 
-/// axial_stiffness | E and area, actuator_stiffness (see docs/conventions.md for the formula).
+/// axial_stiffness | E and area, actuator_stiffness, drive, joint stiffnesses: the compliance
+/// chain of a leg (docs/stiffness.md).
 template <class Fields>
 void describe_leg_stiffness(Fields& g, LegStiffness& s) {
   g.field("axial_stiffness", s.axial_stiffness,
@@ -48,6 +50,9 @@ void describe_leg_stiffness(Fields& g, LegStiffness& s) {
            .zero_is_unset = true,
            .unit = "N/m",
            .doc = "in series with the leg: k = 1/(1/k_leg + 1/actuator_stiffness); unset: rigid"});
+  g.section("drive", {.doc = "the leg's ball-screw drive train, in series (docs/stiffness.md)"},
+            [&](auto& h) { describe_screw_drive(h, s.drive); });
+  describe_joint_stiffness(g, s.base_joint_stiffness, s.platform_joint_stiffness);
 }
 
 /// base/platform_max_angle_deg (unset: unlimited) and the joint axes (written when not default).
@@ -90,7 +95,8 @@ void describe_actuator_error(Fields& f, double& actuator_error) {
           {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
 }
 
-/// After the list has read `legs`: either axial_stiffness or E and area, not both, not neither.
+/// After the list has read `legs`: either axial_stiffness or E and area (not both; the pair
+/// complete), at least one element of the chain, and a consistent drive.
 void check_leg_stiffness(const YamlValue& legs, const LegStiffness& s);
 
 /// After the list has read `joints` (a key of `parent`, optional): the given axes are non-zero

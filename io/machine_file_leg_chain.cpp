@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "io/compliance_fields.hpp"
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
 #include "io/input_error.hpp"
@@ -105,7 +106,14 @@ void describe_links(Fields& f, std::string_view key, LinkStiffness& k, std::stri
     describe_link_stiffness(g, k.E, k.area, k.axial_stiffness,
                             {"Young's modulus of the links (with area)", per,
                              "constant axial stiffness of a link instead of E and area"});
+    describe_joint_stiffness(g, k.base_joint_stiffness, k.platform_joint_stiffness);
   });
+}
+
+// `drive:` the actuators' drive train, in series with their `*_stiffness`.
+template <class Fields>
+void describe_drive(Fields& f, ScrewDrive& drive, std::string_view doc) {
+  f.section("drive", {.doc = doc}, [&](auto& g) { describe_screw_drive(g, drive); });
 }
 
 template <class Fields>
@@ -210,6 +218,8 @@ void describe_fields(Fields& f, DeltaDesign& d) {
   describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)");
   f.field("drive_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N·m/rad", "motor and gearbox in series; unset: rigid"));
+  describe_drive(f, d.stiffness.drive,
+                 "the crank drive's torsion (torsional_stiffness only), in series");
   describe_joints(f, "elbow_max_angle_deg", d.elbow_max_angle,
                   "limit of the elbow joint angle (axis: the crank's down direction)",
                   d.platform_max_angle, "limit of the platform joint angle (axis: platform +z)");
@@ -237,6 +247,7 @@ void describe_fields(Fields& f, LinearDeltaDesign& d) {
   describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)");
   f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
+  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
   describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
                   "limit of the carriage joint angle", d.platform_max_angle,
                   "limit of the platform joint angle");
@@ -269,6 +280,7 @@ void describe_fields(Fields& f, HexaglideDesign& d) {
   describe_links(f, "struts", d.stiffness, "cross-section of a strut");
   f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
+  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
   describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
                   "limit of the carriage joint angle", d.platform_max_angle,
                   "limit of the platform joint angle");
@@ -293,6 +305,7 @@ void describe_fields(Fields& f, Tripod3PrsDesign& d) {
   describe_links(f, "struts", d.stiffness, "cross-section of a strut");
   f.field("slide_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "drive along the slide; unset: rigid"));
+  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
   describe_joints(f, "revolute_max_angle_deg", d.revolute_max_angle,
                   "limit of the strut's angle from the slide's +z (in the leg plane)",
                   d.platform_max_angle,
@@ -389,6 +402,7 @@ void describe_fields(Fields& f, LegChainLegFields& fields) {
              .max = 16,
              .doc = "parallel rods of the link (2 for a parallelogram pair)",
              .omit_when = [&leg] { return leg.rods == 1; }});
+    describe_joint_stiffness(g, leg.base_joint_stiffness, leg.platform_joint_stiffness);
   });
   f.section("joints", {}, [&](auto& g) {
     g.field("base_max_angle_deg", leg.base_max_angle,
@@ -413,6 +427,8 @@ void describe_fields(Fields& f, LegChainLegFields& fields) {
            .zero_is_unset = true,
            .unit = "N/m or N·m/rad",
            .doc = "actuator in series with the link (N·m/rad for RUS); unset: rigid"});
+  describe_drive(f, leg.drive,
+                 "the actuator's drive train in series (RUS: torsional_stiffness only)");
   if (all || !ups) {
     f.field("axis", leg.axis,
             {.required = !all,
@@ -458,6 +474,7 @@ DeltaDesign read_delta_design(const YamlValue& root) {
   DeltaDesign d = reader_start<DeltaDesign>();
   read_fields(root, d);
   check_links(root.required("rods"));
+  check_drive_section(root, d.stiffness.drive, true);
   validate(root, d, make_delta);
   return d;
 }
@@ -466,6 +483,7 @@ LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
   LinearDeltaDesign d = reader_start<LinearDeltaDesign>();
   read_fields(root, d);
   check_links(root.required("rods"));
+  check_drive_section(root, d.stiffness.drive, false);
   validate(root, d, make_linear_delta);
   return d;
 }
@@ -494,6 +512,7 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
                         semi_regular_platform_joints(radius, deg_to_rad(sep));
   }
   check_links(root.required("struts"));
+  check_drive_section(root, d.stiffness.drive, false);
   validate(root, d, make_hexaglide);
   return d;
 }
@@ -502,6 +521,7 @@ Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
   Tripod3PrsDesign d = reader_start<Tripod3PrsDesign>();
   read_fields(root, d);
   check_links(root.required("struts"));
+  check_drive_section(root, d.stiffness.drive, false);
   validate(root, d, make_tripod_3prs);
   return d;
 }
@@ -533,6 +553,7 @@ LegChainLeg read_leg(const YamlValue& node, PlatformMobility mobility, bool& rev
     check_non_zero(node, "plane_normal", leg.plane_normal);
   }
   check_links(node.required("link"));
+  check_drive_section(node, leg.drive, leg.kind == LegKind::kRUS);
   if (auto joints = node.optional("joints")) {
     check_non_zero(*joints, "base_axis", leg.base_axis);
     check_non_zero(*joints, "platform_axis", leg.platform_axis);

@@ -1,4 +1,5 @@
-// pkmopt analyze MACHINE.yaml --poses POSES.csv [--wrench fx,fy,fz,mx,my,mz] [--out FILE.csv]
+// pkmopt analyze MACHINE.yaml --poses POSES.csv [--wrench fx,fy,fz,mx,my,mz] [--compliance]
+//                [--out FILE.csv]
 #include <fmt/format.h>
 
 #include <iostream>
@@ -21,6 +22,7 @@ struct AnalyzeOptions {
   std::string poses_file;
   std::string wrench;
   std::string out_file;
+  bool compliance = false;
 };
 
 void run_analyze(const AnalyzeOptions& opt) {
@@ -33,7 +35,7 @@ void run_analyze(const AnalyzeOptions& opt) {
   }
   const PoseTable poses = read_pose_csv(opt.poses_file);
   const std::vector<PoseMetrics> metrics = analyze_poses(*machine, poses.poses, wrench);
-  const std::string csv = analyze_csv(*machine, poses, metrics);
+  const std::string csv = analyze_csv(*machine, poses, metrics, {.compliance = opt.compliance});
   if (opt.out_file.empty()) {
     std::cout << csv;
     std::cout.flush();
@@ -57,6 +59,9 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--wrench", opt->wrench,
                   "External wrench at the TCP, base axes: fx,fy,fz,mx,my,mz (N, N*m); default 0");
   cmd->add_option("--out", opt->out_file, "Output CSV (default: standard output)");
+  cmd->add_flag("--compliance", opt->compliance,
+                "Add the 6x6 compliance matrix at the TCP as columns C_11..C_66 (twist per wrench, "
+                "base axes)");
   cmd->callback([opt] { run_analyze(*opt); });
 }
 

@@ -56,7 +56,9 @@ TEST_F(Cli, AnalyzeWritesTheConventionColumns) {
   const pkmopt::CsvTable t = pkmopt::parse_csv(r.out, "out");
   const std::string expected_header =
       "x,y,z,rx,ry,rz,reachable,q_1,q_2,q_3,q_4,q_5,q_6,tau_1,tau_2,tau_3,tau_4,tau_5,tau_6,"
-      "stiffness_min,singularity_margin,det_j,tcp_error_max,label";
+      "stiffness_min,singularity_margin,det_j,tcp_error_max,tcp_deflection,"
+      "tcp_rotation_deflection_deg,stiffness_min_loaded,stiffness_dir_x,stiffness_dir_y,"
+      "stiffness_dir_z,label";
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')), expected_header);
   ASSERT_EQ(t.rows.size(), 2u);
   EXPECT_EQ(t.rows[1].cells.back(), "a,b");

@@ -99,14 +99,15 @@ TEST_F(LegChainCli, AnalyzeAndFkOnTheDelta) {
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[0],
             "x,y,z,rx,ry,rz,reachable,q_1,q_2,q_3,tau_1,tau_2,tau_3,stiffness_min,"
-            "singularity_margin,det_j,tcp_error_max,label");
+            "singularity_margin,det_j,tcp_error_max,tcp_deflection,tcp_rotation_deflection_deg,"
+            "stiffness_min_loaded,stiffness_dir_x,stiffness_dir_y,stiffness_dir_z,label");
   const auto a = split(rows[1]);
-  ASSERT_EQ(a.size(), 18u);
+  ASSERT_EQ(a.size(), 24u);
   EXPECT_EQ(a[6], "1");
   EXPECT_NEAR(std::stod(a[7]), 47.5, 0.05);
   EXPECT_NEAR(std::stod(a[8]), -11.6, 0.05);
   EXPECT_NEAR(std::stod(a[9]), 21.4, 0.05);
-  EXPECT_EQ(a[17], "a");
+  EXPECT_EQ(a[23], "a");
   // The same numbers as the library.
   const auto machine = load_machine_file(example("delta.yaml"));
   auto data = machine->make_data();
@@ -120,6 +121,8 @@ TEST_F(LegChainCli, AnalyzeAndFkOnTheDelta) {
   }
   EXPECT_EQ(std::stod(a[13]), m.stiffness_min);
   EXPECT_EQ(std::stod(a[14]), m.singularity_margin);
+  EXPECT_EQ(std::stod(a[17]), m.tcp_deflection);
+  EXPECT_EQ(std::stod(a[19]), m.stiffness_min_loaded);
   // At the centre pose a downward load of 50 N loads the three drives equally, in the direction
   // that lowers the elbows (positive, like theta); by virtual work 3 tau dtheta = -50 dz, with
   // dz/dtheta from the forward kinematics.
@@ -155,7 +158,7 @@ TEST_F(LegChainCli, AnalyzeAndFkOnTheHexaglide) {
   const auto rows = lines(r.out);
   ASSERT_EQ(rows.size(), 2u);
   const auto a = split(rows[1]);
-  ASSERT_EQ(a.size(), 23u);
+  ASSERT_EQ(a.size(), 29u);
   EXPECT_EQ(a[6], "1");
   std::string q;
   for (int i = 0; i < 6; ++i) q += (i ? "," : "") + a[static_cast<std::size_t>(7 + i)];
@@ -216,7 +219,7 @@ TEST_F(LegChainCli, AnalyzeAndFkOnTheSchoenfliesExample) {
   const auto rows = lines(r.out);
   ASSERT_EQ(rows.size(), 3u);
   const auto a = split(rows[1]);
-  ASSERT_EQ(a.size(), 19u);
+  ASSERT_EQ(a.size(), 25u);
   EXPECT_EQ(a[6], "1");
   EXPECT_EQ(split(rows[2])[6], "0");
   std::string q;
@@ -246,7 +249,7 @@ TEST_F(LegChainCli, AnalyzeFkWorkspaceDescribeOnTheTripod) {
   ASSERT_EQ(rows.size(), 3u);
   const auto a = split(rows[1]);
   const auto b = split(rows[2]);
-  ASSERT_EQ(a.size(), 17u);
+  ASSERT_EQ(a.size(), 23u);
   EXPECT_EQ(a[6], "1");
   for (std::size_t k = 6; k < a.size(); ++k) EXPECT_EQ(a[k], b[k]) << k;  // same machine pose
   const CliRun fk =

@@ -48,20 +48,37 @@ TEST_F(AnalyzeCsv, HexapodHeaderAndRows) {
     m.singularity_margin = 0.375;
     m.det_j = -0.0625;
     m.tcp_error_max = 1e-5;
+    m.tcp_deflection = 1.25e-5;
+    m.tcp_rotation_deflection = std::numbers::pi / 180 * 0.5;  // written as 0.5 degrees
+    m.stiffness_min_loaded = 2e7;
+    m.stiffness_min_direction = Eigen::Vector3d(0, 0.6, 0.8);
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) m.compliance(a, b) = 0.25 * (10 * a + b);
   }
   metrics[1].tau(5) = std::numeric_limits<double>::infinity();
   const std::vector<std::string> lines = lines_of(analyze_csv(hexapod, poses, metrics));
   ASSERT_EQ(lines.size(), 3u);
   EXPECT_EQ(lines[0],
             "x,y,z,rx,ry,rz,reachable,q_1,q_2,q_3,q_4,q_5,q_6,tau_1,tau_2,tau_3,tau_4,tau_5,tau_6,"
-            "stiffness_min,singularity_margin,det_j,tcp_error_max,label");
+            "stiffness_min,singularity_margin,det_j,tcp_error_max,tcp_deflection,"
+            "tcp_rotation_deflection_deg,stiffness_min_loaded,stiffness_dir_x,stiffness_dir_y,"
+            "stiffness_dir_z,label");
   EXPECT_EQ(lines[1],
             "0,0,0.9,0,0,0,1,0.75,0.875,1,1.125,1.25,1.375,-250.5,-501,-751.5,-1002,-1252.5,-1503,"
-            "25000000,0.375,-0.0625,1e-05,home");
+            "25000000,0.375,-0.0625,1e-05,1.25e-05,0.5,20000000,0,0.6,0.8,home");
   // Angles as the file gave them (degrees, not converted back from radians); the label quoted.
   EXPECT_EQ(lines[2],
             "0.1,-0.05,0.85,5,-3,0.1,0,1.75,1.875,2,2.125,2.25,2.375,-250.5,-501,-751.5,-1002,"
-            "-1252.5,inf,25000000,0.375,-0.0625,1e-05,\"a,b\"");
+            "-1252.5,inf,25000000,0.375,-0.0625,1e-05,1.25e-05,0.5,20000000,0,0.6,0.8,\"a,b\"");
+  // --compliance: C_11..C_66 row by row after the metric columns.
+  const std::vector<std::string> with_c =
+      lines_of(analyze_csv(hexapod, poses, metrics, {.compliance = true}));
+  const CsvTable table = parse_csv(with_c[0] + "\n" + with_c[1] + "\n", "out.csv");
+  EXPECT_EQ(table.column("C_11"), table.column("stiffness_dir_z") + 1);
+  EXPECT_EQ(table.column("label"), table.column("C_66") + 1);
+  EXPECT_EQ(table.number(table.rows[0], table.column("C_11")), 0.0);
+  EXPECT_EQ(table.number(table.rows[0], table.column("C_23")), 0.25 * 12);
+  EXPECT_EQ(table.number(table.rows[0], table.column("C_61")), 0.25 * 50);
 }
 
 // A revolute delta: q_i in degrees (the metrics hold radians), tau_i in N*m; columns after the
@@ -85,7 +102,8 @@ TEST_F(AnalyzeCsv, RevoluteDeltaWritesDegreesAndPassesColumnsThrough) {
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0],
             "x,y,z,rx,ry,rz,reachable,q_1,q_2,q_3,tau_1,tau_2,tau_3,stiffness_min,"
-            "singularity_margin,det_j,tcp_error_max,id,note,t");
+            "singularity_margin,det_j,tcp_error_max,tcp_deflection,tcp_rotation_deflection_deg,"
+            "stiffness_min_loaded,stiffness_dir_x,stiffness_dir_y,stiffness_dir_z,id,note,t");
   const CsvTable table = parse_csv(lines[0] + "\n" + lines[1] + "\n", "out.csv");
   const CsvRow& row = table.rows[0];
   EXPECT_EQ(row.cells[0], "0.1");

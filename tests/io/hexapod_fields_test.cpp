@@ -63,10 +63,23 @@ TEST(HexapodFields, ReadsStiffnessJointsToolAndNormalisesAxes) {
 TEST(HexapodFields, LegStiffnessIsEitherAxialOrEAndArea) {
   EXPECT_EQ(error_of("{legs: {axial_stiffness: 1e8, E: 2e11}}"),
             "h.yaml:1:26: legs.axial_stiffness: either axial_stiffness or E and area, not both");
-  EXPECT_EQ(error_of("{legs: {actuator_stiffness: 1e8}}"),
+  EXPECT_EQ(error_of("{legs: {}}"),
             "h.yaml:1:8: legs: missing the leg stiffness: give axial_stiffness (N/m), or E (Pa) "
-            "and area (m^2)")
+            "and area (m^2), or the drive train")
       << "the message names what is missing";
+  EXPECT_EQ(error_of("{legs: {actuator_stiffness: 1e8}}"), "") << "a lumped actuator is a leg";
+  Sample s;
+  ASSERT_EQ(error_of("{legs: {drive: {E: 2.1e11, root_diameter: 0.025, free_length_at_min: 0.1, "
+                     "free_length_at_max: 0.5, nut_stiffness: 6e8, torsional_stiffness: 3000, "
+                     "lead: 0.01}, base_joint_stiffness: 4e8}}",
+                     &s),
+            "");
+  EXPECT_EQ(s.stiffness.drive.root_diameter, 0.025);
+  EXPECT_EQ(s.stiffness.drive.lead, 0.01);
+  EXPECT_EQ(s.stiffness.base_joint_stiffness, 4e8);
+  EXPECT_EQ(error_of("{legs: {drive: {torsional_stiffness: 3000}}}"),
+            "h.yaml:1:16: legs.drive: the motor torsion acts through the lead: give "
+            "torsional_stiffness and lead together");
   EXPECT_NE(error_of("{legs: {E: 2e11}}").find("legs: missing required key 'area'"),
             std::string::npos)
       << error_of("{legs: {E: 2e11}}");

@@ -347,10 +347,11 @@ TEST(LegChainMachineFileFields, KeysReadByHandKeepTheirMessages) {
                      "rod: 1.244\ndrive_range_deg: [-200, 100]\nrods: {E: 7.0e10, area: 5.0e-5}\n"),
             "m.yaml:6:18: drive_range_deg: expected a range within [-180, 180] deg, found [-200, "
             "100]");
-  EXPECT_EQ(error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncolour: red\n"),
-            "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
-            "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
-            "rods, drive_stiffness, joints, tool, characteristic_length, actuator_error_deg");
+  EXPECT_EQ(
+      error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncolour: red\n"),
+      "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
+      "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
+      "rods, drive_stiffness, drive, joints, tool, characteristic_length, actuator_error_deg");
   const std::string glide =
       "model: hexaglide\nguides: {y: [0.46, 0.46, 0.39, -0.55, -0.55, 0.39]}\nstrut: 0.8\n"
       "stroke: [-1.2, 1.2]\nstruts: {E: 2.1e11, area: 3.0e-4}\n";
@@ -381,8 +382,8 @@ TEST(LegChainMachineFileFields, KeysReadByHandKeepTheirMessages) {
             "schoenflies), found a list of 3");
   EXPECT_EQ(error_of(head + "legs:\n" + leg + leg + leg + leg + "    crank_length: 0.3\n"),
             "m.yaml:36:5: legs[3].crank_length: unknown key 'crank_length'; allowed keys here: "
-            "kind, base_point, platform_point, range, link, joints, actuator_stiffness, axis, "
-            "link_length, branch");
+            "kind, base_point, platform_point, range, link, joints, actuator_stiffness, drive, "
+            "axis, link_length, branch");
 }
 
 }  // namespace

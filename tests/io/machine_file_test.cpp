@@ -95,9 +95,14 @@ TEST(MachineFile, ErrorsNameFileLineColumnKeyExpectedAndFound) {
   EXPECT_NE(error_of(replace(kGood, "base: {", "base_joints: [[0,0,0]]\nbase: {"))
                 .find("either 'base' or 'base_joints', not both"),
             std::string::npos);
-  EXPECT_NE(
-      error_of(replace(kGood, "E: 2.1e11, area: 3.0e-4, ", "")).find("missing the leg stiffness"),
-      std::string::npos);
+  EXPECT_NE(error_of(replace(kGood, "E: 2.1e11, area: 3.0e-4, actuator_stiffness: 2.0e8", ""))
+                .find("missing the leg stiffness"),
+            std::string::npos);
+  // A leg of actuator and drive train alone is a leg; a half-given screw is not.
+  EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11, area: 3.0e-4, ", "")), "");
+  EXPECT_EQ(error_of(replace(kGood, "actuator_stiffness: 2.0e8",
+                             "drive: {E: 2.1e11, free_length_at_min: 0.2}")),
+            "m.yaml:4:76: legs.drive: the screw needs both E and root_diameter");
 }
 
 TEST(MachineFile, UnknownModelIsAnError) {
