@@ -243,7 +243,7 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     out.stiffness_min = 0.0;
     out.tau = Vec6<double>::Constant(kInf);
     out.tcp_error_max = kInf;
-    set_singular_compliance_metrics(out);
+    if (d.compliance_metrics) set_singular_compliance_metrics(out);
     return;
   }
   out.singularity_margin = rcond;
@@ -290,7 +290,7 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   }
   const double best_norm2 = *std::max_element(best, best + 8);
   out.tcp_error_max = design_.actuator_error * std::sqrt(best_norm2);
-  compute_compliance_metrics(d, compliance, wrench, out);
+  if (d.compliance_metrics) compute_compliance_metrics(d, compliance, wrench, out);
 }
 
 void Hexapod::compute_compliance_metrics(const HexapodData& d, const Vec6<double>& compliance,

@@ -486,7 +486,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
-    set_singular_compliance_metrics(out);
+    if (d.compliance_metrics) set_singular_compliance_metrics(out);
     return;
   }
   out.singularity_margin = rcond;
@@ -531,10 +531,10 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
-    set_singular_compliance_metrics(out);
+    if (d.compliance_metrics) set_singular_compliance_metrics(out);
     return;
   }
-  compute_compliance_metrics(d, f, wrench, out);
+  if (d.compliance_metrics) compute_compliance_metrics(d, f, wrench, out);
 }
 
 bool LegChainMachine::translational_maps(

@@ -304,7 +304,7 @@ struct LinkStiffness {
   double E = 2.1e11;                      ///< Pa
   double area = 1.0e-4;                   ///< m^2 per rod
   double actuator_stiffness = 0.0;        ///< N/m (prismatic) or N*m/rad (revolute); 0 = rigid
-  ScrewDrive drive{};                       ///< the actuator's drive train (LegChainLeg::drive)
+  ScrewDrive drive{};                     ///< the actuator's drive train (LegChainLeg::drive)
   double base_joint_stiffness = 0.0;      ///< N/m per rod; 0 = rigid
   double platform_joint_stiffness = 0.0;  ///< N/m per rod; 0 = rigid
 };

@@ -81,6 +81,10 @@ struct FkResult {
 class MachineData {
  public:
   virtual ~MachineData() = default;
+  /// analyze fills compliance, tcp_deflection, tcp_rotation_deflection,
+  /// stiffness_min_direction and stiffness_min_loaded only when this is set (a caller that
+  /// needs none of them, e.g. a design problem, saves their cost; they are then left as zeros).
+  bool compliance_metrics = true;
 };
 
 class Machine {

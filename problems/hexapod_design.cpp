@@ -397,9 +397,12 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     return ev;
   }
   auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
+  const bool compliance =
+      need(DesignMetric::tcp_deflection_max) || need(DesignMetric::stiffness_min_loaded);
   if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
-      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max)) {
+      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) || compliance) {
     HexapodData data(*hexapod);
+    data.compliance_metrics = compliance;
     PoseMetrics m;
     TaskWorstCase worst;
     for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {

@@ -15,9 +15,9 @@ namespace pkmopt {
 namespace {
 
 constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
-    "stiffness_min", "singularity_margin", "leg_force_max",
-    "tcp_error_max", "workspace_volume",   "conditioning_index",
-    "machine_size",  "actuator_cost",      "actuator_overload"};
+    "stiffness_min",     "singularity_margin", "leg_force_max",       "tcp_error_max",
+    "workspace_volume",  "conditioning_index", "machine_size",        "actuator_cost",
+    "actuator_overload", "tcp_deflection_max", "stiffness_min_loaded"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -33,6 +33,10 @@ std::vector<Eigen::Matrix3d> task_rotations(double tilt, double yaw, double orie
 
 std::string_view design_metric_name(DesignMetric metric) {
   return kMetricNames.at(static_cast<int>(metric));
+}
+
+bool is_compliance_metric(DesignMetric metric) {
+  return metric == DesignMetric::tcp_deflection_max || metric == DesignMetric::stiffness_min_loaded;
 }
 
 bool is_actuator_metric(DesignMetric metric) {
@@ -121,6 +125,8 @@ void TaskWorstCase::add(const PoseMetrics& m) {
   singularity_margin = std::min(singularity_margin, m.singularity_margin);
   leg_force_max = std::max(leg_force_max, m.tau.cwiseAbs().maxCoeff());
   tcp_error_max = std::max(tcp_error_max, m.tcp_error_max);
+  tcp_deflection_max = std::max(tcp_deflection_max, m.tcp_deflection);
+  stiffness_min_loaded = std::min(stiffness_min_loaded, m.stiffness_min_loaded);
 }
 
 void TaskWorstCase::store(DesignMetrics& metrics) const {
@@ -128,6 +134,8 @@ void TaskWorstCase::store(DesignMetrics& metrics) const {
   metrics[static_cast<int>(DesignMetric::singularity_margin)] = singularity_margin;
   metrics[static_cast<int>(DesignMetric::leg_force_max)] = leg_force_max;
   metrics[static_cast<int>(DesignMetric::tcp_error_max)] = tcp_error_max;
+  metrics[static_cast<int>(DesignMetric::tcp_deflection_max)] = tcp_deflection_max;
+  metrics[static_cast<int>(DesignMetric::stiffness_min_loaded)] = stiffness_min_loaded;
 }
 
 void measure_workspace_metrics(const Machine& machine, const WorkspaceOptions& options,
@@ -463,6 +471,8 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
   // Every pose is analysed (reachability and the per-pose metrics come from one call).
   const double h = home_height_of(ev.parameters);
   const std::unique_ptr<MachineData> data = machine->make_data();
+  data->compliance_metrics = needed_[static_cast<int>(DesignMetric::tcp_deflection_max)] ||
+                             needed_[static_cast<int>(DesignMetric::stiffness_min_loaded)];
   PoseMetrics m;
   TaskWorstCase worst;
   double reach_sum = 0.0;

@@ -44,6 +44,8 @@
 //   singularity_margin  min_k singularity_margin(pose k)                  0..1
 //   leg_force_max       max_k max_i |tau_i(pose k)| under w               N (N*m for rotary drives)
 //   tcp_error_max       max_k tcp_error_max(pose k)                       m
+//   tcp_deflection_max  max_k tcp_deflection(pose k) under w              m
+//   stiffness_min_loaded  min_k stiffness_min_loaded(pose k) under w      N/m
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3
@@ -124,9 +126,15 @@ enum class DesignMetric {
   actuator_cost,
   /// leg_force_max minus the largest force rating among the catalog entries whose stroke
   /// covers the design's stroke (N); <= 0 exactly when some entry carries the legs.
-  actuator_overload
+  actuator_overload,
+  /// max over the task of the TCP deflection under the task wrench, |(C w)_t| (m).
+  tcp_deflection_max,
+  /// min over the task of the loaded stiffness (N/m; models/machine.hpp).
+  stiffness_min_loaded
 };
-inline constexpr int kNumDesignMetrics = 9;
+inline constexpr int kNumDesignMetrics = 11;
+/// True for the metrics that need the compliance matrix at every task pose.
+bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
 bool is_actuator_metric(DesignMetric metric);
 std::string_view design_metric_name(DesignMetric metric);
@@ -191,8 +199,10 @@ struct TaskWorstCase {
   double singularity_margin = std::numeric_limits<double>::infinity();
   double leg_force_max = 0.0;  ///< max_i |tau_i|
   double tcp_error_max = 0.0;
+  double tcp_deflection_max = 0.0;
+  double stiffness_min_loaded = std::numeric_limits<double>::infinity();
   void add(const PoseMetrics& metrics);
-  /// Writes the four worst cases into their slots of `metrics`.
+  /// Writes the worst cases into their slots of `metrics`.
   void store(DesignMetrics& metrics) const;
 };
 

@@ -14,6 +14,7 @@
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "pkmopt/report_assets.hpp"
+#include "report/display_units.hpp"
 #include "report/raster_image.hpp"
 #include "report/workspace_export.hpp"
 
@@ -255,7 +256,6 @@ std::string parallel_svg(const ParetoFront& front) {
 // ---------------------------------------------------------------------------------------------
 // HTML
 
-
 // Hover: every element with data-id shows that design; all of its elements are highlighted.
 
 std::string html_number(double v) { return std::isfinite(v) ? format_number(v) : "-"; }
@@ -339,11 +339,12 @@ std::string designs_table(const ParetoFront& front) {
 
 }  // namespace
 
-std::string pareto_plot_svg(const ParetoFront& front, int x_objective, int y_objective) {
-  return scatter_svg(front, x_objective, y_objective, true);
+std::string pareto_plot_svg(const ParetoFront& file_front, int x_objective, int y_objective) {
+  return scatter_svg(in_display_units(file_front), x_objective, y_objective, true);
 }
 
-std::string pareto_plot_png(const ParetoFront& front, int x_objective, int y_objective) {
+std::string pareto_plot_png(const ParetoFront& file_front, int x_objective, int y_objective) {
+  const ParetoFront front = in_display_units(file_front);
   const ScatterLayout L = make_scatter(front, x_objective, y_objective);
   using raster::kGlyphHeight;
   using raster::kInk;
@@ -400,7 +401,9 @@ std::optional<WorkspaceSlice> knee_workspace_slice(const ParetoFront& front,
   return compute_workspace_slice(*machine, options, box, 'z', z, pixel);
 }
 
-std::string report_html(const ParetoFront& front, const WorkspaceSlice* knee_slice) {
+std::string report_html(const ParetoFront& file_front, const WorkspaceSlice* knee_slice) {
+  // Deflections and errors in µm; the embedded data carries the same units as the page.
+  const ParetoFront front = in_display_units(file_front);
   int feasible = 0;
   for (const auto& d : front.designs) feasible += d.feasible ? 1 : 0;
   std::string data = pareto_json(front);

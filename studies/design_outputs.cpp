@@ -28,7 +28,10 @@ namespace pkmopt {
 std::string_view design_metric_unit(DesignMetric metric) {
   switch (metric) {
     case DesignMetric::stiffness_min:
+    case DesignMetric::stiffness_min_loaded:
       return "N/m";
+    case DesignMetric::tcp_deflection_max:
+      return "m";
     case DesignMetric::leg_force_max:
       return "N";
     case DesignMetric::tcp_error_max:
