@@ -120,6 +120,8 @@ std::optional<SliceMetric> parse_slice_metric(std::string_view name) {
   if (name == "stiffness_min") return SliceMetric::kStiffnessMin;
   if (name == "max_leg_force") return SliceMetric::kMaxLegForce;
   if (name == "tcp_error_max") return SliceMetric::kTcpErrorMax;
+  if (name == "tcp_deflection") return SliceMetric::kTcpDeflection;
+  if (name == "stiffness_min_loaded") return SliceMetric::kStiffnessMinLoaded;
   return std::nullopt;
 }
 
@@ -133,6 +135,10 @@ std::string slice_metric_name(SliceMetric metric) {
       return "max_leg_force";
     case SliceMetric::kTcpErrorMax:
       return "tcp_error_max";
+    case SliceMetric::kTcpDeflection:
+      return "tcp_deflection";
+    case SliceMetric::kStiffnessMinLoaded:
+      return "stiffness_min_loaded";
   }
   return "";
 }
@@ -147,6 +153,10 @@ std::string slice_metric_label(SliceMetric metric) {
       return "max_leg_force [N]";
     case SliceMetric::kTcpErrorMax:
       return "tcp_error_max [m]";
+    case SliceMetric::kTcpDeflection:
+      return "tcp_deflection [m]";
+    case SliceMetric::kStiffnessMinLoaded:
+      return "stiffness_min_loaded [N/m]";
   }
   return "";
 }
@@ -161,6 +171,10 @@ double slice_metric_value(const WorkspacePointMetrics& m, SliceMetric metric) {
       return m.max_leg_force;
     case SliceMetric::kTcpErrorMax:
       return m.tcp_error_max;
+    case SliceMetric::kTcpDeflection:
+      return m.tcp_deflection;
+    case SliceMetric::kStiffnessMinLoaded:
+      return m.stiffness_min_loaded;
   }
   return 0.0;
 }
@@ -203,12 +217,16 @@ std::string boundary_stl(const TriangleMesh& mesh) {
 }
 
 std::string point_cloud_csv(const std::vector<WorkspacePoint>& points) {
-  std::string out = "x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max\n";
+  std::string out =
+      "x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max,tcp_deflection,"
+      "stiffness_min_loaded\n";
   for (const auto& p : points) {
     for (int k = 0; k < 3; ++k) out += format_number(p.position(k)) + ',';
     out += format_number(p.metrics.singularity_margin) + ',' +
            format_number(p.metrics.stiffness_min) + ',' + format_number(p.metrics.max_leg_force) +
-           ',' + format_number(p.metrics.tcp_error_max) + '\n';
+           ',' + format_number(p.metrics.tcp_error_max) + ',' +
+           format_number(p.metrics.tcp_deflection) + ',' +
+           format_number(p.metrics.stiffness_min_loaded) + '\n';
   }
   return out;
 }
@@ -390,6 +408,8 @@ std::string workspace_summary_json(const WorkspaceRequest& request, const Worksp
   summary["stiffness_min_mean"] = number_or_null(ws.maps.stiffness_min_mean);
   summary["max_leg_force"] = number_or_null(ws.maps.max_leg_force);
   summary["tcp_error_max"] = number_or_null(ws.maps.tcp_error_max);
+  summary["tcp_deflection_max"] = number_or_null(ws.maps.tcp_deflection_max);
+  summary["stiffness_min_loaded_min"] = number_or_null(ws.maps.stiffness_min_loaded_min);
   summary["envelope_volume"] = optional_json(ws.envelope_volume);
   summary["envelope_ratio"] = optional_json(ws.envelope_ratio);
   summary["resolution"] = ws.resolution;

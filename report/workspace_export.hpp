@@ -37,7 +37,14 @@
 
 namespace pkmopt {
 
-enum class SliceMetric { kSingularityMargin, kStiffnessMin, kMaxLegForce, kTcpErrorMax };
+enum class SliceMetric {
+  kSingularityMargin,
+  kStiffnessMin,
+  kMaxLegForce,
+  kTcpErrorMax,
+  kTcpDeflection,       ///< under the workspace options' wrench (m)
+  kStiffnessMinLoaded,  ///< under the workspace options' wrench (N/m)
+};
 
 /// "singularity_margin", "stiffness_min", "max_leg_force", "tcp_error_max"; nullopt otherwise.
 std::optional<SliceMetric> parse_slice_metric(std::string_view name);

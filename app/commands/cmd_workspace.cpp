@@ -100,8 +100,8 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   const auto metric = parse_slice_metric(opt.slice_metric);
   if (!metric) {
     throw InputError(
-        fmt::format("--slice-metric: expected singularity_margin, stiffness_min, max_leg_force or "
-                    "tcp_error_max, found {}",
+        fmt::format("--slice-metric: expected singularity_margin, stiffness_min, max_leg_force, "
+                    "tcp_error_max, tcp_deflection or stiffness_min_loaded, found {}",
                     quote_found(opt.slice_metric)));
   }
   if (opt.slice_pixel && !(std::isfinite(*opt.slice_pixel) && *opt.slice_pixel > 0.0)) {
@@ -206,8 +206,9 @@ void add_workspace_command(CLI::App& app) {
   cmd->add_option("--slice-at", opt->slice_at,
                   "Slice plane coordinate (m); default the middle of the workspace");
   cmd->add_option("--slice-metric", opt->slice_metric,
-                  "Slice colour: singularity_margin, stiffness_min, max_leg_force or "
-                  "tcp_error_max; default singularity_margin");
+                  "Slice colour: singularity_margin, stiffness_min, max_leg_force, tcp_error_max, "
+                  "tcp_deflection or stiffness_min_loaded (both under --wrench); default "
+                  "singularity_margin");
   cmd->add_option("--slice-pixel", opt->slice_pixel,
                   "Slice pixel size (m); default 1/300 of the larger slice side");
   cmd->add_option("--out", opt->out_dir,

@@ -65,6 +65,8 @@ class PointEvaluator {
     out.stiffness_min = kInf;
     out.max_leg_force = 0.0;
     out.tcp_error_max = 0.0;
+    out.tcp_deflection = 0.0;
+    out.stiffness_min_loaded = kInf;
     int counted = 0;
     for (std::size_t o = 0; o < angles_.size(); ++o) {
       pose_.angles = angles_[o];
@@ -75,6 +77,9 @@ class PointEvaluator {
       out.stiffness_min = std::min(out.stiffness_min, pose_metrics_.stiffness_min);
       out.max_leg_force = std::max(out.max_leg_force, pose_metrics_.tau.cwiseAbs().maxCoeff());
       out.tcp_error_max = std::max(out.tcp_error_max, pose_metrics_.tcp_error_max);
+      out.tcp_deflection = std::max(out.tcp_deflection, pose_metrics_.tcp_deflection);
+      out.stiffness_min_loaded =
+          std::min(out.stiffness_min_loaded, pose_metrics_.stiffness_min_loaded);
     }
     if (counted == 0) out = WorkspacePointMetrics{};
     return counted > 0;
@@ -501,6 +506,7 @@ WorkspaceResult compute_workspace(const Machine& machine, const WorkspaceOptions
     if (n > 0) {
       maps.singularity_margin_min = kInf;
       maps.stiffness_min_min = kInf;
+      maps.stiffness_min_loaded_min = kInf;
       double margin_sum = 0.0, stiffness_sum = 0.0;
       for (const auto& m : metrics) {
         margin_sum += m.singularity_margin;
@@ -509,6 +515,9 @@ WorkspaceResult compute_workspace(const Machine& machine, const WorkspaceOptions
         maps.stiffness_min_min = std::min(maps.stiffness_min_min, m.stiffness_min);
         maps.max_leg_force = std::max(maps.max_leg_force, m.max_leg_force);
         maps.tcp_error_max = std::max(maps.tcp_error_max, m.tcp_error_max);
+        maps.tcp_deflection_max = std::max(maps.tcp_deflection_max, m.tcp_deflection);
+        maps.stiffness_min_loaded_min =
+            std::min(maps.stiffness_min_loaded_min, m.stiffness_min_loaded);
       }
       maps.global_conditioning_index = margin_sum / static_cast<double>(n);
       maps.stiffness_min_mean = stiffness_sum / static_cast<double>(n);

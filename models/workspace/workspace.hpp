@@ -106,10 +106,12 @@ struct TriangleMesh {
 
 /// Metrics at one point, the worst over the orientations that count there.
 struct WorkspacePointMetrics {
-  double singularity_margin = 0.0;  ///< min over orientations
-  double stiffness_min = 0.0;       ///< min over orientations (N/m)
-  double max_leg_force = 0.0;       ///< max |tau_i| over actuators and orientations
-  double tcp_error_max = 0.0;       ///< max over orientations (m)
+  double singularity_margin = 0.0;    ///< min over orientations
+  double stiffness_min = 0.0;         ///< min over orientations (N/m)
+  double max_leg_force = 0.0;         ///< max |tau_i| over actuators and orientations
+  double tcp_error_max = 0.0;         ///< max over orientations (m)
+  double tcp_deflection = 0.0;        ///< max over orientations of |(C w)_t| under the wrench (m)
+  double stiffness_min_loaded = 0.0;  ///< min over orientations (N/m), with the wrench's load
 };
 
 struct WorkspacePoint {
@@ -123,10 +125,12 @@ struct WorkspaceMaps {
   std::int64_t points = 0;                 ///< inside grid nodes used
   double global_conditioning_index = 0.0;  ///< mean singularity_margin
   double singularity_margin_min = 0.0;
-  double stiffness_min_min = 0.0;   ///< N/m
-  double stiffness_min_mean = 0.0;  ///< N/m
-  double max_leg_force = 0.0;       ///< N (N*m for revolute actuators)
-  double tcp_error_max = 0.0;       ///< m
+  double stiffness_min_min = 0.0;         ///< N/m
+  double stiffness_min_mean = 0.0;        ///< N/m
+  double max_leg_force = 0.0;             ///< N (N*m for revolute actuators)
+  double tcp_error_max = 0.0;             ///< m
+  double tcp_deflection_max = 0.0;        ///< m, under the options' wrench
+  double stiffness_min_loaded_min = 0.0;  ///< N/m, under the options' wrench
 };
 
 struct WorkspaceResult {

@@ -67,8 +67,9 @@ TEST_F(WorkspaceCli, WritesSummaryMeshPointsAndSlices) {
   EXPECT_EQ(summary.at("resolution").get<double>(), 0.04);
   EXPECT_EQ(summary.at("kind").get<std::string>(), "constant_orientation");
   EXPECT_GT(summary.at("seconds").get<double>(), 0.0);
-  for (const char* key : {"stiffness_min_min", "stiffness_min_mean", "tcp_error_max",
-                          "singularity_margin_min", "envelope_volume", "voxel_volume"}) {
+  for (const char* key :
+       {"stiffness_min_min", "stiffness_min_mean", "tcp_error_max", "tcp_deflection_max",
+        "stiffness_min_loaded_min", "singularity_margin_min", "envelope_volume", "voxel_volume"}) {
     EXPECT_TRUE(summary.at(key).is_number()) << key;
   }
   EXPECT_GE(ws.convex_hull_volume, ws.volume);
@@ -88,7 +89,9 @@ TEST_F(WorkspaceCli, WritesSummaryMeshPointsAndSlices) {
 
   // Point cloud: header and one row per inside node.
   const std::string csv = read_text(out_dir / "points.csv");
-  EXPECT_EQ(csv.rfind("x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max\n", 0),
+  EXPECT_EQ(csv.rfind("x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max,"
+                      "tcp_deflection,stiffness_min_loaded\n",
+                      0),
             0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), ws.inside_nodes + 1);
 

@@ -108,6 +108,8 @@ TEST(WorkspaceSummaryJson, EveryFieldInOrder) {
                                          "stiffness_min_mean",
                                          "max_leg_force",
                                          "tcp_error_max",
+                                         "tcp_deflection_max",
+                                         "stiffness_min_loaded_min",
                                          "envelope_volume",
                                          "envelope_ratio",
                                          "resolution",
