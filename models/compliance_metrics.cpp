@@ -51,7 +51,10 @@ void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& ou
   out.stiffness_min_direction = v.allFinite() ? v : Eigen::Vector3d::Zero();
 }
 
-double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T) {
+double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T,
+                            Eigen::Matrix3d* loaded_tt) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  if (loaded_tt) loaded_tt->setConstant(kInf);
   const Eigen::Index m = C.rows();
   // Stability: x^T K_T x > 0 for all x  <=>  y^T (C + C G C) y > 0 for all y (x = C y).
   const DofMatrix CGC = C + C * G * C;
@@ -63,7 +66,13 @@ double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistM
   if (!lu.isInvertible()) return 0.0;
   const DofMatrix CT = lu.solve(C);
   const Eigen::Matrix3d Ctt = (T.topRows(3) * CT * T.topRows(3).transpose());
-  const Eigen::Vector3d sv = Eigen::JacobiSVD<Eigen::Matrix3d>(Ctt).singularValues();
+  if (loaded_tt) *loaded_tt = Ctt;
+  return loaded_stiffness_of(Ctt);
+}
+
+double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt) {
+  if (!loaded_tt.allFinite()) return 0.0;
+  const Eigen::Vector3d sv = Eigen::JacobiSVD<Eigen::Matrix3d>(loaded_tt).singularValues();
   if (!(sv(0) > 0.0) || !std::isfinite(sv(0))) return 0.0;
   return 1.0 / sv(0);
 }
@@ -75,6 +84,7 @@ void set_singular_compliance_metrics(PoseMetrics& out) {
   out.tcp_rotation_deflection = kInf;
   out.stiffness_min_direction.setZero();
   out.stiffness_min_loaded = 0.0;
+  out.loaded_compliance_tt.setConstant(kInf);
 }
 
 }  // namespace pkmopt

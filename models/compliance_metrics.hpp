@@ -55,7 +55,13 @@ void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& ou
 /// 1 / sigma_max of the translational block of T C_T T^T, C_T = (I + C G)^-1 C on the platform
 /// DOF (C: m x m compliance, G: m x m geometric stiffness, T: 6 x m). 0 when K_T = C^-1 + G is
 /// not positive definite (checked as C + C G C, symmetric part) or the solve fails.
-double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T);
+/// `loaded_tt` (when given) receives the translational block of T C_T T^T (+inf entries when
+/// unstable).
+double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T,
+                            Eigen::Matrix3d* loaded_tt = nullptr);
+
+/// 1 / sigma_max of a translational loaded compliance block (0 when not finite or zero).
+double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt);
 
 /// The metrics of a singular pose: compliance and deflections +inf, direction 0, loaded 0.
 void set_singular_compliance_metrics(PoseMetrics& out);

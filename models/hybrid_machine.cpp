@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "models/compliance_metrics.hpp"
 #include "models/leg_chain.hpp"
 #include "models/linalg.hpp"
 #include "models/require.hpp"
@@ -21,11 +22,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // A parasitic module's pose counts as attained when the world TCP is within this (m).
 constexpr double kAttainedTolerance = 1e-9;
 
-void set_singular(PoseMetrics& out) {
+void set_singular(PoseMetrics& out, bool compliance_metrics) {
   out.singularity_margin = 0.0;
   out.stiffness_min = 0.0;
   out.tau.setConstant(kInf);
   out.tcp_error_max = kInf;
+  if (compliance_metrics) set_singular_compliance_metrics(out);
 }
 
 }  // namespace
@@ -137,6 +139,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   local_wrench.head<3>() = R0_.transpose() * wrench.head<3>();
   local_wrench.tail<3>() = R0_.transpose() * wrench.tail<3>();
   PoseMetrics& m = d.module_metrics;
+  d.module->compliance_metrics = d.compliance_metrics;
   const bool maps = design_.module->translational_maps(*d.module, s.local, local_wrench, m,
                                                        d.module_compliance, d.module_error_map);
 
@@ -151,7 +154,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.det_j = m.det_j;
   if (m.singular || !maps) {
     out.singular = true;
-    set_singular(out);
+    set_singular(out, d.compliance_metrics);
     return;
   }
 
@@ -165,6 +168,24 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   eig.computeDirect(compliance, Eigen::EigenvaluesOnly);
   const double c_max = eig.eigenvalues()(2);
   out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : 0.0;
+  if (d.compliance_metrics) {
+    // The 6x6 compliance: the module's turned by R0, the serial axes' along their directions
+    // (in series); loaded: the module's loaded block plus the serial axes (fixed directions, no
+    // geometric term).
+    Matrix6d turn = Matrix6d::Zero();
+    turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0_;
+    Matrix6d C = turn * m.compliance * turn.transpose();
+    Eigen::Matrix3d loaded = R0_ * m.loaded_compliance_tt * R0_.transpose();
+    for (int i = 0; i < num_serial_; ++i) {
+      const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
+      if (k <= 0.0) continue;
+      C.topLeftCorner<3, 3>() += A_.col(i) * A_.col(i).transpose() / k;
+      loaded += A_.col(i) * A_.col(i).transpose() / k;
+    }
+    fill_compliance_metrics(C, wrench, out);
+    out.loaded_compliance_tt = loaded;
+    out.stiffness_min_loaded = m.stiffness_min_loaded > 0.0 ? loaded_stiffness_of(loaded) : 0.0;
+  }
 
   // tcp_error_max over the vertices of the combined error box (zero columns skipped).
   Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 16> columns(3, n);
@@ -182,7 +203,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   if (!out.tau.allFinite() || !std::isfinite(out.tcp_error_max) ||
       !std::isfinite(out.stiffness_min)) {
     out.singular = true;
-    set_singular(out);
+    set_singular(out, d.compliance_metrics);
   }
 }
 

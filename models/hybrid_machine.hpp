@@ -37,6 +37,11 @@
 //   stiffness_min  1 / lambda_max(C_tt), the serial and parallel compliances in series:
 //               C_tt = R0 C_tt,module R0^T + sum_i a_i a_i^T / k_i (k_i the axis stiffness, N/m,
 //               absent = rigid).
+//   compliance  the module's 6x6 compliance turned by R0 plus sum_i [a_i a_i^T / k_i, 0; 0, 0]
+//               (serial axes in series); tcp_deflection etc. from it (models/machine.hpp).
+//   stiffness_min_loaded  from R0 C_T,tt,module R0^T + sum_i a_i a_i^T / k_i: the serial axes'
+//               directions are fixed, so the load adds no geometric term of theirs; 0 when the
+//               module's loaded stiffness is 0 (unstable).
 //   singularity_margin, det_j, singular: the module's at the local pose.
 //   tcp_error_max  max over |ds_i| <= e_i (axis errors, m) and |dq_j| <= module actuator error of
 //               |sum_i a_i ds_i + R0 P dq| (P the module's TCP position error map), exact: the

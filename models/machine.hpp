@@ -58,6 +58,9 @@ struct PoseMetrics {
   double stiffness_min_loaded = 0.0;     ///< N/m, with the legs' loads (geometric term)
   Eigen::Vector3d stiffness_min_direction = Eigen::Vector3d::Zero();  ///< unit, base axes
   Matrix6d compliance = Matrix6d::Zero();  ///< C = K^-1 at the TCP (twist per wrench)
+  /// The translational block of the loaded compliance K_T^-1 (m/N), whose largest singular value
+  /// gives stiffness_min_loaded; +inf entries when the loaded machine is unstable.
+  Eigen::Matrix3d loaded_compliance_tt = Eigen::Matrix3d::Zero();
 };
 
 /// Options of the forward kinematics solve.
