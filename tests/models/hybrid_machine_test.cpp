@@ -297,7 +297,10 @@ TEST(HybridMachine, Statics) {
   }
 }
 
-// Compliances in series against the hexapod's own stiffness matrix.
+// Compliances in series against the hexapod's own stiffness matrix: stiffness_min, the 6x6
+// compliance (the module's turned by R0 plus the axes), the deflection under a wrench, and the
+// loaded stiffness (the module's loaded translational block at the local wrench, turned, plus the
+// axes).
 TEST(HybridMachine, StiffnessOfAxesAndModuleInSeries) {
   const auto hexapod = conventions_hexapod();
   const Hexapod& hex = static_cast<const Hexapod&>(*hexapod);
@@ -310,15 +313,35 @@ TEST(HybridMachine, StiffnessOfAxesAndModuleInSeries) {
   for (int k = 0; k < 10; ++k) {
     const Pose pose{{u(-0.5, 0.5), u(-0.3, 0.3), u(0.7, 1.0)},
                     deg_to_rad(Eigen::Vector3d(u(-10, 10), u(-10, 10), u(-10, 10)))};
+    Wrench w;
+    w << u(-3e3, 3e3), u(-3e3, 3e3), u(-3e4, 0), u(-100, 100), u(-100, 100), u(-100, 100);
     PoseMetrics m;
-    hybrid.analyze(*data, pose, Wrench::Zero(), m);
+    hybrid.analyze(*data, pose, w, m);
     const HybridSplit s = hybrid.split(pose);
     const Matrix6d C = hex.stiffness_matrix(s.local).inverse();
-    Eigen::Matrix3d Ctt = R0 * C.topLeftCorner<3, 3>() * R0.transpose();
-    Ctt += A.col(0) * A.col(0).transpose() / 1.5e8 + A.col(1) * A.col(1).transpose() / 8e7;
+    const Eigen::Matrix3d axes =
+        A.col(0) * A.col(0).transpose() / 1.5e8 + A.col(1) * A.col(1).transpose() / 8e7;
+    const Eigen::Matrix3d Ctt = R0 * C.topLeftCorner<3, 3>() * R0.transpose() + axes;
     const double expected =
         1.0 / Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(Ctt).eigenvalues().maxCoeff();
     EXPECT_NEAR(m.stiffness_min, expected, 1e-8 * expected);
+    Matrix6d turn = Matrix6d::Zero();
+    turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0;
+    Matrix6d C6 = turn * C * turn.transpose();
+    C6.topLeftCorner<3, 3>() += axes;
+    EXPECT_LT((m.compliance - C6).norm(), 1e-9 * C6.norm());
+    const Vec6<double> dx = C6 * w;
+    EXPECT_NEAR(m.tcp_deflection, dx.head<3>().norm(), 1e-9 * dx.head<3>().norm());
+    EXPECT_NEAR(m.tcp_rotation_deflection, dx.tail<3>().norm(), 1e-9 * dx.tail<3>().norm());
+    Wrench local;
+    local << R0.transpose() * w.head<3>(), R0.transpose() * w.tail<3>();
+    PoseMetrics module;
+    hex.analyze(*hex.make_data(), s.local, local, module);
+    const Eigen::Matrix3d loaded = R0 * module.loaded_compliance_tt * R0.transpose() + axes;
+    const double loaded_expected =
+        1.0 / Eigen::JacobiSVD<Eigen::Matrix3d>(loaded).singularValues()(0);
+    EXPECT_NEAR(m.stiffness_min_loaded, loaded_expected, 1e-9 * loaded_expected);
+    EXPECT_NE(m.stiffness_min_loaded, m.stiffness_min);
   }
   // Nearly rigid hexapod: the stiffness along the soft axis is the axis stiffness.
   HexapodDesign stiff = sample_machines::conventions_hexapod_design();
@@ -330,48 +353,6 @@ TEST(HybridMachine, StiffnessOfAxesAndModuleInSeries) {
   PoseMetrics m;
   soft_axis.analyze(*soft_data, Pose{{0.3, 0, 0.9}, {0, 0, 0}}, Wrench::Zero(), m);
   EXPECT_NEAR(m.stiffness_min, 2e7, 2e7 * 1e-6);
-}
-
-// The 6x6 compliance and the deflection under a wrench: the module's compliance turned by R0 plus
-// the serial axes in series; the loaded stiffness: the module's loaded translational block plus
-// the axes (independent: the module's own analyze at the local pose and local wrench).
-TEST(HybridMachine, ComplianceAndDeflectionOfAxesAndModuleInSeries) {
-  const auto hexapod = conventions_hexapod();
-  const Hexapod& hex = static_cast<const Hexapod&>(*hexapod);
-  const HybridMachine hybrid =
-      make_hybrid("1 5:0.25 2", {{-1, 1, 1.5e8}, {-1, 1, 8e7}}, hexapod, {0, 0, 0.9});
-  const Eigen::Matrix3d R0 = hybrid.mount_rotation();
-  const Eigen::MatrixXd A = hybrid.axis_directions();
-  auto data = hybrid.make_data();
-  Uniform u(4);
-  for (int k = 0; k < 8; ++k) {
-    const Pose pose{{u(-0.5, 0.5), u(-0.3, 0.3), u(0.7, 1.0)},
-                    deg_to_rad(Eigen::Vector3d(u(-10, 10), u(-10, 10), u(-10, 10)))};
-    Wrench w;
-    w << u(-3e3, 3e3), u(-3e3, 3e3), u(-3e4, 0), u(-100, 100), u(-100, 100), u(-100, 100);
-    PoseMetrics m;
-    hybrid.analyze(*data, pose, w, m);
-    const HybridSplit s = hybrid.split(pose);
-    Matrix6d turn = Matrix6d::Zero();
-    turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0;
-    Matrix6d C = turn * hex.stiffness_matrix(s.local).inverse() * turn.transpose();
-    const Eigen::Matrix3d axes =
-        A.col(0) * A.col(0).transpose() / 1.5e8 + A.col(1) * A.col(1).transpose() / 8e7;
-    C.topLeftCorner<3, 3>() += axes;
-    EXPECT_LT((m.compliance - C).norm(), 1e-9 * C.norm());
-    const Vec6<double> dx = C * w;
-    EXPECT_NEAR(m.tcp_deflection, dx.head<3>().norm(), 1e-9 * dx.head<3>().norm());
-    EXPECT_NEAR(m.tcp_rotation_deflection, dx.tail<3>().norm(), 1e-9 * dx.tail<3>().norm());
-    // Loaded: the module's loaded block at the local wrench, turned, plus the axes.
-    Wrench local;
-    local << R0.transpose() * w.head<3>(), R0.transpose() * w.tail<3>();
-    PoseMetrics module;
-    hex.analyze(*hex.make_data(), s.local, local, module);
-    const Eigen::Matrix3d loaded = R0 * module.loaded_compliance_tt * R0.transpose() + axes;
-    const double expected = 1.0 / Eigen::JacobiSVD<Eigen::Matrix3d>(loaded).singularValues()(0);
-    EXPECT_NEAR(m.stiffness_min_loaded, expected, 1e-9 * expected);
-    EXPECT_NE(m.stiffness_min_loaded, m.stiffness_min);
-  }
 }
 
 // tcp_error_max: no sample of the box exceeds it and a vertex attains it (independent map from
