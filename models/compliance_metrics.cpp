@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -51,30 +52,51 @@ void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& ou
   out.stiffness_min_direction = v.allFinite() ? v : Eigen::Vector3d::Zero();
 }
 
-double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T,
-                            Eigen::Matrix3d* loaded_tt) {
+namespace {
+
+// The loaded stiffness for a fixed-size (6x6) or a capped dynamic-size DOF matrix type.
+template <class Mat, class Map>
+double loaded_stiffness(const Mat& C, const Mat& G, const Map& T, Eigen::Matrix3d* loaded_tt) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   if (loaded_tt) loaded_tt->setConstant(kInf);
-  const Eigen::Index m = C.rows();
   // Stability: x^T K_T x > 0 for all x  <=>  y^T (C + C G C) y > 0 for all y (x = C y).
-  const DofMatrix CGC = C + C * G * C;
-  const DofMatrix sym = 0.5 * (CGC + CGC.transpose());
-  const Eigen::LLT<DofMatrix> llt(sym);
+  const Mat CG = C * G;
+  const Mat CGC = C + CG * C;
+  const Mat sym = 0.5 * (CGC + CGC.transpose());
+  const Eigen::LLT<Mat> llt(sym);
   if (llt.info() != Eigen::Success) return 0.0;
-  const DofMatrix M = DofMatrix::Identity(m, m) + C * G;
-  const Eigen::FullPivLU<DofMatrix> lu(M);
-  if (!lu.isInvertible()) return 0.0;
-  const DofMatrix CT = lu.solve(C);
-  const Eigen::Matrix3d Ctt = (T.topRows(3) * CT * T.topRows(3).transpose());
+  // C_T = (I + C G)^-1 C; I + C G = C K_T is invertible when both are positive definite.
+  Mat M = CG;
+  M.diagonal().array() += 1.0;
+  const Eigen::PartialPivLU<Mat> lu(M);
+  const Mat CT = lu.solve(C);
+  const Eigen::Matrix3d Ctt = T.topRows(3) * CT * T.topRows(3).transpose();
+  if (!Ctt.allFinite()) return 0.0;
   if (loaded_tt) *loaded_tt = Ctt;
   return loaded_stiffness_of(Ctt);
 }
 
+}  // namespace
+
+double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T,
+                            Eigen::Matrix3d* loaded_tt) {
+  if (C.rows() == 6 && T.cols() == 6 && T.isIdentity(0.0))
+    return loaded_stiffness_min(Matrix6d(C), Matrix6d(G), loaded_tt);
+  return loaded_stiffness(C, G, T, loaded_tt);
+}
+
+double loaded_stiffness_min(const Matrix6d& C, const Matrix6d& G, Eigen::Matrix3d* loaded_tt) {
+  return loaded_stiffness(C, G, Matrix6d::Identity(), loaded_tt);
+}
+
 double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt) {
   if (!loaded_tt.allFinite()) return 0.0;
-  const Eigen::Vector3d sv = Eigen::JacobiSVD<Eigen::Matrix3d>(loaded_tt).singularValues();
-  if (!(sv(0) > 0.0) || !std::isfinite(sv(0))) return 0.0;
-  return 1.0 / sv(0);
+  // sigma_max^2 = lambda_max(B^T B) (the iterative solver: accurate to eps relative to it).
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.compute(loaded_tt.transpose() * loaded_tt, Eigen::EigenvaluesOnly);
+  const double sigma_max = std::sqrt(std::max(eig.eigenvalues()(2), 0.0));
+  if (!(sigma_max > 0.0) || !std::isfinite(sigma_max)) return 0.0;
+  return 1.0 / sigma_max;
 }
 
 void set_singular_compliance_metrics(PoseMetrics& out) {

@@ -60,6 +60,10 @@ void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& ou
 double loaded_stiffness_min(const DofMatrix& C, const DofMatrix& G, const TwistMap& T,
                             Eigen::Matrix3d* loaded_tt = nullptr);
 
+/// The same on the full twist (6-DOF platforms, T = I), with fixed-size matrices.
+double loaded_stiffness_min(const Matrix6d& C, const Matrix6d& G,
+                            Eigen::Matrix3d* loaded_tt = nullptr);
+
 /// 1 / sigma_max of a translational loaded compliance block (0 when not finite or zero).
 double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt);
 

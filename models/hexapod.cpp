@@ -303,8 +303,7 @@ void Hexapod::compute_compliance_metrics(const HexapodData& d, const Vec6<double
   fill_compliance_metrics(C, wrench, out);
   Matrix6d G = Matrix6d::Zero();
   for (int i = 0; i < 6; ++i) G += geometric_stiffness(out.tau(i), d.s.col(i), d.r.col(i), d.q(i));
-  out.stiffness_min_loaded = loaded_stiffness_min(
-      DofMatrix(C), DofMatrix(G), TwistMap(Matrix6d::Identity()), &out.loaded_compliance_tt);
+  out.stiffness_min_loaded = loaded_stiffness_min(C, G, &out.loaded_compliance_tt);
 }
 
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,

@@ -111,6 +111,7 @@ NeededMetrics check_design_goals(const std::string& where,
       needed[static_cast<int>(DesignMetric::conditioning_index)]) {
     WorkspaceOptions& w = task.workspace;
     // Maps (a metric evaluation at every inside node) only for the conditioning index.
+    w.compliance_maps = false;  // the index needs the singularity margin only
     w.compute_maps = needed[static_cast<int>(DesignMetric::conditioning_index)];
     w.compute_hull = false;
     w.keep_points = false;

@@ -38,7 +38,9 @@ class PointEvaluator {
         angles_(angles),
         options_(options),
         data_(machine.make_data()),
-        restricted_(options.min_singularity_margin || options.min_stiffness) {}
+        restricted_(options.min_singularity_margin || options.min_stiffness) {
+    data_->compliance_metrics = options.compliance_maps;
+  }
 
   bool inside(const Eigen::Vector3d& position) {
     pose_.position = position;

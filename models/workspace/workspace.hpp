@@ -86,6 +86,9 @@ struct WorkspaceOptions {
   std::optional<double> min_stiffness;           ///< keep poses with stiffness_min >= this (N/m)
   Wrench wrench = Wrench::Zero();                ///< external wrench at the TCP for max_leg_force
   bool compute_maps = true;  ///< evaluate metric maps (analyze at every inside node)
+  /// The maps include tcp_deflection and stiffness_min_loaded (each node's compliance); off, they
+  /// stay 0 and the maps cost about half as much.
+  bool compliance_maps = true;
   bool compute_hull = true;  ///< convex hull volume (CGAL)
   bool keep_points = false;  ///< return every inside node with its metrics
   /// Region to search; default workspace_search_box(machine, orientations).
