@@ -39,7 +39,8 @@ struct BatchConstants {
   double min_length, max_length;
   double base_axis[3], platform_axis[3];
   double cos_base_limit, cos_platform_limit;  // -2: unlimited
-  double inv_characteristic_length;
+  double inv_characteristic_length, characteristic_length;
+  double r_bound[6][2];  // |b_i - tcp|^2 / L^2, |b_i - tcp| / L^2 (the loaded-stiffness bound)
   bool constant_stiffness;
   double constant_compliance;  // 1 / axial_stiffness
   bool has_strut_EA;           // E and area given (and no axial_stiffness)
@@ -71,7 +72,14 @@ struct BatchConstants {
     cos_platform_limit = d.joints.platform_max_angle >= std::numbers::pi
                              ? -2.0
                              : std::cos(d.joints.platform_max_angle);
-    inv_characteristic_length = 1.0 / hexapod.characteristic_length();
+    characteristic_length = hexapod.characteristic_length();
+    inv_characteristic_length = 1.0 / characteristic_length;
+    for (int i = 0; i < 6; ++i) {
+      const double r = hexapod.platform_rel_tcp().col(i).norm();
+      const double L2 = characteristic_length * characteristic_length;
+      r_bound[i][0] = r * r / L2;
+      r_bound[i][1] = r / L2;
+    }
     constant_stiffness = d.stiffness.axial_stiffness > 0.0;
     constant_compliance = constant_stiffness ? 1.0 / d.stiffness.axial_stiffness : 0.0;
     has_strut_EA = !constant_stiffness && d.stiffness.E > 0.0 && d.stiffness.area > 0.0;
@@ -104,6 +112,9 @@ struct BatchConstants {
 struct BlockResult {
   v4 q[6], tau[6];
   v4 stiffness_min, singularity_margin, det_j, tcp_error_max;
+  v4 compliance[21];  // C, lower triangle packed by rows: (a, b) at a (a + 1) / 2 + b, b <= a
+  v4 tcp_deflection, tcp_rotation_deflection, direction[3], stiffness_min_loaded;
+  v4 loaded_tt[3][3];  // (C_T)_tt
   m4 reachable;
   m4 fallback;  // lanes to recompute with the scalar path
 };

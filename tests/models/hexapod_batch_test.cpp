@@ -3,7 +3,9 @@
 // 64 eps cond(J) where J is too ill-conditioned for that; within a factor 2 of the singularity
 // threshold either answer) and against Hexapod::analyze, on random general geometries, symmetric
 // poses (repeated eigenvalues), near-singular and singular poses, batch sizes that are not
-// multiples of 4, and for bit-identical results however a batch is split.
+// multiples of 4, and for bit-identical results however a batch is split. The compliance metrics
+// (compliance, deflections, worst direction, loaded stiffness) are checked against
+// Hexapod::analyze by the same rules (expect_compliance_matches_scalar).
 #include "models/hexapod_batch.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +14,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -28,6 +31,8 @@ namespace {
 using sample_machines::Uniform;
 
 using hexapod_reference::random_wrench;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 using hexapod_reference::reference_metrics;
 
 bool same_bits(double a, double b) {
@@ -45,6 +50,71 @@ void expect_identical(const PoseMetrics& a, const PoseMetrics& b, const std::str
   EXPECT_TRUE(same_bits(a.singularity_margin, b.singularity_margin)) << where;
   EXPECT_TRUE(same_bits(a.det_j, b.det_j)) << where;
   EXPECT_TRUE(same_bits(a.tcp_error_max, b.tcp_error_max)) << where;
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      EXPECT_TRUE(same_bits(a.compliance(i, j), b.compliance(i, j))) << where;
+    }
+  }
+  EXPECT_TRUE(same_bits(a.tcp_deflection, b.tcp_deflection)) << where;
+  EXPECT_TRUE(same_bits(a.tcp_rotation_deflection, b.tcp_rotation_deflection)) << where;
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_TRUE(same_bits(a.stiffness_min_direction(c), b.stiffness_min_direction(c))) << where;
+  }
+  EXPECT_TRUE(same_bits(a.stiffness_min_loaded, b.stiffness_min_loaded)) << where;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_TRUE(same_bits(a.loaded_compliance_tt(i, j), b.loaded_compliance_tt(i, j))) << where;
+    }
+  }
+}
+
+// The compliance metrics of a non-singular batch result m against the scalar result s of the
+// same pose, with tol = max(1e-10, 64 eps cond(J)) as for the other metrics: the entries of C
+// relative to |C| (Frobenius), the deflections relative to |C| |w|, the loaded stiffness
+// relative to itself and its block loaded_compliance_tt relative to its norm. The direction is
+// fixed only up to |dC_tt| / gap (gap: the distance of the largest eigenvalue of C_tt from the
+// next): it must be a unit vector with C_tt v = lambda v to |dC_tt|, equal to the scalar one where
+// the gap makes that meaningful, with the same sign where the sign rule (largest component
+// positive) is decided.
+void expect_compliance_matches_scalar(const PoseMetrics& m, const PoseMetrics& s, const Wrench& w,
+                                      double cond, const std::string& where) {
+  const double tol = std::max(1e-10, 64.0 * std::numeric_limits<double>::epsilon() * cond);
+  const double c_norm = s.compliance.norm();
+  EXPECT_LE((m.compliance - m.compliance.transpose()).cwiseAbs().maxCoeff(), tol * c_norm) << where;
+  EXPECT_LE((m.compliance - s.compliance).cwiseAbs().maxCoeff(), tol * c_norm) << where;
+  EXPECT_NEAR(m.tcp_deflection, s.tcp_deflection, tol * c_norm * w.norm()) << where;
+  EXPECT_NEAR(m.tcp_rotation_deflection, s.tcp_rotation_deflection, tol * c_norm * w.norm())
+      << where;
+  EXPECT_NEAR(m.stiffness_min_loaded, s.stiffness_min_loaded, tol * s.stiffness_min_loaded)
+      << where;
+  if (s.loaded_compliance_tt.allFinite()) {
+    EXPECT_LE((m.loaded_compliance_tt - s.loaded_compliance_tt).cwiseAbs().maxCoeff(),
+              tol * s.loaded_compliance_tt.norm())
+        << where;
+  } else {  // unstable under the load: the batch answers with the scalar path
+    EXPECT_EQ(m.stiffness_min_loaded, 0.0) << where;
+    EXPECT_TRUE(m.loaded_compliance_tt.cwiseAbs().minCoeff() == kInf) << where;
+  }
+
+  const Eigen::Matrix3d Ctt =
+      0.5 * (s.compliance.topLeftCorner<3, 3>() + s.compliance.topLeftCorner<3, 3>().transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Ctt);
+  const Eigen::Vector3d lambda = eig.eigenvalues();  // ascending
+  const Eigen::Vector3d v = m.stiffness_min_direction;
+  const Eigen::Vector3d vs = s.stiffness_min_direction;
+  const double dC = tol * c_norm;  // bound of |dC_tt| between the two paths
+  EXPECT_NEAR(v.norm(), 1.0, 1e-13) << where;
+  EXPECT_LE((Ctt * v - lambda(2) * v).norm(), 2.0 * dC) << where;
+  const double angle_tol = 2.0 * dC / (lambda(2) - lambda(1));
+
+  if (angle_tol < 1e-3) {
+    EXPECT_LE(std::min((v - vs).norm(), (v + vs).norm()), angle_tol) << where;
+    Eigen::Vector3d sorted = vs.cwiseAbs();
+    std::sort(sorted.data(), sorted.data() + 3);
+    if (sorted(2) - sorted(1) > 2.0 * angle_tol) {
+      EXPECT_LE((v - vs).norm(), angle_tol) << where;
+    }
+  }
 }
 
 // Checks one batch result against the reference and against analyze. Returns 1 when the pose
@@ -58,8 +128,12 @@ int expect_batch_pose_matches(const Hexapod& hexapod, const Pose& pose, const Wr
   if (m.singular) {  // singular answers come from the scalar path, unchanged
     expect_identical(m, scalar, where);
   }
-  return hexapod_reference::expect_metrics_match_reference(m, reference_metrics(hexapod, pose, w),
-                                                           where);
+  const hexapod_reference::ReferenceMetrics ref = reference_metrics(hexapod, pose, w);
+  const int checked = hexapod_reference::expect_metrics_match_reference(m, ref, where);
+  if (checked == 1 && !scalar.singular) {
+    expect_compliance_matches_scalar(m, scalar, w, ref.cond, where);
+  }
+  return checked;
 }
 
 struct BatchCheck {
@@ -224,6 +298,65 @@ TEST(HexapodBatch, BitIdenticalHoweverTheBatchIsSplit) {
     expect_identical(whole[i], reversed_metrics[poses.size() - 1 - i],
                      "reversed pose " + std::to_string(i));
   }
+}
+
+// Heavy wrenches (up to 50 kN and 5 kN m): the geometric term of the leg forces makes the loaded
+// stiffness differ from stiffness_min, and the batch still answers (nearly) every pose.
+TEST(HexapodBatch, LoadedStiffnessUnderAHeavyWrenchMatchesTheScalarPath) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  Uniform u(36);
+  std::vector<Pose> poses(41);
+  for (Pose& p : poses) {
+    p = Pose{{u(-0.15, 0.15), u(-0.15, 0.15), u(0.75, 0.95)},
+             deg_to_rad(Eigen::Vector3d(u(-15, 15), u(-15, 15), u(-20, 20)))};
+  }
+  for (double force : {5e3, 5e4}) {
+    Wrench w = random_wrench(u);
+    w.head<3>() *= force / w.head<3>().norm();
+    w.tail<3>() *= 0.1 * force / w.tail<3>().norm();
+    const BatchCheck c = expect_batch_matches(hexapod, poses, w, "force " + std::to_string(force));
+    EXPECT_EQ(c.checked, static_cast<int>(poses.size()));
+    EXPECT_EQ(c.scalar, hexapod_batch_uses_avx2() ? 0u : poses.size());
+    std::vector<PoseMetrics> metrics(poses.size());
+    analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data());
+    for (const PoseMetrics& m : metrics) {
+      // Far above the tolerances: the load changes the stiffness by 1e-6 or more.
+      EXPECT_GT(std::abs(m.stiffness_min_loaded - m.stiffness_min), 1e-6 * m.stiffness_min);
+      EXPECT_GT(m.stiffness_min_loaded, 0.0);
+    }
+  }
+}
+
+// Loads near and beyond the stability limit of the loaded mechanism (K_T not positive definite:
+// stiffness_min_loaded = 0) go through the scalar path and give exactly its answers.
+TEST(HexapodBatch, LoadsNearTheStabilityLimitGiveTheScalarAnswers) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  Uniform u(37);
+  std::vector<Pose> poses(13);
+  for (Pose& p : poses) {
+    p = Pose{{u(-0.15, 0.15), u(-0.15, 0.15), u(0.75, 0.95)},
+             deg_to_rad(Eigen::Vector3d(u(-15, 15), u(-15, 15), u(-20, 20)))};
+  }
+  int unstable = 0;
+  HexapodData data(hexapod);
+  for (double force : {1e6, 3e6, 1e7, 3e7, 1e8}) {
+    Wrench w = Wrench::Zero();
+    w(2) = -force;  // compresses every leg
+    w(0) = 0.1 * force;
+    const BatchCheck c = expect_batch_matches(hexapod, poses, w, "force " + std::to_string(force));
+    EXPECT_GE(c.checked, 1);
+    std::vector<PoseMetrics> metrics(poses.size());
+    analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data());
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      PoseMetrics scalar;
+      hexapod.analyze(data, poses[i], w, scalar);
+      if (scalar.stiffness_min_loaded == 0.0 && !scalar.singular) {
+        ++unstable;
+        expect_identical(metrics[i], scalar, "unstable pose " + std::to_string(i));
+      }
+    }
+  }
+  EXPECT_GT(unstable, 5);
 }
 
 TEST(HexapodBatch, EmptyBatchAndUnsizedOutputs) {
