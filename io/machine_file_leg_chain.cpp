@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "io/compliance_fields.hpp"
 #include "io/csv.hpp"
@@ -72,41 +74,76 @@ struct LinkStiffnessDocs {
   std::string_view E, area, axial_stiffness;
 };
 
-// `{E, area}` or `{axial_stiffness}` of a link (the readers check the choice); the members are
-// those of a LinkStiffness or of one leg of the generic form.
+// `{E, area}`, `{axial_stiffness}` or `{section}` of a link (the readers check the choice); the
+// members are those of a LinkStiffness or of one leg of the generic form.
 template <class Fields>
 void describe_link_stiffness(Fields& g, double& E, double& area, double& axial_stiffness,
+                             const std::optional<BeamSection>& section,
                              const LinkStiffnessDocs& docs) {
   g.field("E", E,
           {.min = 0,
            .min_exclusive = true,
            .unit = "Pa",
-           .default_text = "required (or axial_stiffness)",
+           .default_text = "required (or axial_stiffness, or section)",
            .doc = docs.E,
-           .omit_when = [&axial_stiffness] { return axial_stiffness > 0.0; }});
+           .omit_when = [&] { return axial_stiffness > 0.0 || section.has_value(); }});
   g.field("area", area,
           {.min = 0,
            .min_exclusive = true,
            .unit = "m²",
-           .default_text = "required (or axial_stiffness)",
+           .default_text = "required (or axial_stiffness, or section)",
            .doc = docs.area,
-           .omit_when = [&axial_stiffness] { return axial_stiffness > 0.0; }});
+           .omit_when = [&] { return axial_stiffness > 0.0 || section.has_value(); }});
   g.field("axial_stiffness", axial_stiffness,
           {.min = 0,
            .min_exclusive = true,
            .zero_is_unset = true,
            .unit = "N/m",
-           .default_text = "required (or E and area)",
-           .doc = docs.axial_stiffness});
+           .default_text = "required (or E and area, or section)",
+           .doc = docs.axial_stiffness,
+           .omit_when = [&section] { return section.has_value(); }});
 }
 
+// `section:` or `crank_section:`, a beam section (BeamSectionFields): read into `target` with the
+// located checks of resolve_beam_section, written and documented from it.
 template <class Fields>
-void describe_links(Fields& f, std::string_view key, LinkStiffness& k, std::string_view per) {
+void describe_beam_section(Fields& g, std::string_view key, std::optional<BeamSection>& target,
+                           std::string_view doc) {
+  BeamSectionFields fields{target};
+  if (target) {
+    fields.E = target->E;
+    fields.G = target->G;
+    fields.A = target->A;
+    fields.Iy = target->Iy;
+    fields.Iz = target->Iz;
+    fields.J = target->J;
+  }
+  g.section(key, {.doc = doc}, [&](auto& h) {
+    describe_fields(h, fields);
+    if constexpr (std::is_same_v<std::decay_t<decltype(h)>, FieldReader>)
+      target = resolve_beam_section(h.section(), fields);
+  });
+}
+
+FieldRule width_rule(std::string_view doc) {
+  return {.min = 0, .min_exclusive = true, .zero_is_unset = true, .unit = "m", .doc = doc};
+}
+
+// A named model's links; `section_doc` says what a section changes, `pairs` adds the
+// parallelogram width (deltas).
+template <class Fields>
+void describe_links(Fields& f, std::string_view key, LinkStiffness& k, std::string_view per,
+                    std::string_view section_doc, bool pairs) {
   f.section(key, {.required = true}, [&](auto& g) {
-    describe_link_stiffness(g, k.E, k.area, k.axial_stiffness,
+    describe_link_stiffness(g, k.E, k.area, k.axial_stiffness, k.section,
                             {"Young's modulus of the links (with area)", per,
                              "constant axial stiffness of a link instead of E and area"});
+    describe_beam_section(g, "section", k.section, section_doc);
     describe_joint_stiffness(g, k.base_joint_stiffness, k.platform_joint_stiffness);
+    if (pairs)
+      g.field("parallelogram_width", k.parallelogram_width,
+              width_rule("distance between the two rods of a pair (along the bars): the pairs "
+                         "then hold the orientation elastically; unset: rigidly"));
   });
 }
 
@@ -145,11 +182,20 @@ void describe_characteristic_length(Fields& f, std::optional<double>& length) {
 
 FieldRule stroke_rule(std::string_view doc) { return {.required = true, .unit = "m", .doc = doc}; }
 
-// The choice of `{E, area}` or `{axial_stiffness}`, after the list has read the values.
+// The choice of `{E, area}`, `{axial_stiffness}` or `{section}`, after the list has read the
+// values.
 void check_links(const YamlValue& section) {
   const bool has_axial = section.has("axial_stiffness");
   const bool has_e = section.has("E");
   const bool has_area = section.has("area");
+  if (section.has("section")) {
+    for (const char* key : {"E", "area", "axial_stiffness"})
+      if (section.has(key))
+        section.required(key).fail(
+            "either a section (its E and A give the axial stiffness) or E and area "
+            "(or axial_stiffness), not both");
+    return;
+  }
   if (has_axial && (has_e || has_area)) {
     section.required("axial_stiffness").fail("either axial_stiffness or E and area, not both");
   }
@@ -197,6 +243,58 @@ std::string markdown_of(Design d) {
 }  // namespace
 
 template <class Fields>
+void describe_fields(Fields& h, BeamSectionFields& s) {
+  auto rule = [](std::string_view unit, bool required, std::string_view default_text,
+                 std::string_view doc) {
+    return FieldRule{.min = 0,
+                     .min_exclusive = true,
+                     .required = required,
+                     .zero_is_unset = true,
+                     .unit = unit,
+                     .default_text = default_text,
+                     .doc = doc};
+  };
+  constexpr std::string_view kValues = "required (or outer_diameter)";
+  h.field("E", s.E, rule("Pa", true, "", "Young's modulus"));
+  h.field("G", s.G, rule("Pa", true, "", "shear modulus (steel 8.1e10, aluminium 2.6e10)"));
+  h.field("outer_diameter", s.outer_diameter,
+          rule("m", false, "required (or A, Iy, Iz, J)", "a circular tube: outer diameter"));
+  FieldRule bore = rule("m", false, "0 (a solid rod)", "the tube's inner diameter");
+  bore.min_exclusive = false;
+  h.field("inner_diameter", s.inner_diameter, bore);
+  h.field("A", s.A, rule("m²", false, kValues, "area (the axial stiffness E·A / length)"));
+  h.field("Iy", s.Iy,
+          rule("m⁴", false, kValues,
+               "second moment of area about the local y axis (the revolute axis of a tripod "
+               "strut, the axis of a crank)"));
+  h.field("Iz", s.Iz, rule("m⁴", false, kValues, "second moment of area about the local z axis"));
+  h.field("J", s.J,
+          rule("m⁴", false, kValues, "torsion constant (a circular section: the polar moment)"));
+}
+
+BeamSection resolve_beam_section(const YamlValue& map, const BeamSectionFields& s) {
+  static constexpr std::array<const char*, 4> kValueKeys{"A", "Iy", "Iz", "J"};
+  bool values = false;
+  for (const char* key : kValueKeys) values = values || map.has(key);
+  if (map.has("outer_diameter") || map.has("inner_diameter")) {
+    for (const char* key : kValueKeys)
+      if (map.has(key))
+        map.required(key).fail(
+            "either outer_diameter (and inner_diameter) of a tube or A, Iy, Iz and J, not both");
+    (void)map.required("outer_diameter");  // names the missing key
+    if (!(s.inner_diameter < s.outer_diameter)) {
+      const YamlValue bore = map.required("inner_diameter");
+      bore.fail("a number < outer_diameter (m)", bore.describe());
+    }
+    return tube_section(s.E, s.G, s.outer_diameter, s.inner_diameter);
+  }
+  if (!values)
+    map.fail("a section needs outer_diameter (and inner_diameter) of a tube, or A, Iy, Iz and J");
+  for (const char* key : kValueKeys) (void)map.required(key);  // a section half given
+  return BeamSection{s.E, s.G, s.A, s.Iy, s.Iz, s.J};
+}
+
+template <class Fields>
 void describe_fields(Fields& f, DeltaDesign& d) {
   describe_model(f, "delta");
   f.field("base_radius", d.base_radius, positive("m", "centre to each drive pivot"));
@@ -215,7 +313,13 @@ void describe_fields(Fields& f, DeltaDesign& d) {
            .doc = "drive angle range (θ = 0: crank horizontal outwards; θ > 0 lowers the elbow)"});
   FieldChoice<int> branch{d.branch, {{"elbow_out", 1}, {"elbow_in", -1}}};
   f.field("branch", branch, {.doc = "the elbow branch of the inverse kinematics"});
-  describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)");
+  describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)",
+                 "a rod's section: its E·A replaces E and area (rods with ball joints at both "
+                 "ends carry axial forces only)",
+                 true);
+  describe_beam_section(f, "crank_section", d.crank_section,
+                        "the cranks' section (bending and torsion of the upper arms; local y: "
+                        "the crank axis); unset: rigid cranks");
   f.field("drive_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N·m/rad", "motor and gearbox in series; unset: rigid"));
   describe_drive(f, d.stiffness.drive,
@@ -244,7 +348,10 @@ void describe_fields(Fields& f, LinearDeltaDesign& d) {
           inclination("guide tilt towards the centre (0: vertical guides)"));
   FieldRange stroke{d.q_min, d.q_max};
   f.field("stroke", stroke, stroke_rule("carriage travel along the guide (upwards)"));
-  describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)");
+  describe_links(f, "rods", d.stiffness, "cross-section of a rod (2 rods per parallelogram)",
+                 "a rod's section: its E·A replaces E and area (rods with ball joints at both "
+                 "ends carry axial forces only)",
+                 true);
   f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
   describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
@@ -277,7 +384,10 @@ void describe_fields(Fields& f, HexaglideDesign& d) {
            .doc = "the six platform joints b_i in the platform frame"});
   FieldRange stroke{d.q_min, d.q_max};
   f.field("stroke", stroke, stroke_rule("carriage travel along the guide (from x = 0)"));
-  describe_links(f, "struts", d.stiffness, "cross-section of a strut");
+  describe_links(f, "struts", d.stiffness, "cross-section of a strut",
+                 "a strut's section: its E·A replaces E and area (a strut between a universal and "
+                 "a spherical joint carries its axial force only)",
+                 false);
   f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
   describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
@@ -302,7 +412,10 @@ void describe_fields(Fields& f, Tripod3PrsDesign& d) {
   f.field("stroke", stroke, stroke_rule("carriage travel along each slide (+z)"));
   f.field("tool_length", d.tool_length,
           {.unit = "m", .doc = "TCP beyond the platform centre along the platform's +z"});
-  describe_links(f, "struts", d.stiffness, "cross-section of a strut");
+  describe_links(f, "struts", d.stiffness, "cross-section of a strut",
+                 "a strut's section (local y: the revolute axis): its E·A replaces E and area, "
+                 "its bending and torsion enter the stiffness",
+                 false);
   f.field("slide_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "drive along the slide; unset: rigid"));
   describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
@@ -394,15 +507,29 @@ void describe_fields(Fields& f, LegChainLegFields& fields) {
   f.field("range", range, range_rule);
   f.section("link", {.required = true}, [&](auto& g) {
     describe_link_stiffness(
-        g, leg.E, leg.area, leg.axial_stiffness,
+        g, leg.E, leg.area, leg.axial_stiffness, leg.link_section,
         {"Young's modulus of the link's rods (with area)", "cross-section of a rod",
          "constant axial stiffness of the link instead of E and area"});
+    describe_beam_section(g, "section", leg.link_section,
+                          "a rod's section: its E·A replaces E and area; bending and torsion "
+                          "enter planar legs (local y: plane_normal)");
     g.field("rods", leg.rods,
             {.min = 1,
              .max = 16,
              .doc = "parallel rods of the link (2 for a parallelogram pair)",
              .omit_when = [&leg] { return leg.rods == 1; }});
     describe_joint_stiffness(g, leg.base_joint_stiffness, leg.platform_joint_stiffness);
+    g.field("parallelogram_width", leg.parallelogram_width,
+            width_rule("rods: 2 (translational, schoenflies): distance between the pair's rods "
+                       "along the bars; unset: one line"));
+    g.field("parallelogram_axis", leg.parallelogram_axis,
+            {.expected = "a non-zero vector",
+             .default_text = "the crank axis (RUS), rotation_axis (schoenflies)",
+             .doc = "direction of the pair's bars (base frame); needed for PUS pairs of "
+                    "translational platforms",
+             .omit_when = [&leg] {
+               return !(leg.parallelogram_width > 0.0) || leg.parallelogram_axis.isZero();
+             }});
   });
   f.section("joints", {}, [&](auto& g) {
     g.field("base_max_angle_deg", leg.base_max_angle,
@@ -460,6 +587,8 @@ void describe_fields(Fields& f, LegChainLegFields& fields) {
              .unit = "m",
              .default_text = "required (RUS)",
              .doc = "RUS: crank length"});
+    describe_beam_section(f, "crank_section", leg.crank_section,
+                          "RUS: the crank's section (local y: the crank axis); unset: rigid");
   }
   if (all || fields.mobility == PlatformMobility::kPlanarLegs) {
     f.field("plane_normal", leg.plane_normal,
@@ -553,6 +682,7 @@ LegChainLeg read_leg(const YamlValue& node, PlatformMobility mobility, bool& rev
     check_non_zero(node, "plane_normal", leg.plane_normal);
   }
   check_links(node.required("link"));
+  check_non_zero(node.required("link"), "parallelogram_axis", leg.parallelogram_axis);
   check_drive_section(node, leg.drive, leg.kind == LegKind::kRUS);
   if (auto joints = node.optional("joints")) {
     check_non_zero(*joints, "base_axis", leg.base_axis);
@@ -645,5 +775,6 @@ template void describe_fields(FieldWriter&, HexaglideDesign&);
 template void describe_fields(FieldWriter&, Tripod3PrsDesign&);
 template void describe_fields(FieldWriter&, LegChainDesign&);
 template void describe_fields(FieldWriter&, LegChainLegFields&);
+template void describe_fields(FieldWriter&, BeamSectionFields&);
 
 }  // namespace pkmopt

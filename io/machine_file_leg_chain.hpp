@@ -18,6 +18,9 @@
 //   rod: 1.244                  # m
 //   drive_range_deg: [-60, 100]
 //   rods: {E: 7.0e10, area: 5.0e-5}   # per rod (2 per parallelogram), or {axial_stiffness: N/m}
+//   # optional link compliance (docs/stiffness.md): rods 0.1 m apart, elastic cranks
+//   #   rods: {E: 7.0e10, area: 5.0e-5, parallelogram_width: 0.1}
+//   #   crank_section: {E: 7.0e10, G: 2.6e10, outer_diameter: 0.05, inner_diameter: 0.04}
 //
 // Example:
 //   YamlValue root = YamlValue::load_file("examples/delta.yaml");
@@ -25,6 +28,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -53,6 +57,18 @@ const char* leg_chain_model_names();
 /// list its reader and writer use. Throws std::invalid_argument for another model.
 std::string leg_chain_machine_fields_markdown(std::string_view model);
 
+/// A beam section in a file (`section:`, `crank_section:`): a circular tube {E, G, outer_diameter,
+/// inner_diameter} (inner 0 or absent: a solid rod) or the values {E, G, A, Iy, Iz, J}; written
+/// as the values. `target` is set by the reader (resolve_beam_section, located errors for a
+/// section half given or mixed forms) and written from.
+struct BeamSectionFields {
+  std::optional<BeamSection>& target;
+  double E = 0.0, G = 0.0, outer_diameter = 0.0, inner_diameter = 0.0;
+  double A = 0.0, Iy = 0.0, Iz = 0.0, J = 0.0;
+};
+/// The section a `section:` map read into `fields` gives (throws InputError at the map's keys).
+BeamSection resolve_beam_section(const YamlValue& map, const BeamSectionFields& fields);
+
 /// A leg of the generic form with the keys of its kind and of the platform mobility (`all`: every
 /// key, for the docs).
 struct LegChainLegFields {
@@ -76,5 +92,7 @@ template <class Fields>
 void describe_fields(Fields& f, LegChainDesign& design);
 template <class Fields>
 void describe_fields(Fields& f, LegChainLegFields& leg);
+template <class Fields>
+void describe_fields(Fields& f, BeamSectionFields& section);
 
 }  // namespace pkmopt

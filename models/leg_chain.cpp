@@ -118,8 +118,10 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
                 leg.area >= 0.0 && std::isfinite(leg.actuator_stiffness) &&
                 leg.actuator_stiffness >= 0.0 && leg.rods >= 1,
             name + "stiffness values must be finite numbers >= 0 (rods >= 1)");
-    require(leg.axial_stiffness > 0.0 || (leg.E > 0.0 && leg.area > 0.0),
-            name + "a link stiffness is needed: axial_stiffness > 0, or E > 0 and area > 0");
+    require(leg.axial_stiffness > 0.0 || (leg.E > 0.0 && leg.area > 0.0) || leg.link_section,
+            name +
+                "a link stiffness is needed: axial_stiffness > 0, or E > 0 and area > 0, or a "
+                "link_section");
     require(std::isfinite(leg.base_joint_stiffness) && leg.base_joint_stiffness >= 0.0 &&
                 std::isfinite(leg.platform_joint_stiffness) && leg.platform_joint_stiffness >= 0.0,
             name + "joint stiffnesses must be finite numbers >= 0");
@@ -148,6 +150,7 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
   }
   require(revolute == 0 || revolute == n, "legs must be all revolute or all prismatic");
   revolute_ = revolute == n;
+  validate_link_compliance();
 
   platform_rel_.resize(3, n);
   for (int i = 0; i < n; ++i) {
@@ -443,8 +446,10 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
   for (int i = 0; i < n; ++i) {
     const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
     const double length = leg.kind == LegKind::kUPS ? d.q(i) : leg.link_length;
-    double compliance = leg.axial_stiffness > 0.0 ? 1.0 / leg.axial_stiffness
-                                                  : length / (leg.E * leg.area * leg.rods);
+    double compliance = leg.link_section
+                            ? length / (leg.link_section->E * leg.link_section->A * leg.rods)
+                        : leg.axial_stiffness > 0.0 ? 1.0 / leg.axial_stiffness
+                                                    : length / (leg.E * leg.area * leg.rods);
     double actuator = 0.0;  // in the actuator's own unit (m/N or rad/(N*m))
     if (leg.actuator_stiffness > 0.0) {
       actuator = 1.0 / leg.actuator_stiffness;
@@ -512,19 +517,25 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
   } else {
     P = Ainv.topRows(3);
   }
-  const Mat3M Pk = P * d.k.cwiseInverse().asDiagonal();
-  Mat3<double> Ctt = Pk * P.transpose();
-  Eigen::SelfAdjointEigenSolver<Mat3<double>> eig3;
-  eig3.computeDirect(Ctt, Eigen::EigenvaluesOnly);
-  const double c_max = eig3.eigenvalues()(2);
-  out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : kInf;
-
   // tcp_error_max: dx = A^-1 B dq; the largest |position part| over the box vertices.
   const Mat3M E = P * d.B.asDiagonal();
   out.tcp_error_max = design_.actuator_error * max_norm_over_sign_vectors(E);
-  d.compliance_tt = Ctt;
   d.error_map = design_.actuator_error * E;
-  if (!std::isfinite(out.stiffness_min) || !out.tau.allFinite() ||
+  bool stiffness_ok = true;
+  if (vjm_) {
+    // The virtual-joint model (models/leg_chain_vjm.cpp): stiffness_min, compliance_tt and the
+    // compliance metrics from the legs' 6x6 stiffness.
+    stiffness_ok = compute_vjm_metrics(d, f, wrench, out);
+  } else {
+    const Mat3M Pk = P * d.k.cwiseInverse().asDiagonal();
+    Mat3<double> Ctt = Pk * P.transpose();
+    Eigen::SelfAdjointEigenSolver<Mat3<double>> eig3;
+    eig3.computeDirect(Ctt, Eigen::EigenvaluesOnly);
+    const double c_max = eig3.eigenvalues()(2);
+    out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : kInf;
+    d.compliance_tt = Ctt;
+  }
+  if (!stiffness_ok || !std::isfinite(out.stiffness_min) || !out.tau.allFinite() ||
       !std::isfinite(out.tcp_error_max)) {
     out.singular = true;
     out.singularity_margin = 0.0;
@@ -534,7 +545,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     if (d.compliance_metrics) set_singular_compliance_metrics(out);
     return;
   }
-  if (d.compliance_metrics) compute_compliance_metrics(d, f, wrench, out);
+  if (d.compliance_metrics && !vjm_) compute_compliance_metrics(d, f, wrench, out);
 }
 
 bool LegChainMachine::translational_maps(

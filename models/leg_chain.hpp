@@ -67,6 +67,16 @@
 //     K = A^T diag(k) A on the platform DOF; C = K^-1; C_tt the translational 3x3 block of
 //     T C T^T; stiffness_min = 1 / lambda_max(C_tt) (N/m). (The passive constraints - parallelogram
 //     bars, the tripod's revolute joints - are taken as rigid.)
+//   Link compliance (models/leg_chain_vjm.cpp, docs/stiffness.md): when some leg has a
+//     link_section, a crank_section or a parallelogram_width, the 6x6 stiffness at the TCP is the
+//     virtual-joint model (models/virtual_joint.hpp) of the legs at the pose, summed: actuator
+//     spring (c_act_i) -> crank beam (RUS) -> link -> passive joints -> platform, the link a beam
+//     with the revolute joint about n_i at its foot (planar legs), a beam between a universal and
+//     a spherical joint (other single links with a section: bending cannot enter), two rods with
+//     ball ends parallelogram_width apart (pairs), or a two-force member. C = K^-1, now finite in
+//     every direction (translational / Schoenflies machines without widths: C = T (T^T K T)^-1
+//     T^T, the orientation still held rigidly). The section gives the link's axial stiffness
+//     (axial_stiffness, E and area are then not used).
 //   singularity_margin = 1 / cond(J_h), J_h = J diag(1 for translational DOF, 1/L for rotational
 //     DOF), 0 at a serial or a parallel singularity.
 //   det_j = det J.
@@ -95,6 +105,10 @@
 //   // pose z = 1.2 m, rx = 30 deg, ry = -20 deg; its x, y, rz are replaced by the parasitic ones
 //   pkmopt::Pose pose{{0, 0, 1.2}, pkmopt::deg_to_rad(Eigen::Vector3d(30, -20, 0))};
 //   tripod->analyze(*tripod->make_data(), pose, pkmopt::Wrench::Zero(), m);   // m.q: slides (m)
+//   pkmopt::Tripod3PrsDesign z3;     // steel tube struts: their bending and torsion enter (VJM)
+//   z3.stiffness.section = pkmopt::tube_section(2.1e11, 8.1e10, 0.08, 0.06);
+//   auto head = pkmopt::make_tripod_3prs(z3);
+//   head->analyze(*head->make_data(), pose, pkmopt::Wrench::Zero(), m);  // m.compliance: finite
 #pragma once
 
 #include <Eigen/Core>
@@ -109,6 +123,7 @@
 #include "models/compliance_chain.hpp"
 #include "models/machine.hpp"
 #include "models/pose.hpp"
+#include "models/virtual_joint.hpp"
 
 namespace pkmopt {
 
@@ -145,6 +160,21 @@ struct LegChainLeg {
   ScrewDrive drive{};
   double base_joint_stiffness = 0.0;      ///< axial stiffness of each rod's base-side joint (N/m)
   double platform_joint_stiffness = 0.0;  ///< ... of each rod's platform joint (N/m)
+
+  // Link compliance beyond the axial model (docs/stiffness.md, "Link compliance"); any of these
+  // switches the machine to the virtual-joint model. Local beam axes: x along the link, y = the
+  // plane normal (planar legs) or the crank axis (crank); for U-S links the bending cannot enter.
+  /// Section of one strut / rod (`rods` equal links on one line share the load); its E * A
+  /// replaces axial_stiffness, E and area.
+  std::optional<BeamSection> link_section{};
+  /// RUS: section of the crank (from the pivot to the elbow); unset: a rigid crank.
+  std::optional<BeamSection> crank_section{};
+  /// rods == 2 (PUS, RUS legs of translational or Schoenflies platforms): the distance between
+  /// the two rods of the pair along the bars (m); 0: the pair acts on one line (the axial model).
+  double parallelogram_width = 0.0;
+  /// Direction of the pair's bars (base frame; the platform bar stays parallel). Zero: the crank
+  /// axis (RUS), the rotation axis (Schoenflies); PUS legs of translational platforms give it.
+  Eigen::Vector3d parallelogram_axis = Eigen::Vector3d::Zero();
 
   // Joint limits (+inf: unlimited). base_axis: base frame (UPS, PUS), crank frame at q = 0 (RUS).
   double base_max_angle = std::numeric_limits<double>::infinity();
@@ -263,6 +293,22 @@ class LegChainMachine final : public Machine {
   void joint_angles(const Pose& pose, Eigen::VectorXd& base_angles,
                     Eigen::VectorXd& platform_angles) const;
 
+  /// Whether analyze uses the virtual-joint model (some leg has a section or a pair width).
+  bool link_compliance_model() const { return vjm_; }
+  /// ... and whether its stiffness holds all six directions (else the mobility's T holds the
+  /// orientation: translational and Schoenflies machines without parallelogram widths).
+  bool link_compliance_full() const { return vjm_full_; }
+  /// The virtual-joint description of leg i at the kinematics in `data` (compute_kinematics and
+  /// the actuator compliance of analyze): its springs and beams, with `passive_joints` its
+  /// passive joints and rod groups (for VjmLeg::stiffness), and the wrenches it transmits (for
+  /// VjmLeg::stiffness_for_wrenches, the closed-form elimination analyze uses). Throws
+  /// std::invalid_argument on a degenerate leg geometry.
+  void vjm_leg(const LegChainData& data, int leg, VjmLeg& out, TransmittedWrenches& wrenches,
+               bool passive_joints = true) const;
+  /// The sum of the legs' VJM stiffness at the TCP (6x6, base axes) at the kinematics in `data`;
+  /// false when a leg's geometry is degenerate or a leg is rigid along a wrench it carries.
+  bool vjm_stiffness(const LegChainData& data, Matrix6d& K) const;
+
  private:
   /// The actual TCP position and platform rotation of a pose; false when the pose's rotation is
   /// not one the platform can take (it is projected) or the parasitic solve failed.
@@ -280,6 +326,21 @@ class LegChainMachine final : public Machine {
   void compute_compliance_metrics(const LegChainData& d,
                                   const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>& f,
                                   const Wrench& wrench, PoseMetrics& out) const;
+  /// The geometric stiffness on the full twist of the rod forces f (every leg, its actuated point
+  /// fixed) and, for planar legs, of the plane constraints' reactions (models/
+  /// leg_chain_compliance.cpp).
+  Matrix6d full_twist_geometric_stiffness(
+      const LegChainData& d, const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>& f,
+      const Wrench& wrench) const;
+  /// The VJM step of analyze (models/leg_chain_vjm.cpp): stiffness_min, d.compliance_tt and, with
+  /// d.compliance_metrics, the compliance metrics; false when the stiffness is not positive
+  /// definite.
+  bool compute_vjm_metrics(LegChainData& d,
+                           const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>& f,
+                           const Wrench& wrench, PoseMetrics& out) const;
+  /// Checks the link sections and parallelogram widths of the design and sets vjm_, vjm_full_
+  /// (models/leg_chain_vjm.cpp).
+  void validate_link_compliance();
 
   LegChainDesign design_;
   int dof_ = 6;
@@ -289,6 +350,8 @@ class LegChainMachine final : public Machine {
   Eigen::Matrix<double, 3, Eigen::Dynamic> platform_rel_;  // b_i - tcp
   Eigen::Vector3d home_leg_offset_ = Eigen::Vector3d::Zero();
   bool home_ik_ok_ = false;
+  bool vjm_ = false;
+  bool vjm_full_ = false;
 };
 
 /// Builds the machine of a design (a factory for design studies). Throws std::invalid_argument.
@@ -307,6 +370,10 @@ struct LinkStiffness {
   ScrewDrive drive{};                     ///< the actuator's drive train (LegChainLeg::drive)
   double base_joint_stiffness = 0.0;      ///< N/m per rod; 0 = rigid
   double platform_joint_stiffness = 0.0;  ///< N/m per rod; 0 = rigid
+  /// Section of one link (LegChainLeg::link_section): its E * A replaces axial_stiffness, E and
+  /// area; bending enters the tripod's struts (the others are U-S or S-S links).
+  std::optional<BeamSection> section{};
+  double parallelogram_width = 0.0;  ///< m, deltas' rod pairs (LegChainLeg::parallelogram_width)
 };
 
 /// Rotary (Clavel) delta, docs/conventions.md: pivots at base_radius, azimuth -90+120(i-1) deg,
@@ -324,6 +391,7 @@ struct DeltaDesign {
   double theta_max = 100.0 * kDegToRad;
   int branch = 1;                                        ///< +1 elbow-out (default), -1 elbow-in
   LinkStiffness stiffness{.E = 7.0e10, .area = 5.0e-5};  ///< rods: 2 per parallelogram
+  std::optional<BeamSection> crank_section{};            ///< the upper arm; unset: rigid
   double elbow_max_angle = std::numeric_limits<double>::infinity();     ///< rad
   double platform_max_angle = std::numeric_limits<double>::infinity();  ///< rad
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();

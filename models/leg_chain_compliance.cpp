@@ -20,6 +20,10 @@
 // [n_j; r_j x n_j]); the parallelograms of translational and Schoenflies platforms carry pure
 // moments about fixed directions, which add nothing. K_T = sum dw_i/dx (+ constraints) and the
 // loaded compliance (I + C G)^-1 C with G = K_T - A^T diag(k) A.
+//
+// With link compliance (models/leg_chain_vjm.cpp) the loaded stiffness is the VJM stiffness plus
+// full_twist_geometric_stiffness: the terms above on the full twist with every actuated point
+// fixed (f K_g per rod, and the plane constraints' reactions), docs/stiffness.md.
 #include <Eigen/LU>
 #include <cmath>
 
@@ -38,6 +42,24 @@ Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
   m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
   return m;
+}
+
+// Planar legs: the reaction forces of the plane constraints, G_c^T lambda = w - rod wrench (least
+// squares; the DOF part of the residual is zero at equilibrium), and their geometric terms added
+// to geometric6.
+void add_plane_constraint_terms(const LegChainDesign& design, const LegChainData& d, int n,
+                                const Wrench& wrench, const Vec6<double>& rod_wrench,
+                                Matrix6d& geometric6) {
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> Gc(6, n);
+  for (int j = 0; j < n; ++j) {
+    const Eigen::Vector3d nj = design.legs[static_cast<std::size_t>(j)].plane_normal.normalized();
+    Gc.col(j).head<3>() = nj;
+    Gc.col(j).tail<3>() = d.r.col(j).cross(nj);
+  }
+  const VecM lambda = (Gc.transpose() * Gc).ldlt().solve(Gc.transpose() * (wrench - rod_wrench));
+  for (int j = 0; j < n; ++j)
+    geometric6 += constraint_geometric_stiffness(
+        lambda(j), design.legs[static_cast<std::size_t>(j)].plane_normal.normalized(), d.r.col(j));
 }
 
 }  // namespace
@@ -92,25 +114,29 @@ void LegChainMachine::compute_compliance_metrics(const LegChainData& d, const Ve
     dwrench.bottomRows(3) = cross_matrix(s) * cross_matrix(r) * Tr + cross_matrix(r) * ds;
     KT += f(i) * d.T.transpose() * dwrench;
   }
-  if (design_.mobility == PlatformMobility::kPlanarLegs) {
-    // Reaction forces of the plane constraints: G_c^T lambda = w - rod wrench (least squares;
-    // the DOF part of the residual is zero at equilibrium).
-    Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> Gc(6, n);
-    for (int j = 0; j < n; ++j) {
-      const Eigen::Vector3d nj =
-          design_.legs[static_cast<std::size_t>(j)].plane_normal.normalized();
-      Gc.col(j).head<3>() = nj;
-      Gc.col(j).tail<3>() = d.r.col(j).cross(nj);
-    }
-    const VecM lambda = (Gc.transpose() * Gc).ldlt().solve(Gc.transpose() * (wrench - rod_wrench));
-    for (int j = 0; j < n; ++j)
-      geometric6 += constraint_geometric_stiffness(
-          lambda(j), design_.legs[static_cast<std::size_t>(j)].plane_normal.normalized(),
-          d.r.col(j));
-  }
+  if (design_.mobility == PlatformMobility::kPlanarLegs)
+    add_plane_constraint_terms(design_, d, n, wrench, rod_wrench, geometric6);
   KT += d.T.transpose() * geometric6 * d.T;
   const MatM K = d.A.transpose() * d.k.asDiagonal() * d.A;
-  out.stiffness_min_loaded = loaded_stiffness_min(C, KT - K, d.T);
+  out.stiffness_min_loaded = loaded_stiffness_min(C, KT - K, d.T, &out.loaded_compliance_tt);
+}
+
+Matrix6d LegChainMachine::full_twist_geometric_stiffness(const LegChainData& d, const VecM& f,
+                                                         const Wrench& wrench) const {
+  const int n = num_actuators();
+  Matrix6d geometric6 = Matrix6d::Zero();
+  Vec6<double> rod_wrench = Vec6<double>::Zero();
+  for (int i = 0; i < n; ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d s = d.s.col(i), r = d.r.col(i);
+    rod_wrench.head<3>() += f(i) * s;
+    rod_wrench.tail<3>() += f(i) * r.cross(s);
+    const double l = leg.kind == LegKind::kUPS ? d.q(i) : (d.position + r - d.c.col(i)).norm();
+    geometric6 += geometric_stiffness(f(i), s, r, l);
+  }
+  if (design_.mobility == PlatformMobility::kPlanarLegs)
+    add_plane_constraint_terms(design_, d, n, wrench, rod_wrench, geometric6);
+  return geometric6;
 }
 
 }  // namespace pkmopt

@@ -26,6 +26,8 @@ void apply_stiffness(LegChainLeg& leg, const LinkStiffness& k, int rods) {
   leg.drive = k.drive;
   leg.base_joint_stiffness = k.base_joint_stiffness;
   leg.platform_joint_stiffness = k.platform_joint_stiffness;
+  leg.link_section = k.section;
+  leg.parallelogram_width = k.parallelogram_width;
 }
 
 }  // namespace
@@ -54,6 +56,7 @@ LegChainDesign delta_design(const DeltaDesign& p) {
     leg.q_max = p.theta_max;
     leg.branch = p.branch;
     apply_stiffness(leg, p.stiffness, 2);
+    leg.crank_section = p.crank_section;  // the pair's bars: the crank axis (the default)
     leg.base_max_angle = p.elbow_max_angle;
     leg.platform_max_angle = p.platform_max_angle;
     leg.base_axis = -Eigen::Vector3d::UnitZ();     // crank frame at theta = 0: down
@@ -94,6 +97,8 @@ LegChainDesign linear_delta_design(const LinearDeltaDesign& p) {
     leg.q_max = p.q_max;
     leg.branch = -1;  // carriage above the platform point: q > u.d, B_i < 0
     apply_stiffness(leg, p.stiffness, 2);
+    if (leg.parallelogram_width > 0.0)  // the carriage bar: horizontal, tangential
+      leg.parallelogram_axis = Eigen::Vector3d::UnitZ().cross(u);
     leg.base_max_angle = p.carriage_max_angle;
     leg.platform_max_angle = p.platform_max_angle;
     leg.base_axis = -Eigen::Vector3d::UnitZ();

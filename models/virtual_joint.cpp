@@ -480,6 +480,76 @@ LegCompliance VjmLeg::stiffness(const Eigen::Vector3d& reference) const {
   return out;
 }
 
+LegCompliance VjmLeg::stiffness_for_wrenches(const Eigen::Vector3d& reference,
+                                             const TransmittedWrenches& wrenches) const {
+  const auto& W = wrenches.basis;
+  const int m = static_cast<int>(W.cols());
+  if (m > 6) throw std::length_error("VjmLeg: more than 6 transmitted wrenches");
+  LegCompliance out;
+  out.reference = reference;
+  out.constrained_dim = m;
+  if (m == 0) return out;
+  // M = W^T S W + O, lower triangle: each spring adds c (W^T t)(W^T t)^T.
+  double M[6][6] = {};
+  if (wrenches.compliance.size() > 0) {
+    if (wrenches.compliance.rows() != m || wrenches.compliance.cols() != m) {
+      throw std::invalid_argument("VjmLeg: the transmitted wrenches' compliance must be m x m");
+    }
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b <= a; ++b) M[a][b] = wrenches.compliance(a, b);
+  }
+  for (int i = 0; i < num_springs_; ++i) {
+    const Axis& sp = springs_[static_cast<std::size_t>(i)];
+    const Vector6d t = scaled_twist(sp.point, sp.axis, sp.rotational, reference, 1.0);
+    double u[6];
+    for (int a = 0; a < m; ++a) u[a] = W.col(a).dot(t);
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b <= a; ++b) M[a][b] += sp.compliance * u[a] * u[b];
+  }
+  for (int i = 0; i < num_elastic_; ++i) {
+    const ElasticJoint& e = elastic_[static_cast<std::size_t>(i)];
+    const Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> CW =
+        move_compliance(e.compliance, e.point, reference) * W;
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b <= a; ++b) M[a][b] += W.col(a).dot(CW.col(b));
+  }
+  // Cholesky M = L L^T in place (lower triangle); a pivot below kRigidTolerance times the largest
+  // diagonal entry: a transmitted wrench meets no compliance.
+  double max_diag = 0.0;
+  for (int a = 0; a < m; ++a) max_diag = std::max(max_diag, M[a][a]);
+  for (int j = 0; j < m; ++j) {
+    double d = M[j][j];
+    for (int k = 0; k < j; ++k) d -= M[j][k] * M[j][k];
+    if (!(d > kRigidTolerance * max_diag) || !std::isfinite(d)) {
+      out.rigid = true;
+      return out;
+    }
+    M[j][j] = std::sqrt(d);
+    for (int i = j + 1; i < m; ++i) {
+      double v = M[i][j];
+      for (int k = 0; k < j; ++k) v -= M[i][k] * M[j][k];
+      M[i][j] = v / M[j][j];
+    }
+  }
+  // Y = W L^-T (rows solve L y = row of W); K = Y Y^T, each pair of rows once: exactly symmetric.
+  double Y[6][6];
+  for (int row = 0; row < 6; ++row) {
+    for (int j = 0; j < m; ++j) {
+      double v = W(row, j);
+      for (int k = 0; k < j; ++k) v -= M[j][k] * Y[row][k];
+      Y[row][j] = v / M[j][j];
+    }
+  }
+  for (int c = 0; c < 6; ++c) {
+    for (int r = c; r < 6; ++r) {
+      double sum = 0.0;
+      for (int j = 0; j < m; ++j) sum += Y[r][j] * Y[c][j];
+      out.stiffness(r, c) = out.stiffness(c, r) = sum;
+    }
+  }
+  return out;
+}
+
 Matrix6d VjmLeg::locked_compliance(const Eigen::Vector3d& reference) const {
   Matrix6d S;
   Eigen::Matrix<double, 6, kMaxPassiveColumns> P;

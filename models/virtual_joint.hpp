@@ -70,6 +70,15 @@
 // modelled as universal joint, actuator and elastic struts and spherical joint reduces exactly to
 // it: the struts' bending compliance lies in directions the passive joints free.
 //
+// Known transmitted wrenches (stiffness_for_wrenches): when the leg's geometry gives a basis W
+// (6 x m) of null(J_q^T) in closed form - e.g. a 3-PRS leg transmits the force along its strut and
+// the force along its revolute axis, both through the spherical joint: W = [s, n; r x s, r x n]
+// - the elimination needs no QR: the leg transmits w = W y, its elements deform by W^T S W y + O y
+// (O: the compliance of elements acting on the coordinates y directly, e.g. rods whose lines are
+// the columns of W, O = diag(1/k_j)), so K_leg = W (W^T S W + O)^-1 W^T, the same matrix for any
+// basis of the same space. The passive joints and rod groups of the leg are then not used (the
+// basis and O stand for them); the tests compare both evaluations.
+//
 // Speed: fixed capacities (kMaxSprings virtual springs, kMaxPassive passive twists, ...), no heap
 // allocation; VjmLeg lives on the stack and is rebuilt per pose (clear(), add_*, stiffness()).
 //
@@ -161,6 +170,17 @@ struct TwoForceMember {
   double stiffness = 0.0;
 };
 
+/// The wrenches a leg transmits, known from its geometry (VjmLeg::stiffness_for_wrenches).
+struct TransmittedWrenches {
+  /// 6 x m (m <= 6) independent wrenches at the reference point spanning the wrenches the passive
+  /// joints and rod groups do not relieve; columns of one kind and scale (e.g. unit forces along
+  /// lines: the rigid test compares their compliances).
+  Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> basis;
+  /// m x m compliance of the elements acting directly on the basis coordinates (a rod's axial
+  /// compliance 1/k on the column of its line), or empty (none).
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6> compliance;
+};
+
 /// The Cartesian stiffness of one leg at a reference point.
 struct LegCompliance {
   Matrix6d stiffness = Matrix6d::Zero();  ///< K_leg at `reference`, base axes (N/m, N, N*m/rad)
@@ -217,6 +237,12 @@ class VjmLeg {
   /// K_leg at `reference` with the passive joints eliminated. Throws std::domain_error when the
   /// rods of a group are (numerically) on dependent lines at this pose.
   LegCompliance stiffness(const Eigen::Vector3d& reference) const;
+  /// K_leg = W (W^T S W + O)^-1 W^T from the caller's basis W and compliance O of the transmitted
+  /// wrenches (see the header comment): the springs, beams and elastic joints are used, the
+  /// passive joints and rod groups are not. When W^T S W + O is singular (a transmitted wrench
+  /// meets no compliance) `rigid` is set and the stiffness left zero.
+  LegCompliance stiffness_for_wrenches(const Eigen::Vector3d& reference,
+                                       const TransmittedWrenches& wrenches) const;
   /// S: the chain's compliance at `reference` with the passive joints locked (m/N, ...).
   Matrix6d locked_compliance(const Eigen::Vector3d& reference) const;
   /// J_q at `reference` (the passive joints' unit twists, then for each rod group an orthonormal

@@ -9,10 +9,13 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file_writer.hpp"
 #include "io/yaml_reader.hpp"
@@ -238,7 +241,7 @@ void expect_same_leg(const LegChainLeg& r, const LegChainLeg& d, const std::stri
     EXPECT_EQ(r.branch, d.branch) << what;
   }
   EXPECT_EQ(r.axial_stiffness, d.axial_stiffness) << what;
-  if (d.axial_stiffness <= 0.0) {
+  if (d.axial_stiffness <= 0.0 && !d.link_section) {  // a section replaces E and area
     EXPECT_EQ(r.E, d.E) << what;
     EXPECT_EQ(r.area, d.area) << what;
   }
@@ -329,6 +332,210 @@ TEST(LegChainMachineFileFields, ExamplesAreFixedPointsOfReadAndWrite) {
       tripod_3prs_machine_file(tripod));
 }
 
+void expect_same_section(const std::optional<BeamSection>& read,
+                         const std::optional<BeamSection>& written, const std::string& what) {
+  ASSERT_EQ(read.has_value(), written.has_value()) << what;
+  if (!written) return;
+  EXPECT_EQ(read->E, written->E) << what;
+  EXPECT_EQ(read->G, written->G) << what;
+  EXPECT_EQ(read->A, written->A) << what;
+  EXPECT_EQ(read->Iy, written->Iy) << what;
+  EXPECT_EQ(read->Iz, written->Iz) << what;
+  EXPECT_EQ(read->J, written->J) << what;
+}
+
+// Link sections and parallelogram widths: written as the section's values, read back to the same
+// design, the writer a fixed point; a tube in a file is the tube_section of its diameters.
+TEST(LegChainMachineFileFields, LinkSectionsRoundTrip) {
+  const BeamSection tube = tube_section(2.1e11, 8.1e10, 0.08, 0.06);
+  const BeamSection box{7.0e10, 2.6e10, 6e-4, 1.2e-7, 3.0e-7, 2.0e-7};
+  Tripod3PrsDesign t;
+  t.stiffness = {0.0, 0.0, 0.0, 2.0e8};
+  t.stiffness.section = tube;
+  std::string text = tripod_3prs_machine_file(t);
+  EXPECT_NE(text.find("struts: {section: {E: 210000000000, G: 81000000000, A: "), std::string::npos)
+      << text;
+  Tripod3PrsDesign tr = read_tripod_3prs_design(yaml(text));
+  expect_same_section(tr.stiffness.section, t.stiffness.section, "tripod");
+  EXPECT_EQ(tripod_3prs_machine_file(tr), text);
+  // The tube form reads as tube_section; the API's E and area are not written with a section.
+  t.stiffness.E = 2.1e11;
+  t.stiffness.area = 6e-4;
+  EXPECT_EQ(tripod_3prs_machine_file(t), text);
+  const std::string head =
+      "model: tripod_3prs\nbase_radius: 0.3\nplatform_radius: 0.15\nstrut: 0.55\nstroke: [0, "
+      "0.95]\n";
+  tr = read_tripod_3prs_design(
+      yaml(head + "struts: {section: {E: 2.1e11, G: 8.1e10, outer_diameter: 0.08, "
+                  "inner_diameter: 0.06}}\n"));
+  expect_same_section(tr.stiffness.section, tube, "tripod tube");
+  tr = read_tripod_3prs_design(
+      yaml(head + "struts: {section: {E: 2.1e11, G: 8.1e10, outer_diameter: 0.05}}\n"));
+  expect_same_section(tr.stiffness.section, tube_section(2.1e11, 8.1e10, 0.05), "solid rod");
+
+  DeltaDesign d;
+  d.stiffness = {0.0, 7.0e10, 5.0e-5, 1.5e5};
+  d.stiffness.parallelogram_width = 0.1;
+  d.crank_section = box;
+  text = delta_machine_file(d);
+  EXPECT_NE(text.find("rods: {E: 70000000000, area: 5e-05, parallelogram_width: 0.1}\n"
+                      "crank_section: {E: 70000000000, G: 26000000000, A: 0.0006, Iy: 1.2e-07, "
+                      "Iz: 3e-07, J: 2e-07}\n"),
+            std::string::npos)
+      << text;
+  const DeltaDesign dr = read_delta_design(yaml(text));
+  EXPECT_EQ(dr.stiffness.parallelogram_width, 0.1);
+  expect_same_section(dr.crank_section, d.crank_section, "delta crank");
+  EXPECT_EQ(delta_machine_file(dr), text);
+
+  LinearDeltaDesign l;
+  l.stiffness = {0.0, 0.0, 0.0, 2.0e7};
+  l.stiffness.section = tube_section(7.0e10, 2.6e10, 0.012, 0.008);
+  l.stiffness.parallelogram_width = 0.06;
+  text = linear_delta_machine_file(l);
+  const LinearDeltaDesign lr = read_linear_delta_design(yaml(text));
+  expect_same_section(lr.stiffness.section, l.stiffness.section, "linear delta");
+  EXPECT_EQ(lr.stiffness.parallelogram_width, 0.06);
+  EXPECT_EQ(linear_delta_machine_file(lr), text);
+
+  HexaglideDesign g;
+  g.stiffness = {0.0, 0.0, 0.0, 2.0e8};
+  g.stiffness.section = tube_section(2.1e11, 8.1e10, 0.05, 0.04);
+  text = hexaglide_machine_file(g);
+  const HexaglideDesign gr = read_hexaglide_design(yaml(text));
+  expect_same_section(gr.stiffness.section, g.stiffness.section, "hexaglide");
+  EXPECT_EQ(hexaglide_machine_file(gr), text);
+
+  // The generic form, leg by leg: link.section, crank_section, parallelogram_width and _axis.
+  const std::vector<std::pair<std::string, LegChainDesign>> generic = {
+      {"tripod", tripod_3prs_design(t)},
+      {"delta", delta_design(d)},
+      {"linear", linear_delta_design(l)}};
+  for (const auto& [name, design] : generic) {
+    text = leg_chain_machine_file(design);
+    const LegChainDesign back = read_leg_chain_design(yaml(text));
+    expect_same_leg_chain(back, design, name);
+    for (std::size_t i = 0; i < design.legs.size(); ++i) {
+      const LegChainLeg& w = design.legs[i];
+      const LegChainLeg& r = back.legs[i];
+      expect_same_section(r.link_section, w.link_section, name + " link");
+      expect_same_section(r.crank_section, w.crank_section, name + " crank");
+      EXPECT_EQ(r.parallelogram_width, w.parallelogram_width) << name;
+    }
+    EXPECT_EQ(leg_chain_machine_file(back), text) << name;
+    // The machines agree: the same compliance at a pose.
+    const LegChainMachine a(design), b(back);
+    const Pose pose = name == "tripod"  ? Pose{{0, 0, 1.2}, {0.2, -0.1, 0}}
+                      : name == "delta" ? Pose{{0.05, -0.1, -1.0}, {0, 0, 0}}
+                                        : Pose{{0.02, 0.01, 0.2}, {0, 0, 0}};
+    PoseMetrics ma, mb;
+    a.analyze(*a.make_data(), pose, Wrench::Zero(), ma);
+    b.analyze(*b.make_data(), pose, Wrench::Zero(), mb);
+    ASSERT_TRUE(a.link_compliance_model()) << name;
+    EXPECT_EQ(ma.compliance, mb.compliance) << name;
+  }
+  text = leg_chain_machine_file(linear_delta_design(l));
+  EXPECT_NE(text.find("parallelogram_width: 0.06, parallelogram_axis: ["), std::string::npos)
+      << text;
+  text = leg_chain_machine_file(delta_design(d));
+  EXPECT_NE(text.find("crank_section: {E: 70000000000, G: 26000000000"), std::string::npos) << text;
+}
+
+TEST(LegChainMachineFileFields, LinkSectionErrorsAreLocated) {
+  const std::string head =
+      "model: tripod_3prs\nbase_radius: 0.3\nplatform_radius: 0.15\nstrut: 0.55\nstroke: [0, "
+      "0.95]\n";
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10, outer_diameter: 0.08}}\n"),
+            "no error");
+  EXPECT_EQ(error_of(head + "struts: {E: 2.1e11, section: {E: 2.1e11, G: 8.1e10, "
+                            "outer_diameter: 0.08}}\n"),
+            "m.yaml:6:13: struts.E: either a section (its E and A give the axial stiffness) or E "
+            "and area (or axial_stiffness), not both");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10, A: 2e-3, Iy: 1e-6}}\n"),
+            "m.yaml:6:19: struts.section: missing required key 'Iz'");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, outer_diameter: 0.08}}\n"),
+            "m.yaml:6:19: struts.section: missing required key 'G'");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10}}\n"),
+            "m.yaml:6:19: struts.section: a section needs outer_diameter (and inner_diameter) of "
+            "a tube, or A, Iy, Iz and J");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10, outer_diameter: 0.08, "
+                            "J: 1e-6}}\n"),
+            "m.yaml:6:67: struts.section.J: either outer_diameter (and inner_diameter) of a tube "
+            "or A, Iy, Iz and J, not both");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10, inner_diameter: 0.06}}\n"),
+            "m.yaml:6:19: struts.section: missing required key 'outer_diameter'");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10, outer_diameter: 0.06, "
+                            "inner_diameter: 0.06}}\n"),
+            "m.yaml:6:80: struts.section.inner_diameter: expected a number < outer_diameter (m), "
+            "found '0.06'");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: -8.1e10, outer_diameter: 0.08}}\n"),
+            "m.yaml:6:34: struts.section.G: expected a number > 0, found '-8.1e10'");
+  EXPECT_EQ(error_of(head + "struts: {section: {E: 2.1e11, G: 8.1e10, outer_diameter: 0.08, "
+                            "D: 1}}\n"),
+            "m.yaml:6:64: struts.section.D: unknown key 'D'; allowed keys here: E, G, "
+            "outer_diameter, inner_diameter, A, Iy, Iz, J");
+  const std::string delta =
+      "model: delta\nbase_radius: 0.164\nplatform_radius: 0.044\nupper_arm: 0.524\nrod: 1.244\n"
+      "drive_range_deg: [-60, 100]\n";
+  EXPECT_EQ(error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5, parallelogram_width: 0}\n"),
+            "m.yaml:7:54: rods.parallelogram_width: expected a number > 0, found '0'");
+  EXPECT_EQ(error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncrank_section: {E: 7e10}\n"),
+            "m.yaml:8:16: crank_section: missing required key 'G'");
+  // The generic form: crank_section only on RUS legs, a pair's axis non-zero.
+  const std::string leg =
+      "  - kind: PUS\n    base_point: [0.4, 0, 0]\n    axis: [0, 0, 1]\n    link_length: 0.5\n"
+      "    platform_point: [0.06, 0.1, 0]\n    range: [-0.5, 1.0]\n    branch: -1\n"
+      "    link: {E: 7.0e10, area: 3.0e-5, rods: 2}\n";
+  const std::string generic = "model: leg_chain\nmobility: schoenflies\nlegs:\n" + leg + leg + leg;
+  EXPECT_EQ(
+      error_of(generic + leg + "    crank_section: {E: 7e10, G: 2.6e10, outer_diameter: 0.05}\n"),
+      "m.yaml:36:5: legs[3].crank_section: unknown key 'crank_section'; allowed keys here: "
+      "kind, base_point, platform_point, range, link, joints, actuator_stiffness, drive, "
+      "axis, link_length, branch");
+  std::string zero_axis = leg;
+  zero_axis.replace(zero_axis.find("rods: 2}"), 8,
+                    "rods: 2, parallelogram_width: 0.05, parallelogram_axis: [0, 0, 0]}");
+  EXPECT_EQ(error_of(generic + zero_axis),
+            "m.yaml:35:93: legs[3].link.parallelogram_axis: expected a non-zero vector, found a "
+            "list of 3");
+}
+
+// The figures of studies/library/tripod-z3.md: the Sprint Z3-like head with 80/60 mm steel tube
+// struts against the axial model of the same E*A, at the task centre and over the task.
+TEST(LegChainMachineFileFields, TripodZ3StudyFiguresHold) {
+  const std::string dir = kSource + "/studies/library/tripod-z3/";
+  const CsvTable task = read_csv_file(dir + "task.csv");
+  ASSERT_EQ(task.rows.size(), 80u);
+  const Wrench w = (Wrench() << 2000, 0, -3000, 0, 0, 0).finished();
+  struct Figures {
+    const char* file;
+    double centre, task_min;  // N/um, as the README gives them
+    double tolerance;
+  };
+  for (const Figures& f :
+       {Figures{"z3-axial.yaml", 134.2, 39.8, 0.05}, Figures{"z3-tube.yaml", 17.5, 8.45, 0.005}}) {
+    const auto root = YamlValue::load_file(dir + f.file);
+    const LegChainMachine m(tripod_3prs_design(read_tripod_3prs_design(root)));
+    EXPECT_EQ(m.link_compliance_model(), std::string(f.file) == "z3-tube.yaml");
+    auto data = m.make_data();
+    PoseMetrics metrics;
+    m.analyze(*data, Pose{{0, 0, 1.2}, {0, 0, 0}}, w, metrics);
+    EXPECT_NEAR(metrics.stiffness_min / 1e6, f.centre, 0.05) << f.file;
+    double worst = std::numeric_limits<double>::infinity();
+    for (const CsvRow& row : task.rows) {
+      Eigen::Vector3d p, a;
+      for (int k = 0; k < 3; ++k) {
+        p(k) = task.number(row, k);
+        a(k) = task.number(row, 3 + k);
+      }
+      m.analyze(*data, Pose{p, deg_to_rad(a)}, w, metrics);
+      EXPECT_TRUE(metrics.reachable) << f.file << " line " << row.line;
+      worst = std::min(worst, metrics.stiffness_min);
+    }
+    EXPECT_NEAR(worst / 1e6, f.task_min, f.tolerance) << f.file;
+  }
+}
+
 TEST(LegChainMachineFileFields, KeysReadByHandKeepTheirMessages) {
   const std::string delta =
       "model: delta\nbase_radius: 0.164\nplatform_radius: 0.044\nupper_arm: 0.524\nrod: 1.244\n"
@@ -347,11 +554,11 @@ TEST(LegChainMachineFileFields, KeysReadByHandKeepTheirMessages) {
                      "rod: 1.244\ndrive_range_deg: [-200, 100]\nrods: {E: 7.0e10, area: 5.0e-5}\n"),
             "m.yaml:6:18: drive_range_deg: expected a range within [-180, 180] deg, found [-200, "
             "100]");
-  EXPECT_EQ(
-      error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncolour: red\n"),
-      "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
-      "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
-      "rods, drive_stiffness, drive, joints, tool, characteristic_length, actuator_error_deg");
+  EXPECT_EQ(error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncolour: red\n"),
+            "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
+            "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
+            "rods, crank_section, drive_stiffness, drive, joints, tool, characteristic_length, "
+            "actuator_error_deg");
   const std::string glide =
       "model: hexaglide\nguides: {y: [0.46, 0.46, 0.39, -0.55, -0.55, 0.39]}\nstrut: 0.8\n"
       "stroke: [-1.2, 1.2]\nstruts: {E: 2.1e11, area: 3.0e-4}\n";
