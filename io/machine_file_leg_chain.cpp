@@ -337,6 +337,22 @@ void describe_fields(Fields& f, DeltaDesign& d) {
            .doc = "half-width of the drive angle error box of tcp_error_max"});
 }
 
+// The keys after the links of a carriage-driven model (linear delta, hexaglide): the carriage
+// drive, its drive train, joint limits, tool, characteristic length and actuator error.
+template <class Fields, class Design>
+void describe_carriage_drive_and_rest(Fields& f, Design& d) {
+  f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
+          drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
+  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
+  describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
+                  "limit of the carriage joint angle", d.platform_max_angle,
+                  "limit of the platform joint angle");
+  describe_tool(f, d.tcp);
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+}
+
 template <class Fields>
 void describe_fields(Fields& f, LinearDeltaDesign& d) {
   describe_model(f, "linear_delta");
@@ -352,16 +368,7 @@ void describe_fields(Fields& f, LinearDeltaDesign& d) {
                  "a rod's section: its E·A replaces E and area (rods with ball joints at both "
                  "ends carry axial forces only)",
                  true);
-  f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
-          drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
-  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
-  describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
-                  "limit of the carriage joint angle", d.platform_max_angle,
-                  "limit of the platform joint angle");
-  describe_tool(f, d.tcp);
-  describe_characteristic_length(f, d.characteristic_length);
-  f.field("actuator_error", d.actuator_error,
-          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  describe_carriage_drive_and_rest(f, d);
 }
 
 template <class Fields>
@@ -388,16 +395,7 @@ void describe_fields(Fields& f, HexaglideDesign& d) {
                  "a strut's section: its E·A replaces E and area (a strut between a universal and "
                  "a spherical joint carries its axial force only)",
                  false);
-  f.field("carriage_stiffness", d.stiffness.actuator_stiffness,
-          drive_stiffness(d.stiffness, "N/m", "carriage drive along the guide; unset: rigid"));
-  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
-  describe_joints(f, "carriage_max_angle_deg", d.carriage_max_angle,
-                  "limit of the carriage joint angle", d.platform_max_angle,
-                  "limit of the platform joint angle");
-  describe_tool(f, d.tcp);
-  describe_characteristic_length(f, d.characteristic_length);
-  f.field("actuator_error", d.actuator_error,
-          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  describe_carriage_drive_and_rest(f, d);
   f.field("home_height", d.home_height, {.unit = "m", .doc = "z of the FK start pose"});
 }
 
