@@ -66,16 +66,18 @@ void describe_joint_stiffness(Fields& g, double& base, double& platform) {
            .doc = "axial stiffness of the platform joint, in series with the leg"});
 }
 
-/// After the list has read `parent.drive`: a half-given screw, torsion without lead, or screw
-/// terms on a revolute actuator fail at the `drive` key (models/compliance_chain.hpp's rules).
-inline void check_drive_section(const YamlValue& parent, const ScrewDrive& drive, bool revolute) {
-  const std::optional<YamlValue> section = parent.optional("drive");
+/// After the list has read `parent.<key>` (`drive` unless told): a half-given screw, torsion
+/// without lead, or screw terms on a revolute actuator fail at that key
+/// (models/compliance_chain.hpp's rules).
+inline void check_drive_section(const YamlValue& parent, const ScrewDrive& drive, bool revolute,
+                                const std::string& key = "drive") {
+  const std::optional<YamlValue> section = parent.optional(key);
   if (!section) return;
   try {
-    check_screw_drive(drive, "drive", revolute);
+    check_screw_drive(drive, key, revolute);
   } catch (const std::invalid_argument& e) {
     std::string message = e.what();
-    const std::string prefix = "drive: ";
+    const std::string prefix = key + ": ";
     if (message.rfind(prefix, 0) == 0) message = message.substr(prefix.size());
     section->fail(message);
   }

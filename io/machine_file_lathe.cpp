@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "io/compliance_fields.hpp"
 #include "io/field_list.hpp"
 
 namespace pkmopt {
@@ -60,6 +61,13 @@ void describe_fields(Fields& f, Lathe16k20f3Design& d) {
   f.field("strut_area", d.strut_area, positive("m²", "cross-section of a rod (2 rods per pair)"));
   f.field("carriage_stiffness", d.carriage_stiffness,
           non_negative("N/m", "carriage drive along x (0: rigid)"));
+  f.section("carriage_drive",
+            {.doc = "the carriages' drive train in series with carriage_stiffness; free lengths "
+                    "at the carriage positions carriage_travel[0] and [1]"},
+            [&](auto& g) { describe_screw_drive(g, d.carriage_drive); });
+  f.section("strut_joints", {.doc = "the struts' joints, per rod"}, [&](auto& g) {
+    describe_joint_stiffness(g, d.strut_base_joint_stiffness, d.strut_platform_joint_stiffness);
+  });
   f.field("leg_base_x", d.leg_base_x, number("m", "overhead base joints at (x, y ∓ spacing/2, z)"));
   f.field("leg_base_y", d.leg_base_y, number("m", "y of the base joints' centre"));
   f.field("leg_base_z", d.leg_base_z, number("m", "z of the base joints"));
@@ -81,6 +89,13 @@ void describe_fields(Fields& f, Lathe16k20f3Design& d) {
   f.field("leg_area", d.leg_area, positive("m²", "cross-section of a cylinder housing"));
   f.field("leg_actuator_stiffness", d.leg_actuator_stiffness,
           non_negative("N/m", "screw and nut of the electro-cylinder, in series (0: rigid)"));
+  f.section("leg_drive",
+            {.doc = "the cylinders' drive train in series with leg_actuator_stiffness; free "
+                    "lengths at the leg lengths leg_length[0] and [1]"},
+            [&](auto& g) { describe_screw_drive(g, d.leg_drive); });
+  f.section("leg_joints", {.doc = "the cylinders' joints"}, [&](auto& g) {
+    describe_joint_stiffness(g, d.leg_base_joint_stiffness, d.leg_platform_joint_stiffness);
+  });
   f.field("actuator_error", d.actuator_error,
           non_negative("m", "half-width of the actuator error box of tcp_error_max"));
 }
@@ -88,6 +103,8 @@ void describe_fields(Fields& f, Lathe16k20f3Design& d) {
 Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root) {
   Lathe16k20f3Design d;
   read_fields(root, d);
+  check_drive_section(root, d.carriage_drive, false, "carriage_drive");
+  check_drive_section(root, d.leg_drive, false, "leg_drive");
   try {
     (void)make_lathe_16k20f3(d);
   } catch (const std::invalid_argument& e) {

@@ -38,6 +38,11 @@ LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
                 "E and areas must be > 0");
   require_lathe(d.carriage_stiffness >= 0.0 && d.leg_actuator_stiffness >= 0.0,
                 "actuator stiffnesses must be >= 0");
+  for (const double k : {d.strut_base_joint_stiffness, d.strut_platform_joint_stiffness,
+                         d.leg_base_joint_stiffness, d.leg_platform_joint_stiffness})
+    require_lathe(std::isfinite(k) && k >= 0.0, "joint stiffnesses must be >= 0 (0: rigid)");
+  check_screw_drive(d.carriage_drive, "lathe_16k20f3: carriage_drive", false);
+  check_screw_drive(d.leg_drive, "lathe_16k20f3: leg_drive", false);
 
   LegChainDesign design;
   design.model = "lathe_16k20f3";
@@ -64,6 +69,9 @@ LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
     strut.area = d.strut_area;
     strut.rods = 2;
     strut.actuator_stiffness = d.carriage_stiffness;
+    strut.drive = d.carriage_drive;
+    strut.base_joint_stiffness = d.strut_base_joint_stiffness;
+    strut.platform_joint_stiffness = d.strut_platform_joint_stiffness;
     strut.base_axis =
         side == 0 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d(-Eigen::Vector3d::UnitX());
     strut.base_max_angle = d.strut_max_angle;
@@ -81,6 +89,9 @@ LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
     leg.area = d.leg_area;
     leg.rods = 1;
     leg.actuator_stiffness = d.leg_actuator_stiffness;
+    leg.drive = d.leg_drive;
+    leg.base_joint_stiffness = d.leg_base_joint_stiffness;
+    leg.platform_joint_stiffness = d.leg_platform_joint_stiffness;
     leg.base_axis = -Eigen::Vector3d::UnitZ();
     leg.base_max_angle = d.leg_max_angle;
     design.legs.push_back(leg);

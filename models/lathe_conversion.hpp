@@ -33,7 +33,10 @@
 //
 // Stiffness: struts E * area * 2 / L (two rods per pair), the carriage drives (ball screw along
 // the bed, like the stock Z drive) carriage_stiffness in series; legs E * leg_area / q in series
-// with leg_actuator_stiffness. The parallelogram bars are taken as rigid (leg_chain.hpp).
+// with leg_actuator_stiffness. Optionally the drive trains in detail (carriage_drive, leg_drive:
+// ball screw whose free length follows the carriage position or the leg length, nut, bearing,
+// motor torsion; models/compliance_chain.hpp) and the joints' axial stiffness, all in series.
+// The parallelogram bars are taken as rigid (leg_chain.hpp).
 //
 // The conversion study's strut-length formula (`seeds_strut_length`): the strut from the carriage
 // hinge (Y_I, Z_I) must reach the farthest tool position, the largest part's radius plus the
@@ -58,6 +61,7 @@
 #include <optional>
 #include <vector>
 
+#include "models/compliance_chain.hpp"
 #include "models/leg_chain.hpp"
 #include "models/machine.hpp"
 #include "models/pose.hpp"
@@ -84,6 +88,11 @@ struct Lathe16k20f3Design {
   double strut_E = 2.1e11;                    ///< steel tubes
   double strut_area = 4.0e-4;                 ///< per rod (2 rods per pair)
   double carriage_stiffness = 1.5e8;          ///< carriage drive (ball screw), N/m
+  /// The carriage's drive train in series with carriage_stiffness (free length at the carriage
+  /// positions carriage_min and carriage_max); unset: none.
+  ScrewDrive carriage_drive{};
+  double strut_base_joint_stiffness = 0.0;      ///< carriage hinge, axial, per rod (N/m; 0 rigid)
+  double strut_platform_joint_stiffness = 0.0;  ///< housing ball joint, axial, per rod (N/m)
   // Legs (UPS): overhead base joints, platform joints, length range
   double leg_base_x = 0.0;
   double leg_base_y = 0.10;
@@ -97,7 +106,12 @@ struct Lathe16k20f3Design {
   double leg_E = 2.1e11;
   double leg_area = 1.5e-3;               ///< cylinder housing section
   double leg_actuator_stiffness = 1.0e8;  ///< screw and nut of the electro-cylinder, N/m
-  double actuator_error = 1e-5;           ///< m
+  /// The cylinders' drive train in series with leg_actuator_stiffness (free length at the leg
+  /// lengths leg_min_length and leg_max_length); unset: none.
+  ScrewDrive leg_drive{};
+  double leg_base_joint_stiffness = 0.0;      ///< U joint at the beam, axial (N/m; 0 rigid)
+  double leg_platform_joint_stiffness = 0.0;  ///< joint at the housing, axial (N/m)
+  double actuator_error = 1e-5;               ///< m
 };
 
 /// The leg-chain design (model name "lathe_16k20f3", mobility kSchoenflies, e = x). Throws

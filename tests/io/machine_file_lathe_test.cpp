@@ -65,6 +65,26 @@ TEST(LatheMachineFileFields, WriterAndReaderRoundTripEveryKey) {
   d.leg_E = 2.0e11;
   d.leg_area = 1.6e-3;
   d.leg_actuator_stiffness = 1.2e8;
+  d.carriage_drive = {.E = 2.1e11,
+                      .root_diameter = 0.035,
+                      .free_length_at_min = 0.2,
+                      .free_length_at_max = 2.9,
+                      .nut_stiffness = 6e8,
+                      .bearing_stiffness = 9e8,
+                      .torsional_stiffness = 4e3,
+                      .lead = 0.01};
+  d.strut_base_joint_stiffness = 3e8;
+  d.strut_platform_joint_stiffness = 4e8;
+  d.leg_drive = {.E = 2.0e11,
+                 .root_diameter = 0.025,
+                 .free_length_at_min = 0.1,
+                 .free_length_at_max = 0.5,
+                 .nut_stiffness = 5e8,
+                 .bearing_stiffness = 7e8,
+                 .torsional_stiffness = 2e3,
+                 .lead = 0.005};
+  d.leg_base_joint_stiffness = 5e8;
+  d.leg_platform_joint_stiffness = 6e8;
   d.actuator_error = 2e-5;
   const std::string text = lathe_16k20f3_machine_file(d);
   const Lathe16k20f3Design r = read_lathe_16k20f3_design(YamlValue::load_string(text, "l.yaml"));
@@ -95,6 +115,21 @@ TEST(LatheMachineFileFields, WriterAndReaderRoundTripEveryKey) {
   EXPECT_EQ(r.leg_E, d.leg_E);
   EXPECT_EQ(r.leg_area, d.leg_area);
   EXPECT_EQ(r.leg_actuator_stiffness, d.leg_actuator_stiffness);
+  for (const auto& [read, written] :
+       {std::pair{r.carriage_drive, d.carriage_drive}, std::pair{r.leg_drive, d.leg_drive}}) {
+    EXPECT_EQ(read.E, written.E);
+    EXPECT_EQ(read.root_diameter, written.root_diameter);
+    EXPECT_EQ(read.free_length_at_min, written.free_length_at_min);
+    EXPECT_EQ(read.free_length_at_max, written.free_length_at_max);
+    EXPECT_EQ(read.nut_stiffness, written.nut_stiffness);
+    EXPECT_EQ(read.bearing_stiffness, written.bearing_stiffness);
+    EXPECT_EQ(read.torsional_stiffness, written.torsional_stiffness);
+    EXPECT_EQ(read.lead, written.lead);
+  }
+  EXPECT_EQ(r.strut_base_joint_stiffness, d.strut_base_joint_stiffness);
+  EXPECT_EQ(r.strut_platform_joint_stiffness, d.strut_platform_joint_stiffness);
+  EXPECT_EQ(r.leg_base_joint_stiffness, d.leg_base_joint_stiffness);
+  EXPECT_EQ(r.leg_platform_joint_stiffness, d.leg_platform_joint_stiffness);
   EXPECT_EQ(r.actuator_error, d.actuator_error);
   EXPECT_EQ(lathe_16k20f3_machine_file(r), text);
   // Every key is written, one line each, in the list's order.
@@ -121,6 +156,12 @@ TEST(LatheMachineFileFields, BadValuesKeepTheirMessages) {
             "l.yaml:2:10: strut_E: expected a number > 0, found '0'");
   EXPECT_EQ(error_of("model: lathe_16k20f3\ntool_reach: -0.1\n"),
             "l.yaml:2:13: tool_reach: expected a number >= 0, found '-0.1'");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\nleg_drive: {E: 2.1e11, root_diameter: 0.03}\n"),
+            "l.yaml:2:12: leg_drive: the screw needs its free length (free_length_at_min, "
+            "free_length_at_max)");
+  EXPECT_EQ(error_of("model: lathe_16k20f3\ncarriage_drive: {torsional_stiffness: 3000}\n"),
+            "l.yaml:2:17: carriage_drive: the motor torsion acts through the lead: give "
+            "torsional_stiffness and lead together");
   const std::string unknown = error_of("model: lathe_16k20f3\ncolour: red\n");
   EXPECT_NE(unknown.find("l.yaml:2:1: colour: unknown key 'colour'; allowed keys here: model, "
                          "name, description, centre_height, tool_reach, approach_angle_deg,"),

@@ -184,6 +184,49 @@ TEST(LatheConversion, LegForcesBalanceTheTurningLoadByVirtualWork) {
   }
 }
 
+// The drive trains and joints are springs in series: a nut and a bearing in the carriage drive
+// act as a softer carriage_stiffness, a cylinder's nut and joints as a softer
+// leg_actuator_stiffness, and the struts' joints (per rod, constant strut length) as a thinner
+// rod. The machines must agree on every metric of the compliance.
+TEST(LatheConversion, DriveTrainsAndJointsAddInSeries) {
+  Lathe16k20f3Design chain;
+  chain.carriage_drive.nut_stiffness = 4.0e8;
+  chain.carriage_drive.bearing_stiffness = 9.0e8;
+  chain.strut_base_joint_stiffness = 3.0e8;
+  chain.strut_platform_joint_stiffness = 5.0e8;
+  chain.leg_drive.nut_stiffness = 2.5e8;
+  chain.leg_base_joint_stiffness = 6.0e8;
+  chain.leg_platform_joint_stiffness = 7.0e8;
+  Lathe16k20f3Design lumped;
+  lumped.carriage_stiffness = 1.0 / (1.0 / chain.carriage_stiffness + 1.0 / 4.0e8 + 1.0 / 9.0e8);
+  lumped.leg_actuator_stiffness =
+      1.0 / (1.0 / chain.leg_actuator_stiffness + 1.0 / 2.5e8 + 1.0 / 6.0e8 + 1.0 / 7.0e8);
+  const double L = chain.strut_length, E = chain.strut_E;
+  lumped.strut_area = L / (E * (L / (E * chain.strut_area) + 1.0 / 3.0e8 + 1.0 / 5.0e8));
+  const auto a = make_lathe_16k20f3(chain), b = make_lathe_16k20f3(lumped);
+  const auto plain = make_lathe_16k20f3(Lathe16k20f3Design{});
+  const auto da = a->make_data(), db = b->make_data(), dp = plain->make_data();
+  const Wrench w = turning_wrench();
+  for (const Pose& pose : sample_poses()) {
+    PoseMetrics ma, mb, mp;
+    a->analyze(*da, pose, w, ma);
+    b->analyze(*db, pose, w, mb);
+    plain->analyze(*dp, pose, w, mp);
+    ASSERT_GT(ma.stiffness_min, 0.0);
+    EXPECT_NEAR(ma.stiffness_min, mb.stiffness_min, 1e-10 * mb.stiffness_min);
+    EXPECT_NEAR(ma.tcp_deflection, mb.tcp_deflection, 1e-10 * mb.tcp_deflection);
+    EXPECT_LE((ma.compliance - mb.compliance).norm(), 1e-10 * mb.compliance.norm());
+    // The added springs only soften the machine.
+    EXPECT_LT(ma.stiffness_min, mp.stiffness_min);
+    EXPECT_GT(ma.tcp_deflection, mp.tcp_deflection);
+  }
+  // A screw without its free length is refused, naming the drive.
+  Lathe16k20f3Design bad;
+  bad.leg_drive.E = 2.1e11;
+  bad.leg_drive.root_diameter = 0.03;
+  EXPECT_THROW(lathe_16k20f3_design(bad), std::invalid_argument);
+}
+
 TEST(LatheConversion, RejectsImpossibleDesigns) {
   Lathe16k20f3Design d;
   d.strut_length = 0.0;
