@@ -76,20 +76,27 @@ void BM_HexapodMetricsBatchBaselineOneThread(benchmark::State& state) {
 BENCHMARK(BM_HexapodMetricsBatchBaselineOneThread)->Unit(benchmark::kMicrosecond);
 
 // What `pkmopt analyze` runs on a hexapod: the SIMD batch path (models/hexapod_batch.hpp) on
-// slices of 1024 poses with OpenMP. Args: {poses, threads (0: all)}; items = poses, real time.
+// slices of 1024 poses with OpenMP. Args: {poses, threads (0: all), matrices (1: also write the
+// 6x6 compliance and the loaded 3x3 block, as analyze --compliance)}; items = poses, real time.
 void BM_HexapodAnalyzeBatch(benchmark::State& state) {
   const pkmopt::Hexapod hexapod = sample_hexapod();
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : omp_get_max_threads();
+  // 1: also the compliance matrices (what analyze --compliance writes)
+  std::vector<pkmopt::PoseCompliance> matrices(state.range(2) != 0 ? n : 0);
   const std::vector<pkmopt::Pose> poses = sample_poses(n);
   std::vector<pkmopt::PoseMetrics> metrics = sized_metrics(n);
   const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
   constexpr std::size_t kSlice = 1024;
+  std::size_t scalar_poses = 0;
   for (auto _ : state) {
-#pragma omp parallel for schedule(static) num_threads(threads)
+    scalar_poses = 0;
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : scalar_poses)
     for (std::size_t start = 0; start < n; start += kSlice) {
-      pkmopt::analyze_hexapod_batch(hexapod, poses.data() + start, std::min(kSlice, n - start),
-                                    wrench, metrics.data() + start);
+      scalar_poses += pkmopt::analyze_hexapod_batch(
+          hexapod, poses.data() + start, std::min(kSlice, n - start), wrench,
+          metrics.data() + start, pkmopt::HexapodBatchKernel::automatic,
+          matrices.empty() ? nullptr : matrices.data() + start);
     }
     benchmark::DoNotOptimize(metrics.data());
     benchmark::ClobberMemory();
@@ -98,10 +105,13 @@ void BM_HexapodAnalyzeBatch(benchmark::State& state) {
                           static_cast<std::int64_t>(n));
   state.counters["threads"] = threads;
   state.counters["avx2"] = pkmopt::hexapod_batch_uses_avx2() ? 1 : 0;
+  // The share of poses the kernel handed to the scalar path (near-singular, heavy loads).
+  state.counters["scalar_share"] = static_cast<double>(scalar_poses) / static_cast<double>(n);
 }
 BENCHMARK(BM_HexapodAnalyzeBatch)
-    ->Args({1000000, 0})
-    ->Args({1000000, 1})
+    ->Args({1000000, 0, 0})
+    ->Args({1000000, 1, 0})
+    ->Args({1000000, 1, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

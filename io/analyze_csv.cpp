@@ -41,7 +41,8 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
     for (int k = 0; k < 3; ++k) line += ',' + format_number(m.stiffness_min_direction(k) + 0.0);
     if (options.compliance)
       for (int a = 0; a < 6; ++a)
-        for (int b = 0; b < 6; ++b) line += ',' + format_number(m.compliance(a, b) + 0.0);
+        for (int b = 0; b < 6; ++b)
+          line += ',' + format_number((*options.compliance)[i].compliance(a, b) + 0.0);
     for (int c : passthrough)
       line += ',' + csv_field(table.rows[i].cells[static_cast<std::size_t>(c)]);
     out << line << '\n';

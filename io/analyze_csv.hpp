@@ -25,7 +25,8 @@
 namespace pkmopt {
 
 struct AnalyzeCsvOptions {
-  bool compliance = false;  ///< add the 36 columns C_11..C_66 of the compliance matrix
+  /// When given (one per pose): add the 36 columns C_11..C_66 of each pose's compliance matrix.
+  const std::vector<PoseCompliance>* compliance = nullptr;
 };
 
 /// The whole CSV text (header and one row per pose; `metrics[i]` belongs to `poses.poses[i]`).

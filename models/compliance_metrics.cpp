@@ -37,8 +37,9 @@ Matrix6d constraint_geometric_stiffness(double force, const Eigen::Vector3d& n,
   return K;
 }
 
-void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& out) {
-  out.compliance = C;
+void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& out,
+                             PoseCompliance& matrices) {
+  matrices.compliance = C;
   const Vec6<double> dx = C * w;
   out.tcp_deflection = dx.head<3>().norm();
   out.tcp_rotation_deflection = dx.tail<3>().norm();
@@ -99,14 +100,14 @@ double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt) {
   return 1.0 / sigma_max;
 }
 
-void set_singular_compliance_metrics(PoseMetrics& out) {
+void set_singular_compliance_metrics(PoseMetrics& out, PoseCompliance& matrices) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  out.compliance = Matrix6d::Constant(kInf);
+  matrices.compliance = Matrix6d::Constant(kInf);
   out.tcp_deflection = kInf;
   out.tcp_rotation_deflection = kInf;
   out.stiffness_min_direction.setZero();
   out.stiffness_min_loaded = 0.0;
-  out.loaded_compliance_tt.setConstant(kInf);
+  matrices.loaded_compliance_tt.setConstant(kInf);
 }
 
 }  // namespace pkmopt

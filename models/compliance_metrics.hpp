@@ -47,10 +47,11 @@ Matrix6d geometric_stiffness(double tension, const Eigen::Vector3d& s, const Eig
 Matrix6d constraint_geometric_stiffness(double force, const Eigen::Vector3d& n,
                                         const Eigen::Vector3d& r);
 
-/// From the 6x6 compliance C and the wrench w: out.compliance = C, tcp_deflection,
+/// From the 6x6 compliance C and the wrench w: matrices.compliance = C, tcp_deflection,
 /// tcp_rotation_deflection and stiffness_min_direction (the eigenvector of C_tt of its largest
 /// eigenvalue, largest component positive).
-void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& out);
+void fill_compliance_metrics(const Matrix6d& C, const Wrench& w, PoseMetrics& out,
+                             PoseCompliance& matrices);
 
 /// 1 / sigma_max of the translational block of T C_T T^T, C_T = (I + C G)^-1 C on the platform
 /// DOF (C: m x m compliance, G: m x m geometric stiffness, T: 6 x m). 0 when K_T = C^-1 + G is
@@ -68,6 +69,6 @@ double loaded_stiffness_min(const Matrix6d& C, const Matrix6d& G,
 double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt);
 
 /// The metrics of a singular pose: compliance and deflections +inf, direction 0, loaded 0.
-void set_singular_compliance_metrics(PoseMetrics& out);
+void set_singular_compliance_metrics(PoseMetrics& out, PoseCompliance& matrices);
 
 }  // namespace pkmopt

@@ -243,7 +243,7 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     out.stiffness_min = 0.0;
     out.tau = Vec6<double>::Constant(kInf);
     out.tcp_error_max = kInf;
-    if (d.compliance_metrics) set_singular_compliance_metrics(out);
+    if (d.compliance_metrics) set_singular_compliance_metrics(out, d.matrices);
     return;
   }
   out.singularity_margin = rcond;
@@ -293,17 +293,17 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   if (d.compliance_metrics) compute_compliance_metrics(d, compliance, wrench, out);
 }
 
-void Hexapod::compute_compliance_metrics(const HexapodData& d, const Vec6<double>& compliance,
+void Hexapod::compute_compliance_metrics(HexapodData& d, const Vec6<double>& compliance,
                                          const Wrench& wrench, PoseMetrics& out) const {
   // C = J^-1 diag(1/k) J^-T; the loaded stiffness adds each leg's geometric term under its
   // force tau_i (models/compliance_metrics.hpp).
   const Eigen::PartialPivLU<Matrix6d> lu(d.J);
   const Matrix6d Jinv = lu.inverse();
   const Matrix6d C = Jinv * compliance.asDiagonal() * Jinv.transpose();
-  fill_compliance_metrics(C, wrench, out);
+  fill_compliance_metrics(C, wrench, out, d.matrices);
   Matrix6d G = Matrix6d::Zero();
   for (int i = 0; i < 6; ++i) G += geometric_stiffness(out.tau(i), d.s.col(i), d.r.col(i), d.q(i));
-  out.stiffness_min_loaded = loaded_stiffness_min(C, G, &out.loaded_compliance_tt);
+  out.stiffness_min_loaded = loaded_stiffness_min(C, G, &d.matrices.loaded_compliance_tt);
 }
 
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,

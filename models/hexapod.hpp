@@ -209,9 +209,10 @@ class Hexapod final : public Machine {
 
  private:
   bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
-  /// compliance, tcp_deflection, tcp_rotation_deflection, stiffness_min_direction and
-  /// stiffness_min_loaded of a non-singular pose (after compute_metrics' kinematics and tau).
-  void compute_compliance_metrics(const HexapodData& data, const Vec6<double>& compliance,
+  /// compliance (into data.matrices), tcp_deflection, tcp_rotation_deflection,
+  /// stiffness_min_direction and stiffness_min_loaded of a non-singular pose (after
+  /// compute_metrics' kinematics and tau).
+  void compute_compliance_metrics(HexapodData& data, const Vec6<double>& compliance,
                                   const Wrench& wrench, PoseMetrics& out) const;
 
   HexapodDesign design_;

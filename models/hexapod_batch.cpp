@@ -136,16 +136,17 @@ namespace avx2 {
 #endif
 
 std::size_t run_batch_baseline(const Hexapod& hexapod, const Pose* poses, std::size_t n,
-                               const Wrench& wrench, PoseMetrics* out) {
-  return baseline::run_batch(hexapod, poses, n, wrench, out);
+                               const Wrench& wrench, PoseMetrics* out, PoseCompliance* matrices) {
+  return baseline::run_batch(hexapod, poses, n, wrench, out, matrices);
 }
 
 #if defined(PKMOPT_BATCH_X86)
 __attribute__((target("avx2,fma"))) std::size_t run_batch_avx2(const Hexapod& hexapod,
                                                                const Pose* poses, std::size_t n,
                                                                const Wrench& wrench,
-                                                               PoseMetrics* out) {
-  return avx2::run_batch(hexapod, poses, n, wrench, out);
+                                                               PoseMetrics* out,
+                                                               PoseCompliance* matrices) {
+  return avx2::run_batch(hexapod, poses, n, wrench, out, matrices);
 }
 #endif
 
@@ -161,17 +162,20 @@ bool hexapod_batch_uses_avx2() {
 }
 
 std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,
-                                  const Wrench& wrench, PoseMetrics* out,
-                                  HexapodBatchKernel kernel) {
+                                  const Wrench& wrench, PoseMetrics* out, HexapodBatchKernel kernel,
+                                  PoseCompliance* matrices) {
   if (kernel == HexapodBatchKernel::baseline) {
-    return run_batch_baseline(hexapod, poses, n, wrench, out);
+    return run_batch_baseline(hexapod, poses, n, wrench, out, matrices);
   }
 #if defined(PKMOPT_BATCH_X86)
-  if (hexapod_batch_uses_avx2()) return run_batch_avx2(hexapod, poses, n, wrench, out);
+  if (hexapod_batch_uses_avx2()) return run_batch_avx2(hexapod, poses, n, wrench, out, matrices);
 #endif
   // Without AVX2 the scalar fast path is quicker than the baseline kernel.
   HexapodData data(hexapod);
-  for (std::size_t i = 0; i < n; ++i) hexapod.analyze(data, poses[i], wrench, out[i]);
+  for (std::size_t i = 0; i < n; ++i) {
+    hexapod.analyze(data, poses[i], wrench, out[i]);
+    if (matrices) matrices[i] = data.matrices;
+  }
   return n;
 }
 

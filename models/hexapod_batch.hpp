@@ -3,8 +3,9 @@
 // analyze_hexapod_batch(hexapod, poses, n, wrench, out) writes into out[i] what
 // hexapod.analyze(data, poses[i], wrench, out[i]) writes (the metric set of docs/conventions.md:
 // reachable, q, tau, stiffness_min, singularity_margin, det_j, tcp_error_max, singular, and the
-// compliance metrics of models/machine.hpp: compliance, tcp_deflection, tcp_rotation_deflection,
-// stiffness_min_direction, stiffness_min_loaded, loaded_compliance_tt), to within the accuracy
+// compliance metrics of models/machine.hpp: tcp_deflection, tcp_rotation_deflection,
+// stiffness_min_direction, stiffness_min_loaded, and on request the matrices compliance and
+// loaded_compliance_tt), to within the accuracy
 // rules of the fast path (docs/performance.md, "Accuracy"): 1e-10 relative, or 64 eps cond(J)
 // where J is too ill-conditioned for that (compliance entries relative to |C|, the direction to
 // within |dC_tt| / gap where the two largest eigenvalues of C_tt are close).
@@ -17,15 +18,15 @@
 //     [J^T | e_1 .. e_6 w]: det J, tau = J^-T w and J^-1 (P: its translational rows);
 //   - C = J^-1 diag(1/k) J^-T (lower triangle; C_tt = P diag(1/k) P^T) and C w = J^-1 (tau / k):
 //     tcp_deflection = |(C w)_t|, tcp_rotation_deflection = |(C w)_r|;
-//   - the loaded compliance: G = sum_i tau_i K_g(s_i, r_i, q_i) (the geometric stiffness of
-//     models/compliance_metrics.hpp, assembled from the dyads s s^T, s m^T, r s^T, r r^T + m m^T
-//     with m_i = r_i x s_i), M = I + C G and Gaussian elimination without pivoting on
-//     [M | C e_1 C e_2 C e_3], rotational unknowns first, so that only the translational ones
-//     are back-substituted: loaded_compliance_tt = B = (M^-1 C)_tt. A lane is answered only when
+//   - the loaded stiffness K_T = K + G, K = J^T diag(k) J and G = sum_i tau_i K_g(s_i, r_i, q_i)
+//     (the geometric stiffness of models/compliance_metrics.hpp), assembled together from the
+//     dyads s s^T, s m^T, r s^T, r r^T, m m^T with m_i = r_i x s_i; Gaussian elimination without
+//     pivoting of its three rotational columns leaves the Schur complement S of the rotational
+//     block, and loaded_compliance_tt = B = S^-1 (the adjugate). A lane is answered only when
 //     beta = tr(D C D) sum_i |tau_i| ((1 + |r_i|^2/L^2) / q_i + |r_i| / L^2) < 1/2
 //     (D = diag(1, 1, 1, L, L, L)): beta bounds |D C D|_2 |D^-1 G D^-1|_2, which proves that the
-//     symmetric part of C + C G C is positive definite (the loaded machine is stable, as the
-//     scalar path's Cholesky test finds) and that the elimination needs no pivoting;
+//     symmetric part of K_T is positive definite (the loaded machine is stable, as the scalar
+//     path's Cholesky test finds) and that the elimination needs no pivoting;
 //   - the eigenvalues of the Gram matrix J_h^T J_h and of C_tt by the cyclic Jacobi method
 //     (parallel round-robin order for the 6x6, rotation skipped per lane when
 //     |a_pq| <= eps sqrt(a_pp a_qq), sweeps until every lane has converged; the two iterations
@@ -80,12 +81,15 @@ enum class HexapodBatchKernel {
   baseline,
 };
 
-/// The metric set of hexapod.analyze for poses[0..n) under one wrench, into out[0..n).
-/// out[i].q and out[i].tau are resized to 6 when needed. Returns how many poses were
-/// recomputed by the scalar path (see the header comment). Thread-safe for disjoint outputs.
+/// The metric set of hexapod.analyze for poses[0..n) under one wrench, into out[0..n), and,
+/// when `matrices` is given, the compliance matrices (what hexapod.analyze leaves in
+/// data.matrices) into matrices[0..n). out[i].q and out[i].tau are resized to 6 when needed.
+/// Returns how many poses were recomputed by the scalar path (see the header comment).
+/// Thread-safe for disjoint outputs.
 std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,
                                   const Wrench& wrench, PoseMetrics* out,
-                                  HexapodBatchKernel kernel = HexapodBatchKernel::automatic);
+                                  HexapodBatchKernel kernel = HexapodBatchKernel::automatic,
+                                  PoseCompliance* matrices = nullptr);
 
 /// True when the automatic choice runs the AVX2 + FMA kernel on this CPU.
 bool hexapod_batch_uses_avx2();

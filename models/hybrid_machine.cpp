@@ -22,12 +22,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // A parasitic module's pose counts as attained when the world TCP is within this (m).
 constexpr double kAttainedTolerance = 1e-9;
 
-void set_singular(PoseMetrics& out, bool compliance_metrics) {
+void set_singular(PoseMetrics& out, bool compliance_metrics, PoseCompliance& matrices) {
   out.singularity_margin = 0.0;
   out.stiffness_min = 0.0;
   out.tau.setConstant(kInf);
   out.tcp_error_max = kInf;
-  if (compliance_metrics) set_singular_compliance_metrics(out);
+  if (compliance_metrics) set_singular_compliance_metrics(out, matrices);
 }
 
 }  // namespace
@@ -154,7 +154,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.det_j = m.det_j;
   if (m.singular || !maps) {
     out.singular = true;
-    set_singular(out, d.compliance_metrics);
+    set_singular(out, d.compliance_metrics, d.matrices);
     return;
   }
 
@@ -174,16 +174,16 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
     // geometric term).
     Matrix6d turn = Matrix6d::Zero();
     turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0_;
-    Matrix6d C = turn * m.compliance * turn.transpose();
-    Eigen::Matrix3d loaded = R0_ * m.loaded_compliance_tt * R0_.transpose();
+    Matrix6d C = turn * d.module->matrices.compliance * turn.transpose();
+    Eigen::Matrix3d loaded = R0_ * d.module->matrices.loaded_compliance_tt * R0_.transpose();
     for (int i = 0; i < num_serial_; ++i) {
       const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
       if (k <= 0.0) continue;
       C.topLeftCorner<3, 3>() += A_.col(i) * A_.col(i).transpose() / k;
       loaded += A_.col(i) * A_.col(i).transpose() / k;
     }
-    fill_compliance_metrics(C, wrench, out);
-    out.loaded_compliance_tt = loaded;
+    fill_compliance_metrics(C, wrench, out, d.matrices);
+    d.matrices.loaded_compliance_tt = loaded;
     out.stiffness_min_loaded = m.stiffness_min_loaded > 0.0 ? loaded_stiffness_of(loaded) : 0.0;
   }
 
@@ -203,7 +203,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   if (!out.tau.allFinite() || !std::isfinite(out.tcp_error_max) ||
       !std::isfinite(out.stiffness_min)) {
     out.singular = true;
-    set_singular(out, d.compliance_metrics);
+    set_singular(out, d.compliance_metrics, d.matrices);
   }
 }
 

@@ -491,7 +491,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
-    if (d.compliance_metrics) set_singular_compliance_metrics(out);
+    if (d.compliance_metrics) set_singular_compliance_metrics(out, d.matrices);
     return;
   }
   out.singularity_margin = rcond;
@@ -542,7 +542,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
-    if (d.compliance_metrics) set_singular_compliance_metrics(out);
+    if (d.compliance_metrics) set_singular_compliance_metrics(out, d.matrices);
     return;
   }
   if (d.compliance_metrics && !vjm_) compute_compliance_metrics(d, f, wrench, out);

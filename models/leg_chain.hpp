@@ -108,7 +108,8 @@
 //   pkmopt::Tripod3PrsDesign z3;     // steel tube struts: their bending and torsion enter (VJM)
 //   z3.stiffness.section = pkmopt::tube_section(2.1e11, 8.1e10, 0.08, 0.06);
 //   auto head = pkmopt::make_tripod_3prs(z3);
-//   head->analyze(*head->make_data(), pose, pkmopt::Wrench::Zero(), m);  // m.compliance: finite
+//   head->analyze(*head->make_data(), pose, pkmopt::Wrench::Zero(), m);  //
+//   data.matrices.compliance: finite
 #pragma once
 
 #include <Eigen/Core>
@@ -320,10 +321,10 @@ class LegChainMachine final : public Machine {
   /// The home pose moved by the mean displacement of the actuated points from home to q.
   Pose default_fk_start(const Eigen::VectorXd& q) const;
   double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
-  /// compliance, tcp_deflection, tcp_rotation_deflection, stiffness_min_direction and
-  /// stiffness_min_loaded of a non-singular pose, from the rod forces f (models/
-  /// leg_chain_compliance.cpp).
-  void compute_compliance_metrics(const LegChainData& d,
+  /// compliance (into d.matrices), tcp_deflection, tcp_rotation_deflection,
+  /// stiffness_min_direction and stiffness_min_loaded of a non-singular pose, from the rod forces
+  /// f (models/leg_chain_compliance.cpp).
+  void compute_compliance_metrics(LegChainData& d,
                                   const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>& f,
                                   const Wrench& wrench, PoseMetrics& out) const;
   /// The geometric stiffness on the full twist of the rod forces f (every leg, its actuated point

@@ -64,14 +64,14 @@ void add_plane_constraint_terms(const LegChainDesign& design, const LegChainData
 
 }  // namespace
 
-void LegChainMachine::compute_compliance_metrics(const LegChainData& d, const VecM& f,
+void LegChainMachine::compute_compliance_metrics(LegChainData& d, const VecM& f,
                                                  const Wrench& wrench, PoseMetrics& out) const {
   const int n = num_actuators();
   const Eigen::PartialPivLU<MatM> lu(d.A);
   const MatM Ainv = lu.inverse();
   const MatM C = Ainv * d.k.cwiseInverse().asDiagonal() * Ainv.transpose();
   const Matrix6d C6 = d.T * C * d.T.transpose();
-  fill_compliance_metrics(C6, wrench, out);
+  fill_compliance_metrics(C6, wrench, out, d.matrices);
 
   // The loaded stiffness on the DOF.
   const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 6> Tr = d.T.bottomRows(3);
@@ -118,7 +118,7 @@ void LegChainMachine::compute_compliance_metrics(const LegChainData& d, const Ve
     add_plane_constraint_terms(design_, d, n, wrench, rod_wrench, geometric6);
   KT += d.T.transpose() * geometric6 * d.T;
   const MatM K = d.A.transpose() * d.k.asDiagonal() * d.A;
-  out.stiffness_min_loaded = loaded_stiffness_min(C, KT - K, d.T, &out.loaded_compliance_tt);
+  out.stiffness_min_loaded = loaded_stiffness_min(C, KT - K, d.T, &d.matrices.loaded_compliance_tt);
 }
 
 Matrix6d LegChainMachine::full_twist_geometric_stiffness(const LegChainData& d, const VecM& f,

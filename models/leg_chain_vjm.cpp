@@ -291,13 +291,14 @@ bool LegChainMachine::compute_vjm_metrics(LegChainData& d, const VecM& f, const 
   out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : kInf;
   d.compliance_tt = Ctt;
   if (!d.compliance_metrics) return true;
-  fill_compliance_metrics(C6, wrench, out);
+  fill_compliance_metrics(C6, wrench, out, d.matrices);
   const Matrix6d G6 = full_twist_geometric_stiffness(d, f, wrench);
   if (vjm_full_) {
-    out.stiffness_min_loaded = loaded_stiffness_min(C6, G6, &out.loaded_compliance_tt);
+    out.stiffness_min_loaded = loaded_stiffness_min(C6, G6, &d.matrices.loaded_compliance_tt);
   } else {
     const DofMatrix G_dof = d.T.transpose() * G6 * d.T;
-    out.stiffness_min_loaded = loaded_stiffness_min(C_dof, G_dof, d.T, &out.loaded_compliance_tt);
+    out.stiffness_min_loaded =
+        loaded_stiffness_min(C_dof, G_dof, d.T, &d.matrices.loaded_compliance_tt);
   }
   return true;
 }

@@ -18,9 +18,6 @@
 //   det_j         det of the inverse Jacobian J
 //   tcp_error_max the largest TCP position error (m) for actuator errors within the box
 //                 |dq_i| <= actuator_error; +inf if singular
-//   compliance    C = K^-1 (6x6, twist [dp; dtheta] per wrench [f; m] at the TCP, base axes);
-//                 for platforms with fewer than 6 DOF the directions the passive constraints
-//                 hold are rigid (zero rows and columns) unless link compliance is modelled
 //   tcp_deflection           |(C w)_t| (m): how far the TCP moves under the analysed wrench
 //   tcp_rotation_deflection  |(C w)_r| (rad): how far the tool turns under it
 //   stiffness_min_direction  the unit force direction of stiffness_min (the eigenvector of C_tt
@@ -29,6 +26,12 @@
 //                 with the geometric term of the leg forces under the wrench; 0 when K_T is
 //                 not positive definite (the loaded mechanism is unstable)
 //   All of them +inf (stiffness: 0, direction: 0) at a singular pose.
+// The matrices behind them (PoseCompliance) stay in the MachineData of the call
+// (data.matrices), so that a list of PoseMetrics stays small:
+//   compliance    C = K^-1 (6x6, twist [dp; dtheta] per wrench [f; m] at the TCP, base axes);
+//                 for platforms with fewer than 6 DOF the directions the passive constraints
+//                 hold are rigid (zero rows and columns) unless link compliance is modelled
+//   loaded_compliance_tt  the translational block of C_T (m/N)
 #pragma once
 
 #include <Eigen/Core>
@@ -57,6 +60,10 @@ struct PoseMetrics {
   double tcp_rotation_deflection = 0.0;  ///< rad, |(C w)_r|
   double stiffness_min_loaded = 0.0;     ///< N/m, with the legs' loads (geometric term)
   Eigen::Vector3d stiffness_min_direction = Eigen::Vector3d::Zero();  ///< unit, base axes
+};
+
+/// The compliance matrices of one analyzed pose (see the header comment).
+struct PoseCompliance {
   Matrix6d compliance = Matrix6d::Zero();  ///< C = K^-1 at the TCP (twist per wrench)
   /// The translational block of the loaded compliance K_T^-1 (m/N), whose largest singular value
   /// gives stiffness_min_loaded; +inf entries when the loaded machine is unstable.
@@ -88,6 +95,8 @@ class MachineData {
   /// stiffness_min_direction and stiffness_min_loaded only when this is set (a caller that
   /// needs none of them, e.g. a design problem, saves their cost; they are then left as zeros).
   bool compliance_metrics = true;
+  /// The compliance matrices of the last analyze (with compliance_metrics set).
+  PoseCompliance matrices;
 };
 
 class Machine {

@@ -9,22 +9,29 @@
 namespace pkmopt {
 
 std::vector<PoseMetrics> analyze_poses(const Machine& machine, std::span<const Pose> poses,
-                                       const Wrench& wrench) {
+                                       const Wrench& wrench,
+                                       std::vector<PoseCompliance>* matrices) {
   const std::size_t n = poses.size();
   std::vector<PoseMetrics> metrics(n);
+  if (matrices) matrices->assign(n, PoseCompliance{});
+  PoseCompliance* matrices_out = matrices ? matrices->data() : nullptr;
   if (const auto* hexapod = dynamic_cast<const Hexapod*>(&machine)) {
     constexpr std::size_t kSlice = 1024;
 #pragma omp parallel for schedule(static)
     for (std::size_t start = 0; start < n; start += kSlice) {
       analyze_hexapod_batch(*hexapod, poses.data() + start, std::min(kSlice, n - start), wrench,
-                            metrics.data() + start);
+                            metrics.data() + start, HexapodBatchKernel::automatic,
+                            matrices_out ? matrices_out + start : nullptr);
     }
   } else {
 #pragma omp parallel
     {
       const std::unique_ptr<MachineData> data = machine.make_data();
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) machine.analyze(*data, poses[i], wrench, metrics[i]);
+      for (std::size_t i = 0; i < n; ++i) {
+        machine.analyze(*data, poses[i], wrench, metrics[i]);
+        if (matrices_out) matrices_out[i] = data->matrices;
+      }
     }
   }
   return metrics;

@@ -18,8 +18,10 @@
 
 namespace pkmopt {
 
-/// The metrics of every pose under the external wrench `wrench` at the TCP (base axes).
+/// The metrics of every pose under the external wrench `wrench` at the TCP (base axes), and,
+/// when `matrices` is given, each pose's compliance matrices (resized to the poses).
 std::vector<PoseMetrics> analyze_poses(const Machine& machine, std::span<const Pose> poses,
-                                       const Wrench& wrench);
+                                       const Wrench& wrench,
+                                       std::vector<PoseCompliance>* matrices = nullptr);
 
 }  // namespace pkmopt

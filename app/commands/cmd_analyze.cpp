@@ -34,8 +34,11 @@ void run_analyze(const AnalyzeOptions& opt) {
     for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
   }
   const PoseTable poses = read_pose_csv(opt.poses_file);
-  const std::vector<PoseMetrics> metrics = analyze_poses(*machine, poses.poses, wrench);
-  const std::string csv = analyze_csv(*machine, poses, metrics, {.compliance = opt.compliance});
+  std::vector<PoseCompliance> matrices;
+  const std::vector<PoseMetrics> metrics =
+      analyze_poses(*machine, poses.poses, wrench, opt.compliance ? &matrices : nullptr);
+  const std::string csv =
+      analyze_csv(*machine, poses, metrics, {.compliance = opt.compliance ? &matrices : nullptr});
   if (opt.out_file.empty()) {
     std::cout << csv;
     std::cout.flush();

@@ -52,9 +52,11 @@ TEST_F(AnalyzeCsv, HexapodHeaderAndRows) {
     m.tcp_rotation_deflection = std::numbers::pi / 180 * 0.5;  // written as 0.5 degrees
     m.stiffness_min_loaded = 2e7;
     m.stiffness_min_direction = Eigen::Vector3d(0, 0.6, 0.8);
-    for (int a = 0; a < 6; ++a)
-      for (int b = 0; b < 6; ++b) m.compliance(a, b) = 0.25 * (10 * a + b);
   }
+  std::vector<PoseCompliance> matrices(metrics.size());
+  for (PoseCompliance& c : matrices)
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b) c.compliance(a, b) = 0.25 * (10 * a + b);
   metrics[1].tau(5) = std::numeric_limits<double>::infinity();
   const std::vector<std::string> lines = lines_of(analyze_csv(hexapod, poses, metrics));
   ASSERT_EQ(lines.size(), 3u);
@@ -72,7 +74,7 @@ TEST_F(AnalyzeCsv, HexapodHeaderAndRows) {
             "-1252.5,inf,25000000,0.375,-0.0625,1e-05,1.25e-05,0.5,20000000,0,0.6,0.8,\"a,b\"");
   // --compliance: C_11..C_66 row by row after the metric columns.
   const std::vector<std::string> with_c =
-      lines_of(analyze_csv(hexapod, poses, metrics, {.compliance = true}));
+      lines_of(analyze_csv(hexapod, poses, metrics, {.compliance = &matrices}));
   const CsvTable table = parse_csv(with_c[0] + "\n" + with_c[1] + "\n", "out.csv");
   EXPECT_EQ(table.column("C_11"), table.column("stiffness_dir_z") + 1);
   EXPECT_EQ(table.column("label"), table.column("C_66") + 1);

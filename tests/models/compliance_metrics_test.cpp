@@ -103,8 +103,9 @@ TEST(ComplianceMetrics, DeflectionAndWorstDirection) {
   Wrench w;
   w << 100, -200, 300, 5, -6, 7;
   PoseMetrics m;
-  fill_compliance_metrics(C, w, m);
-  EXPECT_EQ(m.compliance, C);
+  PoseCompliance matrices;
+  fill_compliance_metrics(C, w, m, matrices);
+  EXPECT_EQ(matrices.compliance, C);
   EXPECT_DOUBLE_EQ(m.tcp_deflection, (C * w).head<3>().norm());
   EXPECT_DOUBLE_EQ(m.tcp_rotation_deflection, (C * w).tail<3>().norm());
   const Eigen::Matrix3d Ctt = C.topLeftCorner<3, 3>();
@@ -145,7 +146,10 @@ TEST(ComplianceMetrics, LoadedStiffnessIsTheInverseOfTheTangentCompliance) {
 
 TEST(ComplianceMetrics, SingularPoseHasInfiniteDeflectionAndNoDirection) {
   PoseMetrics m;
-  set_singular_compliance_metrics(m);
+  PoseCompliance matrices;
+  set_singular_compliance_metrics(m, matrices);
+  EXPECT_TRUE(std::isinf(matrices.compliance(0, 0)));
+  EXPECT_TRUE(std::isinf(matrices.loaded_compliance_tt(2, 2)));
   EXPECT_TRUE(std::isinf(m.tcp_deflection));
   EXPECT_TRUE(std::isinf(m.tcp_rotation_deflection));
   EXPECT_EQ(m.stiffness_min_loaded, 0.0);

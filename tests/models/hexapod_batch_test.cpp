@@ -39,7 +39,39 @@ bool same_bits(double a, double b) {
   return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
 }
 
-void expect_identical(const PoseMetrics& a, const PoseMetrics& b, const std::string& where) {
+// A pose's metrics with its compliance matrices (PoseCompliance).
+struct Result {
+  PoseMetrics m;
+  PoseCompliance c;
+};
+
+// Hexapod::analyze with the matrices it leaves in its data.
+Result scalar_result(const Hexapod& hexapod, HexapodData& data, const Pose& pose, const Wrench& w) {
+  Result r;
+  hexapod.analyze(data, pose, w, r.m);
+  r.c = data.matrices;
+  return r;
+}
+
+// The batch over poses[0..n) with the matrices; `scalar` counts the poses of the scalar path.
+struct Batch {
+  std::vector<PoseMetrics> metrics;
+  std::vector<PoseCompliance> matrices;
+  std::size_t scalar = 0;
+  Result operator[](std::size_t i) const { return {metrics[i], matrices[i]}; }
+};
+Batch run_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n, const Wrench& w,
+                HexapodBatchKernel kernel = HexapodBatchKernel::automatic) {
+  Batch b;
+  b.metrics.resize(n);
+  b.matrices.resize(n);
+  b.scalar =
+      analyze_hexapod_batch(hexapod, poses, n, w, b.metrics.data(), kernel, b.matrices.data());
+  return b;
+}
+
+void expect_identical(const Result& ra, const Result& rb, const std::string& where) {
+  const PoseMetrics &a = ra.m, &b = rb.m;
   EXPECT_EQ(a.reachable, b.reachable) << where;
   EXPECT_EQ(a.singular, b.singular) << where;
   for (int i = 0; i < 6; ++i) {
@@ -52,7 +84,7 @@ void expect_identical(const PoseMetrics& a, const PoseMetrics& b, const std::str
   EXPECT_TRUE(same_bits(a.tcp_error_max, b.tcp_error_max)) << where;
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j < 6; ++j) {
-      EXPECT_TRUE(same_bits(a.compliance(i, j), b.compliance(i, j))) << where;
+      EXPECT_TRUE(same_bits(ra.c.compliance(i, j), rb.c.compliance(i, j))) << where;
     }
   }
   EXPECT_TRUE(same_bits(a.tcp_deflection, b.tcp_deflection)) << where;
@@ -63,7 +95,8 @@ void expect_identical(const PoseMetrics& a, const PoseMetrics& b, const std::str
   EXPECT_TRUE(same_bits(a.stiffness_min_loaded, b.stiffness_min_loaded)) << where;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      EXPECT_TRUE(same_bits(a.loaded_compliance_tt(i, j), b.loaded_compliance_tt(i, j))) << where;
+      EXPECT_TRUE(same_bits(ra.c.loaded_compliance_tt(i, j), rb.c.loaded_compliance_tt(i, j)))
+          << where;
     }
   }
 }
@@ -76,28 +109,30 @@ void expect_identical(const PoseMetrics& a, const PoseMetrics& b, const std::str
 // next): it must be a unit vector with C_tt v = lambda v to |dC_tt|, equal to the scalar one where
 // the gap makes that meaningful, with the same sign where the sign rule (largest component
 // positive) is decided.
-void expect_compliance_matches_scalar(const PoseMetrics& m, const PoseMetrics& s, const Wrench& w,
+void expect_compliance_matches_scalar(const Result& rm, const Result& rs, const Wrench& w,
                                       double cond, const std::string& where) {
+  const PoseMetrics &m = rm.m, &s = rs.m;
+  const Matrix6d &mC = rm.c.compliance, &sC = rs.c.compliance;
+  const Eigen::Matrix3d &m_loaded = rm.c.loaded_compliance_tt,
+                        &s_loaded = rs.c.loaded_compliance_tt;
   const double tol = std::max(1e-10, 64.0 * std::numeric_limits<double>::epsilon() * cond);
-  const double c_norm = s.compliance.norm();
-  EXPECT_LE((m.compliance - m.compliance.transpose()).cwiseAbs().maxCoeff(), tol * c_norm) << where;
-  EXPECT_LE((m.compliance - s.compliance).cwiseAbs().maxCoeff(), tol * c_norm) << where;
+  const double c_norm = sC.norm();
+  EXPECT_LE((mC - mC.transpose()).cwiseAbs().maxCoeff(), tol * c_norm) << where;
+  EXPECT_LE((mC - sC).cwiseAbs().maxCoeff(), tol * c_norm) << where;
   EXPECT_NEAR(m.tcp_deflection, s.tcp_deflection, tol * c_norm * w.norm()) << where;
   EXPECT_NEAR(m.tcp_rotation_deflection, s.tcp_rotation_deflection, tol * c_norm * w.norm())
       << where;
   EXPECT_NEAR(m.stiffness_min_loaded, s.stiffness_min_loaded, tol * s.stiffness_min_loaded)
       << where;
-  if (s.loaded_compliance_tt.allFinite()) {
-    EXPECT_LE((m.loaded_compliance_tt - s.loaded_compliance_tt).cwiseAbs().maxCoeff(),
-              tol * s.loaded_compliance_tt.norm())
-        << where;
+  if (s_loaded.allFinite()) {
+    EXPECT_LE((m_loaded - s_loaded).cwiseAbs().maxCoeff(), tol * s_loaded.norm()) << where;
   } else {  // unstable under the load: the batch answers with the scalar path
     EXPECT_EQ(m.stiffness_min_loaded, 0.0) << where;
-    EXPECT_TRUE(m.loaded_compliance_tt.cwiseAbs().minCoeff() == kInf) << where;
+    EXPECT_TRUE(m_loaded.cwiseAbs().minCoeff() == kInf) << where;
   }
 
   const Eigen::Matrix3d Ctt =
-      0.5 * (s.compliance.topLeftCorner<3, 3>() + s.compliance.topLeftCorner<3, 3>().transpose());
+      0.5 * (sC.topLeftCorner<3, 3>() + sC.topLeftCorner<3, 3>().transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Ctt);
   const Eigen::Vector3d lambda = eig.eigenvalues();  // ascending
   const Eigen::Vector3d v = m.stiffness_min_direction;
@@ -120,18 +155,17 @@ void expect_compliance_matches_scalar(const PoseMetrics& m, const PoseMetrics& s
 // Checks one batch result against the reference and against analyze. Returns 1 when the pose
 // was checked as non-singular.
 int expect_batch_pose_matches(const Hexapod& hexapod, const Pose& pose, const Wrench& w,
-                              const PoseMetrics& m, const std::string& where) {
+                              const Result& r, const std::string& where) {
   HexapodData data(hexapod);
-  PoseMetrics scalar;
-  hexapod.analyze(data, pose, w, scalar);
-  EXPECT_EQ(m.reachable, scalar.reachable) << where;
-  if (m.singular) {  // singular answers come from the scalar path, unchanged
-    expect_identical(m, scalar, where);
+  const Result scalar = scalar_result(hexapod, data, pose, w);
+  EXPECT_EQ(r.m.reachable, scalar.m.reachable) << where;
+  if (r.m.singular) {  // singular answers come from the scalar path, unchanged
+    expect_identical(r, scalar, where);
   }
   const hexapod_reference::ReferenceMetrics ref = reference_metrics(hexapod, pose, w);
-  const int checked = hexapod_reference::expect_metrics_match_reference(m, ref, where);
-  if (checked == 1 && !scalar.singular) {
-    expect_compliance_matches_scalar(m, scalar, w, ref.cond, where);
+  const int checked = hexapod_reference::expect_metrics_match_reference(r.m, ref, where);
+  if (checked == 1 && !scalar.m.singular) {
+    expect_compliance_matches_scalar(r, scalar, w, ref.cond, where);
   }
   return checked;
 }
@@ -146,13 +180,12 @@ BatchCheck expect_batch_matches(const Hexapod& hexapod, const std::vector<Pose>&
                                 const Wrench& w, const std::string& where) {
   BatchCheck result;
   for (HexapodBatchKernel kernel : {HexapodBatchKernel::automatic, HexapodBatchKernel::baseline}) {
-    std::vector<PoseMetrics> metrics(poses.size());
-    result.scalar =
-        analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data(), kernel);
+    const Batch batch = run_batch(hexapod, poses.data(), poses.size(), w, kernel);
+    result.scalar = batch.scalar;
     result.checked = 0;
     for (std::size_t i = 0; i < poses.size(); ++i) {
       result.checked += expect_batch_pose_matches(
-          hexapod, poses[i], w, metrics[i],
+          hexapod, poses[i], w, batch[i],
           where + " pose " + std::to_string(i) +
               (kernel == HexapodBatchKernel::baseline ? " (baseline kernel)" : ""));
     }
@@ -245,16 +278,14 @@ TEST(HexapodBatch, SingularPosesGiveTheScalarSingularOutputs) {
     const Hexapod hexapod(d);
     std::vector<Pose> poses(9);
     for (Pose& p : poses) p = sample_machines::random_pose(u);
-    std::vector<PoseMetrics> metrics(poses.size());
     const Wrench w = Wrench::Constant(10.0);
-    EXPECT_EQ(analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data()),
-              poses.size());
+    const Batch batch = run_batch(hexapod, poses.data(), poses.size(), w);
+    EXPECT_EQ(batch.scalar, poses.size());
     HexapodData data(hexapod);
     for (std::size_t i = 0; i < poses.size(); ++i) {
-      PoseMetrics scalar;
-      hexapod.analyze(data, poses[i], w, scalar);
-      EXPECT_TRUE(metrics[i].singular);
-      expect_identical(metrics[i], scalar, "pose " + std::to_string(i));
+      EXPECT_TRUE(batch.metrics[i].singular);
+      expect_identical(batch[i], scalar_result(hexapod, data, poses[i], w),
+                       "pose " + std::to_string(i));
     }
   }
 }
@@ -270,21 +301,22 @@ TEST(HexapodBatch, BitIdenticalHoweverTheBatchIsSplit) {
              deg_to_rad(Eigen::Vector3d(u(-15, 15), u(-15, 15), u(-20, 20)))};
   }
   const Wrench w = random_wrench(u);
-  std::vector<PoseMetrics> whole(poses.size());
+  const Batch whole = run_batch(hexapod, poses.data(), poses.size(), w);
   // With AVX2 the SIMD kernel answers every one; without it every pose takes the scalar path.
-  EXPECT_EQ(analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, whole.data()),
-            hexapod_batch_uses_avx2() ? 0u : poses.size());
-  std::vector<PoseMetrics> baseline(poses.size());
-  EXPECT_EQ(analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, baseline.data(),
-                                  HexapodBatchKernel::baseline),
+  EXPECT_EQ(whole.scalar, hexapod_batch_uses_avx2() ? 0u : poses.size());
+  EXPECT_EQ(run_batch(hexapod, poses.data(), poses.size(), w, HexapodBatchKernel::baseline).scalar,
             0u);
   for (std::size_t chunk : {1u, 2u, 3u, 5u, 7u, 64u}) {
-    std::vector<PoseMetrics> split(poses.size());
+    Batch split;
+    split.metrics.resize(poses.size());
+    split.matrices.resize(poses.size());
     for (std::size_t start = 1; start < poses.size(); start += chunk) {  // offset by one pose
       const std::size_t count = std::min(chunk, poses.size() - start);
-      analyze_hexapod_batch(hexapod, poses.data() + start, count, w, split.data() + start);
+      analyze_hexapod_batch(hexapod, poses.data() + start, count, w, split.metrics.data() + start,
+                            HexapodBatchKernel::automatic, split.matrices.data() + start);
     }
-    analyze_hexapod_batch(hexapod, poses.data(), 1, w, split.data());
+    analyze_hexapod_batch(hexapod, poses.data(), 1, w, split.metrics.data(),
+                          HexapodBatchKernel::automatic, split.matrices.data());
     for (std::size_t i = 0; i < poses.size(); ++i) {
       expect_identical(whole[i], split[i],
                        "chunk " + std::to_string(chunk) + " pose " + std::to_string(i));
@@ -292,11 +324,16 @@ TEST(HexapodBatch, BitIdenticalHoweverTheBatchIsSplit) {
   }
   // The same poses shuffled into other lanes.
   std::vector<Pose> reversed(poses.rbegin(), poses.rend());
-  std::vector<PoseMetrics> reversed_metrics(poses.size());
-  analyze_hexapod_batch(hexapod, reversed.data(), reversed.size(), w, reversed_metrics.data());
+  const Batch reversed_batch = run_batch(hexapod, reversed.data(), reversed.size(), w);
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    expect_identical(whole[i], reversed_metrics[poses.size() - 1 - i],
+    expect_identical(whole[i], reversed_batch[poses.size() - 1 - i],
                      "reversed pose " + std::to_string(i));
+  }
+  // Without the matrices the metrics are the same, bit for bit.
+  std::vector<PoseMetrics> lean(poses.size());
+  analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, lean.data());
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    expect_identical({lean[i], whole.matrices[i]}, whole[i], "lean pose " + std::to_string(i));
   }
 }
 
@@ -345,14 +382,12 @@ TEST(HexapodBatch, LoadsNearTheStabilityLimitGiveTheScalarAnswers) {
     w(0) = 0.1 * force;
     const BatchCheck c = expect_batch_matches(hexapod, poses, w, "force " + std::to_string(force));
     EXPECT_GE(c.checked, 1);
-    std::vector<PoseMetrics> metrics(poses.size());
-    analyze_hexapod_batch(hexapod, poses.data(), poses.size(), w, metrics.data());
+    const Batch batch = run_batch(hexapod, poses.data(), poses.size(), w);
     for (std::size_t i = 0; i < poses.size(); ++i) {
-      PoseMetrics scalar;
-      hexapod.analyze(data, poses[i], w, scalar);
-      if (scalar.stiffness_min_loaded == 0.0 && !scalar.singular) {
+      const Result scalar = scalar_result(hexapod, data, poses[i], w);
+      if (scalar.m.stiffness_min_loaded == 0.0 && !scalar.m.singular) {
         ++unstable;
-        expect_identical(metrics[i], scalar, "unstable pose " + std::to_string(i));
+        expect_identical(batch[i], scalar, "unstable pose " + std::to_string(i));
       }
     }
   }
@@ -363,11 +398,12 @@ TEST(HexapodBatch, EmptyBatchAndUnsizedOutputs) {
   const Hexapod hexapod(sample_machines::conventions_hexapod_design());
   EXPECT_EQ(analyze_hexapod_batch(hexapod, nullptr, 0, Wrench::Zero(), nullptr), 0u);
   const Pose pose{{0.05, -0.02, 0.85}, deg_to_rad(Eigen::Vector3d(5, -3, 10))};
-  PoseMetrics m;  // q and tau empty: the batch sizes them
-  analyze_hexapod_batch(hexapod, &pose, 1, Wrench::Constant(20.0), &m);
-  ASSERT_EQ(m.q.size(), 6);
-  ASSERT_EQ(m.tau.size(), 6);
-  expect_batch_pose_matches(hexapod, pose, Wrench::Constant(20.0), m, "single pose");
+  Result r;  // q and tau empty: the batch sizes them
+  analyze_hexapod_batch(hexapod, &pose, 1, Wrench::Constant(20.0), &r.m,
+                        HexapodBatchKernel::automatic, &r.c);
+  ASSERT_EQ(r.m.q.size(), 6);
+  ASSERT_EQ(r.m.tau.size(), 6);
+  expect_batch_pose_matches(hexapod, pose, Wrench::Constant(20.0), r, "single pose");
 }
 
 }  // namespace

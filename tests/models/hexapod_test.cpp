@@ -678,14 +678,14 @@ TEST(HexapodCompliance, ComplianceIsTheInverseOfTheStiffnessAndGivesTheDeflectio
     hexapod.analyze(data, pose, w, m);
     if (m.singular) continue;
     const Matrix6d K = hexapod.stiffness_matrix(pose);
-    EXPECT_LT((m.compliance * K - Matrix6d::Identity()).norm(), 1e-8);
+    EXPECT_LT((data.matrices.compliance * K - Matrix6d::Identity()).norm(), 1e-8);
     const Vec6<double> dx = K.lu().solve(w);
     EXPECT_NEAR(m.tcp_deflection, dx.head<3>().norm(), 1e-9 * dx.head<3>().norm());
     EXPECT_NEAR(m.tcp_rotation_deflection, dx.tail<3>().norm(), 1e-9 * dx.tail<3>().norm());
     // The worst direction: the force along it gives exactly 1/stiffness_min of displacement
     // along it.
     const Eigen::Vector3d v = m.stiffness_min_direction;
-    EXPECT_NEAR(v.dot(m.compliance.topLeftCorner<3, 3>() * v), 1.0 / m.stiffness_min,
+    EXPECT_NEAR(v.dot(data.matrices.compliance.topLeftCorner<3, 3>() * v), 1.0 / m.stiffness_min,
                 1e-9 / m.stiffness_min);
   }
 }

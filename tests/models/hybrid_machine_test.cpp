@@ -329,15 +329,17 @@ TEST(HybridMachine, StiffnessOfAxesAndModuleInSeries) {
     turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0;
     Matrix6d C6 = turn * C * turn.transpose();
     C6.topLeftCorner<3, 3>() += axes;
-    EXPECT_LT((m.compliance - C6).norm(), 1e-9 * C6.norm());
+    EXPECT_LT((data->matrices.compliance - C6).norm(), 1e-9 * C6.norm());
     const Vec6<double> dx = C6 * w;
     EXPECT_NEAR(m.tcp_deflection, dx.head<3>().norm(), 1e-9 * dx.head<3>().norm());
     EXPECT_NEAR(m.tcp_rotation_deflection, dx.tail<3>().norm(), 1e-9 * dx.tail<3>().norm());
     Wrench local;
     local << R0.transpose() * w.head<3>(), R0.transpose() * w.tail<3>();
     PoseMetrics module;
-    hex.analyze(*hex.make_data(), s.local, local, module);
-    const Eigen::Matrix3d loaded = R0 * module.loaded_compliance_tt * R0.transpose() + axes;
+    const auto module_data = hex.make_data();
+    hex.analyze(*module_data, s.local, local, module);
+    const Eigen::Matrix3d loaded =
+        R0 * module_data->matrices.loaded_compliance_tt * R0.transpose() + axes;
     const double loaded_expected =
         1.0 / Eigen::JacobiSVD<Eigen::Matrix3d>(loaded).singularValues()(0);
     EXPECT_NEAR(m.stiffness_min_loaded, loaded_expected, 1e-9 * loaded_expected);

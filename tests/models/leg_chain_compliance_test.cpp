@@ -154,7 +154,7 @@ TEST(LegChainCompliance, ComplianceMapsTheWrenchToTheDeflection) {
                   model.B0(i) * model.B0(i) * model.actuator_compliance(i, model.q0(i)));
     const Eigen::MatrixXd K = A.transpose() * k.asDiagonal() * A;
     const Eigen::MatrixXd C6 = T * K.inverse() * T.transpose();
-    EXPECT_LT((metrics.compliance - C6).norm(), 1e-9 * C6.norm()) << c.name;
+    EXPECT_LT((data->matrices.compliance - C6).norm(), 1e-9 * C6.norm()) << c.name;
     const Vec6<double> dx = C6 * w;
     EXPECT_NEAR(metrics.tcp_deflection, dx.head<3>().norm(), 1e-9 * dx.head<3>().norm()) << c.name;
     EXPECT_NEAR(metrics.tcp_rotation_deflection, dx.tail<3>().norm(),

@@ -34,10 +34,18 @@ using frame_fe::rel_diff;
 
 constexpr double kSteelE = 2.1e11, kSteelG = 8.1e10, kAluE = 7.0e10, kAluG = 2.6e10;
 
-PoseMetrics analyze(const LegChainMachine& m, const Pose& pose, const Wrench& w) {
+// The metrics of a pose with the compliance matrices analyze leaves in its data.
+struct Analyzed : PoseMetrics {
+  Matrix6d compliance;
+  Eigen::Matrix3d loaded_compliance_tt;
+};
+
+Analyzed analyze(const LegChainMachine& m, const Pose& pose, const Wrench& w) {
   auto data = m.make_data();
-  PoseMetrics metrics;
+  Analyzed metrics;
   m.analyze(*data, pose, w, metrics);
+  metrics.compliance = data->matrices.compliance;
+  metrics.loaded_compliance_tt = data->matrices.loaded_compliance_tt;
   return metrics;
 }
 
@@ -123,7 +131,7 @@ TEST(LegChainVjm, TripodMatchesTheFrameModelAtNonSymmetricPoses) {
   const Wrench w = (Wrench() << 900, -400, -2500, 60, -40, 25).finished();
   for (const Pose& pose : {pose_deg(0, 0, 1.1, 12, -7), pose_deg(0, 0, 1.3, -25, 18),
                            pose_deg(0, 0, 0.95, 5, 33), pose_deg(0, 0, 1.2, -31, -22)}) {
-    const PoseMetrics metrics = analyze(m, pose, w);
+    const Analyzed metrics = analyze(m, pose, w);
     ASSERT_FALSE(metrics.singular);
     const Pose actual = *m.actual_pose(pose);
     const Matrix6d C_fe = tripod_fe_compliance(m, actual, t);
@@ -140,7 +148,7 @@ TEST(LegChainVjm, TripodMatchesTheFrameModelAtNonSymmetricPoses) {
     const Vec6<double> dx = C_fe * w;
     EXPECT_NEAR(metrics.tcp_deflection, dx.head<3>().norm(), 1e-6 * dx.head<3>().norm());
     // Bending lowers the stiffness below the axial bound with the same E * A.
-    const PoseMetrics bound = analyze(axial, pose, w);
+    const Analyzed bound = analyze(axial, pose, w);
     EXPECT_LT(metrics.stiffness_min, 0.99 * bound.stiffness_min);
     EXPECT_EQ(metrics.tau, bound.tau);  // the statics do not change
     EXPECT_EQ(metrics.tcp_error_max, bound.tcp_error_max);
@@ -195,7 +203,7 @@ TEST(LegChainVjm, DeltaMatchesTheFrameModelAtNonSymmetricPoses) {
   const Wrench w = (Wrench() << 20, -35, -60, 1.5, -0.8, 2.0).finished();
   for (const Vector3d& p : {Vector3d(0.07, -0.04, -1.2), Vector3d(-0.15, 0.1, -1.0),
                             Vector3d(0.2, 0.18, -1.1), Vector3d(-0.05, -0.25, -0.95)}) {
-    const PoseMetrics metrics = analyze(m, Pose{p, Vector3d::Zero()}, w);
+    const Analyzed metrics = analyze(m, Pose{p, Vector3d::Zero()}, w);
     ASSERT_FALSE(metrics.singular);
     const Matrix6d C_fe = delta_fe_compliance(m, p, d);
     EXPECT_LT(rel_diff(metrics.compliance, C_fe, true), 1e-6) << metrics.compliance << "\n\n"
@@ -225,9 +233,9 @@ TEST(LegChainVjm, VeryStiffLinksGiveTheAxialModelWithRigidConstraints) {
   tube.stiffness.section->A = t.stiffness.area;
   const LegChainMachine realistic(tripod_3prs_design(tube));
   for (const Pose& pose : {pose_deg(0, 0, 1.15, 14, -9), pose_deg(0, 0, 1.35, -20, 26)}) {
-    const PoseMetrics a = analyze(axial, pose, Wrench::Zero());
-    const PoseMetrics v = analyze(vjm, pose, Wrench::Zero());
-    const PoseMetrics r = analyze(realistic, pose, Wrench::Zero());
+    const Analyzed a = analyze(axial, pose, Wrench::Zero());
+    const Analyzed v = analyze(vjm, pose, Wrench::Zero());
+    const Analyzed r = analyze(realistic, pose, Wrench::Zero());
     ASSERT_FALSE(v.singular);
     EXPECT_LT(rel_diff(v.compliance, a.compliance, true), 1e-6);
     EXPECT_NEAR(v.stiffness_min, a.stiffness_min, 1e-6 * a.stiffness_min);
@@ -254,8 +262,8 @@ TEST(LegChainVjm, VeryStiffLinksGiveTheAxialModelWithRigidConstraints) {
   ASSERT_TRUE(delta_vjm.link_compliance_model());
   ASSERT_FALSE(delta_vjm.link_compliance_full());
   const Pose p{{0.1, -0.05, -1.05}, Vector3d::Zero()};
-  const PoseMetrics a = analyze(delta_axial, p, Wrench::Zero());
-  const PoseMetrics v = analyze(delta_vjm, p, Wrench::Zero());
+  const Analyzed a = analyze(delta_axial, p, Wrench::Zero());
+  const Analyzed v = analyze(delta_vjm, p, Wrench::Zero());
   EXPECT_LT(rel_diff(v.compliance, a.compliance, true), 1e-6);
   const Eigen::Matrix3d rotational = v.compliance.bottomRightCorner<3, 3>();
   EXPECT_TRUE(rotational.isZero(0.0));
@@ -302,7 +310,7 @@ TEST(LegChainVjm, UpsLegsWithSectionsAreTheAxialModelExactly) {
   const Wrench w = (Wrench() << 4e3, -2e3, -9e3, 300, -500, 200).finished();
   for (const Pose& pose :
        {pose_deg(0.02, -0.03, 0.9, 4, -3, 6), pose_deg(-0.08, 0.05, 1.0, -7, 9, -12)}) {
-    const PoseMetrics v = analyze(vjm, pose, w), a = analyze(axial, pose, w);
+    const Analyzed v = analyze(vjm, pose, w), a = analyze(axial, pose, w);
     ASSERT_FALSE(a.singular);
     ASSERT_FALSE(v.singular);
     EXPECT_LT(rel_diff(v.compliance, a.compliance, true), 1e-12);
@@ -323,7 +331,7 @@ TEST(LegChainVjm, UpsLegsWithSectionsAreTheAxialModelExactly) {
   g.stiffness.E = kSteelE;
   const LegChainMachine glide_axial(hexaglide_design(g));
   const Pose pose = pose_deg(0.05, 0.02, 0.62, 3, -2, 5);
-  const PoseMetrics v = analyze(glide_vjm, pose, w), a = analyze(glide_axial, pose, w);
+  const Analyzed v = analyze(glide_vjm, pose, w), a = analyze(glide_axial, pose, w);
   EXPECT_LT(rel_diff(v.compliance, a.compliance, true), 1e-12);
 }
 
@@ -331,7 +339,7 @@ TEST(LegChainVjm, UpsLegsWithSectionsAreTheAxialModelExactly) {
 // (actuated points fixed) and of the plane constraints' reactions (fixed normals), computed here
 // by central differences of that wrench at constant forces.
 double expected_loaded_min(const LegChainMachine& m, const Pose& pose, const Wrench& w,
-                           const PoseMetrics& metrics) {
+                           const Analyzed& metrics) {
   const Pose actual = *m.actual_pose(pose);
   const std::vector<LegGeometry> legs = leg_geometry(m, actual);
   const int n = m.num_actuators();
@@ -390,7 +398,7 @@ TEST(LegChainVjm, LoadedStiffnessAddsTheGeometricTermsOfRodsAndConstraints) {
   for (const Run& run : {Run{&tripod, pose_deg(0, 0, 1.2, 15, -10), heavy},
                          Run{&tripod, pose_deg(0, 0, 1.05, -28, 20), heavy},
                          Run{&delta, Pose{{0.1, -0.15, -1.1}, Vector3d::Zero()}, light}}) {
-    const PoseMetrics metrics = analyze(*run.m, run.pose, run.w);
+    const Analyzed metrics = analyze(*run.m, run.pose, run.w);
     ASSERT_FALSE(metrics.singular);
     const double expected = expected_loaded_min(*run.m, run.pose, run.w, metrics);
     EXPECT_NEAR(metrics.stiffness_min_loaded, expected, 1e-6 * expected);
@@ -488,7 +496,7 @@ TEST(LegChainVjm, ClosedFormEliminationIsTheGeneralOne) {
     ASSERT_TRUE(m.vjm_stiffness(d, K));
     EXPECT_LT(rel_diff(K, K_sum, false), 1e-9) << c.name;
     if (c.full) {
-      EXPECT_LT(rel_diff(metrics.compliance, Matrix6d(K_sum.inverse()), true), 1e-9) << c.name;
+      EXPECT_LT(rel_diff(d.matrices.compliance, Matrix6d(K_sum.inverse()), true), 1e-9) << c.name;
     }
   }
 }
@@ -535,7 +543,7 @@ TEST(LegChainVjm, AnalyzeAllocatesNothingPerPose) {
     }
     g_count_allocations = false;
     EXPECT_EQ(g_allocations, 0) << m.design().model;
-    EXPECT_TRUE(metrics.compliance.allFinite());
+    EXPECT_TRUE(data->matrices.compliance.allFinite());
   }
 }
 #endif
@@ -547,13 +555,14 @@ TEST(LegChainVjm, StiffnessMinDoesNotNeedTheComplianceMetrics) {
   auto data = m.make_data();
   PoseMetrics full, lean;
   m.analyze(*data, pose, Wrench::Zero(), full);
+  const Matrix6d full_compliance = data->matrices.compliance;
   data->compliance_metrics = false;
   m.analyze(*data, pose, Wrench::Zero(), lean);
   EXPECT_EQ(lean.stiffness_min, full.stiffness_min);
   Eigen::Matrix3d Ctt;
   Eigen::Matrix<double, 3, Eigen::Dynamic> error_map;
   ASSERT_TRUE(m.translational_maps(*data, pose, Wrench::Zero(), lean, Ctt, error_map));
-  const Eigen::Matrix3d full_tt = full.compliance.topLeftCorner<3, 3>();
+  const Eigen::Matrix3d full_tt = full_compliance.topLeftCorner<3, 3>();
   EXPECT_EQ(Ctt, full_tt);
 }
 
