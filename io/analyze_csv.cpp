@@ -17,6 +17,8 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
   out << ",stiffness_min,singularity_margin,det_j,tcp_error_max";
   out << ",tcp_deflection,tcp_rotation_deflection_deg,stiffness_min_loaded,stiffness_dir_x,"
          "stiffness_dir_y,stiffness_dir_z";
+  const int nf = machine.natural_frequency_count();
+  for (int j = 1; j <= nf; ++j) out << ",natural_frequency_" << j;
   if (options.compliance)
     for (int a = 1; a <= 6; ++a)
       for (int b = 1; b <= 6; ++b) out << ",C_" << a << b;
@@ -39,6 +41,10 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
     line += ',' + format_number(m.tcp_rotation_deflection * kRadToDeg);
     line += ',' + format_number(m.stiffness_min_loaded);
     for (int k = 0; k < 3; ++k) line += ',' + format_number(m.stiffness_min_direction(k) + 0.0);
+    for (int j = 0; j < nf; ++j) {
+      const bool have = j < m.natural_frequencies.size();
+      line += ',' + format_number(have ? m.natural_frequencies(j) : 0.0);
+    }
     if (options.compliance)
       for (int a = 0; a < 6; ++a)
         for (int b = 0; b < 6; ++b)

@@ -2,11 +2,12 @@
 //
 //   x,y,z,rx,ry,rz,reachable,q_1..q_n,tau_1..tau_n,stiffness_min,singularity_margin,det_j,
 //   tcp_error_max,tcp_deflection,tcp_rotation_deflection_deg,stiffness_min_loaded,
-//   stiffness_dir_x,stiffness_dir_y,stiffness_dir_z[,C_11..C_66], then every other column of
-//   the pose file, unchanged.
+//   stiffness_dir_x,stiffness_dir_y,stiffness_dir_z[,natural_frequency_1..n][,C_11..C_66], then
+//   every other column of the pose file, unchanged.
 // q_i in m for prismatic actuators and degrees for revolute ones; tau_i in N or N·m;
 // tcp_deflection in m and tcp_rotation_deflection_deg in degrees under the analysed wrench;
-// stiffness_min_loaded in N/m; stiffness_dir the unit force direction of stiffness_min; C_ab the
+// stiffness_min_loaded in N/m; stiffness_dir the unit force direction of stiffness_min;
+// natural_frequency_j in Hz, ascending, when the machine has a mass model; C_ab the
 // compliance (row a, column b; m/N, m/(N·m), rad/N, rad/(N·m)) with `compliance`. Numbers in the
 // shortest text that reads back to the same double (format_number).
 //

@@ -11,6 +11,7 @@
 #include "io/machine_file_hybrid.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
+#include "io/mass_fields.hpp"
 
 namespace pkmopt {
 namespace {
@@ -94,6 +95,8 @@ void describe_fields(Fields& f, HexapodDesign& d) {
            .default_text = "mean distance from the TCP to the platform joints",
            .doc = "L of J_h = J·diag(1, 1, 1, 1/L, 1/L, 1/L) in singularity_margin"});
   describe_actuator_error(f, d.actuator_error);
+  MassFields masses{d.masses, kTelescopicBodies};
+  describe_mass_section(f, masses);
 }
 
 HexapodDesign read_hexapod_design(const YamlValue& root) {
@@ -115,6 +118,7 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   }
   check_leg_stiffness(legs, design.stiffness);
   normalize_joint_axes(root, design.joints);
+  check_mass_fields(root, design.masses);
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)
   } catch (const std::invalid_argument& e) {

@@ -12,6 +12,7 @@
 
 #include "models/compliance_metrics.hpp"
 #include "models/linalg.hpp"
+#include "models/machine_dynamics.hpp"
 #include "models/pose_solver.hpp"
 #include "models/require.hpp"
 
@@ -112,6 +113,7 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
           "legs.platform_joint_stiffness must be a finite number >= 0, found " +
               fmt_double(k.platform_joint_stiffness));
   check_screw_drive(k.drive, "legs.drive", false);
+  if (design_.masses.present) check_mass_model(design_.masses, "masses.");
   require(k.axial_stiffness > 0.0 || (k.E > 0.0) == (k.area > 0.0),
           "legs: the strut needs both E and area (or axial_stiffness)");
   require(k.axial_stiffness > 0.0 || (k.E > 0.0 && k.area > 0.0) || k.actuator_stiffness > 0.0 ||
@@ -243,7 +245,10 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
     out.stiffness_min = 0.0;
     out.tau = Vec6<double>::Constant(kInf);
     out.tcp_error_max = kInf;
-    if (d.compliance_metrics) set_singular_compliance_metrics(out, d.matrices);
+    if (d.compliance_metrics) {
+      set_singular_compliance_metrics(out, d.matrices);
+      if (design_.masses.present) out.natural_frequencies.setZero(6);
+    }
     return;
   }
   out.singularity_margin = rcond;
@@ -290,11 +295,28 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   }
   const double best_norm2 = *std::max_element(best, best + 8);
   out.tcp_error_max = design_.actuator_error * std::sqrt(best_norm2);
-  if (d.compliance_metrics) compute_compliance_metrics(d, compliance, wrench, out);
+  if (d.compliance_metrics) compute_compliance_metrics(d, pose, compliance, wrench, out);
 }
 
-void Hexapod::compute_compliance_metrics(HexapodData& d, const Vec6<double>& compliance,
-                                         const Wrench& wrench, PoseMetrics& out) const {
+std::vector<LegPoints> Hexapod::leg_points(const Pose& pose) const {
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  std::vector<LegPoints> legs(6);
+  for (int i = 0; i < 6; ++i) {
+    legs[static_cast<std::size_t>(i)] = {.kind = LegBodyKind::kTelescopic,
+                                         .joint = design_.base_joints.col(i),
+                                         .platform = pose.position + R * platform_rel_.col(i)};
+  }
+  return legs;
+}
+
+Matrix6d Hexapod::mass_matrix(const Pose& pose) const {
+  return tcp_mass_matrix(design_.masses, rotation_zyx<double>(pose.angles), design_.tcp,
+                         leg_points(pose), pose.position);
+}
+
+void Hexapod::compute_compliance_metrics(HexapodData& d, const Pose& pose,
+                                         const Vec6<double>& compliance, const Wrench& wrench,
+                                         PoseMetrics& out) const {
   // C = J^-1 diag(1/k) J^-T; the loaded stiffness adds each leg's geometric term under its
   // force tau_i (models/compliance_metrics.hpp).
   const Eigen::PartialPivLU<Matrix6d> lu(d.J);
@@ -304,6 +326,10 @@ void Hexapod::compute_compliance_metrics(HexapodData& d, const Vec6<double>& com
   Matrix6d G = Matrix6d::Zero();
   for (int i = 0; i < 6; ++i) G += geometric_stiffness(out.tau(i), d.s.col(i), d.r.col(i), d.q(i));
   out.stiffness_min_loaded = loaded_stiffness_min(C, G, &d.matrices.loaded_compliance_tt);
+  if (design_.masses.present) {
+    const NaturalModes modes = natural_modes(C, mass_matrix(pose), false);
+    out.natural_frequencies = modes.frequencies;
+  }
 }
 
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,

@@ -46,7 +46,9 @@
 #include <string>
 
 #include "models/compliance_chain.hpp"
+#include "models/leg_dynamics.hpp"
 #include "models/machine.hpp"
+#include "models/mass_model.hpp"
 #include "models/pose.hpp"
 
 namespace pkmopt {
@@ -89,6 +91,9 @@ struct HexapodDesign {
   /// L in J_h; when empty, the mean distance from the TCP to the platform joints.
   std::optional<double> characteristic_length;
   double actuator_error = 1e-5;  ///< m, half-width of the actuator error box
+  /// Platform and leg masses (models/mass_model.hpp; UPS cylinder and rod); `present` false:
+  /// none (no natural frequencies).
+  MassModel masses;
 };
 
 /// Joints of a semi-regular hexagon of given radius and pair separation (rad), docs/conventions.md:
@@ -178,6 +183,7 @@ class Hexapod final : public Machine {
   /// base joints plus max_length (the legs standing straight up at full stroke).
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (translational rows of J^-1), from compute_metrics.
   bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
@@ -192,6 +198,10 @@ class Hexapod final : public Machine {
   Matrix6d stiffness_matrix(const Pose& pose) const;
   /// Leg stiffness k_i for a leg of length q (N/m).
   double leg_stiffness(double q) const;
+  /// The legs' joint points at a pose (telescopic: base joint a_i, platform joint P_i).
+  std::vector<LegPoints> leg_points(const Pose& pose) const;
+  /// The TCP mass matrix at a pose (models/machine_dynamics.hpp; needs design().masses).
+  Matrix6d mass_matrix(const Pose& pose) const;
   /// Base and platform joint angles (rad) of every leg at a pose.
   void joint_angles(const Pose& pose, Vec6<double>& base_angles,
                     Vec6<double>& platform_angles) const;
@@ -210,10 +220,12 @@ class Hexapod final : public Machine {
  private:
   bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
   /// compliance (into data.matrices), tcp_deflection, tcp_rotation_deflection,
-  /// stiffness_min_direction and stiffness_min_loaded of a non-singular pose (after
+  /// stiffness_min_direction, stiffness_min_loaded and (with masses) natural_frequencies of a
+  /// non-singular pose (after
   /// compute_metrics' kinematics and tau).
-  void compute_compliance_metrics(HexapodData& data, const Vec6<double>& compliance,
-                                  const Wrench& wrench, PoseMetrics& out) const;
+  void compute_compliance_metrics(HexapodData& data, const Pose& pose,
+                                  const Vec6<double>& compliance, const Wrench& wrench,
+                                  PoseMetrics& out) const;
 
   HexapodDesign design_;
   Eigen::Matrix<double, 3, 6> platform_rel_;

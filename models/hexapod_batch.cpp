@@ -164,13 +164,17 @@ bool hexapod_batch_uses_avx2() {
 std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,
                                   const Wrench& wrench, PoseMetrics* out, HexapodBatchKernel kernel,
                                   PoseCompliance* matrices) {
-  if (kernel == HexapodBatchKernel::baseline) {
+  // The kernel has no mass model: a hexapod with masses (natural frequencies) and a CPU without
+  // AVX2 (where the scalar fast path is quicker than the baseline kernel) run pose by pose.
+  const bool masses = hexapod.design().masses.present;
+  if (kernel == HexapodBatchKernel::baseline && !masses) {
     return run_batch_baseline(hexapod, poses, n, wrench, out, matrices);
   }
 #if defined(PKMOPT_BATCH_X86)
-  if (hexapod_batch_uses_avx2()) return run_batch_avx2(hexapod, poses, n, wrench, out, matrices);
+  if (hexapod_batch_uses_avx2() && !masses) {
+    return run_batch_avx2(hexapod, poses, n, wrench, out, matrices);
+  }
 #endif
-  // Without AVX2 the scalar fast path is quicker than the baseline kernel.
   HexapodData data(hexapod);
   for (std::size_t i = 0; i < n; ++i) {
     hexapod.analyze(data, poses[i], wrench, out[i]);

@@ -84,6 +84,7 @@ enum class HexapodBatchKernel {
 /// The metric set of hexapod.analyze for poses[0..n) under one wrench, into out[0..n), and,
 /// when `matrices` is given, the compliance matrices (what hexapod.analyze leaves in
 /// data.matrices) into matrices[0..n). out[i].q and out[i].tau are resized to 6 when needed.
+/// A hexapod with a mass model (natural frequencies) runs Hexapod::analyze pose by pose.
 /// Returns how many poses were recomputed by the scalar path (see the header comment).
 /// Thread-safe for disjoint outputs.
 std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,

@@ -22,6 +22,7 @@
 //   tcp_rotation_deflection  |(C w)_r| (rad): how far the tool turns under it
 //   stiffness_min_direction  the unit force direction of stiffness_min (the eigenvector of C_tt
 //                 for its largest eigenvalue; sign: largest component positive)
+//   natural_frequencies      with a mass model: det(K - omega^2 M) = 0 on the platform DOF, Hz
 //   stiffness_min_loaded     1 / sigma_max(C_T,tt), C_T = K_T^-1 the loaded (tangent) compliance
 //                 with the geometric term of the leg forces under the wrench; 0 when K_T is
 //                 not positive definite (the loaded mechanism is unstable)
@@ -60,6 +61,10 @@ struct PoseMetrics {
   double tcp_rotation_deflection = 0.0;  ///< rad, |(C w)_r|
   double stiffness_min_loaded = 0.0;     ///< N/m, with the legs' loads (geometric term)
   Eigen::Vector3d stiffness_min_direction = Eigen::Vector3d::Zero();  ///< unit, base axes
+  /// Hz, ascending, one per platform DOF: the undamped natural frequencies of the platform on the
+  /// elastic mechanism (models/machine_dynamics.hpp); empty when the machine has no mass model
+  /// or the compliance metrics are off; 0 at a singular pose.
+  Eigen::VectorXd natural_frequencies;
 };
 
 /// The compliance matrices of one analyzed pose (see the header comment).
@@ -130,6 +135,10 @@ class Machine {
       const std::vector<Eigen::Matrix3d>& /*orientations*/) const {
     return std::nullopt;
   }
+  /// How many natural frequencies analyze gives (the platform DOF when the machine has a mass
+  /// model, else 0).
+  virtual int natural_frequency_count() const { return 0; }
+
   /// The volume of the machine's envelope (m^3, see the model's header); nullopt if unknown.
   virtual std::optional<double> envelope_volume() const { return std::nullopt; }
 

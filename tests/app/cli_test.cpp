@@ -6,11 +6,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "io/csv.hpp"
+#include "io/machine_file.hpp"
 #include "models/hexapod.hpp"
+#include "models/pose_analysis.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/sample_machines.hpp"
 #include "tests/scratch_dir.hpp"
@@ -77,6 +81,29 @@ TEST_F(Cli, AnalyzeWritesTheConventionColumns) {
   ASSERT_EQ(r2.status, 0) << r2.err;
   EXPECT_EQ(read_text(out_file), r.out);
   EXPECT_TRUE(r2.out.empty());
+}
+
+// A machine file with masses: six natural frequencies per pose (Hz, ascending, finite), the
+// values of the library.
+TEST_F(Cli, AnalyzeWithMassesAddsTheNaturalFrequencies) {
+  const std::string file = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod_masses.yaml").string();
+  const CliRun r = run("analyze " + file + " --poses " + poses_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const pkmopt::CsvTable t = pkmopt::parse_csv(r.out, "out");
+  ASSERT_EQ(t.rows.size(), 2u);
+  const std::unique_ptr<pkmopt::Machine> machine = pkmopt::load_machine_file(file);
+  const std::vector<pkmopt::PoseMetrics> metrics = pkmopt::analyze_poses(
+      *machine, std::vector<pkmopt::Pose>{{{0, 0, 0.9}, {0, 0, 0}}}, pkmopt::Wrench::Zero());
+  ASSERT_EQ(metrics[0].natural_frequencies.size(), 6);
+  for (int j = 1; j <= 6; ++j) {
+    const double f = t.number(t.rows[0], t.column("natural_frequency_" + std::to_string(j)));
+    EXPECT_DOUBLE_EQ(f, metrics[0].natural_frequencies(j - 1));
+    EXPECT_GT(f, 1.0);
+    if (j > 1) {
+      EXPECT_GE(f, t.number(t.rows[0], t.column("natural_frequency_" + std::to_string(j - 1))));
+    }
+  }
+  EXPECT_EQ(t.column("label"), t.column("natural_frequency_6") + 1);
 }
 
 TEST_F(Cli, AnalyzeWithoutAnglesDefaultsToZeroAndWritesInfAtSingularPoses) {

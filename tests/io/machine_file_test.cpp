@@ -76,7 +76,7 @@ TEST(MachineFile, ErrorsNameFileLineColumnKeyExpectedAndFound) {
   EXPECT_EQ(error_of(replace(kGood, "tool:", "toll:")),
             "m.yaml:6:1: toll: unknown key 'toll'; allowed keys here: model, name, description, "
             "base, base_joints, platform, platform_joints, legs, joints, tool, "
-            "characteristic_length, actuator_error");
+            "characteristic_length, actuator_error, masses, gravity");
   EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: .nan")),
             "m.yaml:4:47: legs.E: expected a finite number, found '.nan'");
   EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: inf")),
@@ -179,6 +179,56 @@ TEST(MachineFileFields, WriterAndReaderRoundTripEveryKey) {
             std::string::npos)
       << axial;
   EXPECT_EQ(axial.find("  E: "), std::string::npos) << axial;
+}
+
+// The mass model: read, written back to the same design, its values checked where they are.
+TEST(MachineFileFields, MassesAreReadWrittenAndChecked) {
+  const std::string masses =
+      "masses:\n"
+      "  platform: {mass: 45, centre_of_mass: [0, 0.01, -0.05], inertia: [1.2, 1.3, 2.0, 0.01, "
+      "0, -0.02]}\n"
+      "  legs:\n"
+      "    cylinder: {mass: 6, centre: 0.2, inertia: 0.08}\n"
+      "    rod: {mass: 3, centre: 0.25, inertia: 0.05}\n"
+      "gravity: [0, 0, -9.80665]\n";
+  const HexapodDesign d = read_hexapod_design(YamlValue::load_string(kGood + masses, "m.yaml"));
+  ASSERT_TRUE(d.masses.present);
+  EXPECT_EQ(d.masses.platform.mass, 45.0);
+  EXPECT_EQ(d.masses.platform.centre_of_mass, Eigen::Vector3d(0, 0.01, -0.05));
+  EXPECT_EQ(d.masses.platform.inertia(0, 1), 0.01);
+  EXPECT_EQ(d.masses.platform.inertia(2, 1), -0.02);
+  EXPECT_EQ(d.masses.platform.inertia(2, 2), 2.0);
+  EXPECT_EQ(d.masses.legs.cylinder.centre, 0.2);
+  EXPECT_EQ(d.masses.legs.rod.inertia, 0.05);
+  EXPECT_EQ(d.masses.gravity(2), -9.80665);
+  const std::string text = hexapod_design_to_yaml(d);
+  const HexapodDesign back = read_hexapod_design(YamlValue::load_string(text, "w.yaml"));
+  EXPECT_EQ(back.masses.platform.inertia, d.masses.platform.inertia) << text;
+  EXPECT_EQ(back.masses.legs.rod.centre, d.masses.legs.rod.centre);
+  EXPECT_EQ(back.masses.gravity, d.masses.gravity);
+  EXPECT_EQ(hexapod_design_to_yaml(back), text);
+  // Without masses: none written, none present.
+  EXPECT_FALSE(read_hexapod_design(YamlValue::load_string(kGood, "m.yaml")).masses.present);
+  EXPECT_EQ(hexapod_design_to_yaml(sample_machines::conventions_hexapod_design()).find("masses"),
+            std::string::npos);
+  // Errors at the key.
+  EXPECT_EQ(error_of(std::string(kGood) + "gravity: [0, 0, -9.81]\n"),
+            "m.yaml:7:10: gravity: no gravity without masses (it acts on them)");
+  EXPECT_EQ(error_of(std::string(kGood) + "masses:\n  platform: {mass: 10, inertia: [1, 1, 3, 0, "
+                                          "0, 0]}\n"),
+            "m.yaml:8:3: masses: platform.inertia: the principal moments violate I1 + I2 >= I3 "
+            "(no body has it)");
+  EXPECT_EQ(error_of(std::string(kGood) + "masses:\n  platform: {mass: 10, inertia: [1, 1, 1, 2, "
+                                          "0, 0]}\n"),
+            "m.yaml:8:3: masses: platform.inertia must be positive definite (every principal "
+            "moment > 0)");
+  EXPECT_EQ(error_of(std::string(kGood) + "masses:\n  platform: {mass: 0, inertia: [1, 1, 1, 0, "
+                                          "0, 0]}\n"),
+            "m.yaml:8:20: masses.platform.mass: expected a number > 0, found '0'");
+  EXPECT_EQ(error_of(std::string(kGood) + "masses:\n  platform: {mass: 1, inertia: [1, 1, 1, 0, "
+                                          "0, 0]}\n  legs: {carriage: {mass: 2}}\n"),
+            "m.yaml:9:10: masses.legs.carriage: unknown key 'carriage'; allowed keys here: "
+            "cylinder, rod");
 }
 
 }  // namespace

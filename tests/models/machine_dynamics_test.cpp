@@ -1,0 +1,257 @@
+// Tests of models/machine_dynamics on hexapods: the TCP mass matrix against the kinetic energy of
+// every body computed here from the bodies' positions along a motion (finite differences), the
+// gravity and inertia wrench against the energy balance, the natural modes against
+// K x = omega^2 M x, the cubic Gough-Stewart platform's closed-form frequencies, and leg masses
+// lowering every frequency.
+#include "models/machine_dynamics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "models/hexapod.hpp"
+#include "tests/sample_machines.hpp"
+
+namespace pkmopt {
+namespace {
+
+using sample_machines::Uniform;
+
+MassModel sample_masses(Uniform& u) {
+  MassModel m;
+  m.present = true;
+  m.platform.mass = u(20, 60);
+  m.platform.centre_of_mass = {u(-0.05, 0.05), u(-0.05, 0.05), u(-0.1, 0.1)};
+  // A box of sides 0.6 x 0.5 x 0.2 turned by a random rotation: a real inertia tensor.
+  const double a = 0.6, b = 0.5, c = 0.2, mass = m.platform.mass;
+  const Eigen::Vector3d principal(mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12,
+                                  mass * (a * a + b * b) / 12);
+  const Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(u(-1, 1), Eigen::Vector3d(u(-1, 1), u(-1, 1), 1).normalized())
+          .toRotationMatrix();
+  m.platform.inertia = Q * principal.asDiagonal() * Q.transpose();
+  m.platform.inertia = 0.5 * (m.platform.inertia + m.platform.inertia.transpose()).eval();
+  m.legs.cylinder = {.mass = u(3, 8), .centre = u(0.1, 0.3), .inertia = u(0.02, 0.1)};
+  m.legs.rod = {.mass = u(1, 4), .centre = u(0.1, 0.3), .inertia = u(0.01, 0.05)};
+  m.gravity = {u(-1, 1), u(-1, 1), -9.81};
+  return m;
+}
+
+// The pose reached from `pose` along the twist [v; omega] (base axes, at the TCP) and its rate
+// [a; alpha] after time t, to O(t^3): position p + v t + a t^2 / 2, rotation
+// exp([omega t + alpha t^2 / 2]x) R.
+Pose moved(const Pose& pose, const Vector6d& xi, const Vector6d& xi_dot, double t) {
+  const Eigen::Vector3d turn = xi.tail<3>() * t + 0.5 * xi_dot.tail<3>() * t * t;
+  Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+  if (turn.norm() > 0) R = Eigen::AngleAxisd(turn.norm(), turn.normalized()).toRotationMatrix() * R;
+  return Pose{pose.position + xi.head<3>() * t + 0.5 * xi_dot.head<3>() * t * t,
+              angles_from_rotation(R)};
+}
+
+// The kinetic energy of every body at the pose, from central differences of the bodies' centres
+// and directions along the twist (the test's own model of the bodies).
+double kinetic_energy(const Hexapod& hexapod, const Pose& pose, const Vector6d& xi) {
+  const double h = 1e-6;
+  const HexapodDesign& d = hexapod.design();
+  const MassModel& m = d.masses;
+  const Pose plus = moved(pose, xi, Vector6d::Zero(), h),
+             minus = moved(pose, xi, Vector6d::Zero(), -h);
+  const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+  auto centre = [&](const Pose& p) {
+    return Eigen::Vector3d(p.position +
+                           rotation_zyx<double>(p.angles) * (m.platform.centre_of_mass - d.tcp));
+  };
+  const Eigen::Vector3d v_c = (centre(plus) - centre(minus)) / (2 * h);
+  const Eigen::Vector3d omega = xi.tail<3>();
+  double T = 0.5 * m.platform.mass * v_c.squaredNorm() +
+             0.5 * omega.dot(R * m.platform.inertia * R.transpose() * omega);
+  auto joints = [&](const Pose& p, int i) {
+    return Eigen::Vector3d(p.position +
+                           rotation_zyx<double>(p.angles) * (d.platform_joints.col(i) - d.tcp));
+  };
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d a = d.base_joints.col(i);
+    auto s_of = [&](const Pose& p) { return Eigen::Vector3d((joints(p, i) - a).normalized()); };
+    const Eigen::Vector3d s = s_of(pose), s_dot = (s_of(plus) - s_of(minus)) / (2 * h);
+    const Eigen::Vector3d c1_dot = m.legs.cylinder.centre * s_dot;
+    const Eigen::Vector3d c2_dot = ((joints(plus, i) - m.legs.rod.centre * s_of(plus)) -
+                                    (joints(minus, i) - m.legs.rod.centre * s_of(minus))) /
+                                   (2 * h);
+    const Eigen::Vector3d w = s.cross(s_dot);
+    T += 0.5 * m.legs.cylinder.mass * c1_dot.squaredNorm() +
+         0.5 * m.legs.rod.mass * c2_dot.squaredNorm() +
+         0.5 * (m.legs.cylinder.inertia + m.legs.rod.inertia) * w.squaredNorm();
+  }
+  return T;
+}
+
+Vector6d random_twist(Uniform& u) {
+  Vector6d xi;
+  xi << u(-1, 1), u(-1, 1), u(-1, 1), u(-2, 2), u(-2, 2), u(-2, 2);
+  return xi;
+}
+
+TEST(MachineDynamics, MassMatrixGivesTheKineticEnergyOfEveryBody) {
+  Uniform u(41);
+  for (int g = 0; g < 8; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_masses(u);
+    const Hexapod hexapod(design);
+    for (int k = 0; k < 4; ++k) {
+      const Pose pose = sample_machines::random_pose(u);
+      const Matrix6d M = hexapod.mass_matrix(pose);
+      EXPECT_LE((M - M.transpose()).norm(), 1e-12 * M.norm());
+      EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix6d>(M).eigenvalues().minCoeff(), 0.0);
+      const Vector6d xi = random_twist(u);
+      const double T = kinetic_energy(hexapod, pose, xi);
+      EXPECT_NEAR(0.5 * xi.dot(M * xi), T, 1e-7 * T) << "design " << g << " pose " << k;
+    }
+  }
+}
+
+// The power of the inertia wrench (no gravity) is -dT/dt along a motion with twist xi and twist
+// rate xi_dot, T(t) = 1/2 xi(t)^T M(x(t)) xi(t); the gravity wrench's power is the rate of the
+// bodies' potential energy (checked per leg in leg_dynamics_test; here the platform's).
+TEST(MachineDynamics, DynamicWrenchMatchesTheEnergyBalance) {
+  Uniform u(42);
+  for (int g = 0; g < 6; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_masses(u);
+    const Eigen::Vector3d gravity = design.masses.gravity;
+    const Hexapod hexapod(design);
+    const Pose pose = sample_machines::random_pose(u);
+    const Vector6d xi = random_twist(u), xi_dot = 10.0 * random_twist(u);
+    const double h = 1e-5;
+    auto energy = [&](double t) {
+      const Vector6d x = xi + xi_dot * t;
+      return 0.5 * x.dot(hexapod.mass_matrix(moved(pose, xi, xi_dot, t)) * x);
+    };
+    const double dT = (energy(h) - energy(-h)) / (2 * h);
+    MassModel no_gravity = design.masses;
+    no_gravity.gravity.setZero();
+    const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+    const std::vector<LegPoints> legs = hexapod.leg_points(pose);
+    const Wrench inertia =
+        dynamic_wrench(no_gravity, R, design.tcp, legs, pose.position, xi, xi_dot);
+    EXPECT_NEAR(inertia.dot(xi), -dT, 1e-6 * (1 + std::abs(dT))) << "design " << g;
+    // Zero motion: the gravity wrench; its power along xi is d/dt of m g . c summed over bodies.
+    const Wrench static_w = dynamic_wrench(design.masses, R, design.tcp, legs, pose.position,
+                                           Vector6d::Zero(), Vector6d::Zero());
+    auto potential = [&](double t) {
+      const Pose p = moved(pose, xi, Vector6d::Zero(), t);
+      double V = design.masses.platform.mass *
+                 gravity.dot(p.position + rotation_zyx<double>(p.angles) *
+                                              (design.masses.platform.centre_of_mass - design.tcp));
+      for (const LegPoints& leg : hexapod.leg_points(p)) {
+        const Eigen::Vector3d s = (leg.platform - leg.joint).normalized();
+        V += design.masses.legs.cylinder.mass *
+             gravity.dot(leg.joint + design.masses.legs.cylinder.centre * s);
+        V += design.masses.legs.rod.mass *
+             gravity.dot(leg.platform - design.masses.legs.rod.centre * s);
+      }
+      return V;
+    };
+    const double dV = (potential(h) - potential(-h)) / (2 * h);
+    EXPECT_NEAR(static_w.dot(xi), dV, 1e-6 * (1 + std::abs(dV))) << "design " << g;
+  }
+}
+
+TEST(MachineDynamics, NaturalModesSolveTheGeneralizedEigenproblem) {
+  Uniform u(43);
+  HexapodDesign design = sample_machines::random_hexapod_design(u);
+  design.masses = sample_masses(u);
+  const Hexapod hexapod(design);
+  const Pose pose = sample_machines::random_pose(u);
+  const Matrix6d K = hexapod.stiffness_matrix(pose);
+  const Matrix6d M = hexapod.mass_matrix(pose);
+  const NaturalModes modes = natural_modes(Eigen::MatrixXd(K.inverse()), Eigen::MatrixXd(M), true);
+  ASSERT_TRUE(modes.ok);
+  for (int k = 0; k < 6; ++k) {
+    if (k > 0) {
+      EXPECT_GE(modes.frequencies(k), modes.frequencies(k - 1));
+    }
+    const double w2 = std::pow(2 * std::numbers::pi * modes.frequencies(k), 2);
+    const Vector6d x = modes.shapes.col(k);
+    EXPECT_LE((K * x - w2 * M * x).norm(), 1e-8 * (K * x).norm()) << k;
+    EXPECT_NEAR(x.dot(M * x), 1.0, 1e-10);
+  }
+  // Against Eigen's generalized solver.
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6d> ges(K, M);
+  for (int k = 0; k < 6; ++k) {
+    const double f = std::sqrt(ges.eigenvalues()(k)) / (2 * std::numbers::pi);
+    EXPECT_NEAR(modes.frequencies(k), f, 1e-9 * f);
+  }
+  // A rigid direction (zero compliance) has no finite frequency; a mass matrix that is not
+  // positive definite is refused.
+  Eigen::MatrixXd C = Eigen::MatrixXd::Identity(2, 2);
+  C(1, 1) = 0.0;
+  const NaturalModes rigid = natural_modes(C, Eigen::MatrixXd::Identity(2, 2), false);
+  EXPECT_TRUE(rigid.ok);
+  EXPECT_NEAR(rigid.frequencies(0), 1 / (2 * std::numbers::pi), 1e-15);
+  EXPECT_TRUE(std::isinf(rigid.frequencies(1)));
+  EXPECT_FALSE(natural_modes(C, Eigen::MatrixXd::Zero(2, 2), false).ok);
+}
+
+// The cubic Gough-Stewart platform (Geng & Haynes 1994; K = k diag(2, 2, 2, 3/2 Hc^2, 3/2 Hc^2,
+// 6 Hc^2) at the cube centre, hexapod_test's published case) with massless legs and the centre
+// of mass at the TCP: M = diag(m, m, m, Ixx, Iyy, Izz) and f_j = sqrt(K_jj / M_jj) / 2 pi. Leg
+// masses then lower every frequency.
+TEST(MachineDynamics, CubicHexapodHasTheClosedFormFrequencies) {
+  const double Hc = 0.1, L = Hc * std::sqrt(3.0), k = 2.0e7;
+  Eigen::Matrix3d R;
+  R.col(0) = Eigen::Vector3d(2, -1, -1).normalized();
+  R.col(1) = Eigen::Vector3d(0, 1, -1).normalized();
+  R.col(2) = Eigen::Vector3d(1, 1, 1).normalized();
+  auto vertex = [&](double x, double y, double z) {
+    return Eigen::Vector3d(R.transpose() * Eigen::Vector3d(x, y, z) -
+                           Eigen::Vector3d(0, 0, 1.5 * Hc));
+  };
+  const Eigen::Vector3d bottom[6] = {vertex(0, 0, L), vertex(L, 0, 0), vertex(L, 0, 0),
+                                     vertex(0, L, 0), vertex(0, L, 0), vertex(0, 0, L)};
+  const Eigen::Vector3d top[6] = {vertex(L, 0, L), vertex(L, 0, L), vertex(L, L, 0),
+                                  vertex(L, L, 0), vertex(0, L, L), vertex(0, L, L)};
+  HexapodDesign design;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d s = (top[i] - bottom[i]).normalized();
+    design.base_joints.col(i) = bottom[i] - 0.05 * s;
+    design.platform_joints.col(i) = top[i];
+  }
+  design.min_length = 0.1;
+  design.max_length = 0.5;
+  design.stiffness.axial_stiffness = k;
+  design.masses.present = true;
+  design.masses.platform.mass = 12.0;
+  design.masses.platform.inertia = Eigen::Vector3d(0.11, 0.13, 0.2).asDiagonal();
+  const Hexapod hexapod(design);
+  HexapodData data;
+  PoseMetrics m;
+  const Pose centre{{0, 0, 0}, {0, 0, 0}};
+  hexapod.analyze(data, centre, Wrench::Zero(), m);
+  ASSERT_EQ(m.natural_frequencies.size(), 6);
+  const double K[6] = {2 * k, 2 * k, 2 * k, 1.5 * Hc * Hc * k, 1.5 * Hc * Hc * k, 6 * Hc * Hc * k};
+  const double Mass[6] = {12, 12, 12, 0.11, 0.13, 0.2};
+  std::vector<double> expected;
+  for (int j = 0; j < 6; ++j)
+    expected.push_back(std::sqrt(K[j] / Mass[j]) / (2 * std::numbers::pi));
+  std::sort(expected.begin(), expected.end());
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_NEAR(m.natural_frequencies(j), expected[static_cast<std::size_t>(j)],
+                1e-9 * expected[static_cast<std::size_t>(j)])
+        << j;
+  }
+  // Leg masses lower every frequency.
+  HexapodDesign heavy = design;
+  heavy.masses.legs.cylinder = {.mass = 2.0, .centre = 0.03, .inertia = 0.002};
+  heavy.masses.legs.rod = {.mass = 1.0, .centre = 0.04, .inertia = 0.001};
+  const Hexapod heavy_hexapod(heavy);
+  PoseMetrics mh;
+  heavy_hexapod.analyze(data, centre, Wrench::Zero(), mh);
+  for (int j = 0; j < 6; ++j) EXPECT_LT(mh.natural_frequencies(j), m.natural_frequencies(j)) << j;
+}
+
+}  // namespace
+}  // namespace pkmopt
