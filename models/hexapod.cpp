@@ -327,7 +327,7 @@ void Hexapod::compute_compliance_metrics(HexapodData& d, const Pose& pose,
   for (int i = 0; i < 6; ++i) G += geometric_stiffness(out.tau(i), d.s.col(i), d.r.col(i), d.q(i));
   out.stiffness_min_loaded = loaded_stiffness_min(C, G, &d.matrices.loaded_compliance_tt);
   if (design_.masses.present) {
-    const NaturalModes modes = natural_modes(C, mass_matrix(pose), false);
+    const NaturalModes modes = natural_frequencies6(C, mass_matrix(pose));
     out.natural_frequencies = modes.frequencies;
   }
 }

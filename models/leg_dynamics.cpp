@@ -106,6 +106,19 @@ bool leg_bodies(const LegPoints& leg, const LegMasses& m, const Eigen::Vector3d&
 }
 
 Eigen::Matrix3d leg_mass_matrix(const LegPoints& leg, const LegMasses& masses) {
+  if (leg.kind == LegBodyKind::kTelescopic) {
+    // Closed form of the sum below: the cylinder (e1/q) Pi, the rod s s^T + (1 - e2/q) Pi and
+    // the turn [s]x / q give alpha Pi + m_rod s s^T.
+    const Eigen::Vector3d d = leg.platform - leg.joint;
+    const double q = d.norm();
+    if (!(q > 0.0) || !std::isfinite(q)) return Eigen::Matrix3d::Zero();
+    const Eigen::Vector3d s = d / q;
+    const double k1 = masses.cylinder.centre / q, k2 = 1.0 - masses.rod.centre / q;
+    const double alpha = masses.cylinder.mass * k1 * k1 + masses.rod.mass * k2 * k2 +
+                         (masses.cylinder.inertia + masses.rod.inertia) / (q * q);
+    const Eigen::Matrix3d ss = s * s.transpose();
+    return alpha * (Eigen::Matrix3d::Identity() - ss) + masses.rod.mass * ss;
+  }
   LegBody bodies[2];
   Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
   if (!leg_bodies(leg, masses, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), bodies)) return M;

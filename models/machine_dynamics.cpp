@@ -103,4 +103,25 @@ NaturalModes natural_modes(const Eigen::MatrixXd& C, const Eigen::MatrixXd& M, b
   return out;
 }
 
+NaturalModes natural_frequencies6(const Matrix6d& C, const Matrix6d& M) {
+  NaturalModes out;
+  out.frequencies = Eigen::VectorXd::Constant(6, std::numeric_limits<double>::infinity());
+  if (!C.allFinite() || !M.allFinite()) return out;
+  const Eigen::LLT<Matrix6d> llt(M);
+  if (llt.info() != Eigen::Success) return out;
+  const Matrix6d L = llt.matrixL();
+  Matrix6d S = L.transpose() * C * L;
+  S = (0.5 * (S + S.transpose())).eval();
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(S, Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) return out;
+  const double scale = S.diagonal().cwiseAbs().maxCoeff();
+  for (int k = 0; k < 6; ++k) {
+    const double mu = eig.eigenvalues()(5 - k);
+    out.frequencies(k) = mu > 1e-14 * scale ? 1.0 / (2.0 * std::numbers::pi * std::sqrt(mu))
+                                            : std::numeric_limits<double>::infinity();
+  }
+  out.ok = true;
+  return out;
+}
+
 }  // namespace pkmopt

@@ -60,5 +60,7 @@ struct NaturalModes {
 /// The modes of det(C_dof^-1 - omega^2 M_dof) = 0 (C_dof symmetric positive semi-definite).
 NaturalModes natural_modes(const Eigen::MatrixXd& compliance_dof, const Eigen::MatrixXd& mass_dof,
                            bool shapes);
+/// The frequencies alone for a 6-DOF platform, on fixed-size matrices (no heap but the result).
+NaturalModes natural_frequencies6(const Matrix6d& compliance, const Matrix6d& mass);
 
 }  // namespace pkmopt
