@@ -81,6 +81,11 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     if (!r.fixed()) free_.push_back(i);
   }
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
+  if (needed_[static_cast<int>(DesignMetric::natural_frequency_min)] &&
+      !spec_.machine_template.masses.present)
+    throw std::invalid_argument(fmt::format(
+        "{}: natural_frequency_min needs the machine's masses (machine.masses, docs/dynamics.md)",
+        where));
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
     if (catalog.entries.empty())
@@ -397,8 +402,9 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     return ev;
   }
   auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
-  const bool compliance =
-      need(DesignMetric::tcp_deflection_max) || need(DesignMetric::stiffness_min_loaded);
+  const bool compliance = need(DesignMetric::tcp_deflection_max) ||
+                          need(DesignMetric::stiffness_min_loaded) ||
+                          need(DesignMetric::natural_frequency_min);
   if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
       need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) || compliance) {
     HexapodData data(*hexapod);

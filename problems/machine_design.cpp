@@ -15,9 +15,9 @@ namespace pkmopt {
 namespace {
 
 constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
-    "stiffness_min",     "singularity_margin", "leg_force_max",       "tcp_error_max",
-    "workspace_volume",  "conditioning_index", "machine_size",        "actuator_cost",
-    "actuator_overload", "tcp_deflection_max", "stiffness_min_loaded"};
+    "stiffness_min",     "singularity_margin", "leg_force_max",        "tcp_error_max",
+    "workspace_volume",  "conditioning_index", "machine_size",         "actuator_cost",
+    "actuator_overload", "tcp_deflection_max", "stiffness_min_loaded", "natural_frequency_min"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -36,7 +36,9 @@ std::string_view design_metric_name(DesignMetric metric) {
 }
 
 bool is_compliance_metric(DesignMetric metric) {
-  return metric == DesignMetric::tcp_deflection_max || metric == DesignMetric::stiffness_min_loaded;
+  return metric == DesignMetric::tcp_deflection_max ||
+         metric == DesignMetric::stiffness_min_loaded ||
+         metric == DesignMetric::natural_frequency_min;
 }
 
 bool is_actuator_metric(DesignMetric metric) {
@@ -128,6 +130,8 @@ void TaskWorstCase::add(const PoseMetrics& m) {
   tcp_error_max = std::max(tcp_error_max, m.tcp_error_max);
   tcp_deflection_max = std::max(tcp_deflection_max, m.tcp_deflection);
   stiffness_min_loaded = std::min(stiffness_min_loaded, m.stiffness_min_loaded);
+  if (m.natural_frequencies.size() > 0)
+    natural_frequency_min = std::min(natural_frequency_min, m.natural_frequencies(0));
 }
 
 void TaskWorstCase::store(DesignMetrics& metrics) const {
@@ -137,6 +141,9 @@ void TaskWorstCase::store(DesignMetrics& metrics) const {
   metrics[static_cast<int>(DesignMetric::tcp_error_max)] = tcp_error_max;
   metrics[static_cast<int>(DesignMetric::tcp_deflection_max)] = tcp_deflection_max;
   metrics[static_cast<int>(DesignMetric::stiffness_min_loaded)] = stiffness_min_loaded;
+  // 0 when no pose gave frequencies (the metric was not asked for).
+  metrics[static_cast<int>(DesignMetric::natural_frequency_min)] =
+      std::isfinite(natural_frequency_min) ? natural_frequency_min : 0.0;
 }
 
 void measure_workspace_metrics(const Machine& machine, const WorkspaceOptions& options,
@@ -429,6 +436,11 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
           "{}: {} needs an actuator catalog to choose from, which only hexapod design problems "
           "have; bound leg_force_max instead",
           where, design_metric_name(static_cast<DesignMetric>(m))));
+  if (needed_[static_cast<int>(DesignMetric::natural_frequency_min)])
+    throw std::invalid_argument(fmt::format(
+        "{}: natural_frequency_min needs a mass model, which only hexapod design problems have "
+        "(machine.masses)",
+        where));
 }
 
 Bounds MachineDesignProblem::bounds() const {

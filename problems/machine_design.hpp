@@ -46,6 +46,7 @@
 //   tcp_error_max       max_k tcp_error_max(pose k)                       m
 //   tcp_deflection_max  max_k tcp_deflection(pose k) under w              m
 //   stiffness_min_loaded  min_k stiffness_min_loaded(pose k) under w      N/m
+//   natural_frequency_min min_k natural_frequency_1(pose k) (needs masses)  Hz
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3
@@ -130,9 +131,12 @@ enum class DesignMetric {
   /// max over the task of the TCP deflection under the task wrench, |(C w)_t| (m).
   tcp_deflection_max,
   /// min over the task of the loaded stiffness (N/m; models/machine.hpp).
-  stiffness_min_loaded
+  stiffness_min_loaded,
+  /// min over the task of the first natural frequency (Hz; needs the machine's masses,
+  /// docs/dynamics.md).
+  natural_frequency_min
 };
-inline constexpr int kNumDesignMetrics = 11;
+inline constexpr int kNumDesignMetrics = 12;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
@@ -201,6 +205,7 @@ struct TaskWorstCase {
   double tcp_error_max = 0.0;
   double tcp_deflection_max = 0.0;
   double stiffness_min_loaded = std::numeric_limits<double>::infinity();
+  double natural_frequency_min = std::numeric_limits<double>::infinity();
   void add(const PoseMetrics& metrics);
   /// Writes the worst cases into their slots of `metrics`.
   void store(DesignMetrics& metrics) const;

@@ -36,6 +36,8 @@ std::string_view design_metric_unit(DesignMetric metric) {
       return "N";
     case DesignMetric::tcp_error_max:
       return "m";
+    case DesignMetric::natural_frequency_min:
+      return "Hz";
     case DesignMetric::workspace_volume:
     case DesignMetric::machine_size:
       return "m^3";

@@ -18,6 +18,7 @@
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
 #include "io/machine_file_writer.hpp"
+#include "io/mass_fields.hpp"
 #include "io/output_file.hpp"
 #include "io/task_wrench_file.hpp"
 #include "optimizer/indicators.hpp"
@@ -74,6 +75,8 @@ void describe_fields(Fields& f, HexapodStudyMachine& m) {
   f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, m.design.joints); });
   f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, m.design.tcp); });
   describe_actuator_error(f, m.design.actuator_error);
+  MassFields masses{m.design.masses, kTelescopicBodies};
+  describe_mass_section(f, masses);
 }
 
 HexapodStudyMachine default_hexapod_study_machine() {
@@ -103,6 +106,7 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
   if (model.as_string() != "hexapod") model.fail("'hexapod'", model.describe());
   check_leg_stiffness(machine.required("legs"), m.design.stiffness);
   normalize_joint_axes(machine, m.design.joints);
+  check_mass_fields(machine, m.design.masses);
   study.parameter_ranges = m.ranges;
   for (int i = 0; i < kNumDesignParameters; ++i) {
     const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;

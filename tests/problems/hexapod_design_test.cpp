@@ -85,6 +85,37 @@ TEST(HexapodDesign, LegForcesAtTheHomePoseOfASymmetricHexapod) {
             1e-15);
 }
 
+// natural_frequency_min: the lowest first natural frequency over the task poses, as analyze
+// gives it for the design; without masses the problem is refused.
+TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, 0.0);
+  spec.task.poses.push_back(Pose{{0.1, -0.05, 0.85}, deg_to_rad(Eigen::Vector3d(5, -3, 10))});
+  spec.task.poses.push_back(Pose{{-0.12, 0.08, 0.8}, deg_to_rad(Eigen::Vector3d(-8, 4, -15))});
+  spec.objectives = {{DesignMetric::natural_frequency_min, Sense::maximize}};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no masses
+  MassModel& masses = spec.machine_template.masses;
+  masses.present = true;
+  masses.platform.mass = 45.0;
+  masses.platform.centre_of_mass = {0, 0, -0.04};
+  masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
+  masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
+  masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  const HexapodDesignProblem problem(spec);
+  const DesignEvaluation ev = problem.evaluate({});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  const Hexapod hexapod(problem.design_of(ev.parameters));
+  HexapodData data(hexapod);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const Pose& pose : spec.task.poses) {
+    PoseMetrics m;
+    hexapod.analyze(data, pose, Wrench::Zero(), m);
+    ASSERT_EQ(m.natural_frequencies.size(), 6);
+    lowest = std::min(lowest, m.natural_frequencies(0));
+  }
+  EXPECT_GT(lowest, 10.0);
+  EXPECT_DOUBLE_EQ(ev.metrics[static_cast<int>(DesignMetric::natural_frequency_min)], lowest);
+}
+
 TEST(HexapodDesign, MaximizeFlipsTheSignAndConstraintsFollowTheirRelation) {
   HexapodDesignSpec spec = single_pose_spec(0.9, -5000.0);
   spec.parameters[kBaseRadius] = {0.5, 0.7};
