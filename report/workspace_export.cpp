@@ -122,6 +122,7 @@ std::optional<SliceMetric> parse_slice_metric(std::string_view name) {
   if (name == "tcp_error_max") return SliceMetric::kTcpErrorMax;
   if (name == "tcp_deflection") return SliceMetric::kTcpDeflection;
   if (name == "stiffness_min_loaded") return SliceMetric::kStiffnessMinLoaded;
+  if (name == "natural_frequency_1") return SliceMetric::kNaturalFrequency1;
   return std::nullopt;
 }
 
@@ -139,6 +140,8 @@ std::string slice_metric_name(SliceMetric metric) {
       return "tcp_deflection";
     case SliceMetric::kStiffnessMinLoaded:
       return "stiffness_min_loaded";
+    case SliceMetric::kNaturalFrequency1:
+      return "natural_frequency_1";
   }
   return "";
 }
@@ -157,6 +160,8 @@ std::string slice_metric_label(SliceMetric metric) {
       return "tcp_deflection [m]";
     case SliceMetric::kStiffnessMinLoaded:
       return "stiffness_min_loaded [N/m]";
+    case SliceMetric::kNaturalFrequency1:
+      return "natural_frequency_1 [Hz]";
   }
   return "";
 }
@@ -175,6 +180,8 @@ double slice_metric_value(const WorkspacePointMetrics& m, SliceMetric metric) {
       return m.tcp_deflection;
     case SliceMetric::kStiffnessMinLoaded:
       return m.stiffness_min_loaded;
+    case SliceMetric::kNaturalFrequency1:
+      return m.natural_frequency_1;
   }
   return 0.0;
 }
@@ -216,17 +223,20 @@ std::string boundary_stl(const TriangleMesh& mesh) {
   return out;
 }
 
-std::string point_cloud_csv(const std::vector<WorkspacePoint>& points) {
+std::string point_cloud_csv(const std::vector<WorkspacePoint>& points, bool natural_frequencies) {
   std::string out =
       "x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max,tcp_deflection,"
-      "stiffness_min_loaded\n";
+      "stiffness_min_loaded";
+  out += natural_frequencies ? ",natural_frequency_1\n" : "\n";
   for (const auto& p : points) {
     for (int k = 0; k < 3; ++k) out += format_number(p.position(k)) + ',';
     out += format_number(p.metrics.singularity_margin) + ',' +
            format_number(p.metrics.stiffness_min) + ',' + format_number(p.metrics.max_leg_force) +
            ',' + format_number(p.metrics.tcp_error_max) + ',' +
            format_number(p.metrics.tcp_deflection) + ',' +
-           format_number(p.metrics.stiffness_min_loaded) + '\n';
+           format_number(p.metrics.stiffness_min_loaded);
+    if (natural_frequencies) out += ',' + format_number(p.metrics.natural_frequency_1);
+    out += '\n';
   }
   return out;
 }
@@ -410,6 +420,8 @@ std::string workspace_summary_json(const WorkspaceRequest& request, const Worksp
   summary["tcp_error_max"] = number_or_null(ws.maps.tcp_error_max);
   summary["tcp_deflection_max"] = number_or_null(ws.maps.tcp_deflection_max);
   summary["stiffness_min_loaded_min"] = number_or_null(ws.maps.stiffness_min_loaded_min);
+  if (ws.maps.natural_frequencies)
+    summary["natural_frequency_min"] = number_or_null(ws.maps.natural_frequency_min);
   summary["envelope_volume"] = optional_json(ws.envelope_volume);
   summary["envelope_ratio"] = optional_json(ws.envelope_ratio);
   summary["resolution"] = ws.resolution;
@@ -438,7 +450,7 @@ std::vector<std::pair<std::string, std::string>> workspace_files(const Workspace
   std::vector<std::pair<std::string, std::string>> files;
   files.emplace_back("boundary.ply", boundary_ply(ws.boundary));
   files.emplace_back("boundary.stl", boundary_stl(ws.boundary));
-  files.emplace_back("points.csv", point_cloud_csv(ws.points));
+  files.emplace_back("points.csv", point_cloud_csv(ws.points, ws.maps.natural_frequencies));
   files.emplace_back(slice_name + ".svg", slice_svg(slice, metric));
   files.emplace_back(slice_name + ".png", slice_png(slice, metric));
   files.emplace_back("summary.json", summary_json);

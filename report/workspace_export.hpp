@@ -44,6 +44,7 @@ enum class SliceMetric {
   kTcpErrorMax,
   kTcpDeflection,       ///< under the workspace options' wrench (m)
   kStiffnessMinLoaded,  ///< under the workspace options' wrench (N/m)
+  kNaturalFrequency1,   ///< the first natural frequency (Hz; machines with a mass model)
 };
 
 /// "singularity_margin", "stiffness_min", "max_leg_force", "tcp_error_max"; nullopt otherwise.
@@ -55,7 +56,9 @@ double slice_metric_value(const WorkspacePointMetrics& metrics, SliceMetric metr
 
 std::string boundary_ply(const TriangleMesh& mesh);
 std::string boundary_stl(const TriangleMesh& mesh);
-std::string point_cloud_csv(const std::vector<WorkspacePoint>& points);
+/// `natural_frequencies`: add the column natural_frequency_1 (Hz; machines with masses).
+std::string point_cloud_csv(const std::vector<WorkspacePoint>& points,
+                            bool natural_frequencies = false);
 std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric);
 /// 8-bit RGB PNG (libpng).
 std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric);

@@ -101,7 +101,8 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   if (!metric) {
     throw InputError(
         fmt::format("--slice-metric: expected singularity_margin, stiffness_min, max_leg_force, "
-                    "tcp_error_max, tcp_deflection or stiffness_min_loaded, found {}",
+                    "tcp_error_max, tcp_deflection, stiffness_min_loaded or natural_frequency_1, "
+                    "found {}",
                     quote_found(opt.slice_metric)));
   }
   if (opt.slice_pixel && !(std::isfinite(*opt.slice_pixel) && *opt.slice_pixel > 0.0)) {
@@ -117,6 +118,12 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   const std::string invalid = validate(options);
   if (!invalid.empty()) throw InputError(invalid);
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  if (*metric == SliceMetric::kNaturalFrequency1 && machine->natural_frequency_count() == 0) {
+    throw InputError(fmt::format(
+        "--slice-metric natural_frequency_1: {} has no masses (docs/dynamics.md), found a model "
+        "'{}' without them",
+        opt.machine_file, machine->model()));
+  }
   const auto box = workspace_search_box(*machine, sample_orientations(options.orientations));
   if (!box) {
     throw InputError(fmt::format("{}: model '{}' has no workspace search box yet", opt.machine_file,
@@ -207,8 +214,8 @@ void add_workspace_command(CLI::App& app) {
                   "Slice plane coordinate (m); default the middle of the workspace");
   cmd->add_option("--slice-metric", opt->slice_metric,
                   "Slice colour: singularity_margin, stiffness_min, max_leg_force, tcp_error_max, "
-                  "tcp_deflection or stiffness_min_loaded (both under --wrench); default "
-                  "singularity_margin");
+                  "tcp_deflection or stiffness_min_loaded (both under --wrench), "
+                  "natural_frequency_1 (machine files with masses); default singularity_margin");
   cmd->add_option("--slice-pixel", opt->slice_pixel,
                   "Slice pixel size (m); default 1/300 of the larger slice side");
   cmd->add_option("--out", opt->out_dir,

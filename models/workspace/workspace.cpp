@@ -69,6 +69,7 @@ class PointEvaluator {
     out.tcp_error_max = 0.0;
     out.tcp_deflection = 0.0;
     out.stiffness_min_loaded = kInf;
+    out.natural_frequency_1 = kInf;
     int counted = 0;
     for (std::size_t o = 0; o < angles_.size(); ++o) {
       pose_.angles = angles_[o];
@@ -82,7 +83,11 @@ class PointEvaluator {
       out.tcp_deflection = std::max(out.tcp_deflection, pose_metrics_.tcp_deflection);
       out.stiffness_min_loaded =
           std::min(out.stiffness_min_loaded, pose_metrics_.stiffness_min_loaded);
+      if (pose_metrics_.natural_frequencies.size() > 0)
+        out.natural_frequency_1 =
+            std::min(out.natural_frequency_1, pose_metrics_.natural_frequencies(0));
     }
+    if (!std::isfinite(out.natural_frequency_1)) out.natural_frequency_1 = 0.0;  // no masses
     if (counted == 0) out = WorkspacePointMetrics{};
     return counted > 0;
   }
@@ -509,6 +514,8 @@ WorkspaceResult compute_workspace(const Machine& machine, const WorkspaceOptions
       maps.singularity_margin_min = kInf;
       maps.stiffness_min_min = kInf;
       maps.stiffness_min_loaded_min = kInf;
+      maps.natural_frequencies = machine.natural_frequency_count() > 0 && options.compliance_maps;
+      maps.natural_frequency_min = maps.natural_frequencies ? kInf : 0.0;
       double margin_sum = 0.0, stiffness_sum = 0.0;
       for (const auto& m : metrics) {
         margin_sum += m.singularity_margin;
@@ -520,6 +527,8 @@ WorkspaceResult compute_workspace(const Machine& machine, const WorkspaceOptions
         maps.tcp_deflection_max = std::max(maps.tcp_deflection_max, m.tcp_deflection);
         maps.stiffness_min_loaded_min =
             std::min(maps.stiffness_min_loaded_min, m.stiffness_min_loaded);
+        if (maps.natural_frequencies)
+          maps.natural_frequency_min = std::min(maps.natural_frequency_min, m.natural_frequency_1);
       }
       maps.global_conditioning_index = margin_sum / static_cast<double>(n);
       maps.stiffness_min_mean = stiffness_sum / static_cast<double>(n);

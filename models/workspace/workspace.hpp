@@ -115,6 +115,8 @@ struct WorkspacePointMetrics {
   double tcp_error_max = 0.0;         ///< max over orientations (m)
   double tcp_deflection = 0.0;        ///< max over orientations of |(C w)_t| under the wrench (m)
   double stiffness_min_loaded = 0.0;  ///< min over orientations (N/m), with the wrench's load
+  /// min over orientations of the first natural frequency (Hz); 0 without a mass model.
+  double natural_frequency_1 = 0.0;
 };
 
 struct WorkspacePoint {
@@ -134,6 +136,9 @@ struct WorkspaceMaps {
   double tcp_error_max = 0.0;             ///< m
   double tcp_deflection_max = 0.0;        ///< m, under the options' wrench
   double stiffness_min_loaded_min = 0.0;  ///< N/m, under the options' wrench
+  /// True when the machine has a mass model (the maps then carry the natural frequencies).
+  bool natural_frequencies = false;
+  double natural_frequency_min = 0.0;  ///< Hz, min of natural_frequency_1 over the nodes
 };
 
 struct WorkspaceResult {

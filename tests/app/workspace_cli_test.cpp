@@ -124,6 +124,40 @@ TEST_F(WorkspaceCli, OrientationWorkspaceAndNoOutFolder) {
   EXPECT_EQ(all.out.rfind("workspace (all_orientations): volume ", 0), 0u) << all.out;
 }
 
+// A machine file with masses: points.csv gains natural_frequency_1, summary.json
+// natural_frequency_min (their minimum, the library's), and the slice can show it.
+TEST_F(WorkspaceCli, MassesAddTheFirstNaturalFrequencyToTheMaps) {
+  const std::string file = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod_masses.yaml").string();
+  const fs::path out_dir = dir_ / "wsm";
+  const CliRun r =
+      run(file + " --resolution 0.05 --slice-metric natural_frequency_1 --out " + out_dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string csv = read_text(out_dir / "points.csv");
+  EXPECT_EQ(csv.rfind("x,y,z,singularity_margin,stiffness_min,max_leg_force,tcp_error_max,"
+                      "tcp_deflection,stiffness_min_loaded,natural_frequency_1\n",
+                      0),
+            0u);
+  pkmopt::WorkspaceOptions options;
+  options.resolution = 0.05;
+  options.keep_points = true;
+  const auto machine = pkmopt::load_machine_file(file);
+  const pkmopt::WorkspaceResult ws = pkmopt::compute_workspace(*machine, options);
+  ASSERT_TRUE(ws.maps.natural_frequencies);
+  double lowest = 1e300;
+  for (const pkmopt::WorkspacePoint& p : ws.points) {
+    EXPECT_GT(p.metrics.natural_frequency_1, 10.0);
+    lowest = std::min(lowest, p.metrics.natural_frequency_1);
+  }
+  const nlohmann::json summary = nlohmann::json::parse(read_text(out_dir / "summary.json"));
+  EXPECT_DOUBLE_EQ(summary.at("natural_frequency_min").get<double>(), lowest);
+  EXPECT_DOUBLE_EQ(ws.maps.natural_frequency_min, lowest);
+  EXPECT_NE(read_text(out_dir / "slice_z.svg").find("natural_frequency_1 [Hz]"), std::string::npos);
+  // Without masses: no such column or key, and the slice metric is refused.
+  EXPECT_FALSE(pkmopt::compute_workspace(*pkmopt::load_machine_file(machine_), options)
+                   .maps.natural_frequencies);
+  expect_input_error(machine_ + " --slice-metric natural_frequency_1", "has no masses");
+}
+
 TEST_F(WorkspaceCli, BadOptionsFailWithStatusTwoAndWriteNothing) {
   expect_input_error(machine_ + " --resolution 0", "--resolution");
   expect_input_error(machine_ + " --resolution -0.1", "--resolution");
