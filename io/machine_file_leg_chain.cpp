@@ -13,6 +13,7 @@
 #include "io/field_list.hpp"
 #include "io/input_error.hpp"
 #include "io/leg_chain_fields.hpp"
+#include "io/mass_fields.hpp"
 #include "models/hexapod.hpp"
 
 namespace pkmopt {
@@ -111,6 +112,8 @@ void describe_fields(Fields& f, DeltaDesign& d) {
            .digits = 12,
            .unit = "deg",
            .doc = "half-width of the drive angle error box of tcp_error_max"});
+  MassFields masses{d.masses, kCrankBodies};
+  describe_mass_section(f, masses);
 }
 
 // The keys after the links of a carriage-driven model (linear delta, hexaglide): the carriage
@@ -145,6 +148,8 @@ void describe_fields(Fields& f, LinearDeltaDesign& d) {
                  "ends carry axial forces only)",
                  true);
   describe_carriage_drive_and_rest(f, d);
+  MassFields masses{d.masses, kCarriageBodies};
+  describe_mass_section(f, masses);
 }
 
 template <class Fields>
@@ -173,6 +178,8 @@ void describe_fields(Fields& f, HexaglideDesign& d) {
                  false);
   describe_carriage_drive_and_rest(f, d);
   f.field("home_height", d.home_height, {.unit = "m", .doc = "z of the FK start pose"});
+  MassFields masses{d.masses, kCarriageBodies};
+  describe_mass_section(f, masses);
 }
 
 template <class Fields>
@@ -200,6 +207,8 @@ void describe_fields(Fields& f, Tripod3PrsDesign& d) {
   describe_characteristic_length(f, d.characteristic_length);
   f.field("actuator_error", d.actuator_error,
           {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  MassFields masses{d.masses, kCarriageBodies};
+  describe_mass_section(f, masses);
 }
 
 DeltaDesign read_delta_design(const YamlValue& root) {
@@ -207,6 +216,7 @@ DeltaDesign read_delta_design(const YamlValue& root) {
   read_fields(root, d);
   check_links(root.required("rods"));
   check_drive_section(root, d.stiffness.drive, true);
+  check_mass_fields(root, d.masses);
   validate(root, d, make_delta);
   return d;
 }
@@ -216,6 +226,7 @@ LinearDeltaDesign read_linear_delta_design(const YamlValue& root) {
   read_fields(root, d);
   check_links(root.required("rods"));
   check_drive_section(root, d.stiffness.drive, false);
+  check_mass_fields(root, d.masses);
   validate(root, d, make_linear_delta);
   return d;
 }
@@ -245,6 +256,7 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
   }
   check_links(root.required("struts"));
   check_drive_section(root, d.stiffness.drive, false);
+  check_mass_fields(root, d.masses);
   validate(root, d, make_hexaglide);
   return d;
 }
@@ -254,6 +266,7 @@ Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
   read_fields(root, d);
   check_links(root.required("struts"));
   check_drive_section(root, d.stiffness.drive, false);
+  check_mass_fields(root, d.masses);
   validate(root, d, make_tripod_3prs);
   return d;
 }

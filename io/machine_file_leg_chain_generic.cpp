@@ -4,6 +4,7 @@
 
 #include "io/leg_chain_fields.hpp"
 #include "io/machine_file_leg_chain.hpp"
+#include "io/mass_fields.hpp"
 
 namespace pkmopt {
 
@@ -39,6 +40,8 @@ void describe_fields(Fields& f, LegChainDesign& d) {
     g.field("angles_deg", d.home.angles,
             {.degrees = true, .digits = 12, .unit = "deg", .doc = "angles of the FK start pose"});
   });
+  MassFields masses{d.masses, kAllBodies};
+  describe_mass_section(f, masses);
 }
 
 template <class Fields>
@@ -257,6 +260,7 @@ LegChainDesign read_leg_chain_design(const YamlValue& root) {
     }
     if (auto v = root.optional("actuator_error")) d.actuator_error = v->as_non_negative();
   }
+  check_mass_fields(root, d.masses);
   validate(root, d, make_leg_chain_machine);
   return d;
 }

@@ -151,6 +151,7 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
   require(revolute == 0 || revolute == n, "legs must be all revolute or all prismatic");
   revolute_ = revolute == n;
   validate_link_compliance();
+  if (design_.masses.present) check_mass_model(design_.masses, "masses.");
 
   platform_rel_.resize(3, n);
   for (int i = 0; i < n; ++i) {
@@ -491,7 +492,10 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
-    if (d.compliance_metrics) set_singular_compliance_metrics(out, d.matrices);
+    if (d.compliance_metrics) {
+      set_singular_compliance_metrics(out, d.matrices);
+      if (design_.masses.present) out.natural_frequencies.setZero(n);
+    }
     return;
   }
   out.singularity_margin = rcond;
@@ -542,10 +546,14 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     out.stiffness_min = 0.0;
     out.tau = VecM::Constant(n, kInf);
     out.tcp_error_max = kInf;
-    if (d.compliance_metrics) set_singular_compliance_metrics(out, d.matrices);
+    if (d.compliance_metrics) {
+      set_singular_compliance_metrics(out, d.matrices);
+      if (design_.masses.present) out.natural_frequencies.setZero(n);
+    }
     return;
   }
   if (d.compliance_metrics && !vjm_) compute_compliance_metrics(d, f, wrench, out);
+  if (d.compliance_metrics && design_.masses.present) compute_natural_frequencies(d, out);
 }
 
 bool LegChainMachine::translational_maps(

@@ -123,6 +123,7 @@
 
 #include "models/compliance_chain.hpp"
 #include "models/machine.hpp"
+#include "models/mass_model.hpp"
 #include "models/pose.hpp"
 #include "models/virtual_joint.hpp"
 
@@ -204,6 +205,9 @@ struct LegChainDesign {
   double actuator_error = 1e-5;
   /// Default FK start (and the pose the named models are built around).
   Pose home;
+  /// Platform and leg masses (models/mass_model.hpp: UPS cylinder and rod, PUS carriage and
+  /// link, RUS crank and link); `present` false: none (no natural frequencies).
+  MassModel masses;
 };
 
 /// Per-thread scratch space and the last results of a leg-chain machine.
@@ -259,6 +263,9 @@ class LegChainMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  int natural_frequency_count() const override {
+    return design_.masses.present ? num_actuators() : 0;
+  }
   /// Row i: [s_i^T, (r_i x s_i)^T] / B_i at actual_pose(pose) (false when a leg cannot close or
   /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
@@ -321,6 +328,9 @@ class LegChainMachine final : public Machine {
   /// The home pose moved by the mean displacement of the actuated points from home to q.
   Pose default_fk_start(const Eigen::VectorXd& q) const;
   double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
+  /// With masses: the natural frequencies from d.matrices.compliance on the DOF (models/
+  /// leg_chain_compliance.cpp).
+  void compute_natural_frequencies(const LegChainData& d, PoseMetrics& out) const;
   /// compliance (into d.matrices), tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction and stiffness_min_loaded of a non-singular pose, from the rod forces
   /// f (models/leg_chain_compliance.cpp).
@@ -398,6 +408,7 @@ struct DeltaDesign {
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
   std::optional<double> characteristic_length;
   double actuator_error = 1e-3 * kDegToRad;  ///< rad
+  MassModel masses;                          ///< platform and leg masses (LegChainDesign::masses)
 };
 LegChainDesign delta_design(const DeltaDesign& d);
 std::unique_ptr<Machine> make_delta(const DeltaDesign& d);
@@ -421,6 +432,7 @@ struct LinearDeltaDesign {
   Eigen::Vector3d tcp = Eigen::Vector3d::Zero();
   std::optional<double> characteristic_length;
   double actuator_error = 1e-5;  ///< m
+  MassModel masses;              ///< platform and leg masses (LegChainDesign::masses)
 };
 LegChainDesign linear_delta_design(const LinearDeltaDesign& d);
 std::unique_ptr<Machine> make_linear_delta(const LinearDeltaDesign& d);
@@ -450,6 +462,7 @@ struct HexaglideDesign {
   double actuator_error = 1e-5;  ///< m
   double home_height = 0.6;      ///< m, z of the home pose (FK start)
   HexaglideDesign();
+  MassModel masses;  ///< platform and leg masses (LegChainDesign::masses)
 };
 LegChainDesign hexaglide_design(const HexaglideDesign& d);
 std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d);
@@ -480,6 +493,7 @@ struct Tripod3PrsDesign {
                           .actuator_stiffness = 2.0e8};  ///< struts (steel), ball-screw drives
   std::optional<double> characteristic_length;
   double actuator_error = 1e-5;  ///< m
+  MassModel masses;              ///< platform and leg masses (LegChainDesign::masses)
 };
 LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& d);
 std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d);

@@ -70,6 +70,7 @@ LegChainDesign delta_design(const DeltaDesign& p) {
   const double dr = p.base_radius + p.upper_arm - p.platform_radius;
   const double h2 = p.rod * p.rod - dr * dr;
   d.home.position = Eigen::Vector3d(0, 0, -(h2 > 0.0 ? std::sqrt(h2) : p.rod)) + p.tcp;
+  d.masses = p.masses;
   return d;
 }
 
@@ -115,6 +116,7 @@ LegChainDesign linear_delta_design(const LinearDeltaDesign& p) {
   const double h2 = p.rod * p.rod - dr * dr;
   d.home.position =
       Eigen::Vector3d(0, 0, carriage.z() - (h2 > 0.0 ? std::sqrt(h2) : p.rod)) + p.tcp;
+  d.masses = p.masses;
   return d;
 }
 
@@ -161,6 +163,7 @@ LegChainDesign hexaglide_design(const HexaglideDesign& p) {
   d.characteristic_length = p.characteristic_length;
   d.actuator_error = p.actuator_error;
   d.home.position = Eigen::Vector3d(0, 0, p.home_height);
+  d.masses = p.masses;
   return d;
 }
 
@@ -206,6 +209,7 @@ LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& p) {
   d.home.position =
       Eigen::Vector3d(0, 0, 0.5 * (p.q_min + p.q_max) + (h2 > 0.0 ? std::sqrt(h2) : p.strut)) +
       d.tcp;
+  d.masses = p.masses;
   return d;
 }
 

@@ -559,7 +559,7 @@ TEST(LegChainMachineFileFields, KeysReadByHandKeepTheirMessages) {
             "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
             "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
             "rods, crank_section, drive_stiffness, drive, joints, tool, characteristic_length, "
-            "actuator_error_deg");
+            "actuator_error_deg, masses, gravity");
   const std::string glide =
       "model: hexaglide\nguides: {y: [0.46, 0.46, 0.39, -0.55, -0.55, 0.39]}\nstrut: 0.8\n"
       "stroke: [-1.2, 1.2]\nstruts: {E: 2.1e11, area: 3.0e-4}\n";

@@ -9,6 +9,7 @@
 #include <Eigen/SVD>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -219,6 +220,86 @@ TEST(LegChainCompliance, DriveTrainEntersThroughTheTransmission) {
   EXPECT_NEAR(m2.stiffness_min,
               1 / Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues()(2),
               1e-9 * m2.stiffness_min);
+}
+
+// Natural frequencies of a linear delta with masses: the DOF mass matrix built here from the
+// kinetic energy of every body (platform, carriages from the IK's carriage positions, links
+// from their ends), differentiated numerically, and the DOF stiffness from the compliance give
+// the frequencies analyze reports (Eigen's generalized eigensolver). Leg masses lower them.
+TEST(LegChainCompliance, NaturalFrequenciesFromTheBodiesKineticEnergy) {
+  LinearDeltaDesign p;
+  p.masses.present = true;
+  p.masses.platform.mass = 2.0;
+  p.masses.platform.inertia = Eigen::Vector3d(0.01, 0.01, 0.02).asDiagonal();
+  p.masses.legs.carriage = 1.5;
+  p.masses.legs.link = {.mass = 0.4, .centre = 0.12, .inertia = 0.004};
+  const LegChainDesign design = linear_delta_design(p);
+  const LegChainMachine machine(design);
+  ASSERT_EQ(machine.natural_frequency_count(), 3);
+  const auto data = machine.make_data();
+  const double h = 1e-6;
+  for (const Eigen::Vector3d& position :
+       {Eigen::Vector3d(0, 0, 0.05), Eigen::Vector3d(0.05, -0.03, 0.08)}) {
+    const Pose pose{position, Eigen::Vector3d::Zero()};
+    PoseMetrics m;
+    machine.analyze(*data, pose, Wrench::Zero(), m);
+    ASSERT_FALSE(m.singular);
+    ASSERT_EQ(m.natural_frequencies.size(), 3);
+    // Body positions at a platform position x: carriages c_i = base_i + q_i axis_i, links from
+    // c_i to the platform joint P_i, centre at c_i + e s_i.
+    struct Bodies {
+      std::vector<Eigen::Vector3d> carriage, link_centre, link_dir;
+    };
+    auto bodies = [&](const Eigen::Vector3d& x) {
+      Bodies b;
+      const Eigen::VectorXd q = *machine.inverse_kinematics(Pose{x, Eigen::Vector3d::Zero()});
+      for (std::size_t i = 0; i < 3; ++i) {
+        const LegChainLeg& leg = design.legs[i];
+        const Eigen::Vector3d c = leg.base_point + q(static_cast<int>(i)) * leg.axis.normalized();
+        const Eigen::Vector3d P = x + leg.platform_point - design.tcp;
+        const Eigen::Vector3d s = (P - c).normalized();
+        b.carriage.push_back(c);
+        b.link_centre.push_back(c + p.masses.legs.link.centre * s);
+        b.link_dir.push_back(s);
+      }
+      return b;
+    };
+    auto energy = [&](const Eigen::Vector3d& v) {
+      const Bodies plus = bodies(position + h * v), minus = bodies(position - h * v);
+      double T = 0.5 * p.masses.platform.mass * v.squaredNorm();
+      for (std::size_t i = 0; i < 3; ++i) {
+        T += 0.5 * p.masses.legs.carriage *
+             ((plus.carriage[i] - minus.carriage[i]) / (2 * h)).squaredNorm();
+        T += 0.5 * p.masses.legs.link.mass *
+             ((plus.link_centre[i] - minus.link_centre[i]) / (2 * h)).squaredNorm();
+        const Eigen::Vector3d s = bodies(position).link_dir[i];
+        const Eigen::Vector3d omega = s.cross((plus.link_dir[i] - minus.link_dir[i]) / (2 * h));
+        T += 0.5 * p.masses.legs.link.inertia * omega.squaredNorm();
+      }
+      return T;
+    };
+    Eigen::Matrix3d M;
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        const Eigen::Vector3d ea = Eigen::Vector3d::Unit(a), eb = Eigen::Vector3d::Unit(b);
+        M(a, b) = energy(ea + eb) - energy(ea) - energy(eb);  // polarisation of 1/2 v^T M v
+      }
+    }
+    const Eigen::Matrix3d K = data->matrices.compliance.topLeftCorner<3, 3>().inverse();
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> ges(K,
+                                                                        0.5 * (M + M.transpose()));
+    for (int j = 0; j < 3; ++j) {
+      const double f = std::sqrt(ges.eigenvalues()(j)) / (2 * std::numbers::pi);
+      EXPECT_NEAR(m.natural_frequencies(j), f, 1e-6 * f) << j;
+    }
+    // Massless legs: higher frequencies.
+    LinearDeltaDesign light = p;
+    light.masses.legs = LegMasses{};
+    const LegChainMachine light_machine(linear_delta_design(light));
+    PoseMetrics ml;
+    light_machine.analyze(*light_machine.make_data(), pose, Wrench::Zero(), ml);
+    for (int j = 0; j < 3; ++j) EXPECT_GT(ml.natural_frequencies(j), m.natural_frequencies(j));
+  }
 }
 
 }  // namespace
