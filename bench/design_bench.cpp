@@ -38,8 +38,8 @@ void BM_DesignEvaluationHexapodMilling(benchmark::State& state) {
 }
 BENCHMARK(BM_DesignEvaluationHexapodMilling)->Unit(benchmark::kMillisecond);
 
-// The comparison studies (studies/library/compare-300): 27 task poses each, stiffness, machine size,
-// singularity margin, reachability; the leg chains through the generic Machine interface.
+// The comparison studies (studies/library/compare-300): 27 task poses each, stiffness, machine
+// size, singularity margin, reachability; the leg chains through the generic Machine interface.
 void BM_DesignEvaluationCompareHexapod(benchmark::State& state) {
   evaluate_study_design(state, "studies/library/compare-300/hexapod.yaml");
 }

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "bench/uniform_stream.hpp"
+#include "bench/hexapod_poses.hpp"
 #include "models/hexapod.hpp"
 #include "models/machine_dynamics.hpp"
 #include "models/sample_machines.hpp"
@@ -25,14 +25,7 @@ pkmopt::Hexapod hexapod_with_masses() {
 }
 
 std::vector<pkmopt::Pose> poses(std::size_t n) {
-  pkmopt::sample_machines::Uniform uniform(12345);
-  std::vector<pkmopt::Pose> out(n);
-  for (auto& p : out) {
-    p.position = {uniform(-0.15, 0.15), uniform(-0.15, 0.15), uniform(0.75, 0.95)};
-    p.angles =
-        pkmopt::deg_to_rad(Eigen::Vector3d(uniform(-15, 15), uniform(-15, 15), uniform(-20, 20)));
-  }
-  return out;
+  return pkmopt::sample_machines::hexapod_bench_poses(n);
 }
 
 // The frequency step alone: M at the pose and the eigenproblem from the pose's compliance.

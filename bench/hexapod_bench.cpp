@@ -12,6 +12,7 @@
 #include <limits>
 #include <vector>
 
+#include "bench/hexapod_poses.hpp"
 #include "bench/uniform_stream.hpp"
 #include "models/hexapod.hpp"
 #include "models/hexapod_batch.hpp"
@@ -23,16 +24,8 @@ pkmopt::Hexapod sample_hexapod() {
   return pkmopt::Hexapod(pkmopt::sample_machines::conventions_hexapod_design());
 }
 
-// Deterministic poses spread over the working region (splitmix64).
 std::vector<pkmopt::Pose> sample_poses(std::size_t n) {
-  pkmopt::sample_machines::Uniform uniform(12345);
-  std::vector<pkmopt::Pose> poses(n);
-  for (auto& p : poses) {
-    p.position = {uniform(-0.15, 0.15), uniform(-0.15, 0.15), uniform(0.75, 0.95)};
-    p.angles =
-        pkmopt::deg_to_rad(Eigen::Vector3d(uniform(-15, 15), uniform(-15, 15), uniform(-20, 20)));
-  }
-  return poses;
+  return pkmopt::sample_machines::hexapod_bench_poses(n);
 }
 
 // Output storage for n poses, allocated once, outside the timed loops.

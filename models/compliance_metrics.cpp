@@ -7,17 +7,9 @@
 #include <cmath>
 #include <limits>
 
+#include "models/linalg.hpp"
+
 namespace pkmopt {
-namespace {
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
-}  // namespace
-
 Matrix6d geometric_stiffness(double tension, const Eigen::Vector3d& s, const Eigen::Vector3d& r,
                              double length) {
   const Eigen::Matrix3d Pi_l = (Eigen::Matrix3d::Identity() - s * s.transpose()) / length;

@@ -30,6 +30,7 @@
 #include "models/compliance_metrics.hpp"
 #include "models/leg_chain.hpp"
 #include "models/leg_chain_detail.hpp"
+#include "models/linalg.hpp"
 #include "models/machine_dynamics.hpp"
 
 namespace pkmopt {
@@ -38,12 +39,6 @@ using detail::MatM;
 using detail::VecM;
 
 namespace {
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
 
 // Planar legs: the reaction forces of the plane constraints, G_c^T lambda = w - rod wrench (least
 // squares; the DOF part of the residual is zero at equilibrium), and their geometric terms added

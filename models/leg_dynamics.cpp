@@ -2,14 +2,10 @@
 
 #include <cmath>
 
+#include "models/linalg.hpp"
+
 namespace pkmopt {
 namespace {
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v(2), v(1), v(2), 0.0, -v(0), -v(1), v(0), 0.0;
-  return m;
-}
 
 // A link along s: inertia tensor I_t (I - s s^T) about its centre.
 Eigen::Matrix3d link_inertia(double I_t, const Eigen::Vector3d& s) {

@@ -21,6 +21,8 @@
 // solve_transposed6x4: J^T X = B for a 6x6 J and four right-hand sides at once, by Gaussian
 // elimination with partial pivoting on the augmented rows [J^T | B], with det J as a by-product.
 //
+// cross_matrix: [v]x, the matrix of the cross product, [v]x u = v x u.
+//
 // max_norm_over_sign_vectors: max over s in {-1, +1}^n of |C s| for a 3 x n C, the largest TCP
 // error over an error box |dq_j| <= 1 mapped by C (the maximum of a convex function over a box
 // is at a vertex; s and -s give the same norm, so 2^(n-1) vertices with s_0 = +1).
@@ -37,6 +39,13 @@
 #include <Eigen/Core>
 
 namespace pkmopt {
+
+/// [v]x: cross_matrix(v) * u = v x u.
+inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
 
 /// max over s in {-1, +1}^n of |columns * s| (0 for no columns); n <= 31.
 double max_norm_over_sign_vectors(

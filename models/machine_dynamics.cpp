@@ -6,17 +6,9 @@
 #include <limits>
 #include <numbers>
 
+#include "models/linalg.hpp"
+
 namespace pkmopt {
-namespace {
-
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v(2), v(1), v(2), 0.0, -v(0), -v(1), v(0), 0.0;
-  return m;
-}
-
-}  // namespace
-
 Matrix6d tcp_mass_matrix(const MassModel& model, const Eigen::Matrix3d& R,
                          const Eigen::Vector3d& tcp, const std::vector<LegPoints>& legs,
                          const Eigen::Vector3d& tcp_position) {

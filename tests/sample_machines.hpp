@@ -3,6 +3,7 @@
 // conventions hexapod is models/sample_machines.hpp's.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "bench/uniform_stream.hpp"
@@ -63,6 +64,36 @@ inline pkmopt::Pose random_pose(Uniform& u) {
   p.position = {u(-0.1, 0.1), u(-0.1, 0.1), u(0.6, 1.0)};
   p.angles = pkmopt::deg_to_rad(Eigen::Vector3d(u(-20, 20), u(-20, 20), u(-30, 30)));
   return p;
+}
+
+/// The cubic (orthogonal) Gough-Stewart platform of Geng & Haynes ("Six degree-of-freedom active
+/// vibration control using the Stewart platforms", IEEE TCST 2, 1994), cube side Hc * sqrt(3)
+/// with its diagonal vertical and its centre at the platform frame's origin at the home pose
+/// (legs: cube edges, every leg axial_stiffness; lengths 0.1..0.5 m; TCP at the origin).
+inline pkmopt::HexapodDesign cubic_hexapod_design(double Hc, double axial_stiffness) {
+  const double L = Hc * std::sqrt(3.0);
+  Eigen::Matrix3d R;  // columns: the cube's axes turned so that its diagonal is vertical
+  R.col(0) = Eigen::Vector3d(2, -1, -1).normalized();
+  R.col(1) = Eigen::Vector3d(0, 1, -1).normalized();
+  R.col(2) = Eigen::Vector3d(1, 1, 1).normalized();
+  auto vertex = [&](double x, double y, double z) {
+    return Eigen::Vector3d(R.transpose() * Eigen::Vector3d(x, y, z) -
+                           Eigen::Vector3d(0, 0, 1.5 * Hc));
+  };
+  const Eigen::Vector3d bottom[6] = {vertex(0, 0, L), vertex(L, 0, 0), vertex(L, 0, 0),
+                                     vertex(0, L, 0), vertex(0, L, 0), vertex(0, 0, L)};
+  const Eigen::Vector3d top[6] = {vertex(L, 0, L), vertex(L, 0, L), vertex(L, L, 0),
+                                  vertex(L, L, 0), vertex(0, L, L), vertex(0, L, L)};
+  pkmopt::HexapodDesign design;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d s = (top[i] - bottom[i]).normalized();
+    design.base_joints.col(i) = bottom[i] - 0.05 * s;  // anywhere on the leg's line
+    design.platform_joints.col(i) = top[i];            // platform frame = cube frame at home
+  }
+  design.min_length = 0.1;
+  design.max_length = 0.5;
+  design.stiffness.axial_stiffness = axial_stiffness;
+  return design;
 }
 
 }  // namespace pkmopt::sample_machines

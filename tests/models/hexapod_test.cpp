@@ -794,30 +794,11 @@ TEST(HexapodCompliance, DeflectionIsTheDisplacementOfTheLoadedEquilibriumFoundBy
 // 0.015, 0.015, 0.06 at the centre; with the TCP 70 mm above it K15 = -0.14, K24 = 0.14 and
 // K44 = K55 = 0.025 (printed to two digits).
 TEST(HexapodCompliance, CubicConfigurationHasThePublishedStiffness) {
-  const double Hc = 0.1, L = Hc * std::sqrt(3.0);
-  Eigen::Matrix3d R;  // columns: the cube's axes turned so that its diagonal is vertical
-  R.col(0) = Eigen::Vector3d(2, -1, -1).normalized();
-  R.col(1) = Eigen::Vector3d(0, 1, -1).normalized();
-  R.col(2) = Eigen::Vector3d(1, 1, 1).normalized();
-  auto vertex = [&](double x, double y, double z) {
-    return Eigen::Vector3d(R.transpose() * Eigen::Vector3d(x, y, z) -
-                           Eigen::Vector3d(0, 0, 1.5 * Hc));
-  };
-  const Eigen::Vector3d bottom[6] = {vertex(0, 0, L), vertex(L, 0, 0), vertex(L, 0, 0),
-                                     vertex(0, L, 0), vertex(0, L, 0), vertex(0, 0, L)};
-  const Eigen::Vector3d top[6] = {vertex(L, 0, L), vertex(L, 0, L), vertex(L, L, 0),
-                                  vertex(L, L, 0), vertex(0, L, L), vertex(0, L, L)};
+  const double Hc = 0.1;
   for (const double d : {0.0, 0.07}) {
-    HexapodDesign design;
-    for (int i = 0; i < 6; ++i) {
-      const Eigen::Vector3d s = (top[i] - bottom[i]).normalized();
-      design.base_joints.col(i) = bottom[i] - 0.05 * s;  // anywhere on the leg's line
-      design.platform_joints.col(i) = top[i];            // platform frame = cube frame at home
-    }
+    HexapodDesign design =
+        sample_machines::cubic_hexapod_design(Hc, 1.0);  // k = 1 N/m, as in the tables
     design.tcp = Eigen::Vector3d(0, 0, d);
-    design.min_length = 0.1;
-    design.max_length = 0.5;
-    design.stiffness.axial_stiffness = 1.0;  // k = 1 N/m, as in the tables
     const Hexapod hexapod(design);
     const Matrix6d K = hexapod.stiffness_matrix(Pose{{0, 0, d}, {0, 0, 0}});
     Matrix6d expected = Matrix6d::Zero();

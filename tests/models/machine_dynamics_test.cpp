@@ -204,28 +204,8 @@ TEST(MachineDynamics, NaturalModesSolveTheGeneralizedEigenproblem) {
 // of mass at the TCP: M = diag(m, m, m, Ixx, Iyy, Izz) and f_j = sqrt(K_jj / M_jj) / 2 pi. Leg
 // masses then lower every frequency.
 TEST(MachineDynamics, CubicHexapodHasTheClosedFormFrequencies) {
-  const double Hc = 0.1, L = Hc * std::sqrt(3.0), k = 2.0e7;
-  Eigen::Matrix3d R;
-  R.col(0) = Eigen::Vector3d(2, -1, -1).normalized();
-  R.col(1) = Eigen::Vector3d(0, 1, -1).normalized();
-  R.col(2) = Eigen::Vector3d(1, 1, 1).normalized();
-  auto vertex = [&](double x, double y, double z) {
-    return Eigen::Vector3d(R.transpose() * Eigen::Vector3d(x, y, z) -
-                           Eigen::Vector3d(0, 0, 1.5 * Hc));
-  };
-  const Eigen::Vector3d bottom[6] = {vertex(0, 0, L), vertex(L, 0, 0), vertex(L, 0, 0),
-                                     vertex(0, L, 0), vertex(0, L, 0), vertex(0, 0, L)};
-  const Eigen::Vector3d top[6] = {vertex(L, 0, L), vertex(L, 0, L), vertex(L, L, 0),
-                                  vertex(L, L, 0), vertex(0, L, L), vertex(0, L, L)};
-  HexapodDesign design;
-  for (int i = 0; i < 6; ++i) {
-    const Eigen::Vector3d s = (top[i] - bottom[i]).normalized();
-    design.base_joints.col(i) = bottom[i] - 0.05 * s;
-    design.platform_joints.col(i) = top[i];
-  }
-  design.min_length = 0.1;
-  design.max_length = 0.5;
-  design.stiffness.axial_stiffness = k;
+  const double Hc = 0.1, k = 2.0e7;
+  HexapodDesign design = sample_machines::cubic_hexapod_design(Hc, k);
   design.masses.present = true;
   design.masses.platform.mass = 12.0;
   design.masses.platform.inertia = Eigen::Vector3d(0.11, 0.13, 0.2).asDiagonal();
