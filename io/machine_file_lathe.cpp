@@ -4,6 +4,7 @@
 
 #include "io/compliance_fields.hpp"
 #include "io/field_list.hpp"
+#include "io/mass_fields.hpp"
 
 namespace pkmopt {
 namespace {
@@ -98,6 +99,8 @@ void describe_fields(Fields& f, Lathe16k20f3Design& d) {
   });
   f.field("actuator_error", d.actuator_error,
           non_negative("m", "half-width of the actuator error box of tcp_error_max"));
+  MassFields masses{d.masses, {.telescopic = true, .carriage = true}};
+  describe_mass_section(f, masses);
 }
 
 Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root) {
@@ -105,6 +108,7 @@ Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root) {
   read_fields(root, d);
   check_drive_section(root, d.carriage_drive, false, "carriage_drive");
   check_drive_section(root, d.leg_drive, false, "leg_drive");
+  check_mass_fields(root, d.masses);
   try {
     (void)make_lathe_16k20f3(d);
   } catch (const std::invalid_argument& e) {

@@ -96,6 +96,7 @@ LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
     leg.base_max_angle = d.leg_max_angle;
     design.legs.push_back(leg);
   }
+  design.masses = d.masses;
   return design;
 }
 

@@ -112,6 +112,9 @@ struct Lathe16k20f3Design {
   double leg_base_joint_stiffness = 0.0;      ///< U joint at the beam, axial (N/m; 0 rigid)
   double leg_platform_joint_stiffness = 0.0;  ///< joint at the housing, axial (N/m)
   double actuator_error = 1e-5;               ///< m
+  /// Turret housing with turret and tools, carriages and struts, cylinders and rods
+  /// (models/mass_model.hpp); `present` false: none.
+  MassModel masses;
 };
 
 /// The leg-chain design (model name "lathe_16k20f3", mobility kSchoenflies, e = x). Throws

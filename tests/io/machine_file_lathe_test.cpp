@@ -86,6 +86,14 @@ TEST(LatheMachineFileFields, WriterAndReaderRoundTripEveryKey) {
   d.leg_base_joint_stiffness = 5e8;
   d.leg_platform_joint_stiffness = 6e8;
   d.actuator_error = 2e-5;
+  d.masses.present = true;
+  d.masses.platform = {.mass = 60.0,
+                       .centre_of_mass = {0.01, 0.02, -0.03},
+                       .inertia = Eigen::Vector3d(1.5, 1.2, 1.1).asDiagonal()};
+  d.masses.legs.carriage = 12.0;
+  d.masses.legs.link = {.mass = 5.0, .centre = 0.35, .inertia = 0.2};
+  d.masses.legs.cylinder = {.mass = 9.0, .centre = 0.3, .inertia = 0.4};
+  d.masses.legs.rod = {.mass = 4.0, .centre = 0.4, .inertia = 0.15};
   const std::string text = lathe_16k20f3_machine_file(d);
   const Lathe16k20f3Design r = read_lathe_16k20f3_design(YamlValue::load_string(text, "l.yaml"));
   EXPECT_EQ(r.centre_height, d.centre_height);
@@ -131,6 +139,12 @@ TEST(LatheMachineFileFields, WriterAndReaderRoundTripEveryKey) {
   EXPECT_EQ(r.leg_base_joint_stiffness, d.leg_base_joint_stiffness);
   EXPECT_EQ(r.leg_platform_joint_stiffness, d.leg_platform_joint_stiffness);
   EXPECT_EQ(r.actuator_error, d.actuator_error);
+  EXPECT_TRUE(r.masses.present);
+  EXPECT_EQ(r.masses.platform.inertia, d.masses.platform.inertia);
+  EXPECT_EQ(r.masses.platform.centre_of_mass, d.masses.platform.centre_of_mass);
+  EXPECT_EQ(r.masses.legs.carriage, d.masses.legs.carriage);
+  EXPECT_EQ(r.masses.legs.link.centre, d.masses.legs.link.centre);
+  EXPECT_EQ(r.masses.legs.rod.inertia, d.masses.legs.rod.inertia);
   EXPECT_EQ(lathe_16k20f3_machine_file(r), text);
   // Every key is written, one line each, in the list's order.
   EXPECT_EQ(text.substr(0, text.find("approach_angle_deg")),

@@ -229,6 +229,37 @@ TEST(LatheConversion, DriveTrainsAndJointsAddInSeries) {
   EXPECT_THROW(lathe_16k20f3_design(bad), std::invalid_argument);
 }
 
+// With masses the Schoenflies turret has four natural frequencies per pose, ascending and
+// finite; the leg bodies lower each of them.
+TEST(LatheConversion, MassesGiveFourNaturalFrequencies) {
+  Lathe16k20f3Design d;
+  d.masses.present = true;
+  d.masses.platform.mass = 60.0;
+  d.masses.platform.inertia = Eigen::Vector3d(1.5, 1.2, 1.1).asDiagonal();
+  const auto bare = make_lathe_16k20f3(d);
+  d.masses.legs.carriage = 12.0;
+  d.masses.legs.link = {.mass = 5.0, .centre = 0.35, .inertia = 0.2};
+  d.masses.legs.cylinder = {.mass = 9.0, .centre = 0.3, .inertia = 0.4};
+  d.masses.legs.rod = {.mass = 4.0, .centre = 0.4, .inertia = 0.15};
+  const auto heavy = make_lathe_16k20f3(d);
+  ASSERT_EQ(heavy->natural_frequency_count(), 4);
+  const auto db = bare->make_data(), dh = heavy->make_data();
+  for (const Pose& pose : sample_poses()) {
+    PoseMetrics mb, mh;
+    bare->analyze(*db, pose, Wrench::Zero(), mb);
+    heavy->analyze(*dh, pose, Wrench::Zero(), mh);
+    ASSERT_EQ(mh.natural_frequencies.size(), 4);
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_TRUE(std::isfinite(mh.natural_frequencies(j)));
+      EXPECT_GT(mh.natural_frequencies(j), 1.0);
+      if (j > 0) {
+        EXPECT_GE(mh.natural_frequencies(j), mh.natural_frequencies(j - 1));
+      }
+      EXPECT_LT(mh.natural_frequencies(j), mb.natural_frequencies(j));
+    }
+  }
+}
+
 TEST(LatheConversion, RejectsImpossibleDesigns) {
   Lathe16k20f3Design d;
   d.strut_length = 0.0;
