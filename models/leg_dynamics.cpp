@@ -125,6 +125,17 @@ Eigen::Matrix3d leg_mass_matrix(const LegPoints& leg, const LegMasses& masses) {
   return M;
 }
 
+double moving_mass(const MassModel& model, const std::vector<LegBodyKind>& legs) {
+  double total = model.platform.mass;
+  for (const LegBodyKind kind : legs) {
+    const LegMasses& m = model.legs;
+    total += kind == LegBodyKind::kTelescopic ? m.cylinder.mass + m.rod.mass
+             : kind == LegBodyKind::kCarriage ? m.carriage + m.link.mass
+                                              : m.crank.mass + m.link.mass;
+  }
+  return total;
+}
+
 Eigen::Vector3d leg_dynamic_force(const LegPoints& leg, const LegMasses& masses,
                                   const Eigen::Vector3d& v_P, const Eigen::Vector3d& a_P,
                                   const Eigen::Vector3d& gravity) {

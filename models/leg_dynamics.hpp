@@ -36,6 +36,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "models/mass_model.hpp"
 
@@ -75,6 +76,9 @@ bool leg_bodies(const LegPoints& leg, const LegMasses& masses, const Eigen::Vect
 
 /// The leg's 3x3 mass matrix on v_P (kinetic energy 1/2 v_P^T M_P v_P); zero if degenerate.
 Eigen::Matrix3d leg_mass_matrix(const LegPoints& leg, const LegMasses& masses);
+
+/// The mass in motion: the platform and the bodies of legs of these kinds (kg).
+double moving_mass(const MassModel& model, const std::vector<LegBodyKind>& legs);
 
 /// The force at P equivalent to the leg bodies' gravity and inertia; zero if degenerate.
 Eigen::Vector3d leg_dynamic_force(const LegPoints& leg, const LegMasses& masses,

@@ -81,11 +81,11 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     if (!r.fixed()) free_.push_back(i);
   }
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
-  if (needed_[static_cast<int>(DesignMetric::natural_frequency_min)] &&
-      !spec_.machine_template.masses.present)
-    throw std::invalid_argument(fmt::format(
-        "{}: natural_frequency_min needs the machine's masses (machine.masses, docs/dynamics.md)",
-        where));
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
+    if (needed_[static_cast<int>(metric)] && !spec_.machine_template.masses.present)
+      throw std::invalid_argument(
+          fmt::format("{}: {} needs the machine's masses (machine.masses, docs/dynamics.md)", where,
+                      design_metric_name(metric)));
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
     if (catalog.entries.empty())
@@ -421,6 +421,10 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
       worst.add(m);
     }
     worst.store(ev.metrics);
+  }
+  if (need(DesignMetric::moving_mass)) {
+    ev.metrics[static_cast<int>(DesignMetric::moving_mass)] = moving_mass(
+        spec_.machine_template.masses, std::vector<LegBodyKind>(6, LegBodyKind::kTelescopic));
   }
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;

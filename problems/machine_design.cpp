@@ -17,7 +17,8 @@ namespace {
 constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
     "stiffness_min",     "singularity_margin", "leg_force_max",        "tcp_error_max",
     "workspace_volume",  "conditioning_index", "machine_size",         "actuator_cost",
-    "actuator_overload", "tcp_deflection_max", "stiffness_min_loaded", "natural_frequency_min"};
+    "actuator_overload", "tcp_deflection_max", "stiffness_min_loaded", "natural_frequency_min",
+    "moving_mass"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -436,11 +437,11 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
           "{}: {} needs an actuator catalog to choose from, which only hexapod design problems "
           "have; bound leg_force_max instead",
           where, design_metric_name(static_cast<DesignMetric>(m))));
-  if (needed_[static_cast<int>(DesignMetric::natural_frequency_min)])
-    throw std::invalid_argument(fmt::format(
-        "{}: natural_frequency_min needs a mass model, which only hexapod design problems have "
-        "(machine.masses)",
-        where));
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
+    if (needed_[static_cast<int>(metric)])
+      throw std::invalid_argument(fmt::format(
+          "{}: {} needs a mass model, which only hexapod design problems have (machine.masses)",
+          where, design_metric_name(metric)));
 }
 
 Bounds MachineDesignProblem::bounds() const {

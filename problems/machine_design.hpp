@@ -47,6 +47,7 @@
 //   tcp_deflection_max  max_k tcp_deflection(pose k) under w              m
 //   stiffness_min_loaded  min_k stiffness_min_loaded(pose k) under w      N/m
 //   natural_frequency_min min_k natural_frequency_1(pose k) (needs masses)  Hz
+//   moving_mass         platform plus every leg's moving bodies (needs masses)  kg
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3
@@ -134,9 +135,11 @@ enum class DesignMetric {
   stiffness_min_loaded,
   /// min over the task of the first natural frequency (Hz; needs the machine's masses,
   /// docs/dynamics.md).
-  natural_frequency_min
+  natural_frequency_min,
+  /// The mass in motion: the platform's and every leg's moving bodies (kg; needs the masses).
+  moving_mass
 };
-inline constexpr int kNumDesignMetrics = 12;
+inline constexpr int kNumDesignMetrics = 13;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).

@@ -38,6 +38,8 @@ std::string_view design_metric_unit(DesignMetric metric) {
       return "m";
     case DesignMetric::natural_frequency_min:
       return "Hz";
+    case DesignMetric::moving_mass:
+      return "kg";
     case DesignMetric::workspace_volume:
     case DesignMetric::machine_size:
       return "m^3";

@@ -114,6 +114,11 @@ TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
   }
   EXPECT_GT(lowest, 10.0);
   EXPECT_DOUBLE_EQ(ev.metrics[static_cast<int>(DesignMetric::natural_frequency_min)], lowest);
+  // moving_mass: the platform and six cylinders and rods.
+  spec.objectives.push_back({DesignMetric::moving_mass, Sense::minimize});
+  const DesignEvaluation with_mass = HexapodDesignProblem(spec).evaluate({});
+  EXPECT_DOUBLE_EQ(with_mass.metrics[static_cast<int>(DesignMetric::moving_mass)],
+                   45.0 + 6 * (6.0 + 3.0));
 }
 
 TEST(HexapodDesign, MaximizeFlipsTheSignAndConstraintsFollowTheirRelation) {
