@@ -298,20 +298,33 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   if (d.compliance_metrics) compute_compliance_metrics(d, pose, compliance, wrench, out);
 }
 
-std::vector<LegPoints> Hexapod::leg_points(const Pose& pose) const {
-  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+namespace {
+
+// The legs' joint points for the TCP pose (p, R): a_i and P_i = p + R (b_i - tcp).
+std::vector<LegPoints> hexapod_leg_points(const HexapodDesign& design,
+                                          const Eigen::Matrix<double, 3, 6>& platform_rel,
+                                          const Eigen::Vector3d& p, const Mat3<double>& R) {
   std::vector<LegPoints> legs(6);
   for (int i = 0; i < 6; ++i) {
     legs[static_cast<std::size_t>(i)] = {.kind = LegBodyKind::kTelescopic,
-                                         .joint = design_.base_joints.col(i),
-                                         .platform = pose.position + R * platform_rel_.col(i)};
+                                         .joint = design.base_joints.col(i),
+                                         .platform = p + R * platform_rel.col(i)};
   }
   return legs;
 }
 
+}  // namespace
+
+std::vector<LegPoints> Hexapod::leg_points(const Pose& pose) const {
+  return hexapod_leg_points(design_, platform_rel_, pose.position,
+                            rotation_zyx<double>(pose.angles));
+}
+
 Matrix6d Hexapod::mass_matrix(const Pose& pose) const {
-  return tcp_mass_matrix(design_.masses, rotation_zyx<double>(pose.angles), design_.tcp,
-                         leg_points(pose), pose.position);
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  return tcp_mass_matrix(design_.masses, R, design_.tcp,
+                         hexapod_leg_points(design_, platform_rel_, pose.position, R),
+                         pose.position);
 }
 
 void Hexapod::compute_compliance_metrics(HexapodData& d, const Pose& pose,

@@ -60,21 +60,25 @@ Wrench dynamic_wrench(const MassModel& model, const Eigen::Matrix3d& R, const Ei
   return w;
 }
 
-NaturalModes natural_modes(const Eigen::MatrixXd& C, const Eigen::MatrixXd& M, bool shapes) {
+namespace {
+
+// The modes for a dynamic-size or a fixed-size (6x6) matrix type.
+template <class Mat>
+NaturalModes modes_of(const Mat& C, const Mat& M, bool shapes) {
   NaturalModes out;
   const Eigen::Index n = M.rows();
   out.frequencies = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
   if (!C.allFinite() || !M.allFinite() || C.rows() != n) return out;
-  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  const Eigen::LLT<Mat> llt(M);
   if (llt.info() != Eigen::Success) return out;
-  const Eigen::MatrixXd L = llt.matrixL();
-  Eigen::MatrixXd S = L.transpose() * C * L;
-  S = 0.5 * (S + S.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+  const Mat L = llt.matrixL();
+  Mat S = L.transpose() * C * L;
+  S = (0.5 * (S + S.transpose())).eval();
+  const Eigen::SelfAdjointEigenSolver<Mat> eig(
       S, shapes ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   if (eig.info() != Eigen::Success) return out;
   // Ascending eigenvalues mu = 1 / omega^2: the frequencies descend; reverse them.
-  const double scale = std::max(S.diagonal().cwiseAbs().maxCoeff(), 0.0);
+  const double scale = S.diagonal().cwiseAbs().maxCoeff();
   if (shapes) out.shapes.resize(n, n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const Eigen::Index j = n - 1 - k;
@@ -83,7 +87,7 @@ NaturalModes natural_modes(const Eigen::MatrixXd& C, const Eigen::MatrixXd& M, b
     out.frequencies(k) = mu > 1e-14 * scale ? 1.0 / (2.0 * std::numbers::pi * std::sqrt(mu))
                                             : std::numeric_limits<double>::infinity();
     if (shapes) {
-      Eigen::VectorXd x = L.transpose().triangularView<Eigen::Upper>().solve(
+      Eigen::VectorXd x = L.transpose().template triangularView<Eigen::Upper>().solve(
           eig.eigenvectors().col(j));  // unit M-norm: y^T y = 1
       Eigen::Index lead = 0;
       x.cwiseAbs().maxCoeff(&lead);
@@ -95,25 +99,14 @@ NaturalModes natural_modes(const Eigen::MatrixXd& C, const Eigen::MatrixXd& M, b
   return out;
 }
 
+}  // namespace
+
+NaturalModes natural_modes(const Eigen::MatrixXd& C, const Eigen::MatrixXd& M, bool shapes) {
+  return modes_of(C, M, shapes);
+}
+
 NaturalModes natural_frequencies6(const Matrix6d& C, const Matrix6d& M) {
-  NaturalModes out;
-  out.frequencies = Eigen::VectorXd::Constant(6, std::numeric_limits<double>::infinity());
-  if (!C.allFinite() || !M.allFinite()) return out;
-  const Eigen::LLT<Matrix6d> llt(M);
-  if (llt.info() != Eigen::Success) return out;
-  const Matrix6d L = llt.matrixL();
-  Matrix6d S = L.transpose() * C * L;
-  S = (0.5 * (S + S.transpose())).eval();
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(S, Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) return out;
-  const double scale = S.diagonal().cwiseAbs().maxCoeff();
-  for (int k = 0; k < 6; ++k) {
-    const double mu = eig.eigenvalues()(5 - k);
-    out.frequencies(k) = mu > 1e-14 * scale ? 1.0 / (2.0 * std::numbers::pi * std::sqrt(mu))
-                                            : std::numeric_limits<double>::infinity();
-  }
-  out.ok = true;
-  return out;
+  return modes_of(C, M, false);
 }
 
 }  // namespace pkmopt
