@@ -35,7 +35,10 @@ void describe_fields(Fields& f, ActuatorEntry& e) {
   f.field("name", e.name, {.required = true, .doc = "the entry's name, unique in the catalog"});
   f.field("type", e.type,
           {.required = true, .doc = "drive type, e.g. electric_cylinder, linear_motor"});
-  f.field("max_force", e.max_force, positive("N", "rated axial force", true));
+  f.field("max_force", e.max_force, positive("N", "rated (continuous) axial force", true));
+  f.field(
+      "peak_force", e.peak_force,
+      positive("N", "short-time peak axial force (>= max_force; max_force when not given)", false));
   f.field("stroke", e.stroke, positive("m", "stroke", true));
   f.field("max_speed", e.max_speed, positive("m/s", "maximum speed", true));
   f.field("accuracy", e.accuracy, positive("m", "positioning accuracy (repeatability)", false));
@@ -76,6 +79,11 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
     ActuatorEntry entry;
     read_fields(item, entry);
     if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
+    if (entry.peak_force && *entry.peak_force < entry.max_force) {
+      item.required("peak_force")
+          .fail(fmt::format("a peak force (N) >= max_force = {}", entry.max_force),
+                fmt::format("{}", *entry.peak_force));
+    }
     if (!names.insert(entry.name).second) {
       item.required("name").fail("a name not used by an earlier entry",
                                  "'" + entry.name + "' again");

@@ -6,9 +6,11 @@
 //                        and column otherwise.
 //   trajectory_csv       one row per sample:
 //                          t (s), x,y,z (m), rx,ry,rz (deg), vx,vy,vz (m/s), wx,wy,wz (deg/s,
-//                          angular velocity in base axes), reachable, singular (0/1),
-//                          q_1..q_n, q_dot_1..q_dot_n, q_dot_fd_1..q_dot_fd_n,
-//                          singularity_margin, det_j
+//                          angular velocity in base axes), ax,ay,az (m/s^2), alpha_x,alpha_y,
+//                          alpha_z (deg/s^2, angular acceleration), reachable, singular (0/1),
+//                          q_1..q_n, q_dot_1..q_dot_n, q_dot_fd_1..q_dot_fd_n, tau_1..tau_n
+//                          (N or N*m, under the wrench), with masses tau_dyn_1..tau_dyn_n
+//                          (wrench, gravity and inertia), singularity_margin, det_j
 //                        and, with `jacobian`, J_r_c (r = 1..n, c = 1..6; SI units, +inf where
 //                        the Jacobian failed). q in m and m/s for prismatic actuators, deg and
 //                        deg/s for revolute ones.
@@ -17,7 +19,10 @@
 //   trajectory_summary_text  the lines `pkmopt trajectory` prints: sample count, time span,
 //                        reachable samples, min singularity_margin; per actuator the range of q
 //                        and the max |q_dot|; the max |q_dot - q_dot_fd| over interior samples;
-//                        every singular pose.
+//                        every singular pose; the TCP's peak speed and acceleration; per
+//                        actuator the peak |tau| and, with masses, the peak and RMS tau_dyn
+//                        and the peak power.
+//   drive_check_text     whether a catalog entry carries every actuator along the path.
 // Numbers in the CSVs in the shortest text that reads back to the same double (format_number);
 // docs/trajectory.md describes every column.
 //
@@ -32,6 +37,7 @@
 
 #include "models/machine.hpp"
 #include "models/trajectory.hpp"
+#include "problems/actuator_catalog.hpp"
 
 namespace pkmopt {
 
@@ -48,5 +54,15 @@ std::string singular_poses_csv(const TrajectoryResult& result);
 /// The time span is that of the first and last sample (result.samples must not be empty).
 std::string trajectory_summary_text(const Machine& machine, const TrajectoryResult& result,
                                     const TrajectorySummary& summary);
+
+/// The duty of actuator i along the path (summarize_trajectory): the peak and RMS of tau_dyn
+/// (of tau when the machine has no masses), the peak |q_dot| and the span of q.
+DriveDuty actuator_duty(const TrajectorySummary& summary, int i);
+
+/// The lines saying, per actuator, whether `entry` carries its duty (peak force, RMS force,
+/// speed, stroke; problems/actuator_catalog.hpp), and a last verdict line. `carries` is set to
+/// whether it carries every actuator. For machines with linear actuators.
+std::string drive_check_text(const ActuatorEntry& entry, const TrajectorySummary& summary,
+                             bool& carries);
 
 }  // namespace pkmopt

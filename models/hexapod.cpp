@@ -327,6 +327,24 @@ Matrix6d Hexapod::mass_matrix(const Pose& pose) const {
                          pose.position);
 }
 
+bool Hexapod::mass_matrix(MachineData& /*data*/, const Pose& pose, Matrix6d& M) const {
+  if (!design_.masses.present) return false;
+  M = mass_matrix(pose);
+  return true;
+}
+
+bool Hexapod::dynamic_wrench(MachineData& /*data*/, const Pose& pose, const Vector6d& xi,
+                             const Vector6d& xi_dot, Wrench& w_dyn) const {
+  if (!design_.masses.present) return false;
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  const std::vector<LegPoints> legs = hexapod_leg_points(design_, platform_rel_, pose.position, R);
+  for (const LegPoints& leg : legs) {
+    if ((leg.platform - leg.joint).norm() <= 0.0) return false;  // a leg of zero length
+  }
+  w_dyn = pkmopt::dynamic_wrench(design_.masses, R, design_.tcp, legs, pose.position, xi, xi_dot);
+  return true;
+}
+
 void Hexapod::compute_compliance_metrics(HexapodData& d, const Pose& pose,
                                          const Vec6<double>& compliance, const Wrench& wrench,
                                          PoseMetrics& out) const {

@@ -184,6 +184,12 @@ class Hexapod final : public Machine {
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
   int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }
+  const MassModel* mass_model() const override {
+    return design_.masses.present ? &design_.masses : nullptr;
+  }
+  bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
+  bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
+                      const Vector6d& xi_dot, Wrench& w_dyn) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (translational rows of J^-1), from compute_metrics.
   bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,

@@ -122,6 +122,7 @@
 #include <vector>
 
 #include "models/compliance_chain.hpp"
+#include "models/leg_dynamics.hpp"
 #include "models/machine.hpp"
 #include "models/mass_model.hpp"
 #include "models/pose.hpp"
@@ -266,6 +267,17 @@ class LegChainMachine final : public Machine {
   int natural_frequency_count() const override {
     return design_.masses.present ? num_actuators() : 0;
   }
+  const MassModel* mass_model() const override {
+    return design_.masses.present ? &design_.masses : nullptr;
+  }
+  /// The full-twist TCP mass matrix at actual_pose(pose); only its restriction T^T M T to the
+  /// platform's own twists is meaningful.
+  bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
+  /// At actual_pose(pose), with xi and xi_dot projected on the platform's own twists (T T^+);
+  /// for planar legs (3-PRS) the rate of T (the parasitic motion's own acceleration) is not
+  /// included (docs/dynamics.md).
+  bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
+                      const Vector6d& xi_dot, Wrench& w_dyn) const override;
   /// Row i: [s_i^T, (r_i x s_i)^T] / B_i at actual_pose(pose) (false when a leg cannot close or
   /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
@@ -328,8 +340,10 @@ class LegChainMachine final : public Machine {
   /// The home pose moved by the mean displacement of the actuated points from home to q.
   Pose default_fk_start(const Eigen::VectorXd& q) const;
   double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
+  /// The legs' joint points at the kinematics in `d` (models/leg_chain_dynamics.cpp).
+  std::vector<LegPoints> leg_points(const LegChainData& d) const;
   /// With masses: the natural frequencies from d.matrices.compliance on the DOF (models/
-  /// leg_chain_compliance.cpp).
+  /// leg_chain_dynamics.cpp).
   void compute_natural_frequencies(const LegChainData& d, PoseMetrics& out) const;
   /// compliance (into d.matrices), tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction and stiffness_min_loaded of a non-singular pose, from the rod forces

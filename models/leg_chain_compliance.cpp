@@ -31,7 +31,6 @@
 #include "models/leg_chain.hpp"
 #include "models/leg_chain_detail.hpp"
 #include "models/linalg.hpp"
-#include "models/machine_dynamics.hpp"
 
 namespace pkmopt {
 
@@ -133,32 +132,6 @@ Matrix6d LegChainMachine::full_twist_geometric_stiffness(const LegChainData& d, 
   if (design_.mobility == PlatformMobility::kPlanarLegs)
     add_plane_constraint_terms(design_, d, n, wrench, rod_wrench, geometric6);
   return geometric6;
-}
-
-void LegChainMachine::compute_natural_frequencies(const LegChainData& d, PoseMetrics& out) const {
-  // The legs' bodies from the joint points of the pose: UPS base joint, PUS carriage joint,
-  // RUS elbow (d.c), the platform joints P_i = p + r_i.
-  std::vector<LegPoints> legs(design_.legs.size());
-  for (std::size_t i = 0; i < legs.size(); ++i) {
-    const LegChainLeg& leg = design_.legs[i];
-    const int j = static_cast<int>(i);
-    LegPoints& p = legs[i];
-    p.kind = leg.kind == LegKind::kUPS   ? LegBodyKind::kTelescopic
-             : leg.kind == LegKind::kPUS ? LegBodyKind::kCarriage
-                                         : LegBodyKind::kCrank;
-    p.joint = d.c.col(j);
-    p.platform = d.position + d.r.col(j);
-    p.axis = leg.axis.normalized();
-    p.pivot = leg.base_point;
-  }
-  const Matrix6d M = tcp_mass_matrix(design_.masses, d.rotation, design_.tcp, legs, d.position);
-  // On the DOF: M_dof = T^T M T, C_dof = T^+ C T^+T (exact for the axial model, C = T C_dof T^T;
-  // with link compliance the constrained directions are condensed out).
-  const Eigen::MatrixXd T = d.T;
-  const Eigen::MatrixXd T_plus = (T.transpose() * T).ldlt().solve(T.transpose());
-  const Eigen::MatrixXd M_dof = T.transpose() * M * T;
-  const Eigen::MatrixXd C_dof = T_plus * d.matrices.compliance * T_plus.transpose();
-  out.natural_frequencies = natural_modes(C_dof, M_dof, false).frequencies;
 }
 
 }  // namespace pkmopt

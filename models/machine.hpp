@@ -43,6 +43,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/mass_model.hpp"
 #include "models/pose.hpp"
 
 namespace pkmopt {
@@ -138,6 +139,25 @@ class Machine {
   /// How many natural frequencies analyze gives (the platform DOF when the machine has a mass
   /// model, else 0).
   virtual int natural_frequency_count() const { return 0; }
+
+  /// The machine's platform and leg masses (models/mass_model.hpp); null when it has none.
+  virtual const MassModel* mass_model() const { return nullptr; }
+  /// The TCP mass matrix M at a pose (6x6, base axes; kinetic energy 1/2 xi^T M xi of the
+  /// platform and every leg body, models/machine_dynamics.hpp). Returns false (M untouched)
+  /// without a mass model or when a leg cannot close at the pose.
+  virtual bool mass_matrix(MachineData& /*data*/, const Pose& /*pose*/, Matrix6d& /*M*/) const {
+    return false;
+  }
+  /// The wrench at the TCP equivalent, by virtual power, to gravity and to the inertia of the
+  /// platform and every leg body when the TCP moves with the twist xi = [v; omega] and its rate
+  /// xi_dot = [a; alpha] (m/s, rad/s, m/s^2, rad/s^2; base axes; models/machine_dynamics.hpp).
+  /// The actuators then carry the forces analyze gives for the wrench w + w_dyn (w the external
+  /// wrench on the tool). Returns false (w_dyn untouched) without a mass model or when a leg
+  /// cannot close at the pose.
+  virtual bool dynamic_wrench(MachineData& /*data*/, const Pose& /*pose*/, const Vector6d& /*xi*/,
+                              const Vector6d& /*xi_dot*/, Wrench& /*w_dyn*/) const {
+    return false;
+  }
 
   /// The volume of the machine's envelope (m^3, see the model's header); nullopt if unknown.
   virtual std::optional<double> envelope_volume() const { return std::nullopt; }

@@ -64,6 +64,9 @@ struct LegMasses {
   }
 };
 
+/// Standard gravity g_n (m/s^2, ISO 80000-3): the unit of accelerations quoted in g.
+inline constexpr double kStandardGravity = 9.80665;
+
 /// Platform, legs (the same bodies on every leg) and gravity. `present` is false for a machine
 /// without a mass model (no frequencies, no dynamics).
 struct MassModel {

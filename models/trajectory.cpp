@@ -53,6 +53,21 @@ Vector6d twist_from_pose_rate(const PathPoint& point) {
   return twist;
 }
 
+Vector6d twist_rate_from_path(const PathPoint& point) {
+  const Eigen::Vector3d& angles = point.pose.angles;
+  const double cy = std::cos(angles(1)), sy = std::sin(angles(1));
+  const double cz = std::cos(angles(2)), sz = std::sin(angles(2));
+  const double rx1 = point.pose_rate(3), ry1 = point.pose_rate(4), rz1 = point.pose_rate(5);
+  // E_dot a_dot: the derivative of E(a) along a_dot (E depends on ry and rz only).
+  const Eigen::Vector3d e_dot_a_dot((-sz * cy * rz1 - cz * sy * ry1) * rx1 - cz * rz1 * ry1,
+                                    (cz * cy * rz1 - sz * sy * ry1) * rx1 - sz * rz1 * ry1,
+                                    -cy * ry1 * rx1);
+  Vector6d rate;
+  rate.head<3>() = point.pose_acceleration.head<3>();
+  rate.tail<3>() = angular_velocity_map(angles) * point.pose_acceleration.tail<3>() + e_dot_a_dot;
+  return rate;
+}
+
 PathPoint HelixPath::at(double t) const {
   const HelixParameters& p = parameters;
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
@@ -72,6 +87,10 @@ PathPoint HelixPath::at(double t) const {
       2.0 * p.height_growth * phi / (kTwoPi * kTwoPi), a(0) * c, -a(1) * s,
       2.0 * a(2) * std::cos(2 * phi);
   out.pose_rate *= w;
+  out.pose_acceleration << -2.0 * amp_rate * s - amp * c, 2.0 * amp_rate * c - amp * s,
+      2.0 * p.height_growth / (kTwoPi * kTwoPi), -a(0) * s, -a(1) * c,
+      -4.0 * a(2) * std::sin(2 * phi);
+  out.pose_acceleration *= w * w;
   return out;
 }
 
@@ -95,33 +114,35 @@ std::vector<Eigen::VectorXd> central_difference_rates(const std::vector<double>&
   return rates;
 }
 
-SampledPath::SampledPath(std::vector<double> times, std::vector<Pose> poses)
-    : times_(std::move(times)), poses_(std::move(poses)) {
-  check_times(times_, "SampledPath");
-  if (poses_.size() != times_.size()) {
-    throw std::invalid_argument("SampledPath: " + std::to_string(poses_.size()) + " poses for " +
-                                std::to_string(times_.size()) + " times");
+namespace {
+
+CubicSpline pose_spline(std::vector<double> times, const std::vector<Pose>& poses) {
+  check_times(times, "SampledPath");
+  if (poses.size() != times.size()) {
+    throw std::invalid_argument("SampledPath: " + std::to_string(poses.size()) + " poses for " +
+                                std::to_string(times.size()) + " times");
   }
-  std::vector<Eigen::VectorXd> values(poses_.size(), Eigen::VectorXd(6));
-  for (std::size_t k = 0; k < poses_.size(); ++k) {
-    values[k] << poses_[k].position, poses_[k].angles;
+  Eigen::MatrixXd values(static_cast<Eigen::Index>(poses.size()), 6);
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    values.row(static_cast<Eigen::Index>(k)) << poses[k].position.transpose(),
+        poses[k].angles.transpose();
   }
-  const std::vector<Eigen::VectorXd> rates = central_difference_rates(times_, values);
-  rates_.resize(rates.size());
-  for (std::size_t k = 0; k < rates.size(); ++k) rates_[k] = rates[k];
+  return CubicSpline(std::move(times), std::move(values));
 }
 
+}  // namespace
+
+SampledPath::SampledPath(std::vector<double> times, const std::vector<Pose>& poses)
+    : spline_(pose_spline(std::move(times), poses)) {}
+
 PathPoint SampledPath::at(double t) const {
-  // The interval [times_[k], times_[k + 1]] holding t (clamped to the ends).
-  const auto upper = std::upper_bound(times_.begin(), times_.end(), t);
-  std::size_t k =
-      upper == times_.begin() ? 0 : static_cast<std::size_t>(upper - times_.begin()) - 1;
-  k = std::min(k, times_.size() - 2);
-  const double u = std::clamp((t - times_[k]) / (times_[k + 1] - times_[k]), 0.0, 1.0);
+  Eigen::VectorXd value, rate, acceleration;
+  spline_.evaluate(t, value, rate, acceleration);
   PathPoint out;
-  out.pose.position = (1.0 - u) * poses_[k].position + u * poses_[k + 1].position;
-  out.pose.angles = (1.0 - u) * poses_[k].angles + u * poses_[k + 1].angles;
-  out.pose_rate = (1.0 - u) * rates_[k] + u * rates_[k + 1];
+  out.pose.position = value.head<3>();
+  out.pose.angles = value.tail<3>();
+  out.pose_rate = rate;
+  out.pose_acceleration = acceleration;
   return out;
 }
 
@@ -151,10 +172,12 @@ std::vector<double> stepped_times(double t_start, double t_end, double dt) {
 }
 
 TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path,
-                                     const std::vector<double>& times) {
+                                     const std::vector<double>& times, const Wrench& wrench) {
   check_times(times, "evaluate_trajectory");
   const int na = machine.num_actuators();
   const std::unique_ptr<MachineData> data = machine.make_data();
+  const bool dynamics = machine.mass_model() != nullptr;
+  PoseMetrics scratch;
   TrajectoryResult result;
   result.samples.resize(times.size());
   for (std::size_t k = 0; k < times.size(); ++k) {
@@ -163,7 +186,21 @@ TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path
     const PathPoint point = path.at(s.t);
     s.pose = point.pose;
     s.twist = twist_from_pose_rate(point);
-    machine.analyze(*data, s.pose, Wrench::Zero(), s.metrics);
+    s.twist_rate = twist_rate_from_path(point);
+    if (dynamics) {
+      // tau_dyn: the static force solve under the wrench plus gravity and inertia.
+      Wrench w_dyn;
+      if (machine.dynamic_wrench(*data, s.pose, s.twist, s.twist_rate, w_dyn)) {
+        machine.analyze(*data, s.pose, wrench + w_dyn, scratch);
+        s.tau_dyn = scratch.tau;
+        for (Eigen::Index i = 0; i < s.tau_dyn.size(); ++i) {
+          if (!std::isfinite(s.tau_dyn(i)) || scratch.singular) s.tau_dyn(i) = kInf;
+        }
+      } else {
+        s.tau_dyn = Eigen::VectorXd::Constant(na, kInf);
+      }
+    }
+    machine.analyze(*data, s.pose, wrench, s.metrics);
     s.jacobian_ok = machine.twist_jacobian(*data, s.pose, s.J);
     if (s.jacobian_ok) {
       s.q_dot = s.J * s.twist;
@@ -252,6 +289,13 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
   summary.q_min = Eigen::VectorXd::Constant(num_actuators, kInf);
   summary.q_max = -summary.q_min;
   summary.q_dot_max = Eigen::VectorXd::Zero(num_actuators);
+  summary.tau_max = Eigen::VectorXd::Zero(num_actuators);
+  summary.dynamics = !result.samples.empty() && result.samples.front().tau_dyn.size() > 0;
+  if (summary.dynamics) {
+    summary.tau_dyn_max = Eigen::VectorXd::Zero(num_actuators);
+    summary.tau_dyn_rms = Eigen::VectorXd::Zero(num_actuators);
+    summary.power_max = Eigen::VectorXd::Zero(num_actuators);
+  }
   for (std::size_t k = 0; k < result.samples.size(); ++k) {
     const TrajectorySample& s = result.samples[k];
     const bool interior = k > 0 && k + 1 < result.samples.size();
@@ -259,12 +303,34 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
     summary.q_min = summary.q_min.cwiseMin(s.metrics.q);
     summary.q_max = summary.q_max.cwiseMax(s.metrics.q);
     summary.q_dot_max = summary.q_dot_max.cwiseMax(s.q_dot.cwiseAbs());
+    if (s.metrics.tau.size() == num_actuators) {
+      summary.tau_max = summary.tau_max.cwiseMax(s.metrics.tau.cwiseAbs());
+    }
+    summary.speed_max = std::max(summary.speed_max, s.twist.head<3>().norm());
+    summary.acceleration_max = std::max(summary.acceleration_max, s.twist_rate.head<3>().norm());
+    if (summary.dynamics) {
+      summary.tau_dyn_max = summary.tau_dyn_max.cwiseMax(s.tau_dyn.cwiseAbs());
+      for (int i = 0; i < num_actuators; ++i) {
+        double power = std::abs(s.tau_dyn(i) * s.q_dot(i));
+        if (std::isnan(power)) power = kInf;  // 0 * inf: an unbounded force or rate
+        summary.power_max(i) = std::max(summary.power_max(i), power);
+      }
+      if (k > 0) {  // trapezoidal integral of tau_dyn^2 over [t_k-1, t_k]
+        const TrajectorySample& previous = result.samples[k - 1];
+        summary.tau_dyn_rms +=
+            0.5 * (s.t - previous.t) * (s.tau_dyn.cwiseAbs2() + previous.tau_dyn.cwiseAbs2());
+      }
+    }
     summary.singularity_margin_min =
         std::min(summary.singularity_margin_min, s.metrics.singularity_margin);
     if (s.jacobian_ok && interior) {
       summary.q_dot_mismatch_max =
           std::max(summary.q_dot_mismatch_max, (s.q_dot - s.q_dot_fd).cwiseAbs().maxCoeff());
     }
+  }
+  if (summary.dynamics) {
+    const double span = result.samples.back().t - result.samples.front().t;
+    summary.tau_dyn_rms = (summary.tau_dyn_rms / span).cwiseSqrt();
   }
   return summary;
 }

@@ -18,9 +18,29 @@
 // (r0 = 0.01 m, r1 = 0.02 m, z0 = 0.01 m, z1 = 0.01 m as in the 16K20F3 lathe-conversion study;
 // the harmonic angle form and its amplitudes a are this project's choice, not given there).
 //
-// A sampled path (SampledPath) interpolates given poses linearly in t; its rate at a sample is
-// the three-point central difference for uneven spacing (one-sided at the two ends), linearly
-// interpolated between samples. Angles must be continuous (no jump of 360 deg).
+// Its second derivative is analytic too (d/dt = w d/dphi):
+//     x'' = w^2 (-2 amp' sin phi - amp cos phi),   y'' = w^2 (2 amp' cos phi - amp sin phi),
+//     z'' = w^2 2 z1 / (4 pi^2),   rx'' = -w^2 ax sin phi,   ry'' = -w^2 ay cos phi,
+//     rz'' = -4 w^2 az sin 2 phi    (amp' = r1 / (2 pi)).
+//
+// A sampled path (SampledPath) interpolates given poses with the not-a-knot cubic spline in t
+// (models/cubic_spline.hpp): twice continuously differentiable, so its rates and accelerations
+// are those of one smooth curve through the samples (a path that is a cubic in t is reproduced
+// exactly). Angles must be continuous (no jump of 360 deg). The spline follows every sample, so
+// noise in measured samples shows up, amplified, in the accelerations: give a smooth path.
+//
+// Twist rate. The TCP's acceleration a = p_ddot and the angular acceleration
+//     alpha = d omega / dt = E(a) a_ddot + E_dot(a, a_dot) a_dot,
+//     alpha_x = cz cy rx'' - sz ry'' - (sz cy rz' + cz sy ry') rx' - cz rz' ry'
+//     alpha_y = sz cy rx'' + cz ry'' + (cz cy rz' - sz sy ry') rx' - sz rz' ry'
+//     alpha_z = -sy rx'' + rz'' - cy ry' rx'
+// give the twist rate xi_dot = [a; alpha] of the inverse dynamics.
+//
+// Inverse dynamics. With a mass model (Machine::mass_model), each sample also gets the actuator
+// forces that balance the external wrench w on the tool, gravity and the inertia of the
+// platform and every leg body, tau_dyn = the forces analyze gives for w + w_dyn(xi, xi_dot)
+// (Machine::dynamic_wrench, models/machine_dynamics.hpp: J^T tau_dyn = w + w_dyn); with zero
+// velocity and acceleration it is tau under w plus gravity.
 //
 // evaluate_trajectory runs the machine along a path at given times: the pose, the twist, every
 // metric of Machine::analyze (q, reachable, singularity_margin, det_j, singular), J, q_dot = J
@@ -53,6 +73,7 @@
 #include <numbers>
 #include <vector>
 
+#include "models/cubic_spline.hpp"
 #include "models/machine.hpp"
 #include "models/pose.hpp"
 
@@ -65,10 +86,13 @@ Eigen::Matrix3d angular_velocity_map(const Eigen::Vector3d& angles);
 struct PathPoint {
   Pose pose;
   Vector6d pose_rate = Vector6d::Zero();
+  Vector6d pose_acceleration = Vector6d::Zero();  ///< second time derivative (m/s^2, rad/s^2)
 };
 
 /// The TCP twist [v; omega] (m/s; rad/s, base axes) of a pose moving at pose_rate.
 Vector6d twist_from_pose_rate(const PathPoint& point);
+/// The TCP twist rate [a; alpha] (m/s^2; rad/s^2, base axes) of the point (header comment).
+Vector6d twist_rate_from_path(const PathPoint& point);
 
 /// A TCP path over the time interval [t_start, t_end] (s).
 class TcpPath {
@@ -76,7 +100,7 @@ class TcpPath {
   virtual ~TcpPath() = default;
   virtual double t_start() const = 0;
   virtual double t_end() const = 0;
-  /// The pose at t and its time derivative.
+  /// The pose at t and its first and second time derivatives.
   virtual PathPoint at(double t) const = 0;
 };
 
@@ -94,7 +118,7 @@ struct HelixParameters {
   double t_end = 2.0 * std::numbers::pi;                       ///< s (one turn at w = 1)
 };
 
-/// The helical test path with analytic derivatives.
+/// The helical test path with analytic first and second derivatives.
 class HelixPath final : public TcpPath {
  public:
   HelixPath() = default;
@@ -106,21 +130,20 @@ class HelixPath final : public TcpPath {
   HelixParameters parameters;
 };
 
-/// Poses given at strictly increasing times (at least 2), linearly interpolated.
+/// Poses given at strictly increasing times (at least 2), interpolated by the not-a-knot cubic
+/// spline of every coordinate (x, y, z, rx, ry, rz) in t.
 class SampledPath final : public TcpPath {
  public:
-  /// Throws std::invalid_argument when fewer than 2 samples, sizes differ or the times do not
-  /// increase strictly.
-  SampledPath(std::vector<double> times, std::vector<Pose> poses);
-  double t_start() const override { return times_.front(); }
-  double t_end() const override { return times_.back(); }
+  /// Throws std::invalid_argument when fewer than 2 samples, sizes differ, a value is not
+  /// finite or the times do not increase strictly.
+  SampledPath(std::vector<double> times, const std::vector<Pose>& poses);
+  double t_start() const override { return spline_.times().front(); }
+  double t_end() const override { return spline_.times().back(); }
   PathPoint at(double t) const override;
-  const std::vector<double>& times() const { return times_; }
+  const std::vector<double>& times() const { return spline_.times(); }
 
  private:
-  std::vector<double> times_;
-  std::vector<Pose> poses_;
-  std::vector<Vector6d> rates_;  // central differences at the samples
+  CubicSpline spline_;
 };
 
 /// count >= 2 times evenly spaced from t_start to t_end (both included).
@@ -140,14 +163,18 @@ std::vector<Eigen::VectorXd> central_difference_rates(const std::vector<double>&
 
 /// Everything at one sample of a trajectory.
 struct TrajectorySample {
-  double t = 0.0;                     ///< s
-  Pose pose;                          ///< m, rad
-  Vector6d twist = Vector6d::Zero();  ///< [v; omega], m/s and rad/s, base axes
-  PoseMetrics metrics;                ///< Machine::analyze at the pose (zero wrench)
-  bool jacobian_ok = false;           ///< Machine::twist_jacobian succeeded
-  Eigen::MatrixXd J;                  ///< num_actuators x 6 (empty when !jacobian_ok)
-  Eigen::VectorXd q_dot;              ///< J twist (m/s or rad/s); +inf when !jacobian_ok
-  Eigen::VectorXd q_dot_fd;           ///< central difference of metrics.q over the samples
+  double t = 0.0;                          ///< s
+  Pose pose;                               ///< m, rad
+  Vector6d twist = Vector6d::Zero();       ///< [v; omega], m/s and rad/s, base axes
+  Vector6d twist_rate = Vector6d::Zero();  ///< [a; alpha], m/s^2 and rad/s^2, base axes
+  PoseMetrics metrics;  ///< Machine::analyze at the pose under the external wrench (no gravity)
+  bool jacobian_ok = false;  ///< Machine::twist_jacobian succeeded
+  Eigen::MatrixXd J;         ///< num_actuators x 6 (empty when !jacobian_ok)
+  Eigen::VectorXd q_dot;     ///< J twist (m/s or rad/s); +inf when !jacobian_ok
+  Eigen::VectorXd q_dot_fd;  ///< central difference of metrics.q over the samples
+  /// With a mass model: the actuator forces balancing the wrench, gravity and inertia (N or
+  /// N*m; +inf where the pose is singular or a leg cannot close); empty without one.
+  Eigen::VectorXd tau_dyn;
 };
 
 /// A singular pose on the path.
@@ -169,10 +196,12 @@ struct TrajectoryResult {
   std::vector<SingularPose> singular_poses;  ///< in increasing t
 };
 
-/// Runs the machine along the path at the given strictly increasing times (at least 2).
+/// Runs the machine along the path at the given strictly increasing times (at least 2), the
+/// tool loaded by the external wrench `wrench` (N, N*m at the TCP, base axes) at every sample.
 /// Throws std::invalid_argument for fewer than 2 or non-increasing times.
 TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path,
-                                     const std::vector<double>& times);
+                                     const std::vector<double>& times,
+                                     const Wrench& wrench = Wrench::Zero());
 
 /// Ranges along a trajectory (SI units: m or rad for q, m/s or rad/s for rates).
 struct TrajectorySummary {
@@ -186,6 +215,16 @@ struct TrajectorySummary {
   /// max over actuators and interior samples (not the first or last) with jacobian_ok of
   /// |q_dot - q_dot_fd|; 0 when there is none.
   double q_dot_mismatch_max = 0.0;
+  double speed_max = 0.0;         ///< max |v| of the TCP (m/s)
+  double acceleration_max = 0.0;  ///< max |a| of the TCP (m/s^2)
+  Eigen::VectorXd tau_max;        ///< per actuator, max |tau| under the wrench alone
+  /// With a mass model (dynamics true), per actuator: the peak |tau_dyn|, its RMS over time
+  /// (sqrt of the trapezoidal integral of tau_dyn^2 over the span, divided by the span), and the
+  /// peak mechanical power max |tau_dyn q_dot| (W). +inf when some sample has none.
+  bool dynamics = false;
+  Eigen::VectorXd tau_dyn_max;
+  Eigen::VectorXd tau_dyn_rms;
+  Eigen::VectorXd power_max;
 };
 
 /// The summary of a run of a machine with `num_actuators` actuators.

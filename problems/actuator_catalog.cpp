@@ -37,13 +37,29 @@ std::string check_actuator_catalog(const ActuatorCatalog& catalog) {
     if (!positive(e.max_speed))
       return fmt::format("{}: max_speed: expected a number > 0, found {}", where, e.max_speed);
     const std::pair<const char*, const std::optional<double>*> optional_values[] = {
-        {"accuracy", &e.accuracy}, {"stiffness", &e.stiffness}, {"cost", &e.cost}};
+        {"accuracy", &e.accuracy},
+        {"stiffness", &e.stiffness},
+        {"cost", &e.cost},
+        {"peak_force", &e.peak_force}};
     for (const auto& [key, value] : optional_values) {
       if (*value && !positive(**value))
         return fmt::format("{}: {}: expected a number > 0, found {}", where, key, **value);
     }
+    if (e.peak_force && *e.peak_force < e.max_force)
+      return fmt::format("{}: peak_force: expected a number >= max_force = {}, found {}", where,
+                         e.max_force, *e.peak_force);
   }
   return {};
+}
+
+DriveCheck check_drive(const ActuatorEntry& entry, const DriveDuty& duty) {
+  DriveCheck check;
+  check.peak_rating = entry.peak_force.value_or(entry.max_force);
+  check.peak_ok = duty.peak_force <= check.peak_rating;
+  check.rms_ok = duty.rms_force <= entry.max_force;
+  check.speed_ok = duty.speed <= entry.max_speed;
+  check.stroke_ok = duty.stroke <= entry.stroke;
+  return check;
 }
 
 bool carries(const ActuatorEntry& entry, const ActuatorRequirement& need) {

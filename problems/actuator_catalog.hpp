@@ -26,12 +26,15 @@ namespace pkmopt {
 struct ActuatorEntry {
   std::string name;
   std::string type;                 ///< e.g. electric_cylinder, linear_motor, hydraulic
-  double max_force = 0.0;           ///< N
+  double max_force = 0.0;           ///< N, continuous (rated) axial force
   double stroke = 0.0;              ///< m
   double max_speed = 0.0;           ///< m/s
   std::optional<double> accuracy;   ///< m, positioning accuracy (repeatability) if known
   std::optional<double> stiffness;  ///< N/m, axial stiffness if known
   std::optional<double> cost;       ///< relative cost if known
+  /// N, the short-time peak force when the datasheet gives one (>= max_force); a check against
+  /// the peak of a path uses max_force when it is not given.
+  std::optional<double> peak_force;
 };
 
 /// Typical figures of a drive type (ranges; for comparison tables, not for sizing).
@@ -80,6 +83,28 @@ std::vector<double> actuator_costs(const ActuatorCatalog& catalog);
 /// when no entry is that long. A leg needing `force` and `stroke` is carried by some entry exactly
 /// when force <= actuator_force_capacity(catalog, stroke) (speed not considered).
 double actuator_force_capacity(const ActuatorCatalog& catalog, double stroke);
+
+/// What a drive must do along a path (pkmopt trajectory): the peak and RMS axial force over
+/// the path (N), the peak speed (m/s) and the stroke it spans (m).
+struct DriveDuty {
+  double peak_force = 0.0;
+  double rms_force = 0.0;
+  double speed = 0.0;
+  double stroke = 0.0;
+};
+
+/// Whether an entry carries a duty: peak force within peak_force (max_force when the entry has
+/// none), RMS force within the continuous max_force (the thermal duty of a path repeated
+/// without pause), speed within max_speed, stroke within the entry's stroke.
+struct DriveCheck {
+  double peak_rating = 0.0;  ///< N, the rating the peak was checked against
+  bool peak_ok = false;
+  bool rms_ok = false;
+  bool speed_ok = false;
+  bool stroke_ok = false;
+  bool carries() const { return peak_ok && rms_ok && speed_ok && stroke_ok; }
+};
+DriveCheck check_drive(const ActuatorEntry& entry, const DriveDuty& duty);
 
 /// The entry named `name`, or null.
 const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name);

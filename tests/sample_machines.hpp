@@ -3,6 +3,7 @@
 // conventions hexapod is models/sample_machines.hpp's.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
 
@@ -56,6 +57,28 @@ inline pkmopt::HexapodDesign random_hexapod_design(Uniform& u) {
   d.tcp = {u(-0.05, 0.05), u(-0.05, 0.05), u(-0.2, 0.0)};
   d.actuator_error = u(1e-6, 1e-4);
   return d;
+}
+
+/// Random platform and UPS leg masses: the platform a 0.6 x 0.5 x 0.2 m box of 20..60 kg turned
+/// by a random rotation, its centre of mass off the TCP; gravity slightly off the vertical.
+inline pkmopt::MassModel random_hexapod_masses(Uniform& u) {
+  pkmopt::MassModel m;
+  m.present = true;
+  m.platform.mass = u(20, 60);
+  m.platform.centre_of_mass = {u(-0.05, 0.05), u(-0.05, 0.05), u(-0.1, 0.1)};
+  // A box of sides 0.6 x 0.5 x 0.2 turned by a random rotation: a real inertia tensor.
+  const double a = 0.6, b = 0.5, c = 0.2, mass = m.platform.mass;
+  const Eigen::Vector3d principal(mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12,
+                                  mass * (a * a + b * b) / 12);
+  const Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(u(-1, 1), Eigen::Vector3d(u(-1, 1), u(-1, 1), 1).normalized())
+          .toRotationMatrix();
+  m.platform.inertia = Q * principal.asDiagonal() * Q.transpose();
+  m.platform.inertia = 0.5 * (m.platform.inertia + m.platform.inertia.transpose()).eval();
+  m.legs.cylinder = {.mass = u(3, 8), .centre = u(0.1, 0.3), .inertia = u(0.02, 0.1)};
+  m.legs.rod = {.mass = u(1, 4), .centre = u(0.1, 0.3), .inertia = u(0.01, 0.05)};
+  m.gravity = {u(-1, 1), u(-1, 1), -9.81};
+  return m;
 }
 
 /// A pose near the middle of a random hexapod's workspace.

@@ -1,6 +1,6 @@
 // pkmopt trajectory MACHINE.yaml (--path PATH.csv | --helix [--helix-* ...])
 //   [--t-start S] [--t-end S] [--samples N | --dt S] [--jacobian] [--out FILE.csv]
-//   [--singular-out FILE.csv]
+//   [--singular-out FILE.csv] [--wrench fx,fy,fz,mx,my,mz] [--catalog CATALOG.yaml --drive NAME]
 // See docs/trajectory.md for the options, the helix formula and every output column.
 #include <fmt/format.h>
 
@@ -13,6 +13,7 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
+#include "io/actuator_catalog_file.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "io/output_file.hpp"
@@ -41,6 +42,9 @@ struct TrajectoryCommandOptions {
   bool jacobian = false;
   std::string out_file;
   std::string singular_out_file;
+  std::string wrench;
+  std::string catalog_file;
+  std::string drive;
 };
 
 Eigen::Vector3d vector3_option(std::string_view option, const std::string& text) {
@@ -134,15 +138,48 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
     times = sampled->times();
     path = std::move(sampled);
   }
+  Wrench wrench = Wrench::Zero();
+  if (!opt.wrench.empty()) {
+    const auto w = parse_number_list("--wrench", opt.wrench, 6);
+    for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
+  }
+  if (opt.catalog_file.empty() != opt.drive.empty()) {
+    throw InputError(
+        opt.drive.empty()
+            ? "--catalog: expected --drive NAME with it (the entry to check), found none"
+            : "--drive: expected --catalog CATALOG.yaml with it, found none");
+  }
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  std::optional<ActuatorCatalog> catalog;
+  const ActuatorEntry* drive = nullptr;
+  if (!opt.catalog_file.empty()) {
+    if (machine->revolute_actuators()) {
+      throw InputError(fmt::format(
+          "--catalog: expected a machine with linear actuators (the catalog holds linear drives), "
+          "found {} with revolute ones",
+          opt.machine_file));
+    }
+    catalog = load_actuator_catalog(opt.catalog_file);
+    drive = find_actuator(*catalog, opt.drive);
+    if (drive == nullptr) {
+      std::string names;
+      for (const ActuatorEntry& e : catalog->entries) names += (names.empty() ? "" : ", ") + e.name;
+      throw InputError(fmt::format("--drive: expected an entry of {} ({}), found '{}'",
+                                   opt.catalog_file, names, opt.drive));
+    }
+  }
 
-  const TrajectoryResult result = evaluate_trajectory(*machine, *path, times);
+  const TrajectoryResult result = evaluate_trajectory(*machine, *path, times, wrench);
 
   const std::string table = trajectory_csv(*machine, result, opt.jacobian);
   // The summary: ranges along the path, the agreement of q_dot with the IK differences, and the
   // singular poses. On stdout when the table goes to a file, else on stderr.
-  const std::string summary = trajectory_summary_text(
-      *machine, result, summarize_trajectory(result, machine->num_actuators()));
+  const TrajectorySummary reduced = summarize_trajectory(result, machine->num_actuators());
+  std::string summary = trajectory_summary_text(*machine, result, reduced);
+  if (drive != nullptr) {
+    bool carries = false;
+    summary += drive_check_text(*drive, reduced, carries);
+  }
 
   if (opt.out_file.empty()) {
     std::cout << table;
@@ -168,8 +205,8 @@ void add_trajectory_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "trajectory",
       "Follow a TCP path (CSV samples or the built-in test helix): actuator coordinates and rates "
-      "from the inverse Jacobian, checked against differences of the IK, and the singular poses "
-      "on the path");
+      "from the inverse Jacobian, checked against differences of the IK, the singular poses on "
+      "the path and, with masses, the actuator forces of the inverse dynamics");
   cmd->add_option("machine", opt->machine_file, "Machine file (YAML)")->required();
   cmd->add_option("--path", opt->path_file,
                   "Path CSV with columns t (s), x,y,z (m) and optionally rx,ry,rz (deg)");
@@ -194,6 +231,13 @@ void add_trajectory_command(CLI::App& app) {
   cmd->add_option("--out", opt->out_file, "Output CSV (default: standard output)");
   cmd->add_option("--singular-out", opt->singular_out_file,
                   "CSV of the singular poses found on the path");
+  cmd->add_option("--wrench", opt->wrench,
+                  "External wrench on the tool at every sample, TCP, base axes: fx,fy,fz,mx,my,mz "
+                  "(N, N*m); default 0");
+  cmd->add_option("--catalog", opt->catalog_file,
+                  "Actuator catalog (YAML) holding the drive to check against the path's forces");
+  cmd->add_option("--drive", opt->drive,
+                  "Catalog entry to check: peak and RMS force, speed and stroke of every actuator");
   cmd->callback([opt] { run_trajectory(*opt); });
 }
 

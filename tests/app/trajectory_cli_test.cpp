@@ -71,7 +71,7 @@ TEST_F(TrajectoryCli, Hexapod450StudyReducedForm) {
 
   const CsvTable table = read_csv_file((out / "helix-level.csv").string());
   ASSERT_EQ(table.rows.size(), 61u);
-  EXPECT_EQ(table.header.size(), 15u + 3 * 6 + 2 + 36);
+  EXPECT_EQ(table.header.size(), 21u + 4 * 6 + 2 + 36);  // no masses: no tau_dyn
   EXPECT_EQ(read_csv_file((out / "helix-level-singular.csv").string()).rows.size(), 0u);
   const Hexapod hexapod(read_hexapod_design(YamlValue::load_file(machine_)));
   Eigen::VectorXd q_min = Eigen::VectorXd::Constant(6, 1e9), q_max = -q_min;
@@ -213,6 +213,62 @@ TEST_F(TrajectoryCli, PathFileGivesTheSameRatesAsTheHelix) {
   }
 }
 
+// A machine with masses: the file's tau_dyn columns are the library's inverse dynamics (checked
+// against the bodies' momenta in tests/models/trajectory_test.cpp), the summary gives peak and RMS
+// forces, and the drive check names the limit a path exceeds.
+TEST_F(TrajectoryCli, MassesGiveDynamicForcesAndTheDriveCheck) {
+  const std::string masses = source_path("examples/hexapod_masses.yaml");
+  const std::string catalog = source_path("studies/library/catalogs/sew-cms.yaml");
+  const fs::path out = dir_ / "out.csv";
+  const std::string helix =
+      " --helix --helix-centre 0,0,0.85 --helix-radius 0.02,0.08 --helix-height 0,0.05 "
+      "--helix-frequency 6 --t-end 1.0471975511965976 --samples 61 --wrench 500,0,-300,0,0,0";
+  const CliRun r = run("trajectory " + masses + helix + " --catalog " + catalog +
+                       " --drive CMS50S/150 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("61 reachable"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("with gravity and inertia: peak"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("CMS50S/150 carries every actuator along this path"), std::string::npos)
+      << r.out;
+
+  HelixParameters hp;
+  hp.centre = {0, 0, 0.85};
+  hp.radius_start = 0.02;
+  hp.radius_growth = 0.08;
+  hp.height_start = 0.0;
+  hp.height_growth = 0.05;
+  hp.angular_frequency = 6;
+  const auto machine = load_machine_file(masses);
+  const Wrench w = (Wrench() << 500, 0, -300, 0, 0, 0).finished();
+  const TrajectoryResult library =
+      evaluate_trajectory(*machine, HelixPath(hp), uniform_times(0, 1.0471975511965976, 61), w);
+  const CsvTable table = read_csv_file(out.string());
+  ASSERT_EQ(table.rows.size(), 61u);
+  for (std::size_t k = 0; k < table.rows.size(); ++k) {
+    for (int i = 1; i <= 6; ++i) {
+      EXPECT_EQ(table.number(table.rows[k], table.column("tau_dyn_" + std::to_string(i))),
+                library.samples[k].tau_dyn(i - 1));
+      EXPECT_EQ(table.number(table.rows[k], table.column("tau_" + std::to_string(i))),
+                library.samples[k].metrics.tau(i - 1));
+    }
+    EXPECT_EQ(table.number(table.rows[k], table.column("ax")), library.samples[k].twist_rate(0));
+  }
+
+  // The short CMS50S/70 lacks the stroke; the run still succeeds and says so.
+  const CliRun shorter = run_cli("trajectory " + masses + helix + " --catalog " + catalog +
+                                 " --drive CMS50S/70 --out " + out.string());
+  ASSERT_EQ(shorter.status, 0) << shorter.err;
+  EXPECT_NE(shorter.out.find("stroke 0.0916 m EXCEEDED"), std::string::npos) << shorter.out;
+  EXPECT_NE(shorter.out.find("WARNING: CMS50S/70 does NOT carry this path"), std::string::npos)
+      << shorter.out;
+
+  // Without masses there is no tau_dyn, and the summary says why.
+  const CliRun still = run("trajectory " + machine_ + " --helix --out " + out.string());
+  ASSERT_EQ(still.status, 0) << still.err;
+  EXPECT_NE(still.out.find("no masses in the machine file"), std::string::npos) << still.out;
+  EXPECT_EQ(read_csv_file(out.string()).header.size(), 21u + 4 * 6 + 2);
+}
+
 TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
   const fs::path path = dir_ / "path.csv";
   std::ofstream(path) << "t,x,y,z\n0,0,0,0.7\n0.5,0,0,0.71\n0.4,0,0,0.72\n";
@@ -229,6 +285,15 @@ TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
   const fs::path no_t = dir_ / "no_t.csv";
   std::ofstream(no_t) << "x,y,z\n0,0,0.7\n0,0,0.71\n";
   expect_input_error(machine_ + " --path " + no_t.string(), "'t'");
+  const std::string catalog = source_path("studies/library/catalogs/sew-cms.yaml");
+  expect_input_error(machine_ + " --helix --drive CMS50S/70", "--drive: expected --catalog");
+  expect_input_error(machine_ + " --helix --catalog " + catalog, "--catalog: expected --drive");
+  expect_input_error(machine_ + " --helix --catalog " + catalog + " --drive CMS99",
+                     "--drive: expected an entry of");
+  expect_input_error(
+      source_path("examples/delta.yaml") + " --helix --catalog " + catalog + " --drive CMS50S/70",
+      "found " + source_path("examples/delta.yaml") + " with revolute ones");
+  expect_input_error(machine_ + " --helix --wrench 1,2,3", "--wrench: expected 6");
 }
 
 }  // namespace

@@ -63,6 +63,10 @@ TEST(ActuatorCatalogFile, BadFilesGiveExactMessages) {
                      "drive_types:\n  - {name: x, speed: [2, 1], accuracy: [1e-6, 1e-5]}\n"),
             "cat.yaml:5:22: drive_types[0].speed: expected [min, max] with 0 < min <= max, found "
             "a list of 2");
+  EXPECT_EQ(error_of("catalog: c\nentries:\n  - {name: A, type: e, max_force: 100, peak_force: 80, "
+                     "stroke: 0.1, max_speed: 0.2}\n"),
+            "cat.yaml:3:52: entries[0].peak_force: expected a peak force (N) >= max_force = 100, "
+            "found 80");
 }
 
 TEST(ActuatorCatalogFile, ReadsEveryKey) {
@@ -191,7 +195,8 @@ TEST(ActuatorCatalogFileWriter, WritesEveryKey) {
                       .max_speed = 0.45,
                       .accuracy = 1e-5 / 3.0,
                       .stiffness = 1.5e8,
-                      .cost = 2.0},
+                      .cost = 2.0,
+                      .peak_force = 0.5},
                      {.name = "B/200",
                       .type = "linear_motor",
                       .max_force = 50,
@@ -199,7 +204,8 @@ TEST(ActuatorCatalogFileWriter, WritesEveryKey) {
                       .max_speed = 3,
                       .accuracy = 2e-6,
                       .stiffness = 7.25e7,
-                      .cost = 0.5}};
+                      .cost = 0.5,
+                      .peak_force = std::nullopt}};
   catalog.drive_types = {{.name = "x",
                           .speed_min = 1,
                           .speed_max = 1,
@@ -207,9 +213,10 @@ TEST(ActuatorCatalogFileWriter, WritesEveryKey) {
                           .accuracy_max = 1e-5,
                           .note = "a, b: \\ \"c\"\n# d"}};
   const std::string text = actuator_catalog_to_yaml(catalog);
-  for (const char* key : {"catalog: ", "\nentries:\n", "{name: ", ", type: ", ", max_force: ",
-                          ", stroke: ", ", max_speed: ", ", accuracy: ", ", stiffness: ",
-                          ", cost: ", "\ndrive_types:\n", ", speed: [1, 1]", ", note: "})
+  for (const char* key :
+       {"catalog: ", "\nentries:\n", "{name: ", ", type: ", ", max_force: ", ", stroke: ",
+        ", max_speed: ", ", accuracy: ", ", stiffness: ", ", cost: ", ", peak_force: ",
+        "\ndrive_types:\n", ", speed: [1, 1]", ", note: "})
     EXPECT_NE(text.find(key), std::string::npos) << key << " missing in\n" << text;
   expect_round_trip(catalog);
 }

@@ -46,6 +46,8 @@ TrajectorySample regular_sample() {
   s.J(5, 5) = -0.75;
   s.q_dot = Eigen::VectorXd::Constant(6, 0.5);
   s.q_dot_fd = Eigen::VectorXd::Constant(6, 0.25);
+  s.twist_rate << 2, 0, -1, 0, 90 * pkmopt::kDegToRad, 0;  // m/s^2, 90 deg/s^2 about y
+  s.metrics.tau = Eigen::VectorXd::Constant(6, 125.0);
   return s;
 }
 
@@ -54,11 +56,28 @@ TEST(TrajectoryCsv, HeaderAndRowWithoutJacobian) {
   r.samples.push_back(regular_sample());
   const std::string csv = pkmopt::trajectory_csv(hexapod(), r, false);
   EXPECT_EQ(csv,
-            "t,x,y,z,rx,ry,rz,vx,vy,vz,wx,wy,wz,reachable,singular,q_1,q_2,q_3,q_4,q_5,q_6,"
+            "t,x,y,z,rx,ry,rz,vx,vy,vz,wx,wy,wz,ax,ay,az,alpha_x,alpha_y,alpha_z,reachable,"
+            "singular,q_1,q_2,q_3,q_4,q_5,q_6,"
             "q_dot_1,q_dot_2,q_dot_3,q_dot_4,q_dot_5,q_dot_6,q_dot_fd_1,q_dot_fd_2,q_dot_fd_3,"
-            "q_dot_fd_4,q_dot_fd_5,q_dot_fd_6,singularity_margin,det_j\n"
-            "0.5,0.1,-0.2,0.9,0,0,0,0.25,0,-0.5,0,0,0,1,0,0.8,0.81,0.82,0.83,0.84,0.85,"
-            "0.5,0.5,0.5,0.5,0.5,0.5,0.25,0.25,0.25,0.25,0.25,0.25,0.125,-2.5\n");
+            "q_dot_fd_4,q_dot_fd_5,q_dot_fd_6,tau_1,tau_2,tau_3,tau_4,tau_5,tau_6,"
+            "singularity_margin,det_j\n"
+            "0.5,0.1,-0.2,0.9,0,0,0,0.25,0,-0.5,0,0,0,2,0,-1,0,90,0,1,0,0.8,0.81,0.82,0.83,0.84,"
+            "0.85,0.5,0.5,0.5,0.5,0.5,0.5,0.25,0.25,0.25,0.25,0.25,0.25,125,125,125,125,125,125,"
+            "0.125,-2.5\n");
+}
+
+// With masses every sample has tau_dyn: its columns follow tau's.
+TEST(TrajectoryCsv, DynamicForceColumns) {
+  TrajectoryResult r;
+  r.samples.push_back(regular_sample());
+  r.samples[0].tau_dyn = Eigen::VectorXd::LinSpaced(6, -250.0, 1000.0);
+  const std::string csv = pkmopt::trajectory_csv(hexapod(), r, false);
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_NE(header.find(",tau_6,tau_dyn_1,tau_dyn_2,tau_dyn_3,tau_dyn_4,tau_dyn_5,tau_dyn_6,"
+                        "singularity_margin,det_j"),
+            std::string::npos)
+      << header;
+  EXPECT_NE(csv.find(",125,125,-250,0,250,500,750,1000,0.125,-2.5\n"), std::string::npos) << csv;
 }
 
 TEST(TrajectoryCsv, JacobianColumnsAndInfWhereItFailed) {
@@ -125,18 +144,88 @@ TEST(TrajectorySummaryText, LinesInMetres) {
   s.q_min(5) = 0.7;
   s.q_dot_max = Eigen::VectorXd::Constant(6, 0.125);
   s.q_dot_mismatch_max = 2e-6;
+  s.speed_max = 0.5;
+  s.acceleration_max = 2 * pkmopt::kStandardGravity;
+  s.tau_max = Eigen::VectorXd::Constant(6, 250.0);
   std::string expected =
       "trajectory: 3 samples, t 0 .. 6.25 s, 2 reachable, min singularity_margin 0.03125\n";
+  expected +=
+      "  WARNING: 1 of 3 samples are not reachable (actuator ranges or joint limits): the machine "
+      "cannot follow this path\n";
   for (int i = 1; i <= 5; ++i) {
     expected += "  q_" + std::to_string(i) + ": 0.75 .. 1 m, max |q_dot| 0.125 m/s\n";
   }
   expected += "  q_6: 0.7 .. 1 m, max |q_dot| 0.125 m/s\n";
   expected += "  max |q_dot - q_dot_fd| 2e-06 m/s (interior samples)\n";
+  expected += "  TCP: max speed 0.5 m/s, max acceleration 19.61 m/s^2 (2 g)\n";
+  for (int i = 1; i <= 6; ++i) {
+    expected += "  tau_" + std::to_string(i) + ": max |tau| 250 N under the wrench\n";
+  }
+  expected += "  no masses in the machine file: tau_dyn (gravity and inertia) not computed\n";
   expected += "  singular poses: 1\n";
   expected +=
       "    t = 3.5 s (det_j changes sign): x,y,z = 0.1,0.2,0.9 m, rx,ry,rz = 0,0,0 deg, "
       "det_j 0.01 -> -0.02\n";
   EXPECT_EQ(pkmopt::trajectory_summary_text(hexapod(), r, s), expected);
+}
+
+// A summary with dynamics: the per-actuator lines and the drive check against an entry with and
+// without a peak rating.
+pkmopt::TrajectorySummary dynamic_summary() {
+  pkmopt::TrajectorySummary s;
+  s.samples = 2;
+  s.q_min = Eigen::VectorXd::Constant(2, 0.8);
+  s.q_max = Eigen::VectorXd::Constant(2, 1.0);
+  s.q_dot_max = Eigen::Vector2d(0.25, 0.5);
+  s.tau_max = Eigen::Vector2d(1000.0, 2000.0);
+  s.dynamics = true;
+  s.tau_dyn_max = Eigen::Vector2d(6000.0, 3000.0);
+  s.tau_dyn_rms = Eigen::Vector2d(4000.0, 2500.0);
+  s.power_max = Eigen::Vector2d(1500.0, 750.0);
+  return s;
+}
+
+TEST(DriveCheckText, PeakRmsSpeedAndStrokeOfEveryActuator) {
+  const pkmopt::TrajectorySummary s = dynamic_summary();
+  pkmopt::ActuatorEntry entry{.name = "D",
+                              .type = "electric_cylinder",
+                              .max_force = 5000,
+                              .stroke = 0.3,
+                              .max_speed = 0.4,
+                              .accuracy = {},
+                              .stiffness = {},
+                              .cost = {},
+                              .peak_force = 8000};
+  bool carries = true;
+  std::string text = pkmopt::drive_check_text(entry, s, carries);
+  EXPECT_FALSE(carries);  // actuator 2 runs at 0.5 m/s > 0.4
+  EXPECT_NE(text.find("  actuator 1: peak 6000 N ok, RMS 4000 N ok, speed 0.25 m/s ok, stroke "
+                      "0.2 m ok\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  actuator 2: peak 3000 N ok, RMS 2500 N ok, speed 0.5 m/s EXCEEDED"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("WARNING: D does NOT carry this path"), std::string::npos) << text;
+  // Without a peak rating the peak is checked against the continuous one.
+  entry.peak_force.reset();
+  entry.max_speed = 1.0;
+  text = pkmopt::drive_check_text(entry, s, carries);
+  EXPECT_FALSE(carries);
+  EXPECT_NE(text.find("actuator 1: peak 6000 N EXCEEDED, RMS 4000 N ok"), std::string::npos)
+      << text;
+  entry.max_force = 6000;
+  text = pkmopt::drive_check_text(entry, s, carries);
+  EXPECT_TRUE(carries);
+  EXPECT_NE(text.find("  D carries every actuator along this path\n"), std::string::npos) << text;
+  // The RMS is the thermal check: a drive rated 3500 N carries actuator 2's peak (with a peak
+  // rating) but not actuator 1's RMS.
+  entry.max_force = 3500;
+  entry.peak_force = 7000;
+  text = pkmopt::drive_check_text(entry, s, carries);
+  EXPECT_FALSE(carries);
+  EXPECT_NE(text.find("actuator 1: peak 6000 N ok, RMS 4000 N EXCEEDED"), std::string::npos)
+      << text;
 }
 
 class PathFile : public scratch::ScratchDirTest {

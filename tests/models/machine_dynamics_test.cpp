@@ -21,26 +21,6 @@ namespace {
 
 using sample_machines::Uniform;
 
-MassModel sample_masses(Uniform& u) {
-  MassModel m;
-  m.present = true;
-  m.platform.mass = u(20, 60);
-  m.platform.centre_of_mass = {u(-0.05, 0.05), u(-0.05, 0.05), u(-0.1, 0.1)};
-  // A box of sides 0.6 x 0.5 x 0.2 turned by a random rotation: a real inertia tensor.
-  const double a = 0.6, b = 0.5, c = 0.2, mass = m.platform.mass;
-  const Eigen::Vector3d principal(mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12,
-                                  mass * (a * a + b * b) / 12);
-  const Eigen::Matrix3d Q =
-      Eigen::AngleAxisd(u(-1, 1), Eigen::Vector3d(u(-1, 1), u(-1, 1), 1).normalized())
-          .toRotationMatrix();
-  m.platform.inertia = Q * principal.asDiagonal() * Q.transpose();
-  m.platform.inertia = 0.5 * (m.platform.inertia + m.platform.inertia.transpose()).eval();
-  m.legs.cylinder = {.mass = u(3, 8), .centre = u(0.1, 0.3), .inertia = u(0.02, 0.1)};
-  m.legs.rod = {.mass = u(1, 4), .centre = u(0.1, 0.3), .inertia = u(0.01, 0.05)};
-  m.gravity = {u(-1, 1), u(-1, 1), -9.81};
-  return m;
-}
-
 // The pose reached from `pose` along the twist [v; omega] (base axes, at the TCP) and its rate
 // [a; alpha] after time t, to O(t^3): position p + v t + a t^2 / 2, rotation
 // exp([omega t + alpha t^2 / 2]x) R.
@@ -99,7 +79,7 @@ TEST(MachineDynamics, MassMatrixGivesTheKineticEnergyOfEveryBody) {
   Uniform u(41);
   for (int g = 0; g < 8; ++g) {
     HexapodDesign design = sample_machines::random_hexapod_design(u);
-    design.masses = sample_masses(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
     const Hexapod hexapod(design);
     for (int k = 0; k < 4; ++k) {
       const Pose pose = sample_machines::random_pose(u);
@@ -120,7 +100,7 @@ TEST(MachineDynamics, DynamicWrenchMatchesTheEnergyBalance) {
   Uniform u(42);
   for (int g = 0; g < 6; ++g) {
     HexapodDesign design = sample_machines::random_hexapod_design(u);
-    design.masses = sample_masses(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
     const Eigen::Vector3d gravity = design.masses.gravity;
     const Hexapod hexapod(design);
     const Pose pose = sample_machines::random_pose(u);
@@ -163,7 +143,7 @@ TEST(MachineDynamics, DynamicWrenchMatchesTheEnergyBalance) {
 TEST(MachineDynamics, NaturalModesSolveTheGeneralizedEigenproblem) {
   Uniform u(43);
   HexapodDesign design = sample_machines::random_hexapod_design(u);
-  design.masses = sample_masses(u);
+  design.masses = sample_machines::random_hexapod_masses(u);
   const Hexapod hexapod(design);
   const Pose pose = sample_machines::random_pose(u);
   const Matrix6d K = hexapod.stiffness_matrix(pose);

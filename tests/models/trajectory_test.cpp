@@ -1,13 +1,18 @@
 // Tests of models/trajectory: the angular velocity map against the derivative of the rotation,
 // the helix formula and its derivative, q_dot = J xi against finite differences of the IK
 // (hexapod and delta), sampled paths, and singular poses located where they are (Fichter's
-// 90 deg yaw singularity, architecturally singular hexapods). `pkmopt trajectory` is tested in
+// 90 deg yaw singularity, architecturally singular hexapods); the twist rate against
+// differences of the twist; the inverse dynamics tau_dyn against finite differences of every
+// body's momenta (an independent body model written here), its static limit against tau under
+// gravity, and the power balance of a linear delta. `pkmopt trajectory` is tested in
 // tests/app/trajectory_cli_test.cpp.
 #include "models/trajectory.hpp"
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -18,11 +23,16 @@
 
 #include "io/machine_file.hpp"
 #include "models/hexapod.hpp"
+#include "models/leg_chain.hpp"
+#include "tests/models/hexapod_bodies.hpp"
+#include "tests/sample_machines.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace pkmopt;
+using sample_machines::Uniform;
+using namespace pkmopt::test_bodies;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -183,9 +193,15 @@ TEST(Trajectory, SampledPathFollowsTheHelix) {
   }
   EXPECT_LT(worst, 1e-3 * scale);
   EXPECT_GT(scale, 1e-3);  // the legs do move (m/s)
-  // Between samples the pose is interpolated linearly.
-  const PathPoint mid = sampled.at(0.5 * (times[10] + times[11]));
-  EXPECT_LT((mid.pose.position - 0.5 * (poses[10].position + poses[11].position)).norm(), 1e-15);
+  // Between samples the spline stays on the helix (O(h^4)), and its accelerations are the
+  // helix's (O(h^2)).
+  for (std::size_t k = 10; k < 400; k += 37) {
+    const double t = 0.5 * (times[k] + times[k + 1]);
+    const PathPoint mid = sampled.at(t), exact = helix.at(t);
+    EXPECT_LT((mid.pose.position - exact.pose.position).norm(), 1e-9);
+    EXPECT_LT((mid.pose_acceleration - exact.pose_acceleration).cwiseAbs().maxCoeff(),
+              1e-3 * exact.pose_acceleration.cwiseAbs().maxCoeff());
+  }
   EXPECT_THROW(SampledPath({0.0, 1.0, 1.0}, {poses[0], poses[1], poses[2]}), std::invalid_argument);
 }
 
@@ -257,6 +273,168 @@ TEST(Trajectory, ArchitecturallySingularHexapodIsSingularAtEverySample) {
 using pkmopt::TrajectoryResult;
 using pkmopt::TrajectorySample;
 
+// The helix's analytic second derivative against central differences of its first.
+TEST(Trajectory, HelixAccelerationIsTheDerivativeOfItsRate) {
+  HelixParameters hp = seeds_helix();
+  hp.angle_amplitudes = deg_to_rad(Eigen::Vector3d(4, -3, 6));
+  hp.angular_frequency = 2.5;
+  const HelixPath helix(hp);
+  const double h = 1e-5;
+  for (double t : {0.0, 0.3, 1.1, 2.0, 2.4}) {
+    const Vector6d fd = (helix.at(t + h).pose_rate - helix.at(t - h).pose_rate) / (2 * h);
+    EXPECT_LT((fd - helix.at(t).pose_acceleration).cwiseAbs().maxCoeff(), 1e-7) << "t " << t;
+  }
+}
+
+// A path whose angles all move: the twist rate [a; alpha] against central differences of the
+// twist [v; omega].
+TEST(Trajectory, TwistRateIsTheDerivativeOfTheTwist) {
+  HelixParameters hp = seeds_helix();
+  hp.nominal_angles = deg_to_rad(Eigen::Vector3d(10, -25, 40));
+  hp.angle_amplitudes = deg_to_rad(Eigen::Vector3d(20, 15, 30));
+  hp.angular_frequency = 1.7;
+  const HelixPath helix(hp);
+  const double h = 1e-5;
+  for (double t : {0.1, 0.8, 1.9, 3.3, 5.0}) {
+    const Vector6d fd =
+        (twist_from_pose_rate(helix.at(t + h)) - twist_from_pose_rate(helix.at(t - h))) / (2 * h);
+    EXPECT_LT((fd - twist_rate_from_path(helix.at(t))).cwiseAbs().maxCoeff(), 1e-7) << "t " << t;
+  }
+}
+
+// Newton-Euler of every body by virtual power: for each unit twist e_j,
+//   (J^T tau_dyn)_j = w_j + sum_b (m_b g - dp_b/dt) . dv_b/de_j - dH_b/dt . domega_b/de_j,
+// with the momenta's rates from central differences in time along a fast helix.
+TEST(TrajectoryDynamics, TauDynMatchesDifferencesOfTheBodiesMomenta) {
+  Uniform u(71);
+  for (int g = 0; g < 4; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
+    const Hexapod hexapod(design);
+    HelixParameters hp;
+    hp.centre = {u(-0.05, 0.05), u(-0.05, 0.05), u(0.7, 0.9)};
+    hp.radius_start = 0.05;
+    hp.radius_growth = 0.05;
+    hp.height_growth = 0.05;
+    hp.angle_amplitudes = deg_to_rad(Eigen::Vector3d(u(-10, 10), u(-10, 10), u(-15, 15)));
+    hp.angular_frequency = u(2, 6);  // up to ~2 g at the rim
+    const HelixPath helix(hp);
+    const Wrench w =
+        (Wrench() << u(-500, 500), u(-500, 500), u(-500, 500), u(-50, 50), u(-50, 50), u(-50, 50))
+            .finished();
+    const std::vector<double> times = {0.2, 0.9, 1.6};
+    const TrajectoryResult run = evaluate_trajectory(hexapod, helix, times, w);
+    const std::array<double, 13> mass = body_masses(design.masses);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      const TrajectorySample& s = run.samples[k];
+      ASSERT_EQ(s.tau_dyn.size(), 6);
+      ASSERT_TRUE(s.jacobian_ok);
+      const double dt = 1e-4;
+      const Momenta plus = momenta_at(design, helix, s.t + dt),
+                    minus = momenta_at(design, helix, s.t - dt);
+      const Vector6d lhs = s.J.transpose() * s.tau_dyn;
+      Vector6d rhs = w;
+      for (int j = 0; j < 6; ++j) {
+        std::array<Eigen::Vector3d, 13> dv, dw;
+        virtual_velocities(design, s.pose, j, dv, dw);
+        for (int b = 0; b < 13; ++b) {
+          const Eigen::Vector3d p_dot = (plus.linear[b] - minus.linear[b]) / (2 * dt);
+          const Eigen::Vector3d H_dot = (plus.angular[b] - minus.angular[b]) / (2 * dt);
+          rhs(j) += (mass[b] * design.masses.gravity - p_dot).dot(dv[b]) - H_dot.dot(dw[b]);
+        }
+      }
+      EXPECT_LT((lhs - rhs).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + rhs.cwiseAbs().maxCoeff()))
+          << "design " << g << " sample " << k << "\n"
+          << lhs.transpose() << "\n"
+          << rhs.transpose();
+      // The static forces under the wrench alone differ: gravity and inertia matter here.
+      EXPECT_GT((s.tau_dyn - s.metrics.tau).cwiseAbs().maxCoeff(), 1.0);
+    }
+  }
+}
+
+// At rest (a path that does not move) tau_dyn is tau under the wrench plus the bodies' weights,
+// which map to the TCP by virtual power: (w_g)_j = sum_b m_b g . dv_b/de_j.
+TEST(TrajectoryDynamics, AtRestTauDynIsTauUnderTheWrenchAndGravity) {
+  Uniform u(72);
+  for (int g = 0; g < 4; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
+    const Hexapod hexapod(design);
+    const Pose pose = sample_machines::random_pose(u);
+    const SampledPath still({0.0, 0.5, 1.0, 1.5}, {pose, pose, pose, pose});
+    const Wrench w =
+        (Wrench() << u(-500, 500), u(-500, 500), u(-500, 500), u(-50, 50), u(-50, 50), u(-50, 50))
+            .finished();
+    const TrajectoryResult run = evaluate_trajectory(hexapod, still, {0.0, 0.7, 1.5}, w);
+    const std::array<double, 13> mass = body_masses(design.masses);
+    Wrench gravity = Wrench::Zero();
+    for (int j = 0; j < 6; ++j) {
+      std::array<Eigen::Vector3d, 13> dv, dw;
+      virtual_velocities(design, pose, j, dv, dw);
+      for (int b = 0; b < 13; ++b) gravity(j) += mass[b] * design.masses.gravity.dot(dv[b]);
+    }
+    PoseMetrics expected;
+    const auto data = hexapod.make_data();
+    hexapod.analyze(*data, pose, w + gravity, expected);
+    for (const TrajectorySample& s : run.samples) {
+      EXPECT_EQ(s.twist, Vector6d::Zero());
+      EXPECT_EQ(s.twist_rate, Vector6d::Zero());
+      EXPECT_LT((s.tau_dyn - expected.tau).cwiseAbs().maxCoeff(),
+                1e-7 * (1.0 + expected.tau.cwiseAbs().maxCoeff()))
+          << "design " << g;
+    }
+  }
+}
+
+// A linear delta along a translational helix: the actuators' power tau_dyn . q_dot equals the
+// wrench's and gravity's power minus the rate of the kinetic energy 1/2 xi^T M xi (M from
+// Machine::mass_matrix, checked against every body's kinetic energy in leg_chain_compliance_test).
+TEST(TrajectoryDynamics, LinearDeltaPowerBalance) {
+  const auto machine = load_machine_file(source_path("examples/linear_delta.yaml"));
+  auto& delta = dynamic_cast<const LegChainMachine&>(*machine);
+  LegChainDesign design = delta.design();
+  design.masses.present = true;
+  design.masses.platform.mass = 6.0;
+  design.masses.platform.centre_of_mass = {0.01, -0.02, 0.03};
+  design.masses.platform.inertia = Eigen::Vector3d(0.05, 0.06, 0.09).asDiagonal();
+  design.masses.legs.carriage = 4.0;
+  design.masses.legs.link = {.mass = 1.5, .centre = 0.2, .inertia = 0.03};
+  const LegChainMachine heavy(design);
+  PoseMetrics home;
+  const auto data = heavy.make_data();
+  heavy.analyze(*data, design.home, Wrench::Zero(), home);
+  ASSERT_TRUE(home.reachable);
+  HelixParameters hp;
+  hp.centre = design.home.position - Eigen::Vector3d(0, 0, 0.01);
+  hp.radius_start = 0.02;
+  hp.radius_growth = 0.04;
+  hp.height_growth = 0.02;
+  hp.angular_frequency = 12.0;  // up to 0.7 m/s and 8 m/s^2
+  const HelixPath helix(hp);
+  const Wrench w = (Wrench() << 40, -70, 120, 0, 0, 0).finished();
+  const TrajectoryResult run = evaluate_trajectory(heavy, helix, {0.3, 0.7, 1.1}, w);
+  for (const TrajectorySample& s : run.samples) {
+    ASSERT_EQ(s.tau_dyn.size(), 3);
+    ASSERT_TRUE(s.jacobian_ok);
+    const double h = 1e-5;
+    auto kinetic = [&](double t) {
+      const PathPoint point = helix.at(t);
+      Matrix6d M;
+      EXPECT_TRUE(heavy.mass_matrix(*data, point.pose, M));
+      const Vector6d xi = twist_from_pose_rate(point);
+      return 0.5 * xi.dot(M * xi);
+    };
+    const double T_dot = (kinetic(s.t + h) - kinetic(s.t - h)) / (2 * h);
+    Wrench gravity;
+    ASSERT_TRUE(heavy.dynamic_wrench(*data, s.pose, Vector6d::Zero(), Vector6d::Zero(), gravity));
+    const double power = s.tau_dyn.dot(s.q_dot);
+    const double expected = (w + gravity).dot(s.twist) - T_dot;
+    EXPECT_NEAR(power, expected, 1e-6 * (1.0 + std::abs(expected))) << "t " << s.t;
+    EXPECT_GT(std::abs(T_dot), 1.0);  // the inertia does work here (W)
+  }
+}
+
 TEST(SteppedTimes, KeepsTheStepAndEndsAtTEnd) {
   const auto t = pkmopt::stepped_times(0.0, 1.0, 0.3);
   ASSERT_EQ(t.size(), 5u);  // 0, 0.3, 0.6, 0.9 and a shorter last step to 1
@@ -310,6 +488,29 @@ TEST(SummarizeTrajectory, RangesAndInteriorMismatch) {
   EXPECT_EQ(s.q_max, Eigen::Vector2d(2.0, -1.0));
   EXPECT_EQ(s.q_dot_max, Eigen::Vector2d(0.6, 3.0));
   EXPECT_DOUBLE_EQ(s.q_dot_mismatch_max, 0.5);  // |-0.6 - (-0.1)| at sample 1
+}
+
+// Peak, RMS (trapezoidal in time) and peak power of tau_dyn.
+TEST(SummarizeTrajectory, DynamicForcesPeakRmsAndPower) {
+  TrajectoryResult r;
+  const double times[] = {0.0, 1.0, 3.0};
+  const double forces[] = {1.0, -3.0, 2.0};
+  const double rates[] = {0.5, 2.0, -4.0};
+  for (int k = 0; k < 3; ++k) {
+    TrajectorySample s = sample(0.0, 0.0, rates[k], 0.0, rates[k], 0.0, true, 0.5, true);
+    s.t = times[k];
+    s.metrics.tau = Eigen::Vector2d(forces[k] / 2, 0.0);
+    s.tau_dyn = Eigen::Vector2d(forces[k], 0.0);
+    r.samples.push_back(s);
+  }
+  const pkmopt::TrajectorySummary s = pkmopt::summarize_trajectory(r, 2);
+  ASSERT_TRUE(s.dynamics);
+  EXPECT_EQ(s.tau_max, Eigen::Vector2d(1.5, 0.0));
+  EXPECT_EQ(s.tau_dyn_max, Eigen::Vector2d(3.0, 0.0));
+  // integral of tau^2: 1 * (1 + 9) / 2 + 2 * (9 + 4) / 2 = 18 over 3 s.
+  EXPECT_DOUBLE_EQ(s.tau_dyn_rms(0), std::sqrt(18.0 / 3.0));
+  EXPECT_EQ(s.tau_dyn_rms(1), 0.0);
+  EXPECT_EQ(s.power_max, Eigen::Vector2d(8.0, 0.0));  // |2 * -4|
 }
 
 TEST(SummarizeTrajectory, NoSamples) {

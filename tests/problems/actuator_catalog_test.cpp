@@ -101,7 +101,7 @@ TEST(ActuatorCatalog, ForceCapacityIsTheStrongestEntryLongEnough) {
 }
 
 TEST(ActuatorCatalog, CarriesChecksEveryRequirement) {
-  const ActuatorEntry e{"x", "electric_cylinder", 100.0, 0.2, 0.5, {}, {}, {}};
+  const ActuatorEntry e{"x", "electric_cylinder", 100.0, 0.2, 0.5, {}, {}, {}, {}};
   EXPECT_TRUE(carries(e, {100.0, 0.2, 0.5}));
   EXPECT_FALSE(carries(e, {100.1, 0.2, 0.5}));
   EXPECT_FALSE(carries(e, {100.0, 0.21, 0.5}));
@@ -121,6 +121,29 @@ TEST(ActuatorCatalog, CheckNamesTheBadEntry) {
   catalog.entries[0].stiffness = std::nan("");
   EXPECT_EQ(check_actuator_catalog(catalog),
             "entry 0 (CMS50S/70): stiffness: expected a number > 0, found nan");
+  catalog = sample_catalogs::sew_cms();
+  catalog.entries[3].peak_force = 9000.0;
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "entry 3 (CMS63S/100): peak_force: expected a number >= max_force = 10500, found 9000");
+}
+
+// A drive carries a path's duty when the peak is within the peak rating (the continuous one when
+// there is none), the RMS within the continuous rating, and speed and stroke within the entry's.
+TEST(ActuatorCatalog, DriveCheckOfAPathDuty) {
+  ActuatorEntry e{"x", "electric_cylinder", 1000.0, 0.2, 0.5, {}, {}, {}, {}};
+  const DriveDuty duty{.peak_force = 1500.0, .rms_force = 900.0, .speed = 0.4, .stroke = 0.15};
+  DriveCheck c = check_drive(e, duty);
+  EXPECT_EQ(c.peak_rating, 1000.0);
+  EXPECT_FALSE(c.peak_ok);
+  EXPECT_TRUE(c.rms_ok && c.speed_ok && c.stroke_ok);
+  EXPECT_FALSE(c.carries());
+  e.peak_force = 1500.0;
+  c = check_drive(e, duty);
+  EXPECT_EQ(c.peak_rating, 1500.0);
+  EXPECT_TRUE(c.carries());
+  EXPECT_FALSE(check_drive(e, {1500.0, 1000.1, 0.4, 0.15}).rms_ok);
+  EXPECT_FALSE(check_drive(e, {1500.0, 900.0, 0.51, 0.15}).speed_ok);
+  EXPECT_FALSE(check_drive(e, {1500.0, 900.0, 0.4, 0.21}).stroke_ok);
 }
 
 }  // namespace
