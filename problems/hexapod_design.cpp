@@ -10,6 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "models/acceleration_capability.hpp"
 #include "models/sample_machines.hpp"
 
 namespace pkmopt {
@@ -81,7 +82,14 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     if (!r.fixed()) free_.push_back(i);
   }
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
-  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
+  if (spec_.task.acceleration_max > 0.0 && !spec_.machine_template.masses.present)
+    throw std::invalid_argument(fmt::format(
+        "{}: task a_max needs the machine's masses (machine.masses, docs/dynamics.md)", where));
+  // With a_max the drives are sized for the accelerated task: the catalog choice uses it.
+  if (spec_.task.acceleration_max > 0.0 && spec_.actuator_catalog)
+    needed_[static_cast<int>(DesignMetric::actuator_force_dynamic_max)] = true;
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass,
+                                    DesignMetric::actuator_force_dynamic_max})
     if (needed_[static_cast<int>(metric)] && !spec_.machine_template.masses.present)
       throw std::invalid_argument(
           fmt::format("{}: {} needs the machine's masses (machine.masses, docs/dynamics.md)", where,
@@ -132,6 +140,11 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     num_inequality_ = spec_.constraints.size() + (spec_.require_reachable ? 1 : 0);
     return;
   }
+  if (spec_.task.acceleration_max > 0.0)
+    throw std::invalid_argument(fmt::format(
+        "{}: task a_max has no smooth formulation (the inertia forces are not in the smooth "
+        "rows); use an evolutionary optimizer (aggregate formulation)",
+        where));
   for (std::size_t k = 0; k < spec_.objectives.size(); ++k) {
     const DesignObjective& o = spec_.objectives[k];
     if (o.metric == DesignMetric::leg_force_max && o.sense == Sense::minimize) {
@@ -405,12 +418,15 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   const bool compliance = need(DesignMetric::tcp_deflection_max) ||
                           need(DesignMetric::stiffness_min_loaded) ||
                           need(DesignMetric::natural_frequency_min);
+  const bool dynamic_force = need(DesignMetric::actuator_force_dynamic_max);
   if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
-      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) || compliance) {
+      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) || compliance ||
+      dynamic_force) {
     HexapodData data(*hexapod);
     data.compliance_metrics = compliance;
     PoseMetrics m;
     TaskWorstCase worst;
+    Eigen::VectorXd bound;
     for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
       Pose pose = spec_.task.poses[k];
       pose.position.z() += p[kHomeHeight];
@@ -419,6 +435,15 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
         ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
                                  pose.position.x(), pose.position.y(), pose.position.z());
       worst.add(m);
+      if (dynamic_force) {
+        double& force = metric(DesignMetric::actuator_force_dynamic_max);
+        if (acceleration_force_bound(*hexapod, data, pose, spec_.task.wrench,
+                                     spec_.task.acceleration_max, bound)) {
+          force = std::max(force, bound.maxCoeff());
+        } else {
+          force = std::numeric_limits<double>::infinity();  // singular: check_finite_metrics
+        }
+      }
     }
     worst.store(ev.metrics);
   }
@@ -428,7 +453,10 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   }
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
-    const double force = metric(DesignMetric::leg_force_max);
+    // The sizing force: the static one, or with a_max the larger of it and the accelerated task's.
+    const double force = dynamic_force ? std::max(metric(DesignMetric::leg_force_max),
+                                                  metric(DesignMetric::actuator_force_dynamic_max))
+                                       : metric(DesignMetric::leg_force_max);
     metric(DesignMetric::actuator_overload) = force - actuator_force_capacity(catalog, p[kStroke]);
     const ActuatorChoice choice =
         choose_actuator(catalog, ActuatorRequirement{.force = force, .stroke = p[kStroke]});

@@ -15,10 +15,13 @@ namespace pkmopt {
 namespace {
 
 constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
-    "stiffness_min",     "singularity_margin", "leg_force_max",        "tcp_error_max",
-    "workspace_volume",  "conditioning_index", "machine_size",         "actuator_cost",
-    "actuator_overload", "tcp_deflection_max", "stiffness_min_loaded", "natural_frequency_min",
-    "moving_mass"};
+    "stiffness_min",        "singularity_margin",
+    "leg_force_max",        "tcp_error_max",
+    "workspace_volume",     "conditioning_index",
+    "machine_size",         "actuator_cost",
+    "actuator_overload",    "tcp_deflection_max",
+    "stiffness_min_loaded", "natural_frequency_min",
+    "moving_mass",          "actuator_force_dynamic_max"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -110,6 +113,16 @@ NeededMetrics check_design_goals(const std::string& where,
                                               where, design_metric_name(c.metric)));
     needed[static_cast<int>(c.metric)] = true;
   }
+  if (!(std::isfinite(task.acceleration_max) && task.acceleration_max >= 0.0))
+    throw std::invalid_argument(
+        fmt::format("{}: task a_max: expected an acceleration in m/s^2 >= 0, found {}", where,
+                    task.acceleration_max));
+  if (needed[static_cast<int>(DesignMetric::actuator_force_dynamic_max)] &&
+      !(task.acceleration_max > 0.0))
+    throw std::invalid_argument(fmt::format(
+        "{}: actuator_force_dynamic_max needs the task's a_max (m/s^2, e.g. a_max: 9.81 for 1 g), "
+        "found none",
+        where));
   if (needed[static_cast<int>(DesignMetric::workspace_volume)] ||
       needed[static_cast<int>(DesignMetric::conditioning_index)]) {
     WorkspaceOptions& w = task.workspace;
@@ -437,7 +450,13 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
           "{}: {} needs an actuator catalog to choose from, which only hexapod design problems "
           "have; bound leg_force_max instead",
           where, design_metric_name(static_cast<DesignMetric>(m))));
-  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
+  if (spec_.task.acceleration_max > 0.0)
+    throw std::invalid_argument(
+        fmt::format("{}: task a_max needs a mass model, which only hexapod design problems have "
+                    "(machine.masses)",
+                    where));
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass,
+                                    DesignMetric::actuator_force_dynamic_max})
     if (needed_[static_cast<int>(metric)])
       throw std::invalid_argument(fmt::format(
           "{}: {} needs a mass model, which only hexapod design problems have (machine.masses)",

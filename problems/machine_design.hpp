@@ -137,9 +137,13 @@ enum class DesignMetric {
   /// docs/dynamics.md).
   natural_frequency_min,
   /// The mass in motion: the platform's and every leg's moving bodies (kg; needs the masses).
-  moving_mass
+  moving_mass,
+  /// max over the task and the actuators of the force when the TCP, at rest, accelerates in any
+  /// direction with |a| <= the task's a_max under the task wrench and gravity (N; needs the
+  /// masses; models/acceleration_capability.hpp).
+  actuator_force_dynamic_max
 };
-inline constexpr int kNumDesignMetrics = 13;
+inline constexpr int kNumDesignMetrics = 14;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
@@ -166,6 +170,9 @@ struct DesignConstraint {
 struct DesignTask {
   std::vector<Pose> poses;         ///< TCP poses before the home_height lift (rad)
   Wrench wrench = Wrench::Zero();  ///< at the TCP, base axes (N, N*m)
+  /// a_max (m/s^2): the TCP acceleration the drives are sized for (actuator_force_dynamic_max and
+  /// an actuator catalog's choice); 0 = none.
+  double acceleration_max = 0.0;
   /// For workspace_volume and conditioning_index (hull off; maps only for the index).
   WorkspaceOptions workspace;
 };

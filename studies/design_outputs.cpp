@@ -33,6 +33,7 @@ std::string_view design_metric_unit(DesignMetric metric) {
     case DesignMetric::tcp_deflection_max:
       return "m";
     case DesignMetric::leg_force_max:
+    case DesignMetric::actuator_force_dynamic_max:
       return "N";
     case DesignMetric::tcp_error_max:
       return "m";

@@ -27,7 +27,7 @@ namespace pkmopt::design_study_detail {
 
 void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
                std::string& yaml) {
-  task.check_keys({"region", "orientations", "wrench", "workspace"});
+  task.check_keys({"region", "orientations", "wrench", "a_max", "workspace"});
   TaskOrientationsSection orientations;
   if (auto o = task.optional("orientations")) read_fields(*o, orientations);
   const double tilt_deg = orientations.tilt_deg, yaw_deg = orientations.yaw_deg,
@@ -76,6 +76,11 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   const std::vector<double> wrench(task_spec.wrench.data(), task_spec.wrench.data() + 6);
   if (!wrench_origin.empty()) yaml += "  # wrench from the cutting model: " + wrench_origin + "\n";
   yaml += "  wrench: " + field_detail::value_text(wrench) + "\n";
+  if (auto a = task.optional("a_max")) {
+    // The TCP acceleration the drives are sized for (m/s^2): actuator_force_dynamic_max.
+    task_spec.acceleration_max = a->as_positive();
+    yaml += "  a_max: " + format_number(task_spec.acceleration_max) + "\n";
+  }
   TaskWorkspaceSection workspace;
   if (auto w = task.optional("workspace")) read_fields(*w, workspace);
   task_spec.workspace.resolution = workspace.resolution;

@@ -1,7 +1,7 @@
-// Tests of problems/hexapod_design: a hand-computed design evaluation, sign conventions,
-// failures without NaN, agreement with the model, gradients against finite differences, and the
-// smooth stiffness_min (principal-minor rows): gradients, agreement with the aggregate metric,
-// and a 1-parameter Ipopt optimum equal to the aggregate stiffness.
+// Tests of problems/hexapod_design (aggregate formulation): a hand-computed design evaluation,
+// sign conventions, failures without NaN, agreement with the model, the dynamic metrics
+// (natural_frequency_min, moving_mass, actuator_force_dynamic_max) and the catalog choice. The
+// smooth formulation is tested in hexapod_design_smooth_test.cpp.
 #include "problems/hexapod_design.hpp"
 
 #include <fmt/format.h>
@@ -15,7 +15,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "optimizer/ipopt_solver.hpp"
+#include "models/acceleration_capability.hpp"
+#include "tests/problems/hexapod_design_specs.hpp"
 #include "tests/sample_catalogs.hpp"
 #include "tests/sample_machines.hpp"
 
@@ -85,6 +86,18 @@ TEST(HexapodDesign, LegForcesAtTheHomePoseOfASymmetricHexapod) {
             1e-15);
 }
 
+// The milling hexapod's masses of examples/hexapod_masses.yaml.
+MassModel milling_masses() {
+  MassModel masses;
+  masses.present = true;
+  masses.platform.mass = 45.0;
+  masses.platform.centre_of_mass = {0, 0, -0.04};
+  masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
+  masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
+  masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  return masses;
+}
+
 // natural_frequency_min: the lowest first natural frequency over the task poses, as analyze
 // gives it for the design; without masses the problem is refused.
 TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
@@ -93,13 +106,7 @@ TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
   spec.task.poses.push_back(Pose{{-0.12, 0.08, 0.8}, deg_to_rad(Eigen::Vector3d(-8, 4, -15))});
   spec.objectives = {{DesignMetric::natural_frequency_min, Sense::maximize}};
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no masses
-  MassModel& masses = spec.machine_template.masses;
-  masses.present = true;
-  masses.platform.mass = 45.0;
-  masses.platform.centre_of_mass = {0, 0, -0.04};
-  masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
-  masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
-  masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  spec.machine_template.masses = milling_masses();
   const HexapodDesignProblem problem(spec);
   const DesignEvaluation ev = problem.evaluate({});
   ASSERT_TRUE(ev.ok()) << ev.failure;
@@ -119,6 +126,72 @@ TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
   const DesignEvaluation with_mass = HexapodDesignProblem(spec).evaluate({});
   EXPECT_DOUBLE_EQ(with_mass.metrics[static_cast<int>(DesignMetric::moving_mass)],
                    45.0 + 6 * (6.0 + 3.0));
+}
+
+// actuator_force_dynamic_max: the worst force over the task when the TCP accelerates with
+// |a| <= a_max (models/acceleration_capability, checked against sampled directions in its own
+// test) is the largest per-pose bound; it grows linearly with a_max from the weighted static
+// force; it needs a_max and masses.
+TEST(HexapodDesign, DynamicActuatorForceIsTheWorstAcceleratedForceOverTheTask) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, -2000.0);
+  spec.task.poses.push_back(Pose{{0.1, -0.05, 0.85}, deg_to_rad(Eigen::Vector3d(5, -3, 10))});
+  spec.objectives = {{DesignMetric::actuator_force_dynamic_max, Sense::minimize}};
+  spec.machine_template.masses = milling_masses();
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no a_max
+  spec.task.acceleration_max = 9.81;
+  auto force_at = [&](double a_max) {
+    HexapodDesignSpec s = spec;
+    s.task.acceleration_max = a_max;
+    const DesignEvaluation ev = HexapodDesignProblem(s).evaluate({});
+    EXPECT_TRUE(ev.ok()) << ev.failure;
+    return ev.metrics[static_cast<int>(DesignMetric::actuator_force_dynamic_max)];
+  };
+  const double one_g = force_at(9.81);
+  const HexapodDesignProblem problem(spec);
+  const Hexapod hexapod(problem.design_of(problem.evaluate({}).parameters));
+  HexapodData data(hexapod);
+  double expected = 0.0;
+  Eigen::VectorXd bound;
+  for (const Pose& pose : spec.task.poses) {
+    ASSERT_TRUE(acceleration_force_bound(hexapod, data, pose, spec.task.wrench, 9.81, bound));
+    expected = std::max(expected, bound.maxCoeff());
+  }
+  EXPECT_DOUBLE_EQ(one_g, expected);
+  // The cutting load alone carries less; 1 g adds much more than the weights.
+  spec.objectives.push_back({DesignMetric::leg_force_max, Sense::minimize});
+  const double static_force = HexapodDesignProblem(spec)
+                                  .evaluate({})
+                                  .metrics[static_cast<int>(DesignMetric::leg_force_max)];
+  EXPECT_GT(one_g, static_force + 100.0);
+  // Linear in a_max where the same leg and pose stay the worst.
+  const double two_g = force_at(2 * 9.81), three_g = force_at(3 * 9.81);
+  EXPECT_NEAR(three_g - two_g, two_g - one_g, 1e-9 * three_g);
+  spec.machine_template.masses = MassModel{};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // a_max without masses
+}
+
+// With a_max the catalog sizes the legs for the accelerated task: a heavy platform at 3 g needs a
+// stronger SEW cylinder than the static load does.
+TEST(HexapodDesign, CatalogChoiceUsesTheAcceleratedForceWithAMax) {
+  HexapodDesignSpec spec = single_pose_spec(0.9, -4000.0);
+  spec.parameters[kStroke] = {0.3, 0.3};
+  spec.objectives = {{DesignMetric::actuator_cost, Sense::minimize}};
+  spec.actuator_catalog = sample_catalogs::sew_cms();
+  spec.machine_template.masses = milling_masses();
+  spec.machine_template.masses.platform.mass = 150.0;
+  const DesignEvaluation still = HexapodDesignProblem(spec).evaluate({});
+  spec.task.acceleration_max = 3 * 9.81;
+  const DesignEvaluation rapid = HexapodDesignProblem(spec).evaluate({});
+  ASSERT_TRUE(still.ok() && rapid.ok()) << still.failure << rapid.failure;
+  const double dynamic = rapid.metrics[static_cast<int>(DesignMetric::actuator_force_dynamic_max)];
+  EXPECT_GT(dynamic, 5300.0);  // beyond the CMS50S
+  EXPECT_LT(still.metrics[static_cast<int>(DesignMetric::leg_force_max)], 5300.0);
+  EXPECT_EQ(spec.actuator_catalog->entries[static_cast<std::size_t>(still.actuator)].name,
+            "CMS50S/300");
+  EXPECT_EQ(spec.actuator_catalog->entries[static_cast<std::size_t>(rapid.actuator)].name,
+            "CMS71L/350");
+  EXPECT_DOUBLE_EQ(rapid.metrics[static_cast<int>(DesignMetric::actuator_overload)],
+                   dynamic - actuator_force_capacity(*spec.actuator_catalog, 0.3));
 }
 
 TEST(HexapodDesign, MaximizeFlipsTheSignAndConstraintsFollowTheirRelation) {
@@ -255,213 +328,8 @@ TEST(HexapodDesign, BatchFitnessInParallelEqualsSerial) {
   }
 }
 
-HexapodDesignSpec smooth_spec() {
-  HexapodDesignSpec spec;
-  spec.formulation = DesignFormulation::smooth;
-  spec.task.poses = box_task_poses({0.02, -0.01, 0.9}, {0.1, 0.1, 0.05}, {2, 2, 2}, deg_to_rad(15),
-                                   deg_to_rad(10), deg_to_rad(15));
-  spec.task.wrench << 300, -200, -4000, 15, -25, 10;
-  spec.parameters[kBaseRadius] = {0.5, 0.7};
-  spec.parameters[kPlatformRadius] = {0.2, 0.3};
-  spec.parameters[kBasePairSeparation] = {deg_to_rad(10), deg_to_rad(40)};
-  spec.parameters[kPlatformPairSeparation] = {deg_to_rad(10), deg_to_rad(40)};
-  spec.parameters[kMinLength] = {0.6, 0.8};
-  spec.parameters[kStroke] = {0.3, 0.6};
-  spec.parameters[kHomeHeight] = {-0.1, 0.1};
-  spec.objectives = {{DesignMetric::leg_force_max, Sense::minimize},
-                     {DesignMetric::machine_size, Sense::maximize}};
-  spec.constraints = {{DesignMetric::leg_force_max, Relation::less_equal, 5000.0},
-                      {DesignMetric::machine_size, Relation::greater_equal, 0.5}};
-  return spec;
-}
-
-TEST(HexapodDesign, SmoothFormulationGradientsMatchFiniteDifferences) {
-  const HexapodDesignProblem problem(smooth_spec());
-  ASSERT_TRUE(problem.has_gradient());
-  ASSERT_EQ(problem.num_variables(), 8u);  // 7 parameters + 1 epigraph variable
-  const std::size_t poses = problem.spec().task.poses.size();
-  EXPECT_EQ(problem.num_inequality(), 12 * poses + 12 * poses + 1 + 24 * poses);
-  const std::vector<std::vector<double>> points = {
-      {0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.45, 0.0, 2.0},  // t in kN
-      {0.55, 0.28, deg_to_rad(32), deg_to_rad(14), 0.75, 0.35, 0.06, 3.5}};
-  for (const std::vector<double>& x : points) {
-    const GradientCheck check = check_gradient(problem, x);
-    EXPECT_TRUE(check.ok) << check.report;
-    for (double v : problem.fitness(x)) EXPECT_TRUE(std::isfinite(v));
-  }
-}
-
-TEST(HexapodDesign, SmoothRowsAgreeWithTheAggregateMetrics) {
-  HexapodDesignSpec spec = smooth_spec();
-  const HexapodDesignProblem smooth(spec);
-  spec.formulation = DesignFormulation::aggregate;
-  const HexapodDesignProblem aggregate(spec);
-  const std::vector<double> design{0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.45, 0.0};
-  const DesignEvaluation ev = aggregate.evaluate(design);
-  ASSERT_TRUE(ev.ok()) << ev.failure;
-  const double force = ev.metrics[static_cast<int>(DesignMetric::leg_force_max)];
-  // With t = the worst leg force (kN) the largest epigraph row is exactly 0.
-  std::vector<double> x = design;
-  x.push_back(force / kEpigraphForceUnit);
-  const std::vector<double> f = smooth.fitness(x);
-  const std::size_t rows = 12 * spec.task.poses.size();
-  const double worst = *std::max_element(f.begin() + 2, f.begin() + 2 + rows);
-  EXPECT_NEAR(worst, kSmoothRowMargin, 1e-12 * force);
-  EXPECT_NEAR(f[0], force, 1e-12 * force);
-  EXPECT_DOUBLE_EQ(f[1], -ev.metrics[static_cast<int>(DesignMetric::machine_size)]);
-  // The reachability rows' maximum is the aggregate g_reach.
-  EXPECT_NEAR(*std::max_element(f.end() - 24 * spec.task.poses.size(), f.end()),
-              ev.reach_violation + kSmoothRowMargin, 1e-15);
-}
-
-// Smooth stiffness_min: a maximised objective (epigraph variable s in N/um) and a >= constraint.
-HexapodDesignSpec smooth_stiffness_spec() {
-  HexapodDesignSpec spec = smooth_spec();
-  spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
-                     {DesignMetric::leg_force_max, Sense::minimize}};
-  spec.constraints = {{DesignMetric::stiffness_min, Relation::greater_equal, 4.0e6},
-                      {DesignMetric::machine_size, Relation::less_equal, 2.0}};
-  return spec;
-}
-
-double aggregate_stiffness(const HexapodDesignProblem& aggregate, const std::vector<double>& x) {
-  const DesignEvaluation ev = aggregate.evaluate(x);
-  return ev.ok() ? ev.metrics[static_cast<int>(DesignMetric::stiffness_min)] : -1.0;
-}
-
-// Random designs inside the bounds that the aggregate metrics accept (not singular).
-std::vector<std::vector<double>> random_designs(const HexapodDesignProblem& aggregate, int count,
-                                                std::uint64_t seed) {
-  sample_machines::Uniform u(seed);
-  const Bounds b = aggregate.bounds();
-  std::vector<std::vector<double>> designs;
-  while (static_cast<int>(designs.size()) < count) {
-    std::vector<double> x;
-    for (std::size_t j = 0; j < b.lower.size(); ++j) x.push_back(u(b.lower[j], b.upper[j]));
-    if (aggregate_stiffness(aggregate, x) > 0.0) designs.push_back(x);
-  }
-  return designs;
-}
-
-TEST(HexapodDesign, SmoothStiffnessRowsHaveFiniteDifferenceGradients) {
-  HexapodDesignSpec spec = smooth_stiffness_spec();
-  const HexapodDesignProblem smooth(spec);
-  spec.formulation = DesignFormulation::aggregate;
-  const HexapodDesignProblem aggregate(spec);
-  const std::size_t poses = spec.task.poses.size();
-  ASSERT_EQ(smooth.num_variables(), 9u);  // 7 parameters, s (N/um), t (kN)
-  EXPECT_EQ(smooth.num_inequality(), 7 * poses + 12 * poses + 7 * poses + 1 + 24 * poses);
-  EXPECT_EQ(smooth.bounds().lower[7], 0.0);
-  // The upper bound of s is above any stiffness: 6 k(q) at the shortest leg, in N/um.
-  EXPECT_GT(smooth.bounds().upper[7],
-            1e-6 * aggregate_stiffness(aggregate, {0.6, 0.25, 0.35, 0.35, 0.7, 0.45, 0}));
-  for (const std::vector<double>& design : random_designs(aggregate, 4, 17)) {
-    const double stiffness = aggregate_stiffness(aggregate, design);
-    std::vector<double> x = design;
-    x.push_back(0.9 * stiffness / kEpigraphStiffnessUnit);  // feasible epigraph values
-    x.push_back(3.0);
-    const GradientCheck check = check_gradient(smooth, x);
-    EXPECT_TRUE(check.ok) << check.report;
-    for (double v : smooth.fitness(x)) EXPECT_TRUE(std::isfinite(v));
-  }
-}
-
-// stiffness_min >= b  <=>  every minor row of I - b C_tt is <= 0, on random designs and bounds;
-// at b = stiffness_min the largest row is 0 (the constraint is active).
-TEST(HexapodDesign, SmoothStiffnessRowsAgreeWithTheAggregateMetric) {
-  HexapodDesignSpec spec = smooth_stiffness_spec();
-  spec.objectives = {{DesignMetric::machine_size, Sense::minimize}};
-  spec.require_reachable = false;
-  HexapodDesignSpec aggregate_spec = spec;
-  aggregate_spec.formulation = DesignFormulation::aggregate;
-  const HexapodDesignProblem aggregate(aggregate_spec);
-  sample_machines::Uniform u(5);
-  int feasible = 0, infeasible = 0;
-  for (const std::vector<double>& x : random_designs(aggregate, 12, 23)) {
-    const double stiffness = aggregate_stiffness(aggregate, x);
-    for (const double factor : {0.5, 0.97, 0.999, 1.001, 1.03, 2.0, u(0.6, 1.4)}) {
-      spec.constraints = {
-          {DesignMetric::stiffness_min, Relation::greater_equal, factor * stiffness}};
-      const std::vector<double> f = HexapodDesignProblem(spec).fitness(x);
-      const double worst = *std::max_element(f.begin() + 1, f.end());
-      EXPECT_EQ(worst - kSmoothRowMargin <= 0.0, factor <= 1.0) << "factor " << factor;
-      EXPECT_EQ(worst <= 0.0, factor <= 1.0) << "factor " << factor;  // margin << 0.1 %
-      (worst <= 0.0 ? feasible : infeasible)++;
-    }
-    spec.constraints = {{DesignMetric::stiffness_min, Relation::greater_equal, stiffness}};
-    const std::vector<double> f = HexapodDesignProblem(spec).fitness(x);
-    EXPECT_NEAR(*std::max_element(f.begin() + 1, f.end()), kSmoothRowMargin, 1e-9);
-  }
-  EXPECT_GT(feasible, 30);
-  EXPECT_GT(infeasible, 30);
-}
-
-// One free parameter, maximise stiffness_min by Ipopt: at the optimum the epigraph variable
-// equals the aggregate stiffness_min (its constraint rows are active), and no design on a fine
-// grid of the parameter is stiffer.
-// One free parameter (home_height), maximise stiffness_min by Ipopt with the task reachable:
-// the machine gets stiffer the lower the task sits, until the legs reach min_length. At the
-// optimum the epigraph variable equals the aggregate stiffness_min (its rows are active), and no
-// reachable design on a fine grid of the parameter is stiffer.
-TEST(HexapodDesign, SmoothStiffnessOptimumIsTheAggregateStiffness) {
-  HexapodDesignSpec spec;
-  spec.formulation = DesignFormulation::smooth;
-  spec.task.poses =
-      box_task_poses({0, 0, 0.9}, {0.05, 0.05, 0.05}, {2, 1, 2}, deg_to_rad(10), 0, deg_to_rad(10));
-  spec.parameters[kHomeHeight] = {-0.4, 0.1};
-  spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize}};
-  const HexapodDesignProblem smooth(spec);
-  spec.formulation = DesignFormulation::aggregate;
-  const HexapodDesignProblem aggregate(spec);
-  const SolveResult result = solve_with_ipopt(smooth, {-0.1, 1.0});
-  ASSERT_TRUE(result.usable()) << result.summary();
-  const double stiffness = aggregate_stiffness(aggregate, {result.x[0]});
-  EXPECT_NEAR(result.x[1] * kEpigraphStiffnessUnit, stiffness, 1e-5 * stiffness);
-  EXPECT_LT(result.x[1] * kEpigraphStiffnessUnit, stiffness);  // the margin keeps it below
-  EXPECT_NEAR(-result.objective, result.x[1] * kEpigraphStiffnessUnit, 1e-9 * stiffness);
-  const std::size_t stiffness_rows = kStiffnessRowsPerPose * spec.task.poses.size();
-  const std::vector<double> f = smooth.fitness(result.x);
-  EXPECT_NEAR(*std::max_element(f.begin() + 1, f.begin() + 1 + stiffness_rows), 0.0, 1e-7);
-  EXPECT_TRUE(aggregate.evaluate({result.x[0]}).reachable);  // feasible in the strict check
-  EXPECT_GT(result.x[0], -0.4 + 1e-3);  // an interior optimum: reachability limits it
-  int reachable = 0;
-  for (int k = 0; k <= 50; ++k) {
-    const double h = -0.4 + 0.5 * k / 50.0;
-    if (!aggregate.evaluate({h}).reachable) continue;
-    ++reachable;
-    EXPECT_LE(aggregate_stiffness(aggregate, {h}), stiffness * (1.0 + 1e-6)) << "h " << h;
-  }
-  EXPECT_GT(reachable, 5);
-}
-
-TEST(HexapodDesign, SmoothFormulationRefusesNonSmoothMetricsAndAggregateHasNoGradient) {
-  HexapodDesignSpec spec = smooth_spec();
-  spec.objectives[1] = {DesignMetric::stiffness_min, Sense::minimize};
-  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
-  spec.objectives[1] = {DesignMetric::singularity_margin, Sense::maximize};
-  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
-  spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
-                     {DesignMetric::stiffness_min, Sense::maximize}};
-  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // one epigraph per metric
-  spec = smooth_spec();
-  spec.constraints.push_back({DesignMetric::singularity_margin, Relation::greater_equal, 0.1});
-  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
-  spec = smooth_spec();
-  spec.formulation = DesignFormulation::aggregate;
-  const HexapodDesignProblem aggregate(spec);
-  EXPECT_FALSE(aggregate.has_gradient());
-  EXPECT_THROW(aggregate.gradient(std::vector<double>(7, 0.5)), std::logic_error);
-  spec.parameters[kStroke] = {0.6, 0.3};
-  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
-  spec = smooth_spec();
-  spec.objectives.clear();
-  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
-}
-
-// The optimiser chooses the cheapest catalog entry: actuator_cost, actuator_overload and the
-// chosen entry follow from leg_force_max and the stroke exactly as the catalog functions say.
 TEST(HexapodDesign, ChoosesTheCheapestCatalogActuatorThatCarriesTheLegs) {
-  HexapodDesignSpec spec = smooth_spec();
+  HexapodDesignSpec spec = test_specs::smooth_spec();
   spec.formulation = DesignFormulation::aggregate;
   spec.parameters[kStroke] = {0.10, 0.35};
   spec.actuator_catalog = sample_catalogs::sew_cms();
@@ -527,27 +395,8 @@ TEST(HexapodDesign, ChoosesTheCheapestCatalogActuatorThatCarriesTheLegs) {
   EXPECT_GT(heavy.metrics[static_cast<int>(DesignMetric::actuator_overload)], 0.0);
 }
 
-// With a fixed stroke the catalog's capacity F is a constant, and the smooth formulation's
-// actuator_overload <= b rows are the leg_force_max <= b + F rows.
-TEST(HexapodDesign, SmoothActuatorOverloadRowsAreForceRowsAtTheCapacity) {
-  HexapodDesignSpec spec = smooth_spec();
-  spec.parameters[kStroke] = {0.2, 0.2};
-  spec.actuator_catalog = sample_catalogs::sew_cms();
-  spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, -500.0}};
-  const HexapodDesignProblem overload(spec);
-  spec.constraints = {{DesignMetric::leg_force_max, Relation::less_equal, 20000.0 - 500.0}};
-  spec.actuator_catalog.reset();
-  const HexapodDesignProblem force(spec);
-  ASSERT_EQ(overload.num_inequality(), force.num_inequality());
-  const std::vector<double> x{0.6, 0.25, deg_to_rad(20), deg_to_rad(20), 0.7, 0.0, 2.0};
-  EXPECT_EQ(overload.fitness(x), force.fitness(x));
-  EXPECT_EQ(overload.gradient(x), force.gradient(x));
-  const GradientCheck check = check_gradient(overload, x);
-  EXPECT_TRUE(check.ok) << check.report;
-}
-
 TEST(HexapodDesign, ActuatorChoiceErrors) {
-  HexapodDesignSpec spec = smooth_spec();
+  HexapodDesignSpec spec = test_specs::smooth_spec();
   spec.formulation = DesignFormulation::aggregate;
   spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no catalog
@@ -569,7 +418,7 @@ TEST(HexapodDesign, ActuatorChoiceErrors) {
   spec.actuator_catalog->entries[1].max_force = -1.0;
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
   // Smooth: the overload needs a fixed stroke; the cost has no smooth formulation.
-  spec = smooth_spec();
+  spec = test_specs::smooth_spec();
   spec.actuator_catalog = sample_catalogs::sew_cms();
   spec.parameters[kStroke] = {0.2, 0.3};
   spec.constraints = {{DesignMetric::actuator_overload, Relation::less_equal, 0.0}};

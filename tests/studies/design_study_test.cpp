@@ -323,7 +323,9 @@ TEST_F(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
           ":15:15: objectives[0].maximize: expected one of stiffness_min, "
           "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
           "conditioning_index, machine_size, actuator_cost, actuator_overload, tcp_deflection_max, "
-          "stiffness_min_loaded, natural_frequency_min, moving_mass, found 'stifness'");
+          "stiffness_min_loaded, natural_frequency_min, moving_mass, actuator_force_dynamic_max, "
+          "found "
+          "'stifness'");
   const std::string file3 = (dir_ / "e3" / "study.yaml").string();
   EXPECT_EQ(load_error("e3", replaced(kStudy, "{min: 0.5, max: 0.7}", "{min: 0.7, max: 0.5}")),
             file3 + ":5:34: machine.parameters.base_radius.max: expected max > min, found '0.5'");
