@@ -64,7 +64,8 @@ DriveCheck check_drive(const ActuatorEntry& entry, const DriveDuty& duty) {
 
 bool carries(const ActuatorEntry& entry, const ActuatorRequirement& need) {
   return entry.max_force >= need.force && entry.stroke >= need.stroke &&
-         entry.max_speed >= need.speed;
+         entry.max_speed >= need.speed &&
+         entry.peak_force.value_or(entry.max_force) >= need.peak_force;
 }
 
 ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorRequirement& need) {
@@ -78,13 +79,17 @@ ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorReq
     }
   }
   if (choice.entry != nullptr) {
-    choice.force_reserve = need.force > 0.0 ? choice.entry->max_force / need.force
-                                            : std::numeric_limits<double>::infinity();
+    const ActuatorEntry& e = *choice.entry;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    choice.force_reserve =
+        std::min(need.force > 0.0 ? e.max_force / need.force : kInf,
+                 need.peak_force > 0.0 ? e.peak_force.value_or(e.max_force) / need.peak_force : kInf);
     return choice;
   }
-  double best_force = 0.0, best_stroke = 0.0, best_speed = 0.0;
+  double best_force = 0.0, best_stroke = 0.0, best_speed = 0.0, best_peak = 0.0;
   for (const ActuatorEntry& e : catalog.entries) {
     best_force = std::max(best_force, e.max_force);
+    best_peak = std::max(best_peak, e.peak_force.value_or(e.max_force));
     best_stroke = std::max(best_stroke, e.stroke);
     best_speed = std::max(best_speed, e.max_speed);
   }
@@ -93,6 +98,9 @@ ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorReq
   } else if (best_force < need.force) {
     choice.reason = fmt::format("force {:.6g} N exceeds the strongest entry ({:.6g} N)", need.force,
                                 best_force);
+  } else if (best_peak < need.peak_force) {
+    choice.reason = fmt::format("peak force {:.6g} N exceeds the strongest entry's peak ({:.6g} N)",
+                                need.peak_force, best_peak);
   } else if (best_stroke < need.stroke) {
     choice.reason = fmt::format("stroke {:.6g} m exceeds the longest entry ({:.6g} m)", need.stroke,
                                 best_stroke);
@@ -127,6 +135,16 @@ std::vector<double> actuator_costs(const ActuatorCatalog& catalog) {
   for (std::size_t rank = 0; rank < order.size(); ++rank)
     costs[order[rank]] = static_cast<double>(rank + 1);
   return costs;
+}
+
+double actuator_overload(const ActuatorCatalog& catalog, const ActuatorRequirement& need) {
+  double overload = std::numeric_limits<double>::infinity();
+  for (const ActuatorEntry& e : catalog.entries) {
+    if (e.stroke < need.stroke) continue;
+    overload = std::min(overload, std::max(need.force - e.max_force,
+                                           need.peak_force - e.peak_force.value_or(e.max_force)));
+  }
+  return overload;
 }
 
 double actuator_force_capacity(const ActuatorCatalog& catalog, double stroke) {

@@ -13,7 +13,8 @@
 //   if (choice.entry) ... choice.entry->name, choice.force_reserve ...
 //
 // `carries(entry, need)`: max_force >= need.force, stroke >= need.stroke, max_speed >=
-// need.speed (each requirement optional: 0 means none). The cheapest carrying entry wins; ties
+// need.speed, peak rating (peak_force, else max_force) >= need.peak_force (each requirement
+// optional: 0 means none). The cheapest carrying entry wins; ties
 // go to the smaller force rating, then the shorter stroke, then the catalog order.
 #pragma once
 
@@ -53,14 +54,19 @@ struct ActuatorCatalog {
 
 /// What one leg must do (0 = no requirement).
 struct ActuatorRequirement {
-  double force = 0.0;   ///< N, largest |axial force| over the task
+  double force = 0.0;   ///< N, largest |axial force| over the task (against max_force)
   double stroke = 0.0;  ///< m, max_length - min_length
   double speed = 0.0;   ///< m/s
+  /// N, the largest short-time force (rapid moves: actuator_force_dynamic_max), against the
+  /// entry's peak rating (peak_force, or max_force when it has none).
+  double peak_force = 0.0;
 };
 
 struct ActuatorChoice {
   const ActuatorEntry* entry = nullptr;  ///< null when no entry carries the requirement
-  double force_reserve = 0.0;            ///< max_force / need.force (inf when no force need)
+  /// The smaller of max_force / need.force and peak rating / need.peak_force (inf when there is
+  /// no force need).
+  double force_reserve = 0.0;
   std::string reason;                    ///< when entry is null: the closest miss
 };
 
@@ -78,6 +84,12 @@ ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorReq
 /// choose_actuator uses without costs (force rating, then stroke, then catalog order). Throws
 /// std::invalid_argument when only some entries have a cost (the order would be a guess).
 std::vector<double> actuator_costs(const ActuatorCatalog& catalog);
+
+/// How far the best entry long enough for need.stroke falls short of the forces (N): the minimum
+/// over those entries of max(need.force - max_force, need.peak_force - peak rating); <= 0 exactly
+/// when some entry carries both forces and the stroke (speed not considered); +inf when no entry
+/// is long enough.
+double actuator_overload(const ActuatorCatalog& catalog, const ActuatorRequirement& need);
 
 /// The largest force rating (N) among the entries whose stroke is at least `stroke` (m); -inf
 /// when no entry is that long. A leg needing `force` and `stroke` is carried by some entry exactly

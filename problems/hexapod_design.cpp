@@ -453,13 +453,14 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   }
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
-    // The sizing force: the static one, or with a_max the larger of it and the accelerated task's.
-    const double force = dynamic_force ? std::max(metric(DesignMetric::leg_force_max),
-                                                  metric(DesignMetric::actuator_force_dynamic_max))
-                                       : metric(DesignMetric::leg_force_max);
-    metric(DesignMetric::actuator_overload) = force - actuator_force_capacity(catalog, p[kStroke]);
-    const ActuatorChoice choice =
-        choose_actuator(catalog, ActuatorRequirement{.force = force, .stroke = p[kStroke]});
+    // The cutting load against the continuous rating; with a_max, the accelerated task's force
+    // against the peak rating too.
+    const ActuatorRequirement need{
+        .force = metric(DesignMetric::leg_force_max),
+        .stroke = p[kStroke],
+        .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
+    metric(DesignMetric::actuator_overload) = actuator_overload(catalog, need);
+    const ActuatorChoice choice = choose_actuator(catalog, need);
     if (choice.entry != nullptr) {
       ev.actuator = static_cast<int>(choice.entry - catalog.entries.data());
       metric(DesignMetric::actuator_cost) = actuator_costs_[static_cast<std::size_t>(ev.actuator)];

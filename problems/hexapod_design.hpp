@@ -29,13 +29,18 @@
 //   actuator_cost       (spec.actuator_catalog set: the optimiser chooses the legs' actuator)
 //                       the relative cost (actuator_costs: the catalog's costs, or the rank by
 //                       force rating when it has none) of choose_actuator(catalog, {force =
-//                       leg_force_max, stroke}), the cheapest entry that carries every leg over
-//                       the task; when none does: twice the dearest entry's cost (a rank
-//                       catalog: entries + 1), and actuator_overload > 0 says so   (relative)
-//   actuator_overload   leg_force_max - actuator_force_capacity(catalog, stroke): the largest
-//                       rating among entries at least as long as the stroke; <= 0 exactly when
-//                       some entry carries the legs (the constraint "actuator_overload <= 0"
-//                       is the catalog choice's feasibility)                N
+//                       leg_force_max, stroke, peak_force = actuator_force_dynamic_max with a
+//                       task a_max}), the cheapest entry that carries every leg over the task;
+//                       when none does: twice the dearest entry's cost (a rank catalog:
+//                       entries + 1), and actuator_overload > 0 says so   (relative)
+//   actuator_overload   actuator_overload(catalog, that need): without a_max leg_force_max -
+//                       actuator_force_capacity(catalog, stroke), the largest rating among
+//                       entries at least as long as the stroke; <= 0 exactly when some entry
+//                       carries the legs (the constraint "actuator_overload <= 0" is the catalog
+//                       choice's feasibility)                                N
+//   actuator_force_dynamic_max  (masses and a task a_max) max over the task of the forces with
+//                       the TCP accelerating from rest with |a| <= a_max under the wrench and
+//                       gravity (models/acceleration_capability.hpp)         N
 // An objective is minimised as f = metric, maximised as f = -metric. A constraint
 // "metric <= b" gives g = metric - b <= 0, "metric >= b" gives g = b - metric <= 0.
 // Task reachability (optional, default on), one row g_reach <= 0 with

@@ -273,6 +273,7 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
       if (d.actuator >= 0) {
         const ActuatorEntry& e = catalog->entries[static_cast<std::size_t>(d.actuator)];
         const double force = d.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+        double reserve = e.max_force / force;
         csv << ',' << csv_field(e.name);
         design["actuator"] = {{"name", e.name},
                               {"type", e.type},
@@ -280,8 +281,17 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
                               {"stroke", e.stroke},
                               {"max_speed", e.max_speed},
                               {"cost", d.metrics[static_cast<int>(DesignMetric::actuator_cost)]},
-                              {"leg_force_max", json_number(force)},
-                              {"force_reserve", json_number(e.max_force / force)}};
+                              {"leg_force_max", json_number(force)}};
+        if (study.problem && study.problem->spec().task.acceleration_max > 0.0) {
+          // Sized for the rapid moves too: the accelerated force against the peak rating.
+          const double peak = e.peak_force.value_or(e.max_force);
+          const double dynamic =
+              d.metrics[static_cast<int>(DesignMetric::actuator_force_dynamic_max)];
+          design["actuator"]["peak_force"] = peak;
+          design["actuator"]["actuator_force_dynamic_max"] = json_number(dynamic);
+          reserve = std::min(reserve, peak / dynamic);
+        }
+        design["actuator"]["force_reserve"] = json_number(reserve);
       } else {
         csv << ",";
         design["actuator"] = nullptr;

@@ -174,6 +174,11 @@ std::string read_actuator_constraint(const YamlValue& c, const std::string& stud
                     "'" + name + "'");
   }
   spec.constraints.push_back({DesignMetric::leg_force_max, Relation::less_equal, entry->max_force});
+  const double peak = entry->peak_force.value_or(entry->max_force);
+  const bool rapid = spec.task.acceleration_max > 0.0;  // the rapid moves go against the peak
+  if (rapid)
+    spec.constraints.push_back(
+        {DesignMetric::actuator_force_dynamic_max, Relation::less_equal, peak});
   if (lo > entry->stroke) {
     name_value.fail(fmt::format("an actuator with a stroke of at least machine.parameters.stroke "
                                 "({} m)",
@@ -183,9 +188,12 @@ std::string read_actuator_constraint(const YamlValue& c, const std::string& stud
   hi = std::min(hi, entry->stroke);
   spec.parameters[static_cast<std::size_t>(stroke)].upper =
       std::min(spec.parameters[static_cast<std::size_t>(stroke)].upper, entry->stroke);
-  return fmt::format("  - {{actuator: {}, catalog: {}}}  # leg_force_max <= {} N, stroke <= {} m\n",
-                     nlohmann::json(name).dump(), nlohmann::json(catalog_path.string()).dump(),
-                     format_number(entry->max_force), format_number(entry->stroke));
+  return fmt::format(
+      "  - {{actuator: {}, catalog: {}}}  # leg_force_max <= {} N, {}stroke <= {} m\n",
+      nlohmann::json(name).dump(), nlohmann::json(catalog_path.string()).dump(),
+      format_number(entry->max_force),
+      rapid ? "actuator_force_dynamic_max <= " + format_number(peak) + " N, " : "",
+      format_number(entry->stroke));
 }
 
 }  // namespace pkmopt::design_study_detail

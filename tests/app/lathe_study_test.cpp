@@ -141,7 +141,7 @@ TEST_F(Lathe, StudyDesignCarriesTheTurningLoadWithTheCatalogsCylinder) {
   // The cheapest SEW entry that carries the force over the designed 350 mm stroke.
   const ActuatorCatalog catalog =
       load_actuator_catalog((kStudy.parent_path() / "catalogs" / "sew-cms.yaml").string());
-  const ActuatorChoice choice = choose_actuator(catalog, {cylinder, 0.35, 0.0});
+  const ActuatorChoice choice = choose_actuator(catalog, {cylinder, 0.35, 0.0, 0.0});
   ASSERT_NE(choice.entry, nullptr);
   EXPECT_EQ(choice.entry->name, "CMS71L/350");
   EXPECT_NEAR(choice.force_reserve, 17000.0 / 7416.6, 1e-3);  // the entry's 17 kN / the force

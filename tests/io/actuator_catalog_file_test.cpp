@@ -39,7 +39,7 @@ TEST(ActuatorCatalogFile, ShippedSewCatalogLoads) {
   EXPECT_EQ(find_actuator(catalog, "CMS71L/350")->max_force, 17000.0);
   EXPECT_EQ(catalog.drive_types.size(), 4u);
   // The seeds' choice for the lathe legs: 6633 N carried by a CMS63S.
-  const ActuatorChoice choice = choose_actuator(catalog, {6633.0, 0.15, 0.0});
+  const ActuatorChoice choice = choose_actuator(catalog, {6633.0, 0.15, 0.0, 0.0});
   ASSERT_NE(choice.entry, nullptr);
   EXPECT_EQ(choice.entry->name, "CMS63S/200");
 }

@@ -190,8 +190,14 @@ TEST(HexapodDesign, CatalogChoiceUsesTheAcceleratedForceWithAMax) {
             "CMS50S/300");
   EXPECT_EQ(spec.actuator_catalog->entries[static_cast<std::size_t>(rapid.actuator)].name,
             "CMS71L/350");
+  // No peak ratings in this catalog: the accelerated force against the continuous rating.
   EXPECT_DOUBLE_EQ(rapid.metrics[static_cast<int>(DesignMetric::actuator_overload)],
                    dynamic - actuator_force_capacity(*spec.actuator_catalog, 0.3));
+  // With peak ratings (2.5 x continuous) the cheap cylinder carries the rapids again.
+  for (ActuatorEntry& e : spec.actuator_catalog->entries) e.peak_force = 2.5 * e.max_force;
+  const DesignEvaluation peak = HexapodDesignProblem(spec).evaluate({});
+  EXPECT_EQ(spec.actuator_catalog->entries[static_cast<std::size_t>(peak.actuator)].name,
+            "CMS50S/300");
 }
 
 TEST(HexapodDesign, MaximizeFlipsTheSignAndConstraintsFollowTheirRelation) {
@@ -356,7 +362,7 @@ TEST(HexapodDesign, ChoosesTheCheapestCatalogActuatorThatCarriesTheLegs) {
     const double stroke = ev.parameters[kStroke];
     EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::actuator_overload)],
               force - actuator_force_capacity(catalog, stroke));
-    const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0});
+    const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0, 0.0});
     const std::vector<double> f = problem.fitness(x);
     ASSERT_EQ(f.size(), 3u);
     EXPECT_EQ(f[2], ev.metrics[static_cast<int>(DesignMetric::actuator_overload)]);

@@ -196,7 +196,7 @@ TEST_F(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
     ASSERT_TRUE(a.is_object()) << d.dump();
     const double force = a["leg_force_max"].get<double>();
     const double stroke = d["parameters"]["stroke"].get<double>();
-    const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0});
+    const ActuatorChoice choice = choose_actuator(catalog, {force, stroke, 0.0, 0.0});
     ASSERT_NE(choice.entry, nullptr);
     EXPECT_EQ(a["name"], choice.entry->name);
     EXPECT_EQ(a["max_force"], choice.entry->max_force);
