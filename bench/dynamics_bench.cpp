@@ -1,12 +1,14 @@
 // Natural frequencies of a hexapod (models/machine_dynamics.hpp, docs/dynamics.md): the cost of
-// the TCP mass matrix and the generalized eigenproblem per pose, and of a whole analyze with a
-// mass model. Items = poses, one thread.
+// the TCP mass matrix and the generalized eigenproblem per pose on the scalar path, of a whole
+// scalar analyze with a mass model, and of the SIMD batch (models/hexapod_batch.hpp) over 10^6
+// poses on one core: every metric and the six frequencies. Items = poses.
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
 #include "bench/hexapod_poses.hpp"
 #include "models/hexapod.hpp"
+#include "models/hexapod_batch.hpp"
 #include "models/machine_dynamics.hpp"
 #include "models/sample_machines.hpp"
 
@@ -64,5 +66,28 @@ void BM_HexapodAnalyzeWithMassesOneThread(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_HexapodAnalyzeWithMassesOneThread);
+
+// The SIMD batch with the mass model on one core: 10^6 poses, metrics and frequencies.
+void BM_HexapodBatchNaturalFrequenciesOneCore(benchmark::State& state) {
+  const pkmopt::Hexapod hexapod = hexapod_with_masses();
+  const std::size_t n = static_cast<std::size_t>(state.range(0));
+  const std::vector<pkmopt::Pose> p = poses(n);
+  std::vector<pkmopt::PoseMetrics> metrics(n);
+  const pkmopt::Wrench wrench = (pkmopt::Wrench() << 100, -200, -1500, 10, 20, 5).finished();
+  std::size_t scalar_poses = 0;
+  for (auto _ : state) {
+    scalar_poses = pkmopt::analyze_hexapod_batch(hexapod, p.data(), n, wrench, metrics.data());
+    benchmark::DoNotOptimize(metrics.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(n));
+  state.counters["avx2"] = pkmopt::hexapod_batch_uses_avx2() ? 1 : 0;
+  state.counters["scalar_share"] = static_cast<double>(scalar_poses) / static_cast<double>(n);
+}
+BENCHMARK(BM_HexapodBatchNaturalFrequenciesOneCore)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

@@ -53,6 +53,11 @@ struct BatchConstants {
   double screw_length_min, screw_length_slope;  // free length l0 + slope (q - min_length)
   double screw_inv_EA;                          // 1 / (E_s pi d^2 / 4)
   double actuator_error;
+  // The mass model (natural frequencies): platform mass, centre of mass - tcp and inertia in
+  // platform axes; the UPS legs' cylinder and rod (mass, centre) and their summed inertia.
+  bool masses;
+  double platform_mass, com[3], platform_inertia[3][3];
+  double cylinder_mass, cylinder_centre, rod_mass, rod_centre, leg_inertia;
 
   explicit BatchConstants(const Hexapod& hexapod) {
     const HexapodDesign& d = hexapod.design();
@@ -105,6 +110,18 @@ struct BatchConstants {
         has_screw ? 4.0 / (drive.E * std::numbers::pi * drive.root_diameter * drive.root_diameter)
                   : 0.0;
     actuator_error = d.actuator_error;
+    const MassModel& mm = d.masses;
+    masses = mm.present;
+    platform_mass = mm.platform.mass;
+    for (int a = 0; a < 3; ++a) {
+      com[a] = mm.platform.centre_of_mass(a) - d.tcp(a);
+      for (int b = 0; b < 3; ++b) platform_inertia[a][b] = mm.platform.inertia(a, b);
+    }
+    cylinder_mass = mm.legs.cylinder.mass;
+    cylinder_centre = mm.legs.cylinder.centre;
+    rod_mass = mm.legs.rod.mass;
+    rod_centre = mm.legs.rod.centre;
+    leg_inertia = mm.legs.cylinder.inertia + mm.legs.rod.inertia;
   }
 };
 
@@ -115,6 +132,7 @@ struct BlockResult {
   v4 compliance[21];  // C, lower triangle packed by rows: (a, b) at a (a + 1) / 2 + b, b <= a
   v4 tcp_deflection, tcp_rotation_deflection, direction[3], stiffness_min_loaded;
   v4 loaded_tt[3][3];  // (C_T)_tt
+  v4 frequencies[6];   // Hz, ascending (with a mass model)
   m4 reachable;
   m4 fallback;  // lanes to recompute with the scalar path
 };
@@ -164,14 +182,13 @@ bool hexapod_batch_uses_avx2() {
 std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,
                                   const Wrench& wrench, PoseMetrics* out, HexapodBatchKernel kernel,
                                   PoseCompliance* matrices) {
-  // The kernel has no mass model: a hexapod with masses (natural frequencies) and a CPU without
-  // AVX2 (where the scalar fast path is quicker than the baseline kernel) run pose by pose.
-  const bool masses = hexapod.design().masses.present;
-  if (kernel == HexapodBatchKernel::baseline && !masses) {
+  // A CPU without AVX2 (where the scalar fast path is quicker than the baseline kernel) runs pose
+  // by pose.
+  if (kernel == HexapodBatchKernel::baseline) {
     return run_batch_baseline(hexapod, poses, n, wrench, out, matrices);
   }
 #if defined(PKMOPT_BATCH_X86)
-  if (hexapod_batch_uses_avx2() && !masses) {
+  if (hexapod_batch_uses_avx2()) {
     return run_batch_avx2(hexapod, poses, n, wrench, out, matrices);
   }
 #endif

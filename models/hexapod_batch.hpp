@@ -41,13 +41,17 @@
 //     contraction factor |b|^2 / gap^2 is proven < 1e-4 (error < 1e-16 lambda); where it is not
 //     (the two largest eigenvalues of C_tt close, or a heavy load) by the Jacobi method on N,
 //     run for a block only when one of its lanes needs it;
-//   - tcp_error_max = actuator_error * max |P s| over the 32 sign vectors (4 x 8 sums).
+//   - tcp_error_max = actuator_error * max |P s| over the 32 sign vectors (4 x 8 sums);
+//   - with a mass model, the natural frequencies (models/hexapod_batch_dynamics.inc): the TCP
+//     mass matrix M of the platform and the legs in closed form, M = L L^T, the eigenvalues
+//     mu = 1 / omega^2 of S = L^T C L by the cyclic Jacobi method, sorted.
 // A lane goes through the scalar Hexapod::analyze instead when the fast path would not be
 // accurate or the pose is unusual: 1/cond(J_h) < 1e-2 (the scalar path then uses an SVD), a
 // zero-length leg, an exactly zero pivot, a Jacobi iteration that did not converge, a load that
 // the bound beta above does not prove stable (beta >= 1/2: near or beyond the stability limit,
 // where the scalar path's stiffness_min_loaded may be 0), or any non-finite intermediate
-// result. Singular poses therefore get exactly the scalar outputs.
+// result, or (with masses) a mass matrix that is not positive definite or a nearly rigid
+// direction (mu_min <= 1e-12 mu_max). Singular poses therefore get exactly the scalar outputs.
 // A last partial block is padded with copies of its last pose, so the result for a pose does
 // not depend on where it sits in the batch nor on how a batch is split.
 //
@@ -84,7 +88,6 @@ enum class HexapodBatchKernel {
 /// The metric set of hexapod.analyze for poses[0..n) under one wrench, into out[0..n), and,
 /// when `matrices` is given, the compliance matrices (what hexapod.analyze leaves in
 /// data.matrices) into matrices[0..n). out[i].q and out[i].tau are resized to 6 when needed.
-/// A hexapod with a mass model (natural frequencies) runs Hexapod::analyze pose by pose.
 /// Returns how many poses were recomputed by the scalar path (see the header comment).
 /// Thread-safe for disjoint outputs.
 std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std::size_t n,

@@ -93,6 +93,10 @@ void expect_identical(const Result& ra, const Result& rb, const std::string& whe
     EXPECT_TRUE(same_bits(a.stiffness_min_direction(c), b.stiffness_min_direction(c))) << where;
   }
   EXPECT_TRUE(same_bits(a.stiffness_min_loaded, b.stiffness_min_loaded)) << where;
+  ASSERT_EQ(a.natural_frequencies.size(), b.natural_frequencies.size()) << where;
+  for (Eigen::Index i = 0; i < a.natural_frequencies.size(); ++i) {
+    EXPECT_TRUE(same_bits(a.natural_frequencies(i), b.natural_frequencies(i))) << where;
+  }
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       EXPECT_TRUE(same_bits(ra.c.loaded_compliance_tt(i, j), rb.c.loaded_compliance_tt(i, j)))
@@ -124,6 +128,12 @@ void expect_compliance_matches_scalar(const Result& rm, const Result& rs, const 
       << where;
   EXPECT_NEAR(m.stiffness_min_loaded, s.stiffness_min_loaded, tol * s.stiffness_min_loaded)
       << where;
+  // The natural frequencies (with masses): each relative to itself.
+  ASSERT_EQ(m.natural_frequencies.size(), s.natural_frequencies.size()) << where;
+  for (Eigen::Index i = 0; i < s.natural_frequencies.size(); ++i) {
+    EXPECT_NEAR(m.natural_frequencies(i), s.natural_frequencies(i), tol * s.natural_frequencies(i))
+        << where << " frequency " << i;
+  }
   if (s_loaded.allFinite()) {
     EXPECT_LE((m_loaded - s_loaded).cwiseAbs().maxCoeff(), tol * s_loaded.norm()) << where;
   } else {  // unstable under the load: the batch answers with the scalar path
@@ -209,6 +219,50 @@ TEST(HexapodBatch, MatchesReferenceOnRandomGeometriesAndPoses) {
   }
   EXPECT_GT(checked, 2150);
   EXPECT_LT(scalar, total / 20);  // the SIMD kernel answers almost every pose
+}
+
+// With masses the kernel gives the natural frequencies too: random geometries and masses (the
+// platform's inertia turned, its centre of mass off the TCP, leg bodies of random sizes).
+TEST(HexapodBatch, NaturalFrequenciesMatchTheScalarPath) {
+  Uniform u(33);
+  int checked = 0;
+  std::size_t scalar = 0, total = 0;
+  for (int g = 0; g < 60; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
+    const Hexapod hexapod(design);
+    std::vector<Pose> poses(11);
+    for (Pose& p : poses) p = sample_machines::random_pose(u);
+    const Wrench w = random_wrench(u);
+    const BatchCheck c = expect_batch_matches(hexapod, poses, w, "masses " + std::to_string(g));
+    HexapodDesign bare = design;
+    bare.masses = MassModel{};
+    // The frequencies send no pose to the scalar path that the metrics without masses do not.
+    EXPECT_EQ(c.scalar,
+              run_batch(Hexapod(bare), poses.data(), poses.size(), w, HexapodBatchKernel::baseline)
+                  .scalar)
+        << "masses " << g;
+    checked += c.checked;
+    scalar += c.scalar;
+    total += poses.size();
+  }
+  EXPECT_GT(checked, 600);
+  EXPECT_LT(scalar, total / 10);  // the SIMD kernel answers almost every pose
+  // The symmetric milling hexapod at its home pose: the two sway modes are equal.
+  HexapodDesign design = sample_machines::conventions_hexapod_design();
+  design.masses.present = true;
+  design.masses.platform.mass = 45.0;
+  design.masses.platform.centre_of_mass = {0, 0, -0.04};
+  design.masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
+  design.masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
+  design.masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  const Hexapod symmetric(design);
+  const std::vector<Pose> home(4, Pose{{0, 0, 0.9}, {0, 0, 0}});
+  const BatchCheck c = expect_batch_matches(symmetric, home, Wrench::Zero(), "home");
+  EXPECT_EQ(c.scalar, 0u);
+  const Batch b = run_batch(symmetric, home.data(), home.size(), Wrench::Zero());
+  EXPECT_NEAR(b.metrics[0].natural_frequencies(0), b.metrics[0].natural_frequencies(1),
+              1e-9 * b.metrics[0].natural_frequencies(0));
 }
 
 // Symmetric poses of semi-regular designs: repeated eigenvalues of J_h^T J_h and of C_tt.
