@@ -11,7 +11,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <vector>
 
 #include "models/hexapod.hpp"
 #include "tests/sample_machines.hpp"
@@ -214,6 +216,45 @@ TEST(MachineDynamics, CubicHexapodHasTheClosedFormFrequencies) {
   PoseMetrics mh;
   heavy_hexapod.analyze(data, centre, Wrench::Zero(), mh);
   for (int j = 0; j < 6; ++j) EXPECT_LT(mh.natural_frequencies(j), m.natural_frequencies(j)) << j;
+}
+
+// A semi-regular hexapod at its home pose (three-fold and mirror symmetric), massless legs, the
+// centre of mass at the TCP on the axis: the vertical translation and the yaw decouple from the
+// other four directions, so two of the six frequencies are sqrt(K_zz / m) / 2 pi and
+// sqrt(K_yaw / I_zz) / 2 pi with K = J^T diag(k) J, and the other four come in equal pairs (x
+// with ry, y with rx).
+TEST(MachineDynamics, SymmetricHexapodHasDecoupledVerticalAndYawModes) {
+  HexapodDesign design = sample_machines::conventions_hexapod_design();
+  design.tcp = {0, 0, -0.1};
+  design.masses.present = true;
+  design.masses.platform.mass = 45.0;
+  design.masses.platform.centre_of_mass = design.tcp;
+  design.masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
+  const Hexapod hexapod(design);
+  const Pose home{{0, 0, 0.9}, {0, 0, 0}};
+  HexapodData data(hexapod);
+  PoseMetrics m;
+  hexapod.analyze(data, home, Wrench::Zero(), m);
+  ASSERT_EQ(m.natural_frequencies.size(), 6);
+  const Matrix6d K = hexapod.stiffness_matrix(home);
+  const double f_z = std::sqrt(K(2, 2) / 45.0) / (2 * std::numbers::pi);
+  const double f_yaw = std::sqrt(K(5, 5) / 2.0) / (2 * std::numbers::pi);
+  auto found = [&](double f) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < 6; ++j) nearest = std::min(nearest, std::abs(m.natural_frequencies(j) - f));
+    return nearest;
+  };
+  EXPECT_LT(found(f_z), 1e-9 * f_z) << m.natural_frequencies.transpose() << " f_z " << f_z;
+  EXPECT_LT(found(f_yaw), 1e-9 * f_yaw) << m.natural_frequencies.transpose() << " f_yaw " << f_yaw;
+  // The four others: two equal pairs.
+  std::vector<double> rest;
+  for (int j = 0; j < 6; ++j) {
+    const double f = m.natural_frequencies(j);
+    if (std::abs(f - f_z) > 1e-6 * f_z && std::abs(f - f_yaw) > 1e-6 * f_yaw) rest.push_back(f);
+  }
+  ASSERT_EQ(rest.size(), 4u);
+  EXPECT_NEAR(rest[0], rest[1], 1e-9 * rest[1]);
+  EXPECT_NEAR(rest[2], rest[3], 1e-9 * rest[3]);
 }
 
 }  // namespace
