@@ -195,6 +195,14 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
         "with the axes' metres in q)",
         "'" + module.string() + "' (model: " + module_model + ", revolute drives)");
   }
+  if (design.module->mass_model() != nullptr) {
+    // Not silently dropped: the hybrid model has no dynamics (the serial carriages' masses and
+    // the module's moving base are not modelled), so the masses would mean nothing here.
+    file.fail(
+        "a module without masses (hybrid machines have no mass model: no natural frequencies "
+        "and no inverse dynamics)",
+        "'" + module.string() + "' with masses");
+  }
   {
     FieldReader reader(parallel);  // home
     describe_parallel(reader, design);

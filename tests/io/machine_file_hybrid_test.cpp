@@ -83,6 +83,17 @@ TEST(HybridMachineFileFields, ListsHaveOneEntryPerAxis) {
             file +
                 "2:39: serial.colour: unknown key 'colour'; allowed keys here: code, axes, "
                 "range, stiffness, error");
+  // A module with masses is refused, not silently dropped (no hybrid dynamics).
+  try {
+    (void)read_hybrid_design(yaml("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n"
+                                  "parallel: {file: hexapod_masses.yaml, home: [0, 0, 0.9]}\n"));
+    ADD_FAILURE() << "a module with masses was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              file + "3:18: parallel.file: expected a module without masses (hybrid machines have "
+                     "no mass model: no natural frequencies and no inverse dynamics), found '" +
+                  kExamples + "hexapod_masses.yaml' with masses");
+  }
 }
 
 // Every hybrid machine file shipped in the repo (a line `model: hybrid` in a .yaml file).
