@@ -30,10 +30,12 @@ void describe_serial(Fields& g, HybridDesign& d) {
   std::vector<FieldRange> ranges;
   FieldColumn stiffness;
   FieldColumn error;
+  FieldColumn mass;
   for (HybridAxis& a : d.axes) {
     ranges.push_back({.low = a.min, .high = a.max, .closed = true, .found_values = true});
     stiffness.members.push_back(&a.stiffness);
     error.members.push_back(&a.error);
+    mass.members.push_back(&a.mass);
   }
   g.field("range", ranges,
           {.required = true,
@@ -59,6 +61,14 @@ void describe_serial(Fields& g, HybridDesign& d) {
            .default_text = "all 0 (exact)",
            .doc = "positioning error half-width of each axis, one per axis",
            .omit_when = all_zero(&HybridAxis::error)});
+  g.field("mass", mass,
+          {.min = 0,
+           .unit = "kg",
+           .default_text = "all 0 (massless)",
+           .doc = "the mass each axis moves on its own (its carriage; the axes it carries and "
+                  "the module count separately), one per axis; used when the module has masses "
+                  "(docs/dynamics.md)",
+           .omit_when = all_zero(&HybridAxis::mass)});
 }
 
 template <class Fields>
@@ -80,6 +90,12 @@ void describe_fields(Fields& f, HybridDesign& d) {
             [&](auto& g) { describe_serial(g, d); });
   f.section("parallel", {.required = true, .doc = "the parallel module"},
             [&](auto& g) { describe_parallel(g, d); });
+  f.field("gravity", d.gravity,
+          {.unit = "m/s²",
+           .default_text = "[0, 0, -9.81]",
+           .doc = "world frame, for the dynamics when the module has masses (the module file's "
+                  "own gravity is not used)",
+           .omit_when = [&d] { return d.gravity == Eigen::Vector3d(0, 0, -9.81); }});
 }
 
 // A constant rotation (rad) as the degrees the reader converts back to exactly that value when
@@ -195,17 +211,17 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
         "with the axes' metres in q)",
         "'" + module.string() + "' (model: " + module_model + ", revolute drives)");
   }
-  if (design.module->mass_model() != nullptr) {
-    // Not silently dropped: the hybrid model has no dynamics (the serial carriages' masses and
-    // the module's moving base are not modelled), so the masses would mean nothing here.
-    file.fail(
-        "a module without masses (hybrid machines have no mass model: no natural frequencies "
-        "and no inverse dynamics)",
-        "'" + module.string() + "' with masses");
-  }
   {
     FieldReader reader(parallel);  // home
     describe_parallel(reader, design);
+  }
+  if (const auto gravity = root.optional("gravity")) {  // by hand: the one top-level number list
+    if (design.module->mass_model() == nullptr) {
+      gravity->fail("gravity only with a module that has masses",
+                    "gravity and a module without masses");
+    }
+    const std::vector<YamlValue> g = gravity->elements(3);
+    for (int k = 0; k < 3; ++k) design.gravity(k) = g[static_cast<std::size_t>(k)].as_double();
   }
 
   try {
@@ -239,7 +255,12 @@ std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string&
   out += "parallel:\n  file: " + yaml_scalar(module_file) + "\n";  // by hand
   FieldWriter parallel;                                            // home
   describe_parallel(parallel, copy);
-  return out + parallel.block(2);
+  out += parallel.block(2);
+  if (copy.gravity != Eigen::Vector3d(0, 0, -9.81)) {
+    out += "gravity: [" + format_number(copy.gravity(0)) + ", " + format_number(copy.gravity(1)) +
+           ", " + format_number(copy.gravity(2)) + "]\n";
+  }
+  return out;
 }
 
 std::string hybrid_machine_fields_markdown() {

@@ -4,28 +4,26 @@ namespace pkmopt {
 
 bool acceleration_force_bound(const Machine& machine, MachineData& data, const Pose& pose,
                               const Wrench& wrench, double a_max, Eigen::VectorXd& bound) {
-  Wrench gravity;
-  Matrix6d M;
-  if (!machine.dynamic_wrench(data, pose, Vector6d::Zero(), Vector6d::Zero(), gravity) ||
-      !machine.mass_matrix(data, pose, M)) {
-    return false;
-  }
-  // Only forces are needed: the four static solves skip the compliance metrics.
+  // Only forces are needed: the static solves skip the compliance metrics.
   const bool compliance = data.compliance_metrics;
   data.compliance_metrics = false;
   PoseMetrics m;
-  machine.analyze(data, pose, wrench + gravity, m);
-  bool ok = !m.singular && m.tau.allFinite();
-  Eigen::VectorXd result = m.tau.cwiseAbs();
-  Eigen::VectorXd g_squared = Eigen::VectorXd::Zero(result.size());
+  const Vector6d at_rest = Vector6d::Zero();
+  bool ok = machine.inverse_dynamics(data, pose, at_rest, at_rest, wrench, m) && !m.singular &&
+            m.tau.allFinite();
+  const Eigen::VectorXd tau0 = ok ? m.tau : Eigen::VectorXd();
+  Eigen::VectorXd g_squared = Eigen::VectorXd::Zero(tau0.size());
   for (int k = 0; k < 3 && ok; ++k) {
-    machine.analyze(data, pose, M.col(k), m);  // tau(M e_k): the column k of G
-    ok = !m.singular && m.tau.allFinite();
-    if (ok) g_squared += m.tau.cwiseAbs2();
+    // Column k of G: the forces per unit TCP acceleration along axis k (linear at rest).
+    Vector6d unit = Vector6d::Zero();
+    unit(k) = 1.0;
+    ok = machine.inverse_dynamics(data, pose, at_rest, unit, wrench, m) && !m.singular &&
+         m.tau.allFinite();
+    if (ok) g_squared += (m.tau - tau0).cwiseAbs2();
   }
   data.compliance_metrics = compliance;
   if (!ok) return false;
-  bound = result + a_max * g_squared.cwiseSqrt();
+  bound = tau0.cwiseAbs() + a_max * g_squared.cwiseSqrt();
   return true;
 }
 

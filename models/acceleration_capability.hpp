@@ -2,18 +2,19 @@
 // in any direction with |a| <= a_max on top of an external wrench and gravity (docs/dynamics.md).
 // Drives of a machine tool are sized for its rapid moves: 1-2 g for hexapods and tripod heads.
 //
-// At zero velocity the inertia of every body is linear in the TCP acceleration xi_dot = [a; 0]:
-// w_dyn = w_g - M [a; 0] (M the TCP mass matrix, models/machine_dynamics.hpp), and the actuator
-// forces of the static solve are linear in the wrench, tau(w) (Machine::analyze). So
-//   tau(a) = tau(w + w_g) - G a,   G = [tau(M e_x), tau(M e_y), tau(M e_z)]   (n x 3),
+// At zero velocity the inertia of every body is linear in the TCP acceleration xi_dot = [a; 0],
+// and so are the actuator forces of the inverse dynamics (Machine::inverse_dynamics: the static
+// solve under the wrench, gravity and inertia). So
+//   tau(a) = tau(0) + G a,   G_k = tau(e_k) - tau(0)   (n x 3, the forces per unit acceleration),
 // and the worst a on the ball |a| <= a_max is a_max G_i / |G_i| (or its opposite):
-//   max over |a| <= a_max of |tau_i(a)| = |tau_i(w + w_g)| + a_max |G_i|
+//   max over |a| <= a_max of |tau_i(a)| = |tau_i(0)| + a_max |G_i|
 // exactly. Velocity-dependent (Coriolis and centripetal) forces are left out: they vanish where
 // a rapid move starts and stops, where its acceleration is largest; a path's own inverse
 // dynamics with them is `pkmopt trajectory`. Angular accelerations are not included (the TCP is
 // translated).
 //
-// For platforms that translate freely (hexapods, deltas, the hexaglide, Schoenflies machines).
+// For platforms that translate freely (hexapods, deltas, the hexaglide, Schoenflies machines,
+// hybrid machines whose serial axes carry such a module).
 //
 // Example:
 //   Eigen::VectorXd bound;

@@ -345,6 +345,23 @@ bool Hexapod::dynamic_wrench(MachineData& /*data*/, const Pose& pose, const Vect
   return true;
 }
 
+bool Hexapod::carried_dynamics(MachineData& /*data*/, const Pose& pose, const Vector6d& xi,
+                               const Vector6d& xi_dot, const Eigen::Vector3d& gravity,
+                               Wrench& w_dyn, Eigen::Vector3d& net_force,
+                               Eigen::Matrix<double, 9, 9>* kinetic) const {
+  if (!design_.masses.present) return false;
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  const std::vector<LegPoints> legs = hexapod_leg_points(design_, platform_rel_, pose.position, R);
+  for (const LegPoints& leg : legs) {
+    if ((leg.platform - leg.joint).norm() <= 0.0) return false;
+  }
+  const MassModel& m = design_.masses;
+  w_dyn = pkmopt::dynamic_wrench(m, R, design_.tcp, legs, pose.position, xi, xi_dot, gravity);
+  net_force = net_dynamic_force(m, R, design_.tcp, legs, pose.position, xi, xi_dot, gravity);
+  if (kinetic) *kinetic = carried_mass_matrix(m, R, design_.tcp, legs, pose.position);
+  return true;
+}
+
 void Hexapod::compute_compliance_metrics(HexapodData& d, const Pose& pose,
                                          const Vec6<double>& compliance, const Wrench& wrench,
                                          PoseMetrics& out) const {

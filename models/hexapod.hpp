@@ -190,6 +190,10 @@ class Hexapod final : public Machine {
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
   bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
                       const Vector6d& xi_dot, Wrench& w_dyn) const override;
+  bool carried_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                        const Vector6d& xi_dot, const Eigen::Vector3d& gravity, Wrench& w_dyn,
+                        Eigen::Vector3d& net_force,
+                        Eigen::Matrix<double, 9, 9>* kinetic) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (translational rows of J^-1), from compute_metrics.
   bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,

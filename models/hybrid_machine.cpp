@@ -55,7 +55,10 @@ HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
             fmt::format("hybrid: axis {} stiffness must be >= 0, found {}", i + 1, a.stiffness));
     require(std::isfinite(a.error) && a.error >= 0.0,
             fmt::format("hybrid: axis {} error must be >= 0, found {}", i + 1, a.error));
+    require(std::isfinite(a.mass) && a.mass >= 0.0,
+            fmt::format("hybrid: axis {} mass must be >= 0, found {}", i + 1, a.mass));
   }
+  require(design_.gravity.allFinite(), "hybrid: gravity must be finite");
   require(design_.home.allFinite(), "hybrid: the module's home point must be finite");
 
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(num_serial_);
@@ -73,6 +76,9 @@ HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
   if (const auto* chain = dynamic_cast<const LegChainMachine*>(design_.module.get())) {
     if (chain->design().mobility == PlatformMobility::kPlanarLegs) parasitic_module_ = chain;
   }
+  require(parasitic_module_ == nullptr || design_.module->mass_model() == nullptr,
+          "hybrid: a module with parasitic motion (planar legs) takes no masses in a hybrid "
+          "machine: its dynamics on moving axes are not modelled");
 }
 
 std::unique_ptr<MachineData> HybridMachine::make_data() const {
@@ -144,6 +150,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
                                                        d.module_compliance, d.module_error_map);
 
   out.reachable = m.reachable && s.attained;
+  out.natural_frequencies.resize(0);  // set below with masses and the compliance metrics
   out.q.resize(n);
   out.q << s.serial, m.q;
   out.tau.resize(n);
@@ -155,6 +162,8 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   if (m.singular || !maps) {
     out.singular = true;
     set_singular(out, d.compliance_metrics, d.matrices);
+    if (d.compliance_metrics && mass_model() != nullptr)
+      out.natural_frequencies.setZero(natural_frequency_count());
     return;
   }
 
@@ -174,7 +183,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
     // geometric term).
     Matrix6d turn = Matrix6d::Zero();
     turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0_;
-    Matrix6d C = turn * d.module->matrices.compliance * turn.transpose();
+    Matrix6d C = turn * d.module->matrices.compliance * turn.transpose();  // + the axes below
     Eigen::Matrix3d loaded = R0_ * d.module->matrices.loaded_compliance_tt * R0_.transpose();
     for (int i = 0; i < num_serial_; ++i) {
       const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
@@ -182,9 +191,11 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
       C.topLeftCorner<3, 3>() += A_.col(i) * A_.col(i).transpose() / k;
       loaded += A_.col(i) * A_.col(i).transpose() / k;
     }
+    const Matrix6d C_module = turn * d.module->matrices.compliance * turn.transpose();
     fill_compliance_metrics(C, wrench, out, d.matrices);
     d.matrices.loaded_compliance_tt = loaded;
     out.stiffness_min_loaded = m.stiffness_min_loaded > 0.0 ? loaded_stiffness_of(loaded) : 0.0;
+    if (mass_model() != nullptr) compute_natural_frequencies(d, s, C_module, out);
   }
 
   // tcp_error_max over the vertices of the combined error box (zero columns skipped).
@@ -204,6 +215,8 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
       !std::isfinite(out.stiffness_min)) {
     out.singular = true;
     set_singular(out, d.compliance_metrics, d.matrices);
+    if (d.compliance_metrics && mass_model() != nullptr)
+      out.natural_frequencies.setZero(natural_frequency_count());
   }
 }
 
@@ -270,6 +283,15 @@ std::string HybridMachine::actuator_coordinates_requirement(const Eigen::VectorX
   return fmt::format("{} serial axis positions (m), then {}", num_serial_, inner);
 }
 
+Eigen::VectorXd HybridMachine::free_axes(const HybridSplit& s) const {
+  Eigen::VectorXd free(num_serial_);
+  for (int i = 0; i < num_serial_; ++i) {
+    const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
+    free(i) = s.unclamped(i) > a.min && s.unclamped(i) < a.max ? 1.0 : 0.0;
+  }
+  return free;
+}
+
 bool HybridMachine::twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const {
   auto& d = static_cast<HybridData&>(data);
   const HybridSplit s = split(pose);
@@ -277,11 +299,7 @@ bool HybridMachine::twist_jacobian(MachineData& data, const Pose& pose, Eigen::M
   const int n = num_actuators();
   const int n_module = n - num_serial_;
   // Axes strictly inside their range follow; clamped ones stand still.
-  Eigen::VectorXd free(num_serial_);
-  for (int i = 0; i < num_serial_; ++i) {
-    const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
-    free(i) = s.unclamped(i) > a.min && s.unclamped(i) < a.max ? 1.0 : 0.0;
-  }
+  const Eigen::VectorXd free = free_axes(s);
   Eigen::Matrix<double, 6, 6> to_local = Eigen::Matrix<double, 6, 6>::Zero();
   to_local.topLeftCorner<3, 3>() = R0_.transpose();
   to_local.bottomRightCorner<3, 3>() = R0_.transpose();

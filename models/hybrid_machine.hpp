@@ -49,6 +49,29 @@
 //               vectors are enumerated (n <= 9: at most 3 independent axes and 6 module drives).
 //   At a singular module pose: singularity_margin = stiffness_min = 0, every tau_i and
 //   tcp_error_max = +inf (docs/conventions.md). Never NaN.
+//
+// Dynamics (a module with masses; models/hybrid_dynamics.cpp, docs/dynamics.md). Coordinates
+// z = [u; xi]: the axis displacements u (carriage i moves with sum_{j <= i} a_j u_dot_j: an axis
+// carries the ones after it in the chain and the module) and the platform's absolute twist xi.
+// The module's base translates with d = A u_dot; its bodies' kinetic energy is
+// 1/2 [d; xi]^T Q [d; xi] (Machine::carried_dynamics), so the mass matrix is
+//   M_z = [A^T Q_dd A + M_carriages, A^T Q_dxi; Q_dxi^T A, Q_xixi].
+// The axis drives (compliance 1 / k_i) and the module (compliance C_m, world axes) in series:
+// with D = diag(1 / k_i) and B = [A; 0] (6 x n_s), the compliance on z is
+//   C_z = [D, D B^T; B D, B D B^T + C_m]      (K_z = L^T diag(k, K_m) L, L = [I, 0; -B, I]).
+// Natural frequencies: the positive eigenvalues mu = 1 / omega^2 of Lc^T M_z Lc with
+// C_z = Lc Lc^T (its eigen decomposition; rigid axes and the module's rigid directions give
+// mu = 0, a massless direction too), f = 1 / (2 pi sqrt(mu)) ascending: natural_frequency_count
+// = the module's count plus one per elastic axis (k_i > 0), padded with +inf where a direction
+// carries no mass.
+// Inverse dynamics: with the follow rule, u_dot = D_free A^+ v and u_ddot = D_free A^+ a (axes
+// clamped at a limit stand still); the module moves relative to its base with
+// [v - A u_dot; omega], [a - A u_ddot; alpha] under the effective gravity g - A u_ddot (the base
+// translates without turning), which gives its actuator forces and the net force F_m of gravity
+// and inertia on its bodies; axis i then carries
+//   tau_s,i = a_i . (f + F_m + sum_{j >= i} m_j (g - a_carriage,j)),
+// f the tool's external force (the static tau_s = A^T f with no masses). Modules with parasitic
+// motion (planar-leg heads) take no masses.
 // Forward kinematics: T_chain(q_s) composed with the module FK of q_p (the world guess is taken
 // to the local frame at q_s). Twist Jacobian: q_s_dot = A^+ v for an axis strictly inside its
 // range (0 for an axis clamped at a limit: the follow rule holds it there), module rows from the
@@ -95,6 +118,9 @@ struct HybridAxis {
   double max = 0.0;        ///< m
   double stiffness = 0.0;  ///< axial stiffness of the drive (N/m); 0 = rigid
   double error = 0.0;      ///< positioning error half-width (m); default 0 (exact)
+  /// kg: the mass this axis moves on its own (its carriage and what is fixed to it; the axes it
+  /// carries and the module count separately); 0 = massless.
+  double mass = 0.0;
 };
 
 /// Everything that defines a hybrid machine. Validated by the HybridMachine constructor.
@@ -103,6 +129,9 @@ struct HybridDesign {
   std::vector<HybridAxis> axes;           ///< one per variable element, in chain order
   std::shared_ptr<const Machine> module;  ///< the parallel module (not itself hybrid)
   Eigen::Vector3d home = Eigen::Vector3d::Zero();  ///< h, module-local reference point (m)
+  /// World frame (m/s^2), for the dynamics with a module that has masses (the module file's own
+  /// gravity is not used).
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};
 };
 
 /// Per-thread scratch space of a hybrid machine: the module's data and last results.
@@ -149,6 +178,13 @@ class HybridMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
+  /// The module's masses (with the axes' in design().axes); null when the module has none.
+  const MassModel* mass_model() const override { return design_.module->mass_model(); }
+  int natural_frequency_count() const override;
+  /// See the header comment (Dynamics).
+  bool inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                        const Vector6d& xi_dot, const Wrench& wrench,
+                        PoseMetrics& out) const override;
 
   /// The follow rule at a world pose (see the header comment).
   HybridSplit split(const Pose& pose) const;
@@ -156,6 +192,13 @@ class HybridMachine final : public Machine {
   Pose world_pose(const Eigen::VectorXd& q_serial, const Pose& local) const;
 
  private:
+  /// With masses: the natural frequencies at the split `s` from the module compliance (world
+  /// axes) of the last analyze (models/hybrid_dynamics.cpp).
+  void compute_natural_frequencies(HybridData& d, const HybridSplit& s, const Matrix6d& C_module,
+                                   PoseMetrics& out) const;
+  /// 1 for the axes strictly inside their range at the split (they follow), 0 for clamped ones.
+  Eigen::VectorXd free_axes(const HybridSplit& s) const;
+
   HybridDesign design_;
   int num_serial_ = 0;
   Eigen::Matrix3d R0_ = Eigen::Matrix3d::Identity();

@@ -278,6 +278,11 @@ class LegChainMachine final : public Machine {
   /// included (docs/dynamics.md).
   bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
                       const Vector6d& xi_dot, Wrench& w_dyn) const override;
+  /// As dynamic_wrench (projected on the platform's own twists).
+  bool carried_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                        const Vector6d& xi_dot, const Eigen::Vector3d& gravity, Wrench& w_dyn,
+                        Eigen::Vector3d& net_force,
+                        Eigen::Matrix<double, 9, 9>* kinetic) const override;
   /// Row i: [s_i^T, (r_i x s_i)^T] / B_i at actual_pose(pose) (false when a leg cannot close or
   /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;

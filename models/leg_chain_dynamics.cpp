@@ -51,6 +51,15 @@ bool LegChainMachine::mass_matrix(MachineData& data, const Pose& pose, Matrix6d&
 
 bool LegChainMachine::dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
                                      const Vector6d& xi_dot, Wrench& w_dyn) const {
+  Eigen::Vector3d net_force;
+  return carried_dynamics(data, pose, xi, xi_dot, design_.masses.gravity, w_dyn, net_force,
+                          nullptr);
+}
+
+bool LegChainMachine::carried_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                                       const Vector6d& xi_dot, const Eigen::Vector3d& gravity,
+                                       Wrench& w_dyn, Eigen::Vector3d& net_force,
+                                       Eigen::Matrix<double, 9, 9>* kinetic) const {
   if (!design_.masses.present) return false;
   auto& d = static_cast<LegChainData&>(data);
   compute_kinematics(d, pose);
@@ -59,8 +68,13 @@ bool LegChainMachine::dynamic_wrench(MachineData& data, const Pose& pose, const 
   const Eigen::MatrixXd T = d.T;
   const Eigen::MatrixXd projector = T * (T.transpose() * T).ldlt().solve(T.transpose());
   const Vector6d xi_p = projector * xi, xi_dot_p = projector * xi_dot;
-  w_dyn = pkmopt::dynamic_wrench(design_.masses, d.rotation, design_.tcp, leg_points(d), d.position,
-                                 xi_p, xi_dot_p);
+  const std::vector<LegPoints> legs = leg_points(d);
+  const MassModel& m = design_.masses;
+  w_dyn =
+      pkmopt::dynamic_wrench(m, d.rotation, design_.tcp, legs, d.position, xi_p, xi_dot_p, gravity);
+  net_force =
+      net_dynamic_force(m, d.rotation, design_.tcp, legs, d.position, xi_p, xi_dot_p, gravity);
+  if (kinetic) *kinetic = carried_mass_matrix(m, d.rotation, design_.tcp, legs, d.position);
   return true;
 }
 

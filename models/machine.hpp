@@ -158,6 +158,33 @@ class Machine {
                               const Vector6d& /*xi_dot*/, Wrench& /*w_dyn*/) const {
     return false;
   }
+  /// Inverse dynamics: the actuator forces (out.tau; the other metrics as analyze gives them
+  /// under the wrench) that carry the external wrench on the tool, gravity and the inertia of
+  /// every moving body when the TCP moves with the twist xi and its rate xi_dot. By default the
+  /// static solve under wrench + dynamic_wrench; machines whose actuators also move bodies that
+  /// the TCP wrench does not see (serial axes) override it. Returns false without a mass model
+  /// or when a leg cannot close (out unspecified).
+  virtual bool inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                                const Vector6d& xi_dot, const Wrench& wrench,
+                                PoseMetrics& out) const {
+    Wrench w_dyn;
+    if (!dynamic_wrench(data, pose, xi, xi_dot, w_dyn)) return false;
+    analyze(data, pose, wrench + w_dyn, out);
+    return true;
+  }
+  /// For a machine carried on a translating base (the module of a hybrid machine): at `pose`
+  /// relative to its base, moving with the relative twist xi and rate xi_dot under the effective
+  /// gravity `gravity` (g minus the base's acceleration, base axes), the TCP wrench of gravity
+  /// and inertia (as dynamic_wrench), the net force of gravity and inertia on all its bodies
+  /// (models/machine_dynamics.hpp, net_dynamic_force) and, when `kinetic` is given, the 9x9
+  /// kinetic-energy matrix over [base velocity; absolute twist] (carried_mass_matrix). Returns
+  /// false without a mass model or when a leg cannot close.
+  virtual bool carried_dynamics(MachineData& /*data*/, const Pose& /*pose*/, const Vector6d& /*xi*/,
+                                const Vector6d& /*xi_dot*/, const Eigen::Vector3d& /*gravity*/,
+                                Wrench& /*w_dyn*/, Eigen::Vector3d& /*net_force*/,
+                                Eigen::Matrix<double, 9, 9>* /*kinetic*/) const {
+    return false;
+  }
 
   /// The volume of the machine's envelope (m^3, see the model's header); nullopt if unknown.
   virtual std::optional<double> envelope_volume() const { return std::nullopt; }

@@ -38,13 +38,19 @@ Matrix6d tcp_mass_matrix(const MassModel& model, const Eigen::Matrix3d& R,
 Wrench dynamic_wrench(const MassModel& model, const Eigen::Matrix3d& R, const Eigen::Vector3d& tcp,
                       const std::vector<LegPoints>& legs, const Eigen::Vector3d& tcp_position,
                       const Vector6d& xi, const Vector6d& xi_dot) {
+  return dynamic_wrench(model, R, tcp, legs, tcp_position, xi, xi_dot, model.gravity);
+}
+
+Wrench dynamic_wrench(const MassModel& model, const Eigen::Matrix3d& R, const Eigen::Vector3d& tcp,
+                      const std::vector<LegPoints>& legs, const Eigen::Vector3d& tcp_position,
+                      const Vector6d& xi, const Vector6d& xi_dot, const Eigen::Vector3d& gravity) {
   const Eigen::Vector3d v = xi.head<3>(), omega = xi.tail<3>();
   const Eigen::Vector3d a = xi_dot.head<3>(), alpha = xi_dot.tail<3>();
   const RigidBody& body = model.platform;
   const Eigen::Vector3d rho = R * (body.centre_of_mass - tcp);
   const Eigen::Matrix3d I_R = R * body.inertia * R.transpose();
   const Eigen::Vector3d a_c = a + alpha.cross(rho) + omega.cross(omega.cross(rho));
-  const Eigen::Vector3d f = body.mass * (model.gravity - a_c);
+  const Eigen::Vector3d f = body.mass * (gravity - a_c);
   Wrench w;
   w.head<3>() = f;
   w.tail<3>() = rho.cross(f) - I_R * alpha - omega.cross(I_R * omega);
@@ -53,11 +59,65 @@ Wrench dynamic_wrench(const MassModel& model, const Eigen::Matrix3d& R, const Ei
     const Eigen::Vector3d r = leg.platform - tcp_position;
     const Eigen::Vector3d v_P = v + omega.cross(r);
     const Eigen::Vector3d a_P = a + alpha.cross(r) + omega.cross(omega.cross(r));
-    const Eigen::Vector3d f_P = leg_dynamic_force(leg, model.legs, v_P, a_P, model.gravity);
+    const Eigen::Vector3d f_P = leg_dynamic_force(leg, model.legs, v_P, a_P, gravity);
     w.head<3>() += f_P;
     w.tail<3>() += r.cross(f_P);
   }
   return w;
+}
+
+Eigen::Vector3d net_dynamic_force(const MassModel& model, const Eigen::Matrix3d& R,
+                                  const Eigen::Vector3d& tcp, const std::vector<LegPoints>& legs,
+                                  const Eigen::Vector3d& tcp_position, const Vector6d& xi,
+                                  const Vector6d& xi_dot, const Eigen::Vector3d& gravity) {
+  const Eigen::Vector3d v = xi.head<3>(), omega = xi.tail<3>();
+  const Eigen::Vector3d a = xi_dot.head<3>(), alpha = xi_dot.tail<3>();
+  const RigidBody& body = model.platform;
+  const Eigen::Vector3d rho = R * (body.centre_of_mass - tcp);
+  const Eigen::Vector3d a_c = a + alpha.cross(rho) + omega.cross(omega.cross(rho));
+  Eigen::Vector3d f = body.mass * (gravity - a_c);
+  if (!model.legs.any()) return f;
+  for (const LegPoints& leg : legs) {
+    const Eigen::Vector3d r = leg.platform - tcp_position;
+    const Eigen::Vector3d v_P = v + omega.cross(r);
+    const Eigen::Vector3d a_P = a + alpha.cross(r) + omega.cross(omega.cross(r));
+    LegBody bodies[2];
+    if (!leg_bodies(leg, model.legs, v_P, a_P, bodies)) continue;
+    for (const LegBody& b : bodies) f += b.mass * (gravity - b.acceleration);
+  }
+  return f;
+}
+
+Eigen::Matrix<double, 9, 9> carried_mass_matrix(const MassModel& model, const Eigen::Matrix3d& R,
+                                                const Eigen::Vector3d& tcp,
+                                                const std::vector<LegPoints>& legs,
+                                                const Eigen::Vector3d& tcp_position) {
+  Eigen::Matrix<double, 9, 9> Q = Eigen::Matrix<double, 9, 9>::Zero();
+  Q.bottomRightCorner<6, 6>() = tcp_mass_matrix(model, R, tcp, legs, tcp_position);
+  if (!model.legs.any()) return Q;
+  Eigen::Matrix3d Q_dd = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, 6> Q_dxi = Eigen::Matrix<double, 3, 6>::Zero();
+  for (const LegPoints& leg : legs) {
+    LegBody bodies[2];
+    if (!leg_bodies(leg, model.legs, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), bodies)) {
+      continue;
+    }
+    Eigen::Matrix3d M_P = Eigen::Matrix3d::Zero(), N_P = Eigen::Matrix3d::Zero();
+    double mass = 0.0;
+    for (const LegBody& b : bodies) {
+      M_P += b.mass * b.A.transpose() * b.A + b.W.transpose() * b.inertia * b.W;
+      N_P += b.mass * b.A;
+      mass += b.mass;
+    }
+    Eigen::Matrix<double, 3, 6> T;
+    T << Eigen::Matrix3d::Identity(), -cross_matrix(leg.platform - tcp_position);
+    Q_dd += M_P - N_P - N_P.transpose() + mass * Eigen::Matrix3d::Identity();
+    Q_dxi += (N_P - M_P) * T;
+  }
+  Q.topLeftCorner<3, 3>() = 0.5 * (Q_dd + Q_dd.transpose());
+  Q.topRightCorner<3, 6>() = Q_dxi;
+  Q.bottomLeftCorner<6, 3>() = Q_dxi.transpose();
+  return Q;
 }
 
 namespace {

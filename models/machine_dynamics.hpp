@@ -48,6 +48,34 @@ Matrix6d tcp_mass_matrix(const MassModel& model, const Eigen::Matrix3d& R,
 Wrench dynamic_wrench(const MassModel& model, const Eigen::Matrix3d& R, const Eigen::Vector3d& tcp,
                       const std::vector<LegPoints>& legs, const Eigen::Vector3d& tcp_position,
                       const Vector6d& xi, const Vector6d& xi_dot);
+/// The same with `gravity` (m/s^2, base frame) in place of model.gravity: for a base that
+/// accelerates by a_base without turning, the dynamics relative to it are those of a fixed base
+/// under g - a_base (the effective gravity of the translating frame).
+Wrench dynamic_wrench(const MassModel& model, const Eigen::Matrix3d& R, const Eigen::Vector3d& tcp,
+                      const std::vector<LegPoints>& legs, const Eigen::Vector3d& tcp_position,
+                      const Vector6d& xi, const Vector6d& xi_dot, const Eigen::Vector3d& gravity);
+
+/// The sum over the platform and every leg body of m (g - a_c) (N, base frame): the net force of
+/// gravity and inertia on the whole mechanism for the twist xi and its rate xi_dot (relative to
+/// a fixed base) under `gravity`. What a base carrying the mechanism must supply, besides the
+/// tool's external force.
+Eigen::Vector3d net_dynamic_force(const MassModel& model, const Eigen::Matrix3d& R,
+                                  const Eigen::Vector3d& tcp, const std::vector<LegPoints>& legs,
+                                  const Eigen::Vector3d& tcp_position, const Vector6d& xi,
+                                  const Vector6d& xi_dot, const Eigen::Vector3d& gravity);
+
+/// The kinetic energy of a mechanism whose base translates with velocity d (no rotation) while
+/// the platform moves with the absolute twist xi: T = 1/2 [d; xi]^T Q [d; xi] (9x9, base axes).
+/// Every leg body moves with d + A (v_P - d) and turns with W (v_P - d) (models/leg_dynamics.hpp,
+/// v_P - d the platform joint's velocity relative to the base), so with M_P = sum m A^T A + W^T I W
+/// (the leg's mass matrix), N_P = sum m A and m_leg = sum m:
+///   Q_xixi = M (tcp_mass_matrix),  Q_dd = sum_i M_P - N_P - N_P^T + m_leg I,
+///   Q_dxi = sum_i (N_P - M_P) T_i.
+/// A mechanism that moves rigidly with its base (xi = [d; 0]) then has T = 1/2 m_total |d|^2.
+Eigen::Matrix<double, 9, 9> carried_mass_matrix(const MassModel& model, const Eigen::Matrix3d& R,
+                                                const Eigen::Vector3d& tcp,
+                                                const std::vector<LegPoints>& legs,
+                                                const Eigen::Vector3d& tcp_position);
 
 /// Natural frequencies (Hz, ascending; +inf for a rigid direction) and, on request, the mode
 /// shapes (columns, DOF twists, unit M-norm; the largest component positive).

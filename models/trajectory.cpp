@@ -188,10 +188,8 @@ TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path
     s.twist = twist_from_pose_rate(point);
     s.twist_rate = twist_rate_from_path(point);
     if (dynamics) {
-      // tau_dyn: the static force solve under the wrench plus gravity and inertia.
-      Wrench w_dyn;
-      if (machine.dynamic_wrench(*data, s.pose, s.twist, s.twist_rate, w_dyn)) {
-        machine.analyze(*data, s.pose, wrench + w_dyn, scratch);
+      // tau_dyn: the actuator forces under the wrench, gravity and inertia.
+      if (machine.inverse_dynamics(*data, s.pose, s.twist, s.twist_rate, wrench, scratch)) {
         s.tau_dyn = scratch.tau;
         for (Eigen::Index i = 0; i < s.tau_dyn.size(); ++i) {
           if (!std::isfinite(s.tau_dyn(i)) || scratch.singular) s.tau_dyn(i) = kInf;

@@ -82,17 +82,26 @@ TEST(HybridMachineFileFields, ListsHaveOneEntryPerAxis) {
   EXPECT_EQ(error_of("{code: \"1\", range: [[-1, 1]], colour: red}"),
             file +
                 "2:39: serial.colour: unknown key 'colour'; allowed keys here: code, axes, "
-                "range, stiffness, error");
-  // A module with masses is refused, not silently dropped (no hybrid dynamics).
+                "range, stiffness, error, mass");
+  // A module with masses: the axes' masses and the world gravity are read; gravity without
+  // masses is an error.
+  const HybridDesign heavy = read_hybrid_design(
+      yaml("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]], mass: [80]}\n"
+           "parallel: {file: hexapod_masses.yaml, home: [0, 0, 0.9]}\ngravity: [0, 0.5, -9.8]\n"));
+  EXPECT_EQ(heavy.axes[0].mass, 80.0);
+  EXPECT_EQ(heavy.gravity, Eigen::Vector3d(0, 0.5, -9.8));
+  ASSERT_NE(heavy.module->mass_model(), nullptr);
   try {
-    (void)read_hybrid_design(yaml("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n"
-                                  "parallel: {file: hexapod_masses.yaml, home: [0, 0, 0.9]}\n"));
-    ADD_FAILURE() << "a module with masses was accepted";
+    (void)read_hybrid_design(
+        yaml("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n"
+             "parallel: {file: hexapod.yaml, home: [0, 0, 0.9]}\n"
+             "gravity: [0, 0, -9.81]\n"));
+    ADD_FAILURE() << "gravity without masses was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              file + "3:18: parallel.file: expected a module without masses (hybrid machines have "
-                     "no mass model: no natural frequencies and no inverse dynamics), found '" +
-                  kExamples + "hexapod_masses.yaml' with masses");
+    EXPECT_EQ(std::string(e.what()), file +
+                                         "4:10: gravity: expected gravity only with a module "
+                                         "that has masses, found gravity and a module without "
+                                         "masses");
   }
 }
 
@@ -131,6 +140,7 @@ void expect_same_design(const HybridDesign& a, const HybridDesign& b) {
     EXPECT_EQ(a.axes[i].max, b.axes[i].max) << "axis " << i;
     EXPECT_EQ(a.axes[i].stiffness, b.axes[i].stiffness) << "axis " << i;
     EXPECT_EQ(a.axes[i].error, b.axes[i].error) << "axis " << i;
+    EXPECT_EQ(a.axes[i].mass, b.axes[i].mass) << "axis " << i;
   }
   EXPECT_EQ(a.home, b.home);
   ASSERT_NE(a.module, nullptr);
@@ -189,6 +199,23 @@ TEST(HybridMachineFileWriter, WritesEveryKey) {
   EXPECT_NE(text.find("code: \"3:-0.25 1 4:30 2 6:"), std::string::npos) << text;
   EXPECT_NE(text.find("axes: [X, \"Y: \\\"second\\\" \\\\ axis\"]"), std::string::npos) << text;
   expect_round_trip(design, "hexapod.yaml", kExamples + "hybrid_test.yaml");
+}
+
+// A module with masses: the axes' masses and the world gravity are written and read back.
+TEST(HybridMachineFileWriter, WritesMassesAndGravity) {
+  HybridDesign design =
+      read_hybrid_design(yaml("model: hybrid\nserial: {code: \"1 2\", range: [[-1, 1], [-1, 1]]}\n"
+                              "parallel: {file: hexapod_masses.yaml, home: [0, 0, 0.9]}\n"));
+  design.axes[0].mass = 120.0 / 7.0;
+  design.axes[1].mass = 0.0;
+  design.gravity = {0.1, 0.0, -9.80665};
+  const std::string text = hybrid_design_to_yaml(design, "hexapod_masses.yaml");
+  EXPECT_NE(text.find("\n  mass: ["), std::string::npos) << text;
+  EXPECT_NE(text.find("\ngravity: [0.1, 0, -9.80665]\n"), std::string::npos) << text;
+  expect_round_trip(design, "hexapod_masses.yaml", kExamples + "hybrid_test.yaml");
+  HybridDesign again =
+      read_hybrid_design(YamlValue::load_string(text, kExamples + "hybrid_test.yaml"));
+  EXPECT_EQ(again.gravity, design.gravity);
 }
 
 TEST(HybridMachineFileWriter, LeavesDefaultsOut) {

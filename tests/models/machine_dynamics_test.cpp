@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "models/hexapod.hpp"
+#include "tests/models/hexapod_bodies.hpp"
 #include "tests/sample_machines.hpp"
 
 namespace pkmopt {
@@ -216,6 +217,55 @@ TEST(MachineDynamics, CubicHexapodHasTheClosedFormFrequencies) {
   PoseMetrics mh;
   heavy_hexapod.analyze(data, centre, Wrench::Zero(), mh);
   for (int j = 0; j < 6; ++j) EXPECT_LT(mh.natural_frequencies(j), m.natural_frequencies(j)) << j;
+}
+
+// A hexapod on a base translating with velocity d: 1/2 [d; xi]^T Q [d; xi] (carried_mass_matrix)
+// is the kinetic energy of every body computed from their positions on the moving base
+// (tests/models/hexapod_bodies.hpp) by central differences; the net force of gravity and inertia
+// at rest is the total weight.
+TEST(MachineDynamics, CarriedMassMatrixGivesTheKineticEnergyOnAMovingBase) {
+  Uniform u(43);
+  for (int g = 0; g < 6; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
+    const Hexapod hexapod(design);
+    const auto data = hexapod.make_data();
+    const Pose pose = sample_machines::random_pose(u);
+    const Vector6d xi = random_twist(u);
+    const Eigen::Vector3d d(u(-1, 1), u(-1, 1), u(-1, 1));
+    Wrench w_dyn;
+    Eigen::Vector3d net;
+    Eigen::Matrix<double, 9, 9> Q;
+    ASSERT_TRUE(hexapod.carried_dynamics(*data, pose, Vector6d::Zero(), Vector6d::Zero(),
+                                         design.masses.gravity, w_dyn, net, &Q));
+    const double total = design.masses.platform.mass +
+                         6 * (design.masses.legs.cylinder.mass + design.masses.legs.rod.mass);
+    EXPECT_LT((net - total * design.masses.gravity).norm(), 1e-10 * total * 9.81);
+    EXPECT_LE((Q - Q.transpose()).norm(), 1e-12 * Q.norm());
+    const double h = 1e-6;
+    auto bodies = [&](double t) {
+      HexapodDesign shifted = design;
+      for (int i = 0; i < 6; ++i) shifted.base_joints.col(i) += d * t;
+      return test_bodies::bodies_at(shifted, moved(pose, xi, Vector6d::Zero(), t));
+    };
+    const test_bodies::HexapodBodies b = bodies(0), plus = bodies(h), minus = bodies(-h);
+    const MassModel& m = design.masses;
+    const Eigen::Vector3d v_c = (plus.platform_centre - minus.platform_centre) / (2 * h);
+    const Eigen::Vector3d omega = xi.tail<3>();
+    double T = 0.5 * m.platform.mass * v_c.squaredNorm() +
+               0.5 * omega.dot(b.R * m.platform.inertia * b.R.transpose() * omega);
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector3d v1 = (plus.cylinder[i] - minus.cylinder[i]) / (2 * h);
+      const Eigen::Vector3d v2 = (plus.rod[i] - minus.rod[i]) / (2 * h);
+      const Eigen::Vector3d w = b.s[i].cross((plus.s[i] - minus.s[i]) / (2 * h));
+      T += 0.5 * m.legs.cylinder.mass * v1.squaredNorm() +
+           0.5 * m.legs.rod.mass * v2.squaredNorm() +
+           0.5 * (m.legs.cylinder.inertia + m.legs.rod.inertia) * w.squaredNorm();
+    }
+    Eigen::Matrix<double, 9, 1> z;
+    z << d, xi;
+    EXPECT_NEAR(0.5 * z.dot(Q * z), T, 1e-7 * T) << "design " << g;
+  }
 }
 
 // A semi-regular hexapod at its home pose (three-fold and mirror symmetric), massless legs, the
