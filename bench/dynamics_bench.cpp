@@ -17,12 +17,7 @@ namespace {
 // The conventions hexapod with the masses of examples/hexapod_masses.yaml.
 pkmopt::Hexapod hexapod_with_masses() {
   pkmopt::HexapodDesign d = pkmopt::sample_machines::conventions_hexapod_design();
-  d.masses.present = true;
-  d.masses.platform.mass = 45.0;
-  d.masses.platform.centre_of_mass = {0, 0, -0.04};
-  d.masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
-  d.masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
-  d.masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  d.masses = pkmopt::sample_machines::milling_hexapod_masses();
   return pkmopt::Hexapod(d);
 }
 

@@ -23,4 +23,19 @@ inline HexapodDesign conventions_hexapod_design() {
   return d;
 }
 
+/// The moving masses of examples/hexapod_masses.yaml: a 45 kg platform with its spindle (centre
+/// of mass 40 mm below the joint plane, Ixx = Iyy = 1.3, Izz = 2.0 kg m^2), 6 kg cylinders (centre
+/// 0.2 m from the base joint, 0.125 kg m^2) and 3 kg rods (0.3 m from the platform joint,
+/// 0.0625 kg m^2).
+inline MassModel milling_hexapod_masses() {
+  MassModel m;
+  m.present = true;
+  m.platform.mass = 45.0;
+  m.platform.centre_of_mass = {0, 0, -0.04};
+  m.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
+  m.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
+  m.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  return m;
+}
+
 }  // namespace pkmopt::sample_machines

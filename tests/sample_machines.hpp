@@ -9,6 +9,7 @@
 
 #include "bench/uniform_stream.hpp"
 #include "models/hexapod.hpp"
+#include "models/leg_chain.hpp"
 #include "models/sample_machines.hpp"
 
 namespace pkmopt::sample_machines {
@@ -79,6 +80,18 @@ inline pkmopt::MassModel random_hexapod_masses(Uniform& u) {
   m.legs.rod = {.mass = u(1, 4), .centre = u(0.1, 0.3), .inertia = u(0.01, 0.05)};
   m.gravity = {u(-1, 1), u(-1, 1), -9.81};
   return m;
+}
+
+/// Masses for the linear delta of examples/linear_delta.yaml: a 6 kg platform (centre of mass off
+/// the TCP), 4 kg carriages and 1.5 kg links (parallelogram pairs) centred 0.2 m from the
+/// carriage joints.
+inline void add_linear_delta_masses(pkmopt::LegChainDesign& design) {
+  design.masses.present = true;
+  design.masses.platform.mass = 6.0;
+  design.masses.platform.centre_of_mass = {0.01, -0.02, 0.03};
+  design.masses.platform.inertia = Eigen::Vector3d(0.05, 0.06, 0.09).asDiagonal();
+  design.masses.legs.carriage = 4.0;
+  design.masses.legs.link = {.mass = 1.5, .centre = 0.2, .inertia = 0.03};
 }
 
 /// A pose near the middle of a random hexapod's workspace.

@@ -250,12 +250,7 @@ TEST(HexapodBatch, NaturalFrequenciesMatchTheScalarPath) {
   EXPECT_LT(scalar, total / 10);  // the SIMD kernel answers almost every pose
   // The symmetric milling hexapod at its home pose: the two sway modes are equal.
   HexapodDesign design = sample_machines::conventions_hexapod_design();
-  design.masses.present = true;
-  design.masses.platform.mass = 45.0;
-  design.masses.platform.centre_of_mass = {0, 0, -0.04};
-  design.masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
-  design.masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
-  design.masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
+  design.masses = sample_machines::milling_hexapod_masses();
   const Hexapod symmetric(design);
   const std::vector<Pose> home(4, Pose{{0, 0, 0.9}, {0, 0, 0}});
   const BatchCheck c = expect_batch_matches(symmetric, home, Wrench::Zero(), "home");

@@ -277,9 +277,8 @@ TEST(MachineDynamics, SymmetricHexapodHasDecoupledVerticalAndYawModes) {
   HexapodDesign design = sample_machines::conventions_hexapod_design();
   design.tcp = {0, 0, -0.1};
   design.masses.present = true;
-  design.masses.platform.mass = 45.0;
-  design.masses.platform.centre_of_mass = design.tcp;
-  design.masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
+  design.masses.platform = sample_machines::milling_hexapod_masses().platform;
+  design.masses.platform.centre_of_mass = design.tcp;  // massless legs, centre of mass at the TCP
   const Hexapod hexapod(design);
   const Pose home{{0, 0, 0.9}, {0, 0, 0}};
   HexapodData data(hexapod);

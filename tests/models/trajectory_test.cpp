@@ -394,12 +394,7 @@ TEST(TrajectoryDynamics, LinearDeltaPowerBalance) {
   const auto machine = load_machine_file(source_path("examples/linear_delta.yaml"));
   auto& delta = dynamic_cast<const LegChainMachine&>(*machine);
   LegChainDesign design = delta.design();
-  design.masses.present = true;
-  design.masses.platform.mass = 6.0;
-  design.masses.platform.centre_of_mass = {0.01, -0.02, 0.03};
-  design.masses.platform.inertia = Eigen::Vector3d(0.05, 0.06, 0.09).asDiagonal();
-  design.masses.legs.carriage = 4.0;
-  design.masses.legs.link = {.mass = 1.5, .centre = 0.2, .inertia = 0.03};
+  sample_machines::add_linear_delta_masses(design);
   const LegChainMachine heavy(design);
   PoseMetrics home;
   const auto data = heavy.make_data();

@@ -86,18 +86,6 @@ TEST(HexapodDesign, LegForcesAtTheHomePoseOfASymmetricHexapod) {
             1e-15);
 }
 
-// The milling hexapod's masses of examples/hexapod_masses.yaml.
-MassModel milling_masses() {
-  MassModel masses;
-  masses.present = true;
-  masses.platform.mass = 45.0;
-  masses.platform.centre_of_mass = {0, 0, -0.04};
-  masses.platform.inertia = Eigen::Vector3d(1.3, 1.3, 2.0).asDiagonal();
-  masses.legs.cylinder = {.mass = 6.0, .centre = 0.2, .inertia = 0.125};
-  masses.legs.rod = {.mass = 3.0, .centre = 0.3, .inertia = 0.0625};
-  return masses;
-}
-
 // natural_frequency_min: the lowest first natural frequency over the task poses, as analyze
 // gives it for the design; without masses the problem is refused.
 TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
@@ -106,7 +94,7 @@ TEST(HexapodDesign, NaturalFrequencyMinIsTheLowestFirstFrequencyOverTheTask) {
   spec.task.poses.push_back(Pose{{-0.12, 0.08, 0.8}, deg_to_rad(Eigen::Vector3d(-8, 4, -15))});
   spec.objectives = {{DesignMetric::natural_frequency_min, Sense::maximize}};
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no masses
-  spec.machine_template.masses = milling_masses();
+  spec.machine_template.masses = sample_machines::milling_hexapod_masses();
   const HexapodDesignProblem problem(spec);
   const DesignEvaluation ev = problem.evaluate({});
   ASSERT_TRUE(ev.ok()) << ev.failure;
@@ -136,7 +124,7 @@ TEST(HexapodDesign, DynamicActuatorForceIsTheWorstAcceleratedForceOverTheTask) {
   HexapodDesignSpec spec = single_pose_spec(0.9, -2000.0);
   spec.task.poses.push_back(Pose{{0.1, -0.05, 0.85}, deg_to_rad(Eigen::Vector3d(5, -3, 10))});
   spec.objectives = {{DesignMetric::actuator_force_dynamic_max, Sense::minimize}};
-  spec.machine_template.masses = milling_masses();
+  spec.machine_template.masses = sample_machines::milling_hexapod_masses();
   EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no a_max
   spec.task.acceleration_max = 9.81;
   auto force_at = [&](double a_max) {
@@ -177,7 +165,7 @@ TEST(HexapodDesign, CatalogChoiceUsesTheAcceleratedForceWithAMax) {
   spec.parameters[kStroke] = {0.3, 0.3};
   spec.objectives = {{DesignMetric::actuator_cost, Sense::minimize}};
   spec.actuator_catalog = sample_catalogs::sew_cms();
-  spec.machine_template.masses = milling_masses();
+  spec.machine_template.masses = sample_machines::milling_hexapod_masses();
   spec.machine_template.masses.platform.mass = 150.0;
   const DesignEvaluation still = HexapodDesignProblem(spec).evaluate({});
   spec.task.acceleration_max = 3 * 9.81;
