@@ -19,6 +19,14 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
          "stiffness_dir_y,stiffness_dir_z";
   const int nf = machine.natural_frequency_count();
   for (int j = 1; j <= nf; ++j) out << ",natural_frequency_" << j;
+  const int axes = machine.mode_axis_count();
+  static constexpr const char* kTwist[] = {"dx", "dy", "dz", "drx", "dry", "drz"};
+  if (options.modes) {
+    for (int k = 1; k <= nf; ++k) {
+      for (int a = 1; a <= axes; ++a) out << ",mode_" << k << "_axis_" << a;
+      for (const char* c : kTwist) out << ",mode_" << k << '_' << c;
+    }
+  }
   if (options.compliance)
     for (int a = 1; a <= 6; ++a)
       for (int b = 1; b <= 6; ++b) out << ",C_" << a << b;
@@ -44,6 +52,13 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
     for (int j = 0; j < nf; ++j) {
       const bool have = j < m.natural_frequencies.size();
       line += ',' + format_number(have ? m.natural_frequencies(j) : 0.0);
+    }
+    if (options.modes) {
+      const Eigen::MatrixXd& shapes = (*options.modes)[i].shapes;
+      const bool have = shapes.rows() == axes + 6 && shapes.cols() >= nf;
+      for (int k = 0; k < nf; ++k)
+        for (int r = 0; r < axes + 6; ++r)
+          line += ',' + format_number(have ? shapes(r, k) + 0.0 : 0.0);
     }
     if (options.compliance)
       for (int a = 0; a < 6; ++a)

@@ -333,6 +333,23 @@ bool Hexapod::mass_matrix(MachineData& /*data*/, const Pose& pose, Matrix6d& M) 
   return true;
 }
 
+bool Hexapod::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
+  if (!design_.masses.present) return false;
+  auto& d = static_cast<HexapodData&>(data);
+  const bool compliance_metrics = d.compliance_metrics;
+  d.compliance_metrics = true;
+  PoseMetrics metrics;
+  compute_metrics(d, pose, Wrench::Zero(), metrics);
+  d.compliance_metrics = compliance_metrics;
+  if (!metrics.reachable || metrics.singular) return false;
+  const NaturalModes modes = natural_modes(Eigen::MatrixXd(d.matrices.compliance),
+                                           Eigen::MatrixXd(mass_matrix(pose)), true);
+  if (!modes.ok) return false;
+  out.frequencies = modes.frequencies;
+  out.shapes = modes.shapes;  // the DOF are the TCP twist
+  return true;
+}
+
 bool Hexapod::dynamic_wrench(MachineData& /*data*/, const Pose& pose, const Vector6d& xi,
                              const Vector6d& xi_dot, Wrench& w_dyn) const {
   if (!design_.masses.present) return false;

@@ -188,6 +188,7 @@ class Hexapod final : public Machine {
     return design_.masses.present ? &design_.masses : nullptr;
   }
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
+  bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
   bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
                       const Vector6d& xi_dot, Wrench& w_dyn) const override;
   bool carried_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,

@@ -83,13 +83,24 @@ void HybridMachine::compute_natural_frequencies(HybridData& d, const HybridSplit
   const Eigen::MatrixXd Lc = c_eig.eigenvectors() * lambda.cwiseSqrt().asDiagonal();
   Eigen::MatrixXd S = Lc.transpose() * M * Lc;
   S = (0.5 * (S + S.transpose())).eval();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> s_eig(S, Eigen::EigenvaluesOnly);
+  const bool shapes = d.want_mode_shapes;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> s_eig(
+      S, shapes ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
   if (s_eig.info() != Eigen::Success) return;
   const Eigen::VectorXd mu = s_eig.eigenvalues();  // ascending: frequencies descend
   const double scale = mu.cwiseAbs().maxCoeff();
   std::vector<double> frequencies;
+  if (shapes) d.mode_shapes = Eigen::MatrixXd::Zero(n, count);
   for (Eigen::Index k = mu.size() - 1; k >= 0; --k) {
     if (mu(k) > 1e-12 * scale && static_cast<int>(frequencies.size()) < count) {
+      if (shapes) {
+        // z = Lc y / sqrt(mu): z^T M z = y^T S y / mu = 1.
+        Eigen::VectorXd z = Lc * s_eig.eigenvectors().col(k) / std::sqrt(mu(k));
+        Eigen::Index lead = 0;
+        z.cwiseAbs().maxCoeff(&lead);
+        if (z(lead) < 0.0) z = -z;
+        d.mode_shapes.col(static_cast<Eigen::Index>(frequencies.size())) = z;
+      }
       frequencies.push_back(1.0 / (2.0 * std::numbers::pi * std::sqrt(mu(k))));
     }
   }
@@ -97,6 +108,23 @@ void HybridMachine::compute_natural_frequencies(HybridData& d, const HybridSplit
     out.natural_frequencies(k) =
         k < static_cast<int>(frequencies.size()) ? frequencies[static_cast<std::size_t>(k)] : kInf;
   }
+}
+
+bool HybridMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
+  if (mass_model() == nullptr) return false;
+  auto& d = static_cast<HybridData&>(data);
+  const bool compliance_metrics = d.compliance_metrics;
+  d.compliance_metrics = true;
+  d.want_mode_shapes = true;
+  d.mode_shapes.resize(0, 0);
+  PoseMetrics metrics;
+  analyze(d, pose, Wrench::Zero(), metrics);
+  d.compliance_metrics = compliance_metrics;
+  d.want_mode_shapes = false;
+  if (!metrics.reachable || metrics.singular || d.mode_shapes.cols() == 0) return false;
+  out.frequencies = metrics.natural_frequencies;
+  out.shapes = d.mode_shapes;
+  return true;
 }
 
 bool HybridMachine::inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,

@@ -142,6 +142,8 @@ class HybridData : public MachineData {
   Eigen::Matrix3d module_compliance = Eigen::Matrix3d::Zero();
   Eigen::Matrix<double, 3, Eigen::Dynamic> module_error_map;
   Eigen::MatrixXd module_jacobian;
+  bool want_mode_shapes = false;  ///< analyze also fills mode_shapes (Machine::mode_shapes)
+  Eigen::MatrixXd mode_shapes;    ///< PoseModes::shapes of the last analyze with want_mode_shapes
 };
 
 /// The split of a world TCP pose between the serial axes and the module (the follow rule).
@@ -181,6 +183,8 @@ class HybridMachine final : public Machine {
   /// The module's masses (with the axes' in design().axes); null when the module has none.
   const MassModel* mass_model() const override { return design_.module->mass_model(); }
   int natural_frequency_count() const override;
+  bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
+  int mode_axis_count() const override { return num_serial_; }
   /// See the header comment (Dynamics).
   bool inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
                         const Vector6d& xi_dot, const Wrench& wrench,
@@ -193,7 +197,8 @@ class HybridMachine final : public Machine {
 
  private:
   /// With masses: the natural frequencies at the split `s` from the module compliance (world
-  /// axes) of the last analyze (models/hybrid_dynamics.cpp).
+  /// axes) of the last analyze, and the mode shapes into d.mode_shapes when d.want_mode_shapes
+  /// (models/hybrid_dynamics.cpp).
   void compute_natural_frequencies(HybridData& d, const HybridSplit& s, const Matrix6d& C_module,
                                    PoseMetrics& out) const;
   /// 1 for the axes strictly inside their range at the split (they follow), 0 for clamped ones.

@@ -553,7 +553,9 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
     return;
   }
   if (d.compliance_metrics && !vjm_) compute_compliance_metrics(d, f, wrench, out);
-  if (d.compliance_metrics && design_.masses.present) compute_natural_frequencies(d, out);
+  if (d.compliance_metrics && design_.masses.present) {
+    out.natural_frequencies = natural_modes_of(d, false).frequencies;
+  }
 }
 
 bool LegChainMachine::translational_maps(

@@ -124,6 +124,7 @@
 #include "models/compliance_chain.hpp"
 #include "models/leg_dynamics.hpp"
 #include "models/machine.hpp"
+#include "models/machine_dynamics.hpp"
 #include "models/mass_model.hpp"
 #include "models/pose.hpp"
 #include "models/virtual_joint.hpp"
@@ -273,6 +274,7 @@ class LegChainMachine final : public Machine {
   /// The full-twist TCP mass matrix at actual_pose(pose); only its restriction T^T M T to the
   /// platform's own twists is meaningful.
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
+  bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
   /// At actual_pose(pose), with xi and xi_dot projected on the platform's own twists (T T^+);
   /// for planar legs (3-PRS) the rate of T (the parasitic motion's own acceleration) is not
   /// included (docs/dynamics.md).
@@ -347,9 +349,9 @@ class LegChainMachine final : public Machine {
   double leg_ik(int leg, const Eigen::Vector3d& platform_point, bool& ok) const;
   /// The legs' joint points at the kinematics in `d` (models/leg_chain_dynamics.cpp).
   std::vector<LegPoints> leg_points(const LegChainData& d) const;
-  /// With masses: the natural frequencies from d.matrices.compliance on the DOF (models/
-  /// leg_chain_dynamics.cpp).
-  void compute_natural_frequencies(const LegChainData& d, PoseMetrics& out) const;
+  /// With masses: the natural modes from d.matrices.compliance on the DOF (models/
+  /// leg_chain_dynamics.cpp); the shapes (DOF coordinates) only when `shapes` is set.
+  NaturalModes natural_modes_of(const LegChainData& d, bool shapes) const;
   /// compliance (into d.matrices), tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction and stiffness_min_loaded of a non-singular pose, from the rod forces
   /// f (models/leg_chain_compliance.cpp).

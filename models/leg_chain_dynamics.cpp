@@ -28,7 +28,7 @@ std::vector<LegPoints> LegChainMachine::leg_points(const LegChainData& d) const 
   return legs;
 }
 
-void LegChainMachine::compute_natural_frequencies(const LegChainData& d, PoseMetrics& out) const {
+NaturalModes LegChainMachine::natural_modes_of(const LegChainData& d, bool shapes) const {
   const Matrix6d M =
       tcp_mass_matrix(design_.masses, d.rotation, design_.tcp, leg_points(d), d.position);
   // On the DOF: M_dof = T^T M T, C_dof = T^+ C T^+T (exact for the axial model, C = T C_dof T^T;
@@ -37,7 +37,23 @@ void LegChainMachine::compute_natural_frequencies(const LegChainData& d, PoseMet
   const Eigen::MatrixXd T_plus = (T.transpose() * T).ldlt().solve(T.transpose());
   const Eigen::MatrixXd M_dof = T.transpose() * M * T;
   const Eigen::MatrixXd C_dof = T_plus * d.matrices.compliance * T_plus.transpose();
-  out.natural_frequencies = natural_modes(C_dof, M_dof, false).frequencies;
+  return natural_modes(C_dof, M_dof, shapes);
+}
+
+bool LegChainMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
+  if (!design_.masses.present) return false;
+  auto& d = static_cast<LegChainData&>(data);
+  const bool compliance_metrics = d.compliance_metrics;
+  d.compliance_metrics = true;
+  PoseMetrics metrics;
+  analyze(d, pose, Wrench::Zero(), metrics);
+  d.compliance_metrics = compliance_metrics;
+  if (!metrics.reachable || metrics.singular) return false;
+  const NaturalModes modes = natural_modes_of(d, true);
+  if (!modes.ok) return false;
+  out.frequencies = modes.frequencies;
+  out.shapes = d.T * modes.shapes;  // DOF coordinates -> the TCP twist
+  return true;
 }
 
 bool LegChainMachine::mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const {

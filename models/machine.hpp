@@ -76,6 +76,16 @@ struct PoseCompliance {
   Eigen::Matrix3d loaded_compliance_tt = Eigen::Matrix3d::Zero();
 };
 
+/// The natural modes of one pose (Machine::mode_shapes).
+struct PoseModes {
+  Eigen::VectorXd frequencies;  ///< Hz, ascending: PoseMetrics::natural_frequencies
+  /// Column k is mode k: the displacements of the serial axes of a hybrid machine (m, one row per
+  /// axis, Machine::mode_axis_count), then the TCP twist [dp (m); dtheta (rad)] in base axes.
+  /// Mass-normalised, x^T M x = 1 with M the mass matrix over the same coordinates (kg, kg*m^2);
+  /// the sign makes the largest of the machine's DOF components positive.
+  Eigen::MatrixXd shapes;
+};
+
 /// Options of the forward kinematics solve.
 struct FkOptions {
   int max_iterations = 100;       ///< Newton / Levenberg-Marquardt iterations at most
@@ -139,6 +149,15 @@ class Machine {
   /// How many natural frequencies analyze gives (the platform DOF when the machine has a mass
   /// model, else 0).
   virtual int natural_frequency_count() const { return 0; }
+
+  /// The natural frequencies and mode shapes at a pose (PoseModes; the frequencies are those
+  /// of analyze). Returns false (out untouched) without a mass model, or when the pose is
+  /// unreachable or singular.
+  virtual bool mode_shapes(MachineData& /*data*/, const Pose& /*pose*/, PoseModes& /*out*/) const {
+    return false;
+  }
+  /// How many serial-axis rows lead PoseModes::shapes (a hybrid machine's axes; else 0).
+  virtual int mode_axis_count() const { return 0; }
 
   /// The machine's platform and leg masses (models/mass_model.hpp); null when it has none.
   virtual const MassModel* mass_model() const { return nullptr; }

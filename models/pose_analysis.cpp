@@ -37,4 +37,18 @@ std::vector<PoseMetrics> analyze_poses(const Machine& machine, std::span<const P
   return metrics;
 }
 
+std::vector<PoseModes> mode_shapes_of_poses(const Machine& machine, std::span<const Pose> poses) {
+  const std::size_t n = poses.size();
+  std::vector<PoseModes> modes(n);
+#pragma omp parallel
+  {
+    const std::unique_ptr<MachineData> data = machine.make_data();
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!machine.mode_shapes(*data, poses[i], modes[i])) modes[i] = PoseModes{};
+    }
+  }
+  return modes;
+}
+
 }  // namespace pkmopt

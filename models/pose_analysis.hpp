@@ -24,4 +24,8 @@ std::vector<PoseMetrics> analyze_poses(const Machine& machine, std::span<const P
                                        const Wrench& wrench,
                                        std::vector<PoseCompliance>* matrices = nullptr);
 
+/// The natural frequencies and mode shapes of every pose (Machine::mode_shapes), in parallel;
+/// a pose without modes (no mass model, unreachable, singular) gets empty matrices.
+std::vector<PoseModes> mode_shapes_of_poses(const Machine& machine, std::span<const Pose> poses);
+
 }  // namespace pkmopt

@@ -1,5 +1,5 @@
 // pkmopt analyze MACHINE.yaml --poses POSES.csv [--wrench fx,fy,fz,mx,my,mz] [--compliance]
-//                [--out FILE.csv]
+//                [--mode-shapes] [--out FILE.csv]
 #include <fmt/format.h>
 
 #include <iostream>
@@ -23,11 +23,18 @@ struct AnalyzeOptions {
   std::string wrench;
   std::string out_file;
   bool compliance = false;
+  bool modes = false;
 };
 
 void run_analyze(const AnalyzeOptions& opt) {
   // Read and validate every input before anything is written.
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  if (opt.modes && machine->natural_frequency_count() == 0) {
+    throw InputError(
+        fmt::format("{}: --mode-shapes needs a mass model: the machine file has no "
+                    "'masses' (docs/dynamics.md)",
+                    opt.machine_file));
+  }
   Wrench wrench = Wrench::Zero();
   if (!opt.wrench.empty()) {
     const auto w = parse_number_list("--wrench", opt.wrench, 6);
@@ -37,8 +44,11 @@ void run_analyze(const AnalyzeOptions& opt) {
   std::vector<PoseCompliance> matrices;
   const std::vector<PoseMetrics> metrics =
       analyze_poses(*machine, poses.poses, wrench, opt.compliance ? &matrices : nullptr);
-  const std::string csv =
-      analyze_csv(*machine, poses, metrics, {.compliance = opt.compliance ? &matrices : nullptr});
+  std::vector<PoseModes> modes;
+  if (opt.modes) modes = mode_shapes_of_poses(*machine, poses.poses);
+  const std::string csv = analyze_csv(
+      *machine, poses, metrics,
+      {.compliance = opt.compliance ? &matrices : nullptr, .modes = opt.modes ? &modes : nullptr});
   if (opt.out_file.empty()) {
     std::cout << csv;
     std::cout.flush();
@@ -65,6 +75,10 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--compliance", opt->compliance,
                 "Add the 6x6 compliance matrix at the TCP as columns C_11..C_66 (twist per wrench, "
                 "base axes)");
+  cmd->add_flag("--mode-shapes", opt->modes,
+                "With a mass model: add each natural mode's shape after the frequencies, "
+                "mode_K_dx..mode_K_drz (TCP displacement m, platform rotation rad, base axes; "
+                "mass-normalised), a hybrid machine's serial axes first as mode_K_axis_J (m)");
   cmd->callback([opt] { run_analyze(*opt); });
 }
 

@@ -106,6 +106,43 @@ TEST_F(Cli, AnalyzeWithMassesAddsTheNaturalFrequencies) {
   EXPECT_EQ(t.column("label"), t.column("natural_frequency_6") + 1);
 }
 
+// --mode-shapes: six columns per mode after the frequencies, the library's shapes; refused (exit
+// 2) for a machine without masses.
+TEST_F(Cli, AnalyzeModeShapesWritesEveryModesTwist) {
+  const std::string file = (fs::path(PKMOPT_SOURCE_DIR) / "examples/hexapod_masses.yaml").string();
+  const CliRun r = run("analyze " + file + " --poses " + poses_ + " --mode-shapes");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const pkmopt::CsvTable t = pkmopt::parse_csv(r.out, "out");
+  ASSERT_EQ(t.rows.size(), 2u);
+  const std::unique_ptr<pkmopt::Machine> machine = pkmopt::load_machine_file(file);
+  const std::vector<pkmopt::PoseModes> modes =
+      pkmopt::mode_shapes_of_poses(*machine, std::vector<pkmopt::Pose>{{{0, 0, 0.9}, {0, 0, 0}}});
+  ASSERT_EQ(modes[0].shapes.cols(), 6);
+  EXPECT_EQ(t.column("mode_1_dx"), t.column("natural_frequency_6") + 1);
+  EXPECT_EQ(t.column("label"), t.column("mode_6_drz") + 1);
+  const char* names[] = {"dx", "dy", "dz", "drx", "dry", "drz"};
+  for (int k = 1; k <= 6; ++k) {
+    for (int c = 0; c < 6; ++c) {
+      const std::string column = "mode_" + std::to_string(k) + "_" + names[c];
+      EXPECT_DOUBLE_EQ(t.number(t.rows[0], t.column(column)), modes[0].shapes(c, k - 1) + 0.0)
+          << column;
+    }
+  }
+  // A hybrid machine: the serial axis first in every mode, seven modes.
+  const std::string hybrid =
+      (fs::path(PKMOPT_SOURCE_DIR) / "examples/hybrid_long_axis_masses.yaml").string();
+  const CliRun h = run("analyze " + hybrid + " --poses " + poses_ + " --mode-shapes");
+  ASSERT_EQ(h.status, 0) << h.err;
+  const pkmopt::CsvTable th = pkmopt::parse_csv(h.out, "out");
+  EXPECT_EQ(th.column("mode_1_axis_1"), th.column("natural_frequency_7") + 1);
+  EXPECT_EQ(th.column("mode_1_dx"), th.column("mode_1_axis_1") + 1);
+  EXPECT_EQ(th.column("label"), th.column("mode_7_drz") + 1);
+  const CliRun bare = run("analyze " + machine_ + " --poses " + poses_ + " --mode-shapes");
+  EXPECT_EQ(bare.status, 2);
+  EXPECT_NE(bare.err.find("--mode-shapes needs a mass model"), std::string::npos) << bare.err;
+  EXPECT_TRUE(bare.out.empty());
+}
+
 TEST_F(Cli, AnalyzeWithoutAnglesDefaultsToZeroAndWritesInfAtSingularPoses) {
   const std::string similar =
       write("similar.yaml",

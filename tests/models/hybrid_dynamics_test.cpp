@@ -83,6 +83,19 @@ TEST(HybridDynamics, RigidAxesGiveTheModuleFrequencies) {
     EXPECT_NEAR(m.natural_frequencies(k), alone.natural_frequencies(k),
                 1e-9 * alone.natural_frequencies(k));
   }
+  // The shapes too: the axis does not move, the TCP twist is the module's (base axes aligned).
+  PoseModes modes, module_modes;
+  ASSERT_TRUE(machine.mode_shapes(*machine.make_data(), pose, modes));
+  const Hexapod alone_module(module);
+  ASSERT_TRUE(
+      alone_module.mode_shapes(*alone_module.make_data(), machine.split(pose).local, module_modes));
+  ASSERT_EQ(modes.shapes.rows(), 7);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_LT(std::abs(modes.shapes(0, k)), 1e-12);
+    const Vector6d x = modes.shapes.col(k).tail<6>(), y = module_modes.shapes.col(k);
+    EXPECT_LT((x - y).norm(), 1e-7 * y.norm())
+        << k << ": " << x.transpose() << " / " << y.transpose();
+  }
 }
 
 // Legs 10^6 times stiffer than the axis: the lowest mode is carriage and module moving together
@@ -100,6 +113,18 @@ TEST(HybridDynamics, SoftAxisCarriesTheWholeMassAndAStiffOneGivesTheModuleBack) 
   ASSERT_EQ(m.natural_frequencies.size(), 7);
   const double expected = std::sqrt(k_axis / (m_carriage + m_module)) / (2 * std::numbers::pi);
   EXPECT_NEAR(m.natural_frequencies(0), expected, 1e-5 * expected);
+  // Its shape: the axis and the TCP move together along x by 1 / sqrt(m_carriage + m_module)
+  // (mass-normalised), nothing else moves.
+  PoseModes modes;
+  ASSERT_TRUE(soft.mode_shapes(*soft.make_data(), pose, modes));
+  ASSERT_EQ(soft.mode_axis_count(), 1);
+  ASSERT_EQ(modes.shapes.rows(), 7);
+  ASSERT_EQ(modes.shapes.cols(), 7);
+  Eigen::VectorXd rigid_body = Eigen::VectorXd::Zero(7);
+  rigid_body(0) = rigid_body(1) = 1.0 / std::sqrt(m_carriage + m_module);
+  EXPECT_LT((modes.shapes.col(0) - rigid_body).norm(), 1e-5 * rigid_body.norm())
+      << modes.shapes.col(0).transpose();
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(modes.frequencies(k), m.natural_frequencies(k));
 
   const HexapodDesign legs = module_design(2e7);
   const HybridMachine stiff = hybrid("1", 1e13, m_carriage, legs);

@@ -225,7 +225,8 @@ TEST(LegChainCompliance, DriveTrainEntersThroughTheTransmission) {
 // Natural frequencies of a linear delta with masses: the DOF mass matrix built here from the
 // kinetic energy of every body (platform, carriages from the IK's carriage positions, links
 // from their ends), differentiated numerically, and the DOF stiffness from the compliance give
-// the frequencies analyze reports (Eigen's generalized eigensolver). Leg masses lower them.
+// the frequencies analyze reports (Eigen's generalized eigensolver) and the mode shapes
+// mode_shapes reports. Leg masses lower the frequencies.
 TEST(LegChainCompliance, NaturalFrequenciesFromTheBodiesKineticEnergy) {
   LinearDeltaDesign p;
   p.masses.present = true;
@@ -291,6 +292,22 @@ TEST(LegChainCompliance, NaturalFrequenciesFromTheBodiesKineticEnergy) {
     for (int j = 0; j < 3; ++j) {
       const double f = std::sqrt(ges.eigenvalues()(j)) / (2 * std::numbers::pi);
       EXPECT_NEAR(m.natural_frequencies(j), f, 1e-6 * f) << j;
+    }
+    // The mode shapes (TCP displacements, no platform rotation) solve K x = omega^2 M x with
+    // this test's K and M and are M-orthonormal (equal frequencies, as at the centre, leave the
+    // shapes free within their plane, so the eigenvectors themselves are not compared).
+    PoseModes modes;
+    ASSERT_TRUE(machine.mode_shapes(*data, pose, modes));
+    ASSERT_EQ(modes.shapes.rows(), 6);
+    ASSERT_EQ(modes.shapes.cols(), 3);
+    const Eigen::Matrix3d X = modes.shapes.topRows<3>();
+    EXPECT_LT((X.transpose() * M * X - Eigen::Matrix3d::Identity()).norm(), 1e-6);
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_NEAR(modes.frequencies(j), m.natural_frequencies(j), 1e-12 * m.natural_frequencies(j));
+      const double omega = 2 * std::numbers::pi * modes.frequencies(j);
+      const Eigen::Vector3d x = X.col(j);
+      EXPECT_LT((K * x - omega * omega * M * x).norm(), 1e-6 * (K * x).norm()) << j;
+      EXPECT_LT(modes.shapes.col(j).tail<3>().norm(), 1e-12 * x.norm()) << j;
     }
     // Massless legs: higher frequencies.
     LinearDeltaDesign light = p;

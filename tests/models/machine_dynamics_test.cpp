@@ -1,8 +1,8 @@
 // Tests of models/machine_dynamics on hexapods: the TCP mass matrix against the kinetic energy of
 // every body computed here from the bodies' positions along a motion (finite differences), the
 // gravity and inertia wrench against the energy balance, the natural modes against
-// K x = omega^2 M x, the cubic Gough-Stewart platform's closed-form frequencies, and leg masses
-// lowering every frequency.
+// K x = omega^2 M x, the cubic Gough-Stewart platform's closed-form frequencies, leg masses
+// lowering every frequency, and the mode shapes of Machine::mode_shapes.
 #include "models/machine_dynamics.hpp"
 
 #include <gtest/gtest.h>
@@ -304,6 +304,66 @@ TEST(MachineDynamics, SymmetricHexapodHasDecoupledVerticalAndYawModes) {
   ASSERT_EQ(rest.size(), 4u);
   EXPECT_NEAR(rest[0], rest[1], 1e-9 * rest[1]);
   EXPECT_NEAR(rest[2], rest[3], 1e-9 * rest[3]);
+  // The vertical mode is a pure z translation and the yaw mode a pure turn about z,
+  // mass-normalised: 1 / sqrt(m) and 1 / sqrt(I_zz).
+  PoseModes modes;
+  ASSERT_TRUE(hexapod.mode_shapes(data, home, modes));
+  for (int j = 0; j < 6; ++j) {
+    const Vector6d x = modes.shapes.col(j);
+    if (std::abs(modes.frequencies(j) - f_z) < 1e-6 * f_z) {
+      EXPECT_LT((x - Vector6d::Unit(2) / std::sqrt(45.0)).norm(), 1e-9) << x.transpose();
+    } else if (std::abs(modes.frequencies(j) - f_yaw) < 1e-6 * f_yaw) {
+      EXPECT_LT((x - Vector6d::Unit(5) / std::sqrt(2.0)).norm(), 1e-9) << x.transpose();
+    }
+  }
+}
+
+// The mode shapes of random hexapods with leg masses at random poses solve
+// K x = omega^2 M x with K = J^T diag(k) J (Hexapod::stiffness_matrix, not the compliance the
+// frequencies come from) and M the TCP mass matrix; they are M-orthonormal, carry the
+// frequencies analyze reports, and the largest component is positive.
+TEST(MachineDynamics, ModeShapesSolveTheEigenproblemAtRandomPoses) {
+  Uniform u(47);
+  for (int g = 0; g < 8; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    design.masses = sample_machines::random_hexapod_masses(u);
+    const Hexapod hexapod(design);
+    const auto data = hexapod.make_data();
+    const Pose pose = sample_machines::random_pose(u);
+    PoseMetrics m;
+    hexapod.analyze(*data, pose, Wrench::Zero(), m);
+    if (!m.reachable || m.singular) continue;
+    PoseModes modes;
+    ASSERT_TRUE(hexapod.mode_shapes(*data, pose, modes));
+    Matrix6d M;
+    ASSERT_TRUE(hexapod.mass_matrix(*data, pose, M));
+    const Matrix6d K = hexapod.stiffness_matrix(pose);
+    ASSERT_EQ(modes.shapes.rows(), 6);
+    ASSERT_EQ(modes.shapes.cols(), 6);
+    const Matrix6d X = modes.shapes;
+    EXPECT_LT((X.transpose() * M * X - Matrix6d::Identity()).norm(), 1e-9) << "design " << g;
+    for (int j = 0; j < 6; ++j) {
+      EXPECT_NEAR(modes.frequencies(j), m.natural_frequencies(j), 1e-9 * m.natural_frequencies(j));
+      const double omega = 2 * std::numbers::pi * modes.frequencies(j);
+      const Vector6d x = X.col(j);
+      EXPECT_LT((K * x - omega * omega * M * x).norm(), 1e-8 * (K * x).norm()) << g << " " << j;
+      Eigen::Index lead = 0;
+      x.cwiseAbs().maxCoeff(&lead);
+      EXPECT_GT(x(lead), 0.0);
+    }
+  }
+}
+
+// Without masses there are no modes; an unreachable pose has none either.
+TEST(MachineDynamics, NoModesWithoutMassesOrOutsideTheWorkspace) {
+  HexapodDesign design = sample_machines::conventions_hexapod_design();
+  PoseModes modes;
+  const Hexapod bare(design);
+  EXPECT_FALSE(bare.mode_shapes(*bare.make_data(), Pose{{0, 0, 0.9}, {0, 0, 0}}, modes));
+  design.masses = sample_machines::milling_hexapod_masses();
+  const Hexapod heavy(design);
+  EXPECT_FALSE(heavy.mode_shapes(*heavy.make_data(), Pose{{0, 0, 5.0}, {0, 0, 0}}, modes));
+  EXPECT_EQ(modes.shapes.size(), 0);
 }
 
 }  // namespace
