@@ -70,9 +70,12 @@ BENCHMARK(BM_HexapodMetricsBatchBaselineOneThread)->Unit(benchmark::kMicrosecond
 
 // What `pkmopt analyze` runs on a hexapod: the SIMD batch path (models/hexapod_batch.hpp) on
 // slices of 1024 poses with OpenMP. Args: {poses, threads (0: all), matrices (1: also write the
-// 6x6 compliance and the loaded 3x3 block, as analyze --compliance)}; items = poses, real time.
+// 6x6 compliance and the loaded 3x3 block, as analyze --compliance), legs (1: 80 mm legs, the
+// interference check of models/leg_interference.hpp)}; items = poses, real time.
 void BM_HexapodAnalyzeBatch(benchmark::State& state) {
-  const pkmopt::Hexapod hexapod = sample_hexapod();
+  pkmopt::HexapodDesign design = sample_hexapod().design();
+  if (state.range(3) != 0) design.leg_shape.diameter = 0.08;
+  const pkmopt::Hexapod hexapod(design);
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : omp_get_max_threads();
   // 1: also the compliance matrices (what analyze --compliance writes)
@@ -102,9 +105,10 @@ void BM_HexapodAnalyzeBatch(benchmark::State& state) {
   state.counters["scalar_share"] = static_cast<double>(scalar_poses) / static_cast<double>(n);
 }
 BENCHMARK(BM_HexapodAnalyzeBatch)
-    ->Args({1000000, 0, 0})
-    ->Args({1000000, 1, 0})
-    ->Args({1000000, 1, 1})
+    ->Args({1000000, 0, 0, 0})
+    ->Args({1000000, 1, 0, 0})
+    ->Args({1000000, 1, 1, 0})
+    ->Args({1000000, 1, 0, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "models/leg_interference.hpp"
+
 namespace pkmopt {
 
 std::string analyze_csv(const Machine& machine, const PoseTable& poses,
@@ -17,6 +19,8 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
   out << ",stiffness_min,singularity_margin,det_j,tcp_error_max";
   out << ",tcp_deflection,tcp_rotation_deflection_deg,stiffness_min_loaded,stiffness_dir_x,"
          "stiffness_dir_y,stiffness_dir_z";
+  const bool interference = machine.checks_leg_interference();
+  if (interference) out << ",leg_clearance,clearance_pair";
   const int nf = machine.natural_frequency_count();
   for (int j = 1; j <= nf; ++j) out << ",natural_frequency_" << j;
   const int axes = machine.mode_axis_count();
@@ -49,6 +53,10 @@ std::string analyze_csv(const Machine& machine, const PoseTable& poses,
     line += ',' + format_number(m.tcp_rotation_deflection * kRadToDeg);
     line += ',' + format_number(m.stiffness_min_loaded);
     for (int k = 0; k < 3; ++k) line += ',' + format_number(m.stiffness_min_direction(k) + 0.0);
+    if (interference) {
+      line += ',' + format_number(m.leg_clearance);
+      line += ',' + clearance_pair_text(m.clearance_first, m.clearance_second);
+    }
     for (int j = 0; j < nf; ++j) {
       const bool have = j < m.natural_frequencies.size();
       line += ',' + format_number(have ? m.natural_frequencies(j) : 0.0);

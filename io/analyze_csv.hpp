@@ -2,13 +2,15 @@
 //
 //   x,y,z,rx,ry,rz,reachable,q_1..q_n,tau_1..tau_n,stiffness_min,singularity_margin,det_j,
 //   tcp_error_max,tcp_deflection,tcp_rotation_deflection_deg,stiffness_min_loaded,
-//   stiffness_dir_x,stiffness_dir_y,stiffness_dir_z[,natural_frequency_1..n]
+//   stiffness_dir_x,stiffness_dir_y,stiffness_dir_z[,leg_clearance,clearance_pair]
+//   [,natural_frequency_1..n]
 //   [,mode_k_axis_1..mode_k_axis_s,mode_k_dx,mode_k_dy,mode_k_dz,mode_k_drx,mode_k_dry,mode_k_drz
 //   for k = 1..n][,C_11..C_66], then every other column of the pose file, unchanged.
 // q_i in m for prismatic actuators and degrees for revolute ones; tau_i in N or N·m;
 // tcp_deflection in m and tcp_rotation_deflection_deg in degrees under the analysed wrench;
 // stiffness_min_loaded in N/m; stiffness_dir the unit force direction of stiffness_min;
-// natural_frequency_j in Hz, ascending, when the machine has a mass model; C_ab the
+// leg_clearance in m and clearance_pair ("3-4", the closest legs) when the machine file gives the
+// legs' shape; natural_frequency_j in Hz, ascending, when the machine has a mass model; C_ab the
 // compliance (row a, column b; m/N, m/(N·m), rad/N, rad/(N·m)) with `compliance`; mode_k_* the
 // mass-normalised shape of mode k with `modes` (PoseModes: the serial axes of a hybrid machine in
 // m, the TCP displacement in m and the platform rotation in rad, base axes; 0 where a pose has no

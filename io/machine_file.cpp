@@ -8,6 +8,7 @@
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
 #include "io/hexapod_fields.hpp"
+#include "io/leg_shape_fields.hpp"
 #include "io/machine_file_hybrid.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
@@ -85,7 +86,9 @@ void describe_fields(Fields& f, HexapodDesign& d) {
              .expected = "a number > legs.min_length",
              .doc = "longest leg length (stroke limit)"});
     describe_leg_stiffness(g, d.stiffness);
+    describe_leg_shape(g, d.leg_shape);
   });
+  describe_min_clearance(f, d.min_clearance);
   f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, d.joints); });
   f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, d.tcp); });
   f.field("characteristic_length", d.characteristic_length,
@@ -119,6 +122,11 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   check_leg_stiffness(legs, design.stiffness);
   normalize_joint_axes(root, design.joints);
   check_mass_fields(root, design.masses);
+  try {
+    check_leg_shape(design.leg_shape, design.min_clearance);
+  } catch (const std::invalid_argument& e) {
+    legs.fail(e.what());
+  }
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)
   } catch (const std::invalid_argument& e) {

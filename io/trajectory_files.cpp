@@ -8,6 +8,7 @@
 
 #include "io/csv.hpp"
 #include "io/pose_csv.hpp"
+#include "models/leg_interference.hpp"
 
 namespace pkmopt {
 namespace {
@@ -44,6 +45,8 @@ std::string trajectory_csv(const Machine& machine, const TrajectoryResult& resul
     for (int j = 1; j <= na; ++j) out << ",tau_dyn_" << j;
   }
   out << ",singularity_margin,det_j";
+  const bool interference = machine.checks_leg_interference();
+  if (interference) out << ",leg_clearance,clearance_pair";
   if (jacobian) {
     for (int r = 1; r <= na; ++r) {
       for (int c = 1; c <= 6; ++c) out << ",J_" << r << '_' << c;
@@ -67,6 +70,10 @@ std::string trajectory_csv(const Machine& machine, const TrajectoryResult& resul
     if (dynamics) line += joined(s.tau_dyn, 1.0);
     line += ',' + format_number(s.metrics.singularity_margin);
     line += ',' + format_number(s.metrics.det_j);
+    if (interference) {
+      line += ',' + format_number(s.metrics.leg_clearance);
+      line += ',' + clearance_pair_text(s.metrics.clearance_first, s.metrics.clearance_second);
+    }
     if (jacobian) {
       for (int r = 0; r < na; ++r) {
         for (int c = 0; c < 6; ++c) {
@@ -105,9 +112,25 @@ std::string trajectory_summary_text(const Machine& machine, const TrajectoryResu
       format_number(result.samples.back().t), summary.reachable, summary.singularity_margin_min);
   if (summary.reachable < summary.samples) {
     text += fmt::format(
-        "  WARNING: {} of {} samples are not reachable (actuator ranges or joint limits): the "
-        "machine cannot follow this path\n",
+        "  WARNING: {} of {} samples are not reachable (actuator ranges, joint limits or leg "
+        "interference): the machine cannot follow this path\n",
         summary.samples - summary.reachable, summary.samples);
+  }
+  if (machine.checks_leg_interference() && !result.samples.empty()) {
+    const TrajectorySample& closest = result.samples[summary.clearance_min_sample];
+    text += fmt::format(
+        "  legs: min clearance {:.4g} mm (legs {}) at t = {} s\n", summary.clearance_min * 1e3,
+        clearance_pair_text(closest.metrics.clearance_first, closest.metrics.clearance_second),
+        format_number(closest.t));
+    if (summary.first_intersecting != static_cast<std::size_t>(-1)) {
+      const TrajectorySample& first = result.samples[summary.first_intersecting];
+      text += fmt::format(
+          "  WARNING: legs {} intersect first at sample {} (t = {} s, x {:.4g}, y {:.4g}, z {:.4g} "
+          "m)\n",
+          clearance_pair_text(first.metrics.clearance_first, first.metrics.clearance_second),
+          summary.first_intersecting, format_number(first.t), first.pose.position.x(),
+          first.pose.position.y(), first.pose.position.z());
+    }
   }
   for (int i = 0; i < na; ++i) {
     text += fmt::format("  q_{}: {:.6g} .. {:.6g} {}, max |q_dot| {:.4g} {}/s\n", i + 1,

@@ -11,6 +11,7 @@
 //                          q_1..q_n, q_dot_1..q_dot_n, q_dot_fd_1..q_dot_fd_n, tau_1..tau_n
 //                          (N or N*m, under the wrench), with masses tau_dyn_1..tau_dyn_n
 //                          (wrench, gravity and inertia), singularity_margin, det_j
+//                          [,leg_clearance,clearance_pair with a leg shape]
 //                        and, with `jacobian`, J_r_c (r = 1..n, c = 1..6; SI units, +inf where
 //                        the Jacobian failed). q in m and m/s for prismatic actuators, deg and
 //                        deg/s for revolute ones.

@@ -114,6 +114,7 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
               fmt_double(k.platform_joint_stiffness));
   check_screw_drive(k.drive, "legs.drive", false);
   if (design_.masses.present) check_mass_model(design_.masses, "masses.");
+  check_leg_shape(design_.leg_shape, design_.min_clearance);
   require(k.axial_stiffness > 0.0 || (k.E > 0.0) == (k.area > 0.0),
           "legs: the strut needs both E and area (or axial_stiffness)");
   require(k.axial_stiffness > 0.0 || (k.E > 0.0 && k.area > 0.0) || k.actuator_stiffness > 0.0 ||
@@ -193,11 +194,30 @@ bool Hexapod::reachable_from_kinematics(const HexapodData& d, const Mat3<double>
   return true;
 }
 
+Clearance Hexapod::clearance_from_kinematics(const HexapodData& d) const {
+  Capsule bodies[12];
+  int n = 0;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d a = design_.base_joints.col(i);
+    n += leg_bodies(design_.leg_shape, a, a + d.q(i) * d.s.col(i), i, bodies + n);
+  }
+  return pkmopt::leg_clearance(std::span<const Capsule>(bodies, static_cast<std::size_t>(n)));
+}
+
+Clearance Hexapod::leg_clearance(const Pose& pose) const {
+  if (!design_.leg_shape.present()) return {};
+  HexapodData d;
+  compute_kinematics(d, pose);
+  return clearance_from_kinematics(d);
+}
+
 bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
   auto& d = static_cast<HexapodData&>(data);
   const Mat3<double> R = rotation_zyx<double>(pose.angles);
   if (!compute_kinematics(d, pose, R)) return false;
-  return reachable_from_kinematics(d, R);
+  if (!reachable_from_kinematics(d, R)) return false;
+  return !design_.leg_shape.present() ||
+         clearance_from_kinematics(d).value >= design_.min_clearance;
 }
 
 void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wrench,
@@ -205,6 +225,16 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   const Mat3<double> R = rotation_zyx<double>(pose.angles);
   const bool legs_ok = compute_kinematics(d, pose, R);
   out.reachable = legs_ok && reachable_from_kinematics(d, R);
+  if (design_.leg_shape.present()) {
+    const Clearance c = clearance_from_kinematics(d);
+    out.leg_clearance = c.value;
+    out.clearance_first = c.first;
+    out.clearance_second = c.second;
+    out.reachable = out.reachable && c.value >= design_.min_clearance;
+  } else {
+    out.leg_clearance = std::numeric_limits<double>::infinity();
+    out.clearance_first = out.clearance_second = -1;
+  }
   out.q = d.q;
   Vec6<double> compliance;  // 1 / k_i
   for (int i = 0; i < 6; ++i) {

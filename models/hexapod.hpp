@@ -19,8 +19,9 @@
 //   singularity_margin = 1 / cond(J_h), J_h = J diag(1, 1, 1, 1/L, 1/L, 1/L).
 //   tcp_error_max = max over |dq_i| <= actuator_error of |(J^-1 dq)_position| (at a vertex).
 //   Base joint angle: angle(s_i, base_axis); platform joint angle: angle(-s_i, R platform_axis).
-//   A pose is reachable when min_length <= q_i <= max_length and every joint angle is within
-//   its limit.
+//   A pose is reachable when min_length <= q_i <= max_length, every joint angle is within
+//   its limit and, with a leg shape, the legs' clearance is at least min_clearance
+//   (leg_clearance over the 15 leg pairs, models/leg_interference.hpp).
 //   Singular pose: 1 / cond(J_h) < kSingularRcond; then singularity_margin = 0,
 //   stiffness_min = 0, tau_i = tcp_error_max = +inf.
 //
@@ -47,6 +48,7 @@
 
 #include "models/compliance_chain.hpp"
 #include "models/leg_dynamics.hpp"
+#include "models/leg_interference.hpp"
 #include "models/machine.hpp"
 #include "models/mass_model.hpp"
 #include "models/pose.hpp"
@@ -94,6 +96,10 @@ struct HexapodDesign {
   /// Platform and leg masses (models/mass_model.hpp; UPS cylinder and rod); `present` false:
   /// none (no natural frequencies).
   MassModel masses;
+  /// The legs' outer shape (models/leg_interference.hpp); not given: no interference check.
+  LegShape leg_shape;
+  /// m: with a leg shape, a pose is reachable only when leg_clearance >= min_clearance.
+  double min_clearance = 0.0;
 };
 
 /// Joints of a semi-regular hexagon of given radius and pair separation (rad), docs/conventions.md:
@@ -170,6 +176,9 @@ class Hexapod final : public Machine {
   void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                PoseMetrics& out) const override;
   bool reachable(MachineData& data, const Pose& pose) const override;
+  bool checks_leg_interference() const override { return design_.leg_shape.present(); }
+  /// The legs' clearance at a pose (+inf without a leg shape).
+  Clearance leg_clearance(const Pose& pose) const;
   FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
                               const FkOptions& options = {}) const override;
   /// Leg i puts the TCP in the ball of radius max_length about c_i = a_i - R (b_i - tcp); with
@@ -230,6 +239,8 @@ class Hexapod final : public Machine {
 
  private:
   bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
+  /// The clearance of the legs of the last compute_kinematics (a_i to a_i + q_i s_i).
+  Clearance clearance_from_kinematics(const HexapodData& data) const;
   /// compliance (into data.matrices), tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction, stiffness_min_loaded and (with masses) natural_frequencies of a
   /// non-singular pose (after

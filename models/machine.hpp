@@ -23,6 +23,8 @@
 //   stiffness_min_direction  the unit force direction of stiffness_min (the eigenvector of C_tt
 //                 for its largest eigenvalue; sign: largest component positive)
 //   natural_frequencies      with a mass model: det(K - omega^2 M) = 0 on the platform DOF, Hz
+//   leg_clearance            with a leg shape: the smallest gap between the surfaces of two legs
+//                 (m, negative when they intersect; models/leg_interference.hpp), +inf without
 //   stiffness_min_loaded     1 / sigma_max(C_T,tt), C_T = K_T^-1 the loaded (tangent) compliance
 //                 with the geometric term of the leg forces under the wrench; 0 when K_T is
 //                 not positive definite (the loaded mechanism is unstable)
@@ -37,6 +39,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -66,6 +69,10 @@ struct PoseMetrics {
   /// elastic mechanism (models/machine_dynamics.hpp); empty when the machine has no mass model
   /// or the compliance metrics are off; 0 at a singular pose.
   Eigen::VectorXd natural_frequencies;
+  /// m: the smallest clearance between the surfaces of two legs (models/leg_interference.hpp),
+  /// negative when they intersect; +inf when the machine has no leg shape.
+  double leg_clearance = std::numeric_limits<double>::infinity();
+  int clearance_first = -1, clearance_second = -1;  ///< the closest pair (0-based legs)
 };
 
 /// The compliance matrices of one analyzed pose (see the header comment).
@@ -146,6 +153,9 @@ class Machine {
       const std::vector<Eigen::Matrix3d>& /*orientations*/) const {
     return std::nullopt;
   }
+  /// True when the machine file gives the legs' shape: analyze fills leg_clearance and a pose is
+  /// reachable only with leg_clearance >= min_clearance (models/leg_interference.hpp).
+  virtual bool checks_leg_interference() const { return false; }
   /// How many natural frequencies analyze gives (the platform DOF when the machine has a mass
   /// model, else 0).
   virtual int natural_frequency_count() const { return 0; }

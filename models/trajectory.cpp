@@ -298,6 +298,12 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
     const TrajectorySample& s = result.samples[k];
     const bool interior = k > 0 && k + 1 < result.samples.size();
     if (s.metrics.reachable) ++summary.reachable;
+    if (s.metrics.leg_clearance < summary.clearance_min) {
+      summary.clearance_min = s.metrics.leg_clearance;
+      summary.clearance_min_sample = k;
+    }
+    if (s.metrics.leg_clearance < 0.0 && summary.first_intersecting == static_cast<std::size_t>(-1))
+      summary.first_intersecting = k;
     summary.q_min = summary.q_min.cwiseMin(s.metrics.q);
     summary.q_max = summary.q_max.cwiseMax(s.metrics.q);
     summary.q_dot_max = summary.q_dot_max.cwiseMax(s.q_dot.cwiseAbs());

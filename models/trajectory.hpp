@@ -225,6 +225,12 @@ struct TrajectorySummary {
   Eigen::VectorXd tau_dyn_max;
   Eigen::VectorXd tau_dyn_rms;
   Eigen::VectorXd power_max;
+  /// With a leg shape (Machine::checks_leg_interference): the smallest leg_clearance over the
+  /// samples (m; +inf without a shape), the sample it is at, and the first sample whose legs
+  /// intersect (leg_clearance < 0), npos when none does.
+  double clearance_min = std::numeric_limits<double>::infinity();
+  std::size_t clearance_min_sample = 0;
+  std::size_t first_intersecting = static_cast<std::size_t>(-1);
 };
 
 /// The summary of a run of a machine with `num_actuators` actuators.

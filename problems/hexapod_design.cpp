@@ -8,7 +8,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <stdexcept>
+#include <type_traits>
 
 #include "models/acceleration_capability.hpp"
 #include "models/sample_machines.hpp"
@@ -94,6 +96,12 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
       throw std::invalid_argument(
           fmt::format("{}: {} needs the machine's masses (machine.masses, docs/dynamics.md)", where,
                       design_metric_name(metric)));
+  if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)] &&
+      !spec_.machine_template.leg_shape.present())
+    throw std::invalid_argument(fmt::format(
+        "{}: leg_clearance_min needs the legs' shape (machine.legs.diameter, or legs.cylinder "
+        "and legs.rod; docs/interference.md)",
+        where));
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
     if (catalog.entries.empty())
@@ -140,6 +148,12 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     num_inequality_ = spec_.constraints.size() + (spec_.require_reachable ? 1 : 0);
     return;
   }
+  if (spec_.machine_template.leg_shape.present() && spec_.require_reachable)
+    throw std::invalid_argument(fmt::format(
+        "{}: the legs' interference (machine.legs.diameter, cylinder, rod) has no smooth "
+        "formulation (the clearance is a minimum over leg pairs); use an evolutionary optimizer "
+        "(aggregate formulation)",
+        where));
   if (spec_.task.acceleration_max > 0.0)
     throw std::invalid_argument(fmt::format(
         "{}: task a_max has no smooth formulation (the inertia forces are not in the smooth "
@@ -275,6 +289,20 @@ T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
     if (platform_limit) {
       const Vec3<double> n = rotation_zyx<double>(pose.angles) * tmpl.joints.platform_axis;
       for (int i = 0; i < 6; ++i) add(T(cos_platform) + s.col(i).dot(n.cast<T>()));
+    }
+    // The legs' interference: min_clearance - clearance (m) over the pose's leg pairs. Only in
+    // the aggregate formulation (the smooth one refuses a leg shape).
+    if constexpr (std::is_same_v<T, double>) {
+      if (tmpl.leg_shape.present()) {
+        Capsule bodies[12];
+        int n = 0;
+        for (int i = 0; i < 6; ++i) {
+          const Eigen::Vector3d a = base.col(i);
+          n += leg_bodies(tmpl.leg_shape, a, a + q(i) * s.col(i), i, bodies + n);
+        }
+        add(tmpl.min_clearance -
+            leg_clearance(std::span<const Capsule>(bodies, static_cast<std::size_t>(n))).value);
+      }
     }
   }
   return worst;
@@ -421,7 +449,7 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   const bool dynamic_force = need(DesignMetric::actuator_force_dynamic_max);
   if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
       need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) || compliance ||
-      dynamic_force) {
+      dynamic_force || need(DesignMetric::leg_clearance_min)) {
     HexapodData data(*hexapod);
     data.compliance_metrics = compliance;
     PoseMetrics m;

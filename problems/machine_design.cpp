@@ -21,7 +21,8 @@ constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
     "machine_size",         "actuator_cost",
     "actuator_overload",    "tcp_deflection_max",
     "stiffness_min_loaded", "natural_frequency_min",
-    "moving_mass",          "actuator_force_dynamic_max"};
+    "moving_mass",          "actuator_force_dynamic_max",
+    "leg_clearance_min"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -146,6 +147,7 @@ void TaskWorstCase::add(const PoseMetrics& m) {
   stiffness_min_loaded = std::min(stiffness_min_loaded, m.stiffness_min_loaded);
   if (m.natural_frequencies.size() > 0)
     natural_frequency_min = std::min(natural_frequency_min, m.natural_frequencies(0));
+  leg_clearance_min = std::min(leg_clearance_min, m.leg_clearance);
 }
 
 void TaskWorstCase::store(DesignMetrics& metrics) const {
@@ -158,6 +160,9 @@ void TaskWorstCase::store(DesignMetrics& metrics) const {
   // 0 when no pose gave frequencies (the metric was not asked for).
   metrics[static_cast<int>(DesignMetric::natural_frequency_min)] =
       std::isfinite(natural_frequency_min) ? natural_frequency_min : 0.0;
+  // 0 without a leg shape (the metric is then refused before any evaluation).
+  metrics[static_cast<int>(DesignMetric::leg_clearance_min)] =
+      std::isfinite(leg_clearance_min) ? leg_clearance_min : 0.0;
 }
 
 void measure_workspace_metrics(const Machine& machine, const WorkspaceOptions& options,
@@ -461,6 +466,11 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
       throw std::invalid_argument(fmt::format(
           "{}: {} needs a mass model, which only hexapod design problems have (machine.masses)",
           where, design_metric_name(metric)));
+  if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)])
+    throw std::invalid_argument(fmt::format(
+        "{}: leg_clearance_min needs the legs' shape, which only hexapod design problems have "
+        "(machine.legs.diameter, docs/interference.md)",
+        where));
 }
 
 Bounds MachineDesignProblem::bounds() const {

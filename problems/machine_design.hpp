@@ -48,6 +48,7 @@
 //   stiffness_min_loaded  min_k stiffness_min_loaded(pose k) under w      N/m
 //   natural_frequency_min min_k natural_frequency_1(pose k) (needs masses)  Hz
 //   moving_mass         platform plus every leg's moving bodies (needs masses)  kg
+//   leg_clearance_min   min_k leg_clearance(pose k) (needs the legs' shape)   m
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3
@@ -141,9 +142,12 @@ enum class DesignMetric {
   /// max over the task and the actuators of the force when the TCP, at rest, accelerates in any
   /// direction with |a| <= the task's a_max under the task wrench and gravity (N; needs the
   /// masses; models/acceleration_capability.hpp).
-  actuator_force_dynamic_max
+  actuator_force_dynamic_max,
+  /// min over the task of the legs' clearance (m; needs the legs' shape, models/
+  /// leg_interference.hpp; negative when legs intersect).
+  leg_clearance_min
 };
-inline constexpr int kNumDesignMetrics = 14;
+inline constexpr int kNumDesignMetrics = 15;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
@@ -216,6 +220,7 @@ struct TaskWorstCase {
   double tcp_deflection_max = 0.0;
   double stiffness_min_loaded = std::numeric_limits<double>::infinity();
   double natural_frequency_min = std::numeric_limits<double>::infinity();
+  double leg_clearance_min = std::numeric_limits<double>::infinity();
   void add(const PoseMetrics& metrics);
   /// Writes the worst cases into their slots of `metrics`.
   void store(DesignMetrics& metrics) const;

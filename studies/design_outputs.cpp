@@ -31,6 +31,7 @@ std::string_view design_metric_unit(DesignMetric metric) {
     case DesignMetric::stiffness_min_loaded:
       return "N/m";
     case DesignMetric::tcp_deflection_max:
+    case DesignMetric::leg_clearance_min:
       return "m";
     case DesignMetric::leg_force_max:
     case DesignMetric::actuator_force_dynamic_max:

@@ -14,6 +14,7 @@
 #include "io/field_list.hpp"
 #include "io/hexapod_fields.hpp"
 #include "io/input_error.hpp"
+#include "io/leg_shape_fields.hpp"
 #include "io/machine_file.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
@@ -70,8 +71,11 @@ void describe_fields(Fields& f, HexapodStudyMachine& m) {
       g.field(design_parameter_name(i), bounds, hexapod_parameter_rule(i));
     }
   });
-  f.section("legs", {.required = true},
-            [&](auto& g) { describe_leg_stiffness(g, m.design.stiffness); });
+  f.section("legs", {.required = true}, [&](auto& g) {
+    describe_leg_stiffness(g, m.design.stiffness);
+    describe_leg_shape(g, m.design.leg_shape);
+  });
+  describe_min_clearance(f, m.design.min_clearance);
   f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, m.design.joints); });
   f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, m.design.tcp); });
   describe_actuator_error(f, m.design.actuator_error);
@@ -107,6 +111,11 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
   check_leg_stiffness(machine.required("legs"), m.design.stiffness);
   normalize_joint_axes(machine, m.design.joints);
   check_mass_fields(machine, m.design.masses);
+  try {
+    check_leg_shape(m.design.leg_shape, m.design.min_clearance);
+  } catch (const std::invalid_argument& e) {
+    machine.required("legs").fail(e.what());
+  }
   study.parameter_ranges = m.ranges;
   for (int i = 0; i < kNumDesignParameters; ++i) {
     const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;

@@ -269,6 +269,39 @@ TEST_F(TrajectoryCli, MassesGiveDynamicForcesAndTheDriveCheck) {
   EXPECT_EQ(read_csv_file(out.string()).header.size(), 21u + 4 * 6 + 2);
 }
 
+// Legs with a diameter: a path whose yaw swings to 110 degrees crosses legs (beyond about 92
+// degrees for the sample hexapod with 80 mm legs, no joint limits and a long stroke); the summary
+// gives the smallest clearance and the first sample where legs intersect, those samples are
+// unreachable, and the CSV carries leg_clearance per sample.
+TEST_F(TrajectoryCli, LegInterferenceIsReportedAlongThePath) {
+  const std::string legs =
+      write("legs.yaml",
+            "model: hexapod\nbase: {radius: 0.60, pair_separation_deg: 20}\n"
+            "platform: {radius: 0.25, pair_separation_deg: 20}\n"
+            "legs: {min_length: 0.70, max_length: 1.40, axial_stiffness: 8e7, diameter: 0.08}\n"
+            "tool: {tcp: [0, 0, -0.10]}\n");
+  const fs::path out = dir_ / "out.csv";
+  const CliRun r = run("trajectory " + legs +
+                       " --helix --helix-centre 0,0,0.9 --helix-radius 0.0,0.0 --helix-height 0,0 "
+                       "--helix-angles 0,0,110 --samples 41 --out " +
+                       out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("legs: min clearance -"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("intersect first at sample"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("leg interference"), std::string::npos) << r.out;
+  const CsvTable table = read_csv_file(out.string());
+  const int clearance = table.column("leg_clearance");
+  ASSERT_GE(clearance, 0);
+  int intersecting = 0;
+  for (const CsvRow& row : table.rows) {
+    if (table.number(row, clearance) < 0.0) {
+      ++intersecting;
+      EXPECT_EQ(table.number(row, table.column("reachable")), 0.0);
+    }
+  }
+  EXPECT_GT(intersecting, 0);
+}
+
 TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
   const fs::path path = dir_ / "path.csv";
   std::ofstream(path) << "t,x,y,z\n0,0,0,0.7\n0.5,0,0,0.71\n0.4,0,0,0.72\n";

@@ -75,7 +75,7 @@ TEST(MachineFile, ErrorsNameFileLineColumnKeyExpectedAndFound) {
             "m.yaml:4:38: legs.max_length: expected a number > legs.min_length (0.7), found '0.5'");
   EXPECT_EQ(error_of(replace(kGood, "tool:", "toll:")),
             "m.yaml:6:1: toll: unknown key 'toll'; allowed keys here: model, name, description, "
-            "base, base_joints, platform, platform_joints, legs, joints, tool, "
+            "base, base_joints, platform, platform_joints, legs, min_clearance, joints, tool, "
             "characteristic_length, actuator_error, masses, gravity");
   EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: .nan")),
             "m.yaml:4:47: legs.E: expected a finite number, found '.nan'");
@@ -229,6 +229,44 @@ TEST(MachineFileFields, MassesAreReadWrittenAndChecked) {
                                           "0, 0]}\n  legs: {carriage: {mass: 2}}\n"),
             "m.yaml:9:10: masses.legs.carriage: unknown key 'carriage'; allowed keys here: "
             "cylinder, rod");
+}
+
+// The legs' shape: read, written back, and checked at the key.
+TEST(MachineFileFields, LegShapeIsReadWrittenAndChecked) {
+  const HexapodDesign capsule = read_hexapod_design(YamlValue::load_string(
+      replace(kGood, "actuator_stiffness: 2.0e8}", "actuator_stiffness: 2.0e8, diameter: 0.08}") +
+          "min_clearance: 0.005\n",
+      "m.yaml"));
+  EXPECT_EQ(capsule.leg_shape.diameter, 0.08);
+  EXPECT_EQ(capsule.min_clearance, 0.005);
+  const std::string text = hexapod_design_to_yaml(capsule);
+  const HexapodDesign back = read_hexapod_design(YamlValue::load_string(text, "w.yaml"));
+  EXPECT_EQ(back.leg_shape.diameter, 0.08) << text;
+  EXPECT_EQ(back.min_clearance, 0.005) << text;
+  const HexapodDesign pair = read_hexapod_design(YamlValue::load_string(
+      replace(kGood, "actuator_stiffness: 2.0e8}",
+              "actuator_stiffness: 2.0e8, cylinder: {diameter: 0.1, length: 0.6}, rod: {diameter: "
+              "0.05}}"),
+      "m.yaml"));
+  EXPECT_EQ(pair.leg_shape.cylinder_diameter, 0.1);
+  EXPECT_EQ(pair.leg_shape.cylinder_length, 0.6);
+  EXPECT_EQ(pair.leg_shape.rod_diameter, 0.05);
+  const HexapodDesign pair_back =
+      read_hexapod_design(YamlValue::load_string(hexapod_design_to_yaml(pair), "w.yaml"));
+  EXPECT_EQ(pair_back.leg_shape.cylinder_length, 0.6);
+  EXPECT_EQ(pair_back.leg_shape.rod_diameter, 0.05);
+  // Without a shape nothing is written.
+  EXPECT_EQ(hexapod_design_to_yaml(sample_machines::conventions_hexapod_design()).find("diameter"),
+            std::string::npos);
+  EXPECT_EQ(error_of(replace(kGood, "actuator_stiffness: 2.0e8}",
+                             "actuator_stiffness: 2.0e8, diameter: -0.08}")),
+            "m.yaml:4:106: legs.diameter: expected a number > 0, found '-0.08'");
+  EXPECT_EQ(error_of(replace(kGood, "actuator_stiffness: 2.0e8}",
+                             "actuator_stiffness: 2.0e8, rod: {diameter: 0.05}}")),
+            "m.yaml:4:7: legs: legs.rod needs legs.cylinder (the rod runs from the platform joint "
+            "into it)");
+  EXPECT_EQ(error_of(std::string(kGood) + "min_clearance: -1\n"),
+            "m.yaml:7:16: min_clearance: expected a number >= 0, found '-1'");
 }
 
 }  // namespace

@@ -150,7 +150,8 @@ TEST(TrajectorySummaryText, LinesInMetres) {
   std::string expected =
       "trajectory: 3 samples, t 0 .. 6.25 s, 2 reachable, min singularity_margin 0.03125\n";
   expected +=
-      "  WARNING: 1 of 3 samples are not reachable (actuator ranges or joint limits): the machine "
+      "  WARNING: 1 of 3 samples are not reachable (actuator ranges, joint limits or leg "
+      "interference): the machine "
       "cannot follow this path\n";
   for (int i = 1; i <= 5; ++i) {
     expected += "  q_" + std::to_string(i) + ": 0.75 .. 1 m, max |q_dot| 0.125 m/s\n";

@@ -1,6 +1,7 @@
 // Tests of problems/hexapod_design (aggregate formulation): a hand-computed design evaluation,
 // sign conventions, failures without NaN, agreement with the model, the dynamic metrics
-// (natural_frequency_min, moving_mass, actuator_force_dynamic_max) and the catalog choice. The
+// (natural_frequency_min, moving_mass, actuator_force_dynamic_max), the legs' interference and the
+// catalog choice. The
 // smooth formulation is tested in hexapod_design_smooth_test.cpp.
 #include "problems/hexapod_design.hpp"
 
@@ -231,6 +232,55 @@ TEST(HexapodDesign, ReachabilityRowsAgreeWithTheModel) {
   }
   EXPECT_GT(reachable, 20);
   EXPECT_GT(unreachable, 20);
+}
+
+// With the legs' shape the reachability row includes the interference (the model's reachable
+// with the same shape and min_clearance, at poses where legs do and do not collide), and
+// leg_clearance_min is the smallest clearance over the task; the metric needs a shape, and the
+// smooth formulation refuses a shape.
+TEST(HexapodDesign, LegInterferenceCountsInReachabilityAndLegClearanceMin) {
+  HexapodDesignSpec spec;
+  spec.objectives = {{DesignMetric::leg_clearance_min, Sense::maximize}};
+  spec.task.poses = {Pose{{0, 0, 0.9}, {0, 0, 0}}};
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);  // no leg shape
+  spec.machine_template.leg_shape.diameter = 0.08;
+  spec.machine_template.min_clearance = 0.002;
+  spec.machine_template.joints = HexapodJointLimits{};  // the legs, not the joints, limit the yaw
+  spec.parameters[kStroke] = {0.7, 0.7};                // a yaw of 90 degrees needs 1.28 m legs
+  const HexapodDesignProblem problem(spec);
+  const Hexapod hexapod(problem.design_of(problem.evaluate({}).parameters));
+  HexapodData data(hexapod);
+  int reachable = 0, colliding = 0;
+  // Legs cross beyond a yaw of about 90 degrees while their lengths stay within the stroke.
+  for (int yaw = 60; yaw <= 110; yaw += 2) {
+    for (const double x : {-0.01, 0.0, 0.01}) {
+      const Pose pose{{x, 0.0, 0.9}, deg_to_rad(Eigen::Vector3d(0, 0, yaw))};
+      spec.task.poses = {pose};
+      const DesignEvaluation ev = HexapodDesignProblem(spec).evaluate({});
+      EXPECT_EQ(ev.reachable, hexapod.reachable(data, pose)) << yaw << " " << x;
+      const Clearance c = hexapod.leg_clearance(pose);
+      EXPECT_NEAR(ev.metrics[static_cast<int>(DesignMetric::leg_clearance_min)], c.value, 1e-12);
+      if (c.value < 0.002) {
+        ++colliding;
+        EXPECT_FALSE(ev.reachable);
+        EXPECT_GE(ev.reach_violation, 0.002 - c.value - 1e-15);
+      }
+      reachable += ev.reachable ? 1 : 0;
+    }
+  }
+  EXPECT_GT(reachable, 10);
+  EXPECT_GT(colliding, 10);
+  // Over a task: the minimum over its poses.
+  spec.task.poses = {Pose{{0, 0, 0.9}, {0, 0, 0}},
+                     Pose{{0.05, 0, 0.9}, deg_to_rad(Eigen::Vector3d(0, 0, 20))}};
+  const DesignEvaluation both = HexapodDesignProblem(spec).evaluate({});
+  EXPECT_NEAR(both.metrics[static_cast<int>(DesignMetric::leg_clearance_min)],
+              std::min(hexapod.leg_clearance(spec.task.poses[0]).value,
+                       hexapod.leg_clearance(spec.task.poses[1]).value),
+              1e-12);
+  HexapodDesignSpec smooth = test_specs::smooth_spec();
+  smooth.machine_template.leg_shape.diameter = 0.08;
+  EXPECT_THROW(HexapodDesignProblem{smooth}, std::invalid_argument);
 }
 
 TEST(HexapodDesign, FailingDesignsAreRecordedWithAReasonAndFiniteRows) {
