@@ -58,6 +58,10 @@ struct BatchConstants {
   bool masses;
   double platform_mass, com[3], platform_inertia[3][3];
   double cylinder_mass, cylinder_centre, rod_mass, rod_centre, leg_inertia;
+  // The legs' shape (models/leg_interference.hpp): one capsule per leg (radius capsule_radius),
+  // or a cylinder (radius, length along the leg) and, when rod_radius > 0, a rod.
+  bool interference, two_bodies;
+  double capsule_radius, cylinder_radius, cylinder_length, rod_radius, min_clearance;
 
   explicit BatchConstants(const Hexapod& hexapod) {
     const HexapodDesign& d = hexapod.design();
@@ -122,6 +126,14 @@ struct BatchConstants {
     rod_mass = mm.legs.rod.mass;
     rod_centre = mm.legs.rod.centre;
     leg_inertia = mm.legs.cylinder.inertia + mm.legs.rod.inertia;
+    const LegShape& shape = d.leg_shape;
+    interference = shape.present();
+    two_bodies = shape.two_bodies();
+    capsule_radius = 0.5 * shape.diameter;
+    cylinder_radius = 0.5 * shape.cylinder_diameter;
+    cylinder_length = shape.cylinder_length;
+    rod_radius = 0.5 * shape.rod_diameter;
+    min_clearance = d.min_clearance;
   }
 };
 
@@ -133,6 +145,8 @@ struct BlockResult {
   v4 tcp_deflection, tcp_rotation_deflection, direction[3], stiffness_min_loaded;
   v4 loaded_tt[3][3];  // (C_T)_tt
   v4 frequencies[6];   // Hz, ascending (with a mass model)
+  v4 clearance;        // leg_clearance (m, with a leg shape)
+  v4 clearance_pair;   // 6 * first + second (0-based legs), with a leg shape
   m4 reachable;
   m4 fallback;  // lanes to recompute with the scalar path
 };

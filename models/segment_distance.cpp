@@ -35,14 +35,10 @@ SegmentClosest segment_closest(const Eigen::Vector3d& a0, const Eigen::Vector3d&
       const double denom = a * e - b * b;  // >= 0; 0 for parallel segments
       if (denom > 1e-14 * a * e) {
         s = clamp01((b * f - c * e) / denom);
-        t = (b * s + f) / e;
-        if (t < 0.0) {
-          t = 0.0;
-          s = clamp01(-c / a);
-        } else if (t > 1.0) {
-          t = 1.0;
-          s = clamp01((b - c) / a);
-        }
+        t = clamp01((b * s + f) / e);
+        // s again from the clamped t (for t inside [0, 1] the same s; the SIMD batch path of the
+        // hexapod does the same without branches).
+        s = clamp01((b * t - c) / a);
       } else {
         // (Nearly) parallel, angle below 1e-7 rad: the closest pair of parallel segments has an
         // end of one of them; take the best of the four ends projected on the other segment
