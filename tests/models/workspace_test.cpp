@@ -1,5 +1,5 @@
-// Tests of models/workspace: volumes against exact values and Monte Carlo, convergence, the
-// boundary mesh, orientation sets, restrictions, maps and slices.
+// Tests of models/workspace: volumes against exact values and Monte Carlo (also with the legs'
+// interference), convergence, the boundary mesh, orientation sets, restrictions, maps and slices.
 #include "models/workspace/workspace.hpp"
 
 #include <gtest/gtest.h>
@@ -121,6 +121,42 @@ TEST(WorkspaceVolume, AgreesWithMonteCarloOnTheSampleHexapod) {
   const int samples = 1'000'000;
   int hits = 0;
   Pose pose;
+  for (int s = 0; s < samples; ++s) {
+    for (int a = 0; a < 3; ++a) {
+      pose.position(a) = box.min()(a) + (box.max()(a) - box.min()(a)) * random.next();
+    }
+    hits += hexapod.reachable(*data, pose) ? 1 : 0;
+  }
+  const double p = static_cast<double>(hits) / samples;
+  const double monte_carlo = p * box.volume();
+  const double standard_error = std::sqrt(p * (1 - p) / samples) * box.volume();
+  EXPECT_LT(std::abs(ws.volume - monte_carlo), 4.0 * standard_error + 1e-3 * monte_carlo)
+      << ws.volume << " vs Monte Carlo " << monte_carlo << " +- " << standard_error;
+}
+
+// Legs of 80 mm on the sample hexapod (no joint limits, long stroke) turned by 60 degrees about
+// the vertical: legs that would touch cut the constant-orientation workspace to less than half,
+// and the grid volume equals a Monte Carlo estimate of the same rule (Hexapod::reachable, which
+// includes the clearance).
+TEST(WorkspaceVolume, LegInterferenceShrinksItAndAgreesWithMonteCarlo) {
+  HexapodDesign design = sample_machines::conventions_hexapod_design();
+  design.joints = HexapodJointLimits{};
+  design.max_length = 1.4;
+  WorkspaceOptions options = volume_only(0.02);
+  options.orientations.nominal_angles = Eigen::Vector3d(0, 0, deg_to_rad(60.0));
+  const WorkspaceResult free = compute_workspace(Hexapod(design), options);
+  design.leg_shape.diameter = 0.08;
+  const Hexapod hexapod(design);
+  const WorkspaceResult ws = compute_workspace(hexapod, options);
+  ASSERT_GT(ws.volume, 0.0);
+  EXPECT_LT(ws.volume, 0.5 * free.volume) << ws.volume << " of " << free.volume;
+  EXPECT_FALSE(ws.touches_search_box);
+  const Eigen::AlignedBox3d box = ws.search_box;
+  SplitMix64 random{20261202};
+  const auto data = hexapod.make_data();
+  const int samples = 1'000'000;
+  int hits = 0;
+  Pose pose{Eigen::Vector3d::Zero(), options.orientations.nominal_angles};
   for (int s = 0; s < samples; ++s) {
     for (int a = 0; a < 3; ++a) {
       pose.position(a) = box.min()(a) + (box.max()(a) - box.min()(a)) * random.next();
