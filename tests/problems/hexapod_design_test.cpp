@@ -283,6 +283,48 @@ TEST(HexapodDesign, LegInterferenceCountsInReachabilityAndLegClearanceMin) {
   EXPECT_THROW(HexapodDesignProblem{smooth}, std::invalid_argument);
 }
 
+// Over random designs of a milling-like study, the leg diameter removes designs: every design
+// that reaches the task with 80 mm legs has them apart at every task pose (recomputed here from
+// the design), it also reaches the task with line legs, and some designs that reach it with line
+// legs (joints of a pair closer than 80 mm among them) are gone.
+TEST(HexapodDesign, LegDiameterRemovesTheDesignsWhoseLegsCollide) {
+  HexapodDesignSpec lines;
+  lines.objectives = {{DesignMetric::machine_size, Sense::minimize}};
+  lines.task.poses =
+      box_task_poses({0, 0, 0.9}, {0.1, 0.1, 0.05}, {2, 2, 2}, deg_to_rad(15), 0.0, deg_to_rad(15));
+  lines.parameters[kBaseRadius] = {0.35, 0.75};
+  lines.parameters[kPlatformRadius] = {0.15, 0.30};
+  lines.parameters[kBasePairSeparation] = {deg_to_rad(5), deg_to_rad(40)};
+  lines.parameters[kPlatformPairSeparation] = {deg_to_rad(5), deg_to_rad(40)};
+  lines.parameters[kMinLength] = {0.6, 1.0};
+  lines.parameters[kHomeHeight] = {-0.2, 0.2};
+  HexapodDesignSpec legs = lines;
+  legs.machine_template.leg_shape.diameter = 0.08;
+  const HexapodDesignProblem line_problem(lines), leg_problem(legs);
+  const Bounds b = leg_problem.bounds();
+  sample_machines::Uniform u(2026);
+  int both = 0, removed = 0;
+  for (int k = 0; k < 400; ++k) {
+    std::vector<double> x(b.lower.size());
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = u(b.lower[i], b.upper[i]);
+    const DesignEvaluation with_legs = leg_problem.evaluate(x);
+    const DesignEvaluation with_lines = line_problem.evaluate(x);
+    if (with_legs.reachable) {
+      EXPECT_TRUE(with_lines.reachable);
+      const Hexapod hexapod(leg_problem.design_of(with_legs.parameters));
+      for (Pose pose : legs.task.poses) {
+        pose.position.z() += with_legs.parameters[kHomeHeight];
+        EXPECT_GE(hexapod.leg_clearance(pose).value, 0.0);
+      }
+      ++both;
+    } else if (with_lines.reachable) {
+      ++removed;
+    }
+  }
+  EXPECT_GT(both, 5);
+  EXPECT_GT(removed, 5);
+}
+
 TEST(HexapodDesign, FailingDesignsAreRecordedWithAReasonAndFiniteRows) {
   HexapodDesignSpec spec = single_pose_spec(0.9, -5000.0);
   spec.parameters[kPlatformRadius] = {0.0, 0.3};  // r_p = 0: all platform joints coincide
