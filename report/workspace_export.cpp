@@ -425,6 +425,14 @@ std::string workspace_summary_json(const WorkspaceRequest& request, const Worksp
   summary["envelope_volume"] = optional_json(ws.envelope_volume);
   summary["envelope_ratio"] = optional_json(ws.envelope_ratio);
   summary["resolution"] = ws.resolution;
+  // The error estimate from the grid at twice the spacing (models/workspace/
+  // volume_accuracy.hpp); a tolerance when the resolution was chosen to meet it.
+  summary["volume_error_estimate"] = request.accuracy.error;
+  summary["volume_relative_error_estimate"] = request.accuracy.relative_error();
+  summary["resolution_chosen_for_tolerance"] =
+      request.accuracy.tolerance > 0.0 ? nlohmann::json(request.accuracy.tolerance) : nullptr;
+  summary["tolerance_met"] =
+      request.accuracy.tolerance > 0.0 ? nlohmann::json(request.accuracy.met) : nullptr;
   summary["grid_nodes"] = {ws.grid_nodes(0), ws.grid_nodes(1), ws.grid_nodes(2)};
   summary["inside_nodes"] = ws.inside_nodes;
   summary["boundary_vertices"] = ws.boundary.vertices.size();

@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "models/workspace/volume_accuracy.hpp"
 #include "models/workspace/workspace.hpp"
 
 namespace pkmopt {
@@ -76,6 +77,9 @@ struct WorkspaceRequest {
   double tilt_deg = 0.0;
   double yaw_range_deg = 0.0;
   double orientation_step_deg = 5.0;
+  /// The volume's error estimate and how the resolution was chosen (models/workspace/
+  /// volume_accuracy.hpp): tolerance > 0 when it was chosen for --tolerance.
+  VolumeAccuracy accuracy;
 };
 
 /// summary.json (two-space indented, ending in a newline) of a workspace, its slice coloured by

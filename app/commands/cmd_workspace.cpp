@@ -1,5 +1,5 @@
 // pkmopt workspace MACHINE.yaml [--orientation rx,ry,rz] [--tilt DEG] [--yaw-range DEG]
-//   [--mode all|some] [--orientation-step DEG] [--resolution M] [--min-margin X]
+//   [--mode all|some] [--orientation-step DEG] [--resolution M | --tolerance T] [--min-margin X]
 //   [--min-stiffness K] [--wrench fx,fy,fz,mx,my,mz] [--slice-axis x|y|z] [--slice-at M]
 //   [--slice-metric NAME] [--slice-pixel M] [--out DIR]
 // See docs/workspace.md for the options, the files and every summary.json field.
@@ -19,6 +19,7 @@
 #include "io/machine_file.hpp"
 #include "io/output_file.hpp"
 #include "models/workspace/slice_plane.hpp"
+#include "models/workspace/volume_accuracy.hpp"
 #include "models/workspace/workspace.hpp"
 #include "report/workspace_export.hpp"
 
@@ -32,7 +33,8 @@ struct WorkspaceCommandOptions {
   double yaw_range_deg = 0.0;
   std::string mode = "all";
   double orientation_step_deg = 5.0;
-  double resolution = 0.02;
+  std::optional<double> resolution;
+  double tolerance = 0.005;
   std::optional<double> min_margin;
   std::optional<double> min_stiffness;
   std::string wrench;
@@ -74,10 +76,14 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     throw InputError(
         fmt::format("--mode: expected 'all' or 'some', found {}", quote_found(opt.mode)));
   }
-  if (!(std::isfinite(opt.resolution) && opt.resolution > 0.0)) {
-    bad_option("--resolution", "a grid spacing in metres > 0", opt.resolution);
+  if (opt.resolution && !(std::isfinite(*opt.resolution) && *opt.resolution > 0.0)) {
+    bad_option("--resolution", "a grid spacing in metres > 0", *opt.resolution);
   }
-  options.resolution = opt.resolution;
+  if (!(std::isfinite(opt.tolerance) && opt.tolerance >= 1e-4 && opt.tolerance <= 0.5)) {
+    bad_option("--tolerance", "a relative accuracy 1e-4 <= T <= 0.5", opt.tolerance);
+  }
+  // The grid's spacing: given, or chosen below for --tolerance (validated with a placeholder).
+  options.resolution = opt.resolution.value_or(0.02);
   if (opt.min_margin && !(*opt.min_margin >= 0.0 && *opt.min_margin <= 1.0)) {
     bad_option("--min-margin", "a singularity margin 0 <= X <= 1", *opt.min_margin);
   }
@@ -131,8 +137,14 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   }
 
   WorkspaceResult ws;
+  VolumeAccuracy accuracy;
   try {
+    if (!opt.resolution) {
+      accuracy = choose_workspace_resolution(*machine, options, opt.tolerance);
+      options.resolution = accuracy.resolution;
+    }
     ws = compute_workspace(*machine, options);
+    if (opt.resolution) accuracy = workspace_volume_accuracy(*machine, options, ws.volume);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("--resolution: {}", e.what()));
   }
@@ -163,19 +175,27 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
                                    .options = options,
                                    .tilt_deg = opt.tilt_deg,
                                    .yaw_range_deg = opt.yaw_range_deg,
-                                   .orientation_step_deg = opt.orientation_step_deg};
+                                   .orientation_step_deg = opt.orientation_step_deg,
+                                   .accuracy = accuracy};
     const std::string summary = workspace_summary_json(request, ws, slice, *metric, seconds);
     for (const auto& [name, content] : workspace_files(ws, slice, *metric, summary)) {
       write_file_atomically((out_dir / name).string(), content);
     }
   }
   fmt::print(
-      "workspace ({}): volume {:.6g} m^3, convex hull {:.6g} m^3, GCI {:.4g}, "
-      "envelope ratio {}, resolution {} m, {:.3g} s{}\n",
-      workspace_kind(options.orientations), ws.volume, ws.convex_hull_volume,
-      ws.maps.global_conditioning_index,
+      "workspace ({}): volume {:.6g} m^3 (estimated error {:.2g} %), convex hull {:.6g} m^3, GCI "
+      "{:.4g}, envelope ratio {}, resolution {} m, {:.3g} s{}\n",
+      workspace_kind(options.orientations), ws.volume, 100.0 * accuracy.relative_error(),
+      ws.convex_hull_volume, ws.maps.global_conditioning_index,
       ws.envelope_ratio ? fmt::format("{:.4g}", *ws.envelope_ratio) : "n/a", ws.resolution, seconds,
       opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
+  if (!opt.resolution && !accuracy.met && ws.volume > 0.0) {
+    fmt::print(stderr,
+               "pkmopt: warning: the volume's estimated error {:.2g} % is above --tolerance {:.2g} "
+               "%: the finest grid the refinement allows ({} m) was not fine enough; give "
+               "--resolution\n",
+               100.0 * accuracy.relative_error(), 100.0 * opt.tolerance, accuracy.resolution);
+  }
   if (ws.touches_search_box) {
     fmt::print(stderr, "pkmopt: warning: the workspace reaches the search box; volume cut off\n");
   }
@@ -202,7 +222,12 @@ void add_workspace_command(CLI::App& app) {
                   "least one; default all");
   cmd->add_option("--orientation-step", opt->orientation_step_deg,
                   "Largest spacing of the sampled orientations (deg); default 5");
-  cmd->add_option("--resolution", opt->resolution, "Grid spacing (m); default 0.02");
+  cmd->add_option("--resolution", opt->resolution,
+                  "Grid spacing (m); default: the coarsest grid (halving from 1/16 of the search "
+                  "box) whose volume meets --tolerance");
+  cmd->add_option("--tolerance", opt->tolerance,
+                  "Relative accuracy of the volume when --resolution is not given (the estimated "
+                  "error is the difference to the grid at twice the spacing); default 0.005");
   cmd->add_option("--min-margin", opt->min_margin,
                   "Keep only poses with singularity_margin >= X (0..1)");
   cmd->add_option("--min-stiffness", opt->min_stiffness,

@@ -113,6 +113,10 @@ TEST(WorkspaceSummaryJson, EveryFieldInOrder) {
                                          "envelope_volume",
                                          "envelope_ratio",
                                          "resolution",
+                                         "volume_error_estimate",
+                                         "volume_relative_error_estimate",
+                                         "resolution_chosen_for_tolerance",
+                                         "tolerance_met",
                                          "grid_nodes",
                                          "inside_nodes",
                                          "boundary_vertices",
@@ -149,6 +153,24 @@ TEST(WorkspaceSummaryJson, EveryFieldInOrder) {
             R"({"axis":"y","offset":0.25,"metric":"stiffness_min","pixel":0.005,"width":3,)"
             R"("height":2})");
   EXPECT_EQ(j["seconds"], 1.5);
+  // A fixed resolution: an error estimate, no tolerance.
+  EXPECT_EQ(j["volume_error_estimate"], 0.0);
+  EXPECT_TRUE(j["resolution_chosen_for_tolerance"].is_null());
+  EXPECT_TRUE(j["tolerance_met"].is_null());
+  pkmopt::WorkspaceRequest chosen = hand_made_request();
+  chosen.accuracy = {.resolution = 0.02,
+                     .volume = 0.1,
+                     .coarse_volume = 0.1004,
+                     .error = 0.0004,
+                     .tolerance = 0.005,
+                     .met = true,
+                     .grids = 3};
+  const auto k = nlohmann::ordered_json::parse(pkmopt::workspace_summary_json(
+      chosen, hand_made_workspace(), hand_made_slice(), pkmopt::SliceMetric::kStiffnessMin, 1.5));
+  EXPECT_EQ(k["volume_error_estimate"], 0.0004);
+  EXPECT_DOUBLE_EQ(k["volume_relative_error_estimate"].get<double>(), 0.004);
+  EXPECT_EQ(k["resolution_chosen_for_tolerance"], 0.005);
+  EXPECT_EQ(k["tolerance_met"], true);
 }
 
 TEST(WorkspaceSummaryJson, NoWorkspaceGivesNulls) {
