@@ -81,9 +81,9 @@ ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorReq
   if (choice.entry != nullptr) {
     const ActuatorEntry& e = *choice.entry;
     constexpr double kInf = std::numeric_limits<double>::infinity();
-    choice.force_reserve =
-        std::min(need.force > 0.0 ? e.max_force / need.force : kInf,
-                 need.peak_force > 0.0 ? e.peak_force.value_or(e.max_force) / need.peak_force : kInf);
+    choice.force_reserve = std::min(
+        need.force > 0.0 ? e.max_force / need.force : kInf,
+        need.peak_force > 0.0 ? e.peak_force.value_or(e.max_force) / need.peak_force : kInf);
     return choice;
   }
   double best_force = 0.0, best_stroke = 0.0, best_speed = 0.0, best_peak = 0.0;

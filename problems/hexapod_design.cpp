@@ -148,10 +148,11 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     num_inequality_ = spec_.constraints.size() + (spec_.require_reachable ? 1 : 0);
     return;
   }
-  if (spec_.machine_template.leg_shape.present() && spec_.require_reachable)
+  if ((spec_.machine_template.leg_shape.present() || spec_.task.installation_space.present()) &&
+      spec_.require_reachable)
     throw std::invalid_argument(fmt::format(
-        "{}: the legs' interference (machine.legs.diameter, cylinder, rod) has no smooth "
-        "formulation (the clearance is a minimum over leg pairs); use an evolutionary optimizer "
+        "{}: the legs' interference (machine.legs.diameter, cylinder, rod) and the task's "
+        "installation_space have no smooth formulation; use an evolutionary optimizer "
         "(aggregate formulation)",
         where));
   if (spec_.task.acceleration_max > 0.0)
@@ -290,18 +291,29 @@ T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
       const Vec3<double> n = rotation_zyx<double>(pose.angles) * tmpl.joints.platform_axis;
       for (int i = 0; i < 6; ++i) add(T(cos_platform) + s.col(i).dot(n.cast<T>()));
     }
-    // The legs' interference: min_clearance - clearance (m) over the pose's leg pairs. Only in
-    // the aggregate formulation (the smooth one refuses a leg shape).
+    // The legs' interference: min_clearance - clearance (m) over the pose's leg pairs; the
+    // installation space: how far the legs (with their shape), the base or the platform joints
+    // stick out (m). Only in the aggregate formulation (the smooth one refuses both).
     if constexpr (std::is_same_v<T, double>) {
-      if (tmpl.leg_shape.present()) {
+      const InstallationSpace& space = spec_.task.installation_space;
+      if (tmpl.leg_shape.present() || space.present()) {
         Capsule bodies[12];
         int n = 0;
         for (int i = 0; i < 6; ++i) {
-          const Eigen::Vector3d a = base.col(i);
-          n += leg_bodies(tmpl.leg_shape, a, a + q(i) * s.col(i), i, bodies + n);
+          const Eigen::Vector3d a = base.col(i), p_i = a + q(i) * s.col(i);
+          const int added = leg_bodies(tmpl.leg_shape, a, p_i, i, bodies + n);
+          if (added == 0)
+            bodies[n++] = {a, p_i, 0.0, i};  // a line leg
+          else
+            n += added;
         }
-        add(tmpl.min_clearance -
-            leg_clearance(std::span<const Capsule>(bodies, static_cast<std::size_t>(n))).value);
+        const std::span<const Capsule> legs(bodies, static_cast<std::size_t>(n));
+        if (tmpl.leg_shape.present()) add(tmpl.min_clearance - leg_clearance(legs).value);
+        if (space.present()) {
+          double excess = -std::numeric_limits<double>::infinity();
+          for (const Capsule& body : legs) excess = std::max(excess, space.excess(body));
+          add(excess);  // the legs' ends include every base and platform joint
+        }
       }
     }
   }

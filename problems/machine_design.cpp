@@ -107,6 +107,11 @@ NeededMetrics check_design_goals(const std::string& where,
     throw std::invalid_argument(where + ": expected at least one objective, found none");
   if (task.poses.empty())
     throw std::invalid_argument(where + ": expected at least one task pose, found none");
+  try {
+    check_installation_space(task.installation_space);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + ": task " + e.what());
+  }
   for (const DesignObjective& o : objectives) needed[static_cast<int>(o.metric)] = true;
   for (const DesignConstraint& c : constraints) {
     if (!std::isfinite(c.bound))
@@ -466,6 +471,9 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
       throw std::invalid_argument(fmt::format(
           "{}: {} needs a mass model, which only hexapod design problems have (machine.masses)",
           where, design_metric_name(metric)));
+  if (spec_.task.installation_space.present())
+    throw std::invalid_argument(fmt::format(
+        "{}: task installation_space is checked only in hexapod design problems", where));
   if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)])
     throw std::invalid_argument(fmt::format(
         "{}: leg_clearance_min needs the legs' shape, which only hexapod design problems have "

@@ -98,6 +98,7 @@
 #include <variant>
 #include <vector>
 
+#include "models/installation_space.hpp"
 #include "models/lathe_conversion.hpp"
 #include "models/leg_chain.hpp"
 #include "models/machine.hpp"
@@ -179,6 +180,10 @@ struct DesignTask {
   double acceleration_max = 0.0;
   /// For workspace_volume and conditioning_index (hull off; maps only for the index).
   WorkspaceOptions workspace;
+  /// The space the whole machine must fit in at every task pose (hexapod problems: legs with
+  /// their shape, base and platform joints; models/installation_space.hpp); part of the
+  /// reachability row.
+  InstallationSpace installation_space;
 };
 
 /// Positions on an n_x x n_y x n_z grid of the box centre +- half_extents (a count of 1 puts the

@@ -24,10 +24,59 @@
 #include "studies/design_study_sections.hpp"
 
 namespace pkmopt::design_study_detail {
+namespace {
+
+// installation_space: {box: {min: [x, y, z], max: [x, y, z]}} or
+// {cylinder: {radius: R, z_min: a, z_max: b, centre: [x, y]}} (m, base frame).
+void read_installation_space(const YamlValue& value, InstallationSpace& space) {
+  value.check_keys({"box", "cylinder"});
+  if (value.has("box") == value.has("cylinder"))
+    value.fail("exactly one of 'box' and 'cylinder'", value.describe());
+  if (auto box = value.optional("box")) {
+    box->check_keys({"min", "max"});
+    const auto lo = box->required("min").as_doubles(3), hi = box->required("max").as_doubles(3);
+    space.kind = InstallationSpace::Kind::kBox;
+    space.min = {lo[0], lo[1], lo[2]};
+    space.max = {hi[0], hi[1], hi[2]};
+    for (int a = 0; a < 3; ++a) {
+      if (!(space.max(a) > space.min(a)))
+        box->required("max").fail("max > min on every axis (m)", box->required("max").describe());
+    }
+  } else {
+    const YamlValue c = value.required("cylinder");
+    c.check_keys({"radius", "z_min", "z_max", "centre"});
+    space.kind = InstallationSpace::Kind::kCylinder;
+    space.radius = c.required("radius").as_positive();
+    space.z_min = c.required("z_min").as_double();
+    space.z_max = c.required("z_max").as_double();
+    if (!(space.z_max > space.z_min))
+      c.required("z_max").fail("a number > z_min (m)", c.required("z_max").describe());
+    if (auto centre = c.optional("centre")) {
+      const auto xy = centre->as_doubles(2);
+      space.centre = {xy[0], xy[1]};
+    }
+  }
+}
+
+std::string installation_space_yaml(const InstallationSpace& s) {
+  auto list = [](std::initializer_list<double> v) {
+    std::string t = "[";
+    for (double x : v) t += (t.size() > 1 ? ", " : "") + format_number(x);
+    return t + "]";
+  };
+  if (s.kind == InstallationSpace::Kind::kBox)
+    return "{box: {min: " + list({s.min.x(), s.min.y(), s.min.z()}) +
+           ", max: " + list({s.max.x(), s.max.y(), s.max.z()}) + "}}";
+  return "{cylinder: {radius: " + format_number(s.radius) + ", z_min: " + format_number(s.z_min) +
+         ", z_max: " + format_number(s.z_max) + ", centre: " + list({s.centre.x(), s.centre.y()}) +
+         "}}";
+}
+
+}  // namespace
 
 void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
                std::string& yaml) {
-  task.check_keys({"region", "orientations", "wrench", "a_max", "workspace"});
+  task.check_keys({"region", "orientations", "wrench", "a_max", "workspace", "installation_space"});
   TaskOrientationsSection orientations;
   if (auto o = task.optional("orientations")) read_fields(*o, orientations);
   const double tilt_deg = orientations.tilt_deg, yaw_deg = orientations.yaw_deg,
@@ -80,6 +129,10 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     // The TCP acceleration the drives are sized for (m/s^2): actuator_force_dynamic_max.
     task_spec.acceleration_max = a->as_positive();
     yaml += "  a_max: " + format_number(task_spec.acceleration_max) + "\n";
+  }
+  if (auto space = task.optional("installation_space")) {
+    read_installation_space(*space, task_spec.installation_space);
+    yaml += "  installation_space: " + installation_space_yaml(task_spec.installation_space) + "\n";
   }
   TaskWorkspaceSection workspace;
   if (auto w = task.optional("workspace")) read_fields(*w, workspace);

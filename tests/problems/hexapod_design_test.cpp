@@ -325,6 +325,42 @@ TEST(HexapodDesign, LegDiameterRemovesTheDesignsWhoseLegsCollide) {
   EXPECT_GT(removed, 5);
 }
 
+// The installation space: the sample hexapod at home fits a box of its base (radius 0.6 m) and
+// height; a box whose top is below the platform joints at a task pose makes the task
+// unreachable by how far they stick out; a cylinder narrower than the base circle too; the
+// leg diameter counts. Leg-chain problems refuse it.
+TEST(HexapodDesign, InstallationSpaceCountsInReachability) {
+  HexapodDesignSpec spec;
+  spec.objectives = {{DesignMetric::machine_size, Sense::minimize}};
+  spec.task.poses = {Pose{{0, 0, 0.9}, {0, 0, 0}}};
+  const double fits = HexapodDesignProblem(spec).evaluate({}).reach_violation;
+  spec.task.installation_space.kind = InstallationSpace::Kind::kBox;
+  spec.task.installation_space.min = {-0.7, -0.7, -0.1};
+  spec.task.installation_space.max = {0.7, 0.7, 1.2};
+  const DesignEvaluation inside = HexapodDesignProblem(spec).evaluate({});
+  EXPECT_TRUE(inside.reachable);
+  EXPECT_EQ(inside.reach_violation, fits);  // the space is not the closest constraint here
+  // The platform joints are at z = 0.9 + 0.1 (the TCP 0.1 m below the platform): a top at 0.95.
+  spec.task.installation_space.max.z() = 0.95;
+  const DesignEvaluation low = HexapodDesignProblem(spec).evaluate({});
+  EXPECT_FALSE(low.reachable);
+  EXPECT_NEAR(low.reach_violation, 0.05, 1e-12);
+  // 80 mm legs stick out 0.04 m further.
+  spec.machine_template.leg_shape.diameter = 0.08;
+  EXPECT_NEAR(HexapodDesignProblem(spec).evaluate({}).reach_violation, 0.09, 1e-12);
+  spec.machine_template.leg_shape = LegShape{};
+  // A cylinder of radius 0.55 m about the axis: the base joints (radius 0.6 m) stick out 0.05 m.
+  spec.task.installation_space = InstallationSpace{};
+  spec.task.installation_space.kind = InstallationSpace::Kind::kCylinder;
+  spec.task.installation_space.radius = 0.55;
+  spec.task.installation_space.z_min = -0.1;
+  spec.task.installation_space.z_max = 1.5;
+  EXPECT_NEAR(HexapodDesignProblem(spec).evaluate({}).reach_violation, 0.05, 1e-12);
+  HexapodDesignSpec smooth = test_specs::smooth_spec();
+  smooth.task.installation_space = spec.task.installation_space;
+  EXPECT_THROW(HexapodDesignProblem{smooth}, std::invalid_argument);
+}
+
 TEST(HexapodDesign, FailingDesignsAreRecordedWithAReasonAndFiniteRows) {
   HexapodDesignSpec spec = single_pose_spec(0.9, -5000.0);
   spec.parameters[kPlatformRadius] = {0.0, 0.3};  // r_p = 0: all platform joints coincide
