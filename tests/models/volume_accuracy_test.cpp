@@ -13,21 +13,10 @@
 
 #include "models/hexapod.hpp"
 #include "models/sample_machines.hpp"
+#include "tests/models/monte_carlo_volume.hpp"
 
 namespace pkmopt {
 namespace {
-
-// splitmix64: a seeded, bit-reproducible stream of uniform doubles in [0, 1).
-struct SplitMix64 {
-  std::uint64_t state;
-  double next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
 
 // The docs/conventions.md hexapod with every length times `scale`.
 Hexapod scaled_hexapod(double scale) {
@@ -38,26 +27,6 @@ Hexapod scaled_hexapod(double scale) {
   d.max_length *= scale;
   d.tcp *= scale;
   return Hexapod(d);
-}
-
-struct MonteCarlo {
-  double volume, standard_error;
-};
-
-MonteCarlo monte_carlo_volume(const Hexapod& hexapod, const Eigen::AlignedBox3d& box,
-                              std::uint64_t seed) {
-  SplitMix64 random{seed};
-  const auto data = hexapod.make_data();
-  const int samples = 1'000'000;
-  int hits = 0;
-  Pose pose;
-  for (int s = 0; s < samples; ++s) {
-    for (int a = 0; a < 3; ++a)
-      pose.position(a) = box.min()(a) + (box.max()(a) - box.min()(a)) * random.next();
-    hits += hexapod.reachable(*data, pose) ? 1 : 0;
-  }
-  const double p = static_cast<double>(hits) / samples;
-  return {p * box.volume(), std::sqrt(p * (1 - p) / samples) * box.volume()};
 }
 
 TEST(VolumeAccuracy, SmallAndLargeMachinesMeetTheToleranceAgainstMonteCarlo) {
@@ -71,7 +40,8 @@ TEST(VolumeAccuracy, SmallAndLargeMachinesMeetTheToleranceAgainstMonteCarlo) {
     options.resolution = acc.resolution;
     const WorkspaceResult ws = compute_workspace(hexapod, options);
     EXPECT_DOUBLE_EQ(ws.volume, acc.volume);  // the volume-only path gives the same number
-    const MonteCarlo mc = monte_carlo_volume(hexapod, ws.search_box, 20261202);
+    const test_volume::MonteCarlo mc =
+        test_volume::monte_carlo_volume(hexapod, ws.search_box, Eigen::Vector3d::Zero(), 20261202);
     EXPECT_LT(std::abs(acc.volume - mc.volume), acc.error + 4.0 * mc.standard_error)
         << "scale " << scale << ": " << acc.volume << " +- " << acc.error << " vs Monte Carlo "
         << mc.volume << " +- " << mc.standard_error << " (h " << acc.resolution << ")";

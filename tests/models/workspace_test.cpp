@@ -11,6 +11,7 @@
 
 #include "models/hexapod.hpp"
 #include "models/sample_machines.hpp"
+#include "tests/models/monte_carlo_volume.hpp"
 
 namespace pkmopt {
 namespace {
@@ -26,18 +27,6 @@ double lens_volume(double r1, double r2, double d) {
   return kPi * (r1 + r2 - d) * (r1 + r2 - d) *
          (d * d + 2 * d * r2 - 3 * r2 * r2 + 2 * d * r1 + 6 * r1 * r2 - 3 * r1 * r1) / (12 * d);
 }
-
-// splitmix64: a seeded, bit-reproducible stream of uniform doubles in [0, 1).
-struct SplitMix64 {
-  std::uint64_t state;
-  double next() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
 
 // Legs 0-2 keep the TCP in the shell [min, max] about centre_a, legs 3-5 about centre_b
 // (a_i = b_i + centre, tcp = 0, R = I): the workspace is the intersection of two shells.
@@ -115,21 +104,9 @@ TEST(WorkspaceVolume, AgreesWithMonteCarloOnTheSampleHexapod) {
   EXPECT_GE(ws.convex_hull_volume, ws.volume);
 
   // 1e6 uniform samples in the search box: relative standard error about 0.2 %.
-  const Eigen::AlignedBox3d box = ws.search_box;
-  SplitMix64 random{20240611};
-  const auto data = hexapod.make_data();
-  const int samples = 1'000'000;
-  int hits = 0;
-  Pose pose;
-  for (int s = 0; s < samples; ++s) {
-    for (int a = 0; a < 3; ++a) {
-      pose.position(a) = box.min()(a) + (box.max()(a) - box.min()(a)) * random.next();
-    }
-    hits += hexapod.reachable(*data, pose) ? 1 : 0;
-  }
-  const double p = static_cast<double>(hits) / samples;
-  const double monte_carlo = p * box.volume();
-  const double standard_error = std::sqrt(p * (1 - p) / samples) * box.volume();
+  const test_volume::MonteCarlo mc =
+      test_volume::monte_carlo_volume(hexapod, ws.search_box, Eigen::Vector3d::Zero(), 20240611);
+  const double monte_carlo = mc.volume, standard_error = mc.standard_error;
   EXPECT_LT(std::abs(ws.volume - monte_carlo), 4.0 * standard_error + 1e-3 * monte_carlo)
       << ws.volume << " vs Monte Carlo " << monte_carlo << " +- " << standard_error;
 }
@@ -151,21 +128,9 @@ TEST(WorkspaceVolume, LegInterferenceShrinksItAndAgreesWithMonteCarlo) {
   ASSERT_GT(ws.volume, 0.0);
   EXPECT_LT(ws.volume, 0.5 * free.volume) << ws.volume << " of " << free.volume;
   EXPECT_FALSE(ws.touches_search_box);
-  const Eigen::AlignedBox3d box = ws.search_box;
-  SplitMix64 random{20261202};
-  const auto data = hexapod.make_data();
-  const int samples = 1'000'000;
-  int hits = 0;
-  Pose pose{Eigen::Vector3d::Zero(), options.orientations.nominal_angles};
-  for (int s = 0; s < samples; ++s) {
-    for (int a = 0; a < 3; ++a) {
-      pose.position(a) = box.min()(a) + (box.max()(a) - box.min()(a)) * random.next();
-    }
-    hits += hexapod.reachable(*data, pose) ? 1 : 0;
-  }
-  const double p = static_cast<double>(hits) / samples;
-  const double monte_carlo = p * box.volume();
-  const double standard_error = std::sqrt(p * (1 - p) / samples) * box.volume();
+  const test_volume::MonteCarlo mc = test_volume::monte_carlo_volume(
+      hexapod, ws.search_box, options.orientations.nominal_angles, 20261202);
+  const double monte_carlo = mc.volume, standard_error = mc.standard_error;
   EXPECT_LT(std::abs(ws.volume - monte_carlo), 4.0 * standard_error + 1e-3 * monte_carlo)
       << ws.volume << " vs Monte Carlo " << monte_carlo << " +- " << standard_error;
 }
