@@ -1,5 +1,6 @@
 // Candidate poses for calibration (problems/calibration_candidates.hpp) on the docs/conventions.md
-// hexapod, whose TCP reaches z = 0.9 m (x, y within 5 cm, angles within 2 deg) but not z = 5 m.
+// hexapod, whose TCP reaches z = 0.9 m (x, y within 5 cm, angles within 2 deg) but not z = 5 m;
+// with leg diameters, poses where legs collide are no candidates.
 #include "problems/calibration_candidates.hpp"
 
 #include <gtest/gtest.h>
@@ -36,6 +37,24 @@ TEST(ReachableCandidates, KeepsReachablePosesWithTheirLabels) {
 
 TEST(ReachableCandidates, OneLabelPerPose) {
   EXPECT_THROW(pkmopt::reachable_candidates(hexapod(), {at(0, 0, 0.9)}, {}), std::invalid_argument);
+}
+
+// Legs of 80 mm (no joint limits, long stroke): a pose turned by 100 degrees about z, where legs
+// cross, is no candidate; the same pose with line legs is.
+TEST(ReachableCandidates, PosesWhereLegsCollideAreDropped) {
+  pkmopt::HexapodDesign design = pkmopt::sample_machines::conventions_hexapod_design();
+  design.joints = pkmopt::HexapodJointLimits{};
+  design.max_length = 1.4;
+  Pose turned = at(0, 0, 0.9);
+  turned.angles = {0, 0, pkmopt::deg_to_rad(100.0)};
+  const pkmopt::Hexapod lines(design);
+  EXPECT_EQ(pkmopt::reachable_candidates(lines, {at(0, 0, 0.9), turned}, {1, 2}).poses.size(), 2u);
+  design.leg_shape.diameter = 0.08;
+  const pkmopt::Hexapod legs(design);
+  ASSERT_LT(legs.leg_clearance(turned).value, 0.0);
+  const auto c = pkmopt::reachable_candidates(legs, {at(0, 0, 0.9), turned}, {1, 2});
+  EXPECT_EQ(c.labels, (std::vector<int>{1}));
+  EXPECT_EQ(c.unreachable, 1);
 }
 
 TEST(GridCandidates, OrderLevelsAndLabels) {
