@@ -194,13 +194,18 @@ bool Hexapod::reachable_from_kinematics(const HexapodData& d, const Mat3<double>
   return true;
 }
 
-Clearance Hexapod::clearance_from_kinematics(const HexapodData& d) const {
-  Capsule bodies[12];
+int Hexapod::bodies_from_kinematics(const HexapodData& d, Capsule (&bodies)[12]) const {
   int n = 0;
   for (int i = 0; i < 6; ++i) {
     const Eigen::Vector3d a = design_.base_joints.col(i);
     n += leg_bodies(design_.leg_shape, a, a + d.q(i) * d.s.col(i), i, bodies + n);
   }
+  return n;
+}
+
+Clearance Hexapod::clearance_from_kinematics(const HexapodData& d) const {
+  Capsule bodies[12];
+  const int n = bodies_from_kinematics(d, bodies);
   return pkmopt::leg_clearance(std::span<const Capsule>(bodies, static_cast<std::size_t>(n)));
 }
 
@@ -216,8 +221,11 @@ bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
   const Mat3<double> R = rotation_zyx<double>(pose.angles);
   if (!compute_kinematics(d, pose, R)) return false;
   if (!reachable_from_kinematics(d, R)) return false;
-  return !design_.leg_shape.present() ||
-         clearance_from_kinematics(d).value >= design_.min_clearance;
+  if (!design_.leg_shape.present()) return true;
+  Capsule bodies[12];
+  const int n = bodies_from_kinematics(d, bodies);
+  return legs_apart(std::span<const Capsule>(bodies, static_cast<std::size_t>(n)),
+                    design_.min_clearance);
 }
 
 void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wrench,

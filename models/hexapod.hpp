@@ -239,7 +239,9 @@ class Hexapod final : public Machine {
 
  private:
   bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
-  /// The clearance of the legs of the last compute_kinematics (a_i to a_i + q_i s_i).
+  /// The legs' bodies of the last compute_kinematics (a_i to a_i + q_i s_i); returns how many.
+  int bodies_from_kinematics(const HexapodData& data, Capsule (&bodies)[12]) const;
+  /// The clearance of the legs of the last compute_kinematics.
   Clearance clearance_from_kinematics(const HexapodData& data) const;
   /// compliance (into data.matrices), tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction, stiffness_min_loaded and (with masses) natural_frequencies of a

@@ -79,6 +79,24 @@ Clearance leg_clearance(std::span<const Capsule> bodies) {
   return best;
 }
 
+bool legs_apart(std::span<const Capsule> bodies, double min_clearance) {
+  for (std::size_t u = 0; u < bodies.size(); ++u) {
+    const Capsule& x = bodies[u];
+    const Eigen::Vector3d x_lo = x.a.cwiseMin(x.b), x_hi = x.a.cwiseMax(x.b);
+    for (std::size_t v = u + 1; v < bodies.size(); ++v) {
+      const Capsule& y = bodies[v];
+      if (x.leg == y.leg) continue;
+      const double need = x.radius + y.radius + min_clearance;
+      // The distance between the axes' bounding boxes is a lower bound of the axes' distance.
+      const Eigen::Vector3d y_lo = y.a.cwiseMin(y.b), y_hi = y.a.cwiseMax(y.b);
+      const Eigen::Vector3d gap = (y_lo - x_hi).cwiseMax(x_lo - y_hi).cwiseMax(0.0);
+      if (gap.squaredNorm() >= need * need) continue;
+      if (segment_distance(x.a, x.b, y.a, y.b) - x.radius - y.radius < min_clearance) return false;
+    }
+  }
+  return true;
+}
+
 std::string clearance_pair_text(int first, int second) {
   if (first < 0 || second < 0) return "";
   return std::to_string(first + 1) + "-" + std::to_string(second + 1);

@@ -69,6 +69,11 @@ std::vector<Capsule> leg_capsules(const LegShape& shape, const Eigen::Matrix3Xd&
 /// The clearance over every pair of bodies of different legs.
 Clearance leg_clearance(std::span<const Capsule> bodies);
 
+/// True when every pair of bodies of different legs is at least `min_clearance` apart
+/// (leg_clearance(bodies).value >= min_clearance, decided faster: pairs whose bounding boxes are
+/// further apart than that skip the exact distance, and the first pair too close ends the test).
+bool legs_apart(std::span<const Capsule> bodies, double min_clearance);
+
 /// "3-4" (1-based legs) for a clearance that checked something, else "".
 std::string clearance_pair_text(int first, int second);
 

@@ -210,6 +210,41 @@ TEST(LegInterference, BatchPathAgreesWithTheScalarPath) {
   EXPECT_GT(intersecting, 20);  // the test sees colliding poses too
 }
 
+// legs_apart (the bounding-box shortcut of reachable) decides as the full clearance does, on
+// random designs, shapes, poses and min_clearance values, both near and far from the threshold.
+TEST(LegInterference, LegsApartAgreesWithTheClearance) {
+  Uniform u(17);
+  int apart = 0, close = 0;
+  for (int g = 0; g < 200; ++g) {
+    HexapodDesign design = sample_machines::random_hexapod_design(u);
+    LegShape shape;
+    if (g % 2 == 0) {
+      shape.diameter = u(0.03, 0.15);
+    } else {
+      shape.cylinder_diameter = u(0.05, 0.15);
+      shape.cylinder_length = u(0.3, 0.8);
+      shape.rod_diameter = u(0.02, 0.05);
+    }
+    const Pose pose = sample_machines::random_pose(u);
+    const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+    Eigen::Matrix3Xd a(3, 6), p(3, 6);
+    for (int i = 0; i < 6; ++i) {
+      a.col(i) = design.base_joints.col(i);
+      p.col(i) = pose.position + R * (design.platform_joints.col(i) - design.tcp);
+    }
+    const std::vector<Capsule> bodies = leg_capsules(shape, a, p);
+    const double clearance = leg_clearance(bodies).value;
+    for (const double min_clearance : {0.0, u(0.0, 0.05), std::max(0.0, clearance)}) {
+      if (std::abs(clearance - min_clearance) < 1e-12 && min_clearance != clearance) continue;
+      EXPECT_EQ(legs_apart(bodies, min_clearance), clearance >= min_clearance)
+          << g << " " << clearance << " " << min_clearance;
+      (clearance >= min_clearance ? apart : close)++;
+    }
+  }
+  EXPECT_GT(apart, 50);
+  EXPECT_GT(close, 50);
+}
+
 TEST(LegInterference, ShapeIsValidated) {
   auto refused = [](LegShape s, double min_clearance) {
     try {
