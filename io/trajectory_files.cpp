@@ -122,13 +122,13 @@ std::string trajectory_summary_text(const Machine& machine, const TrajectoryResu
         "  legs: min clearance {:.4g} mm (legs {}) at t = {} s\n", summary.clearance_min * 1e3,
         clearance_pair_text(closest.metrics.clearance_first, closest.metrics.clearance_second),
         format_number(closest.t));
-    if (summary.first_intersecting != static_cast<std::size_t>(-1)) {
-      const TrajectorySample& first = result.samples[summary.first_intersecting];
+    if (summary.first_intersecting) {
+      const TrajectorySample& first = result.samples[*summary.first_intersecting];
       text += fmt::format(
           "  WARNING: legs {} intersect first at sample {} (t = {} s, x {:.4g}, y {:.4g}, z {:.4g} "
           "m)\n",
           clearance_pair_text(first.metrics.clearance_first, first.metrics.clearance_second),
-          summary.first_intersecting, format_number(first.t), first.pose.position.x(),
+          *summary.first_intersecting, format_number(first.t), first.pose.position.x(),
           first.pose.position.y(), first.pose.position.z());
     }
   }

@@ -302,7 +302,7 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
       summary.clearance_min = s.metrics.leg_clearance;
       summary.clearance_min_sample = k;
     }
-    if (s.metrics.leg_clearance < 0.0 && summary.first_intersecting == static_cast<std::size_t>(-1))
+    if (s.metrics.leg_clearance < 0.0 && !summary.first_intersecting)
       summary.first_intersecting = k;
     summary.q_min = summary.q_min.cwiseMin(s.metrics.q);
     summary.q_max = summary.q_max.cwiseMax(s.metrics.q);

@@ -71,6 +71,7 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "models/cubic_spline.hpp"
@@ -227,10 +228,10 @@ struct TrajectorySummary {
   Eigen::VectorXd power_max;
   /// With a leg shape (Machine::checks_leg_interference): the smallest leg_clearance over the
   /// samples (m; +inf without a shape), the sample it is at, and the first sample whose legs
-  /// intersect (leg_clearance < 0), npos when none does.
+  /// intersect (leg_clearance < 0), none when no sample does.
   double clearance_min = std::numeric_limits<double>::infinity();
   std::size_t clearance_min_sample = 0;
-  std::size_t first_intersecting = static_cast<std::size_t>(-1);
+  std::optional<std::size_t> first_intersecting;
 };
 
 /// The summary of a run of a machine with `num_actuators` actuators.
