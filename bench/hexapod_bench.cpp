@@ -75,6 +75,19 @@ BENCHMARK(BM_HexapodMetricsBatchBaselineOneThread)->Unit(benchmark::kMicrosecond
 void BM_HexapodAnalyzeBatch(benchmark::State& state) {
   pkmopt::HexapodDesign design = sample_hexapod().design();
   if (state.range(3) != 0) design.leg_shape.diameter = 0.08;
+  // 2: cylinder-and-rod legs with the platform and base plates and a spindle (the solids are
+  // checked pose by pose after the SIMD kernel).
+  if (state.range(3) == 2) {
+    design.leg_shape = {};
+    design.leg_shape.cylinder_diameter = 0.09;
+    design.leg_shape.cylinder_length = 0.6;
+    design.leg_shape.rod_diameter = 0.05;
+    design.bodies.platform.radius = 0.28;
+    design.bodies.platform.z_max = 0.03;
+    design.bodies.base.radius = 0.68;
+    design.bodies.base.z_min = -0.04;
+    design.bodies.tool = {0.14, {0, 0, 0}, {0, 0, -0.08}};
+  }
   const pkmopt::Hexapod hexapod(design);
   const std::size_t n = static_cast<std::size_t>(state.range(0));
   const int threads = state.range(1) > 0 ? static_cast<int>(state.range(1)) : omp_get_max_threads();
@@ -109,6 +122,7 @@ BENCHMARK(BM_HexapodAnalyzeBatch)
     ->Args({1000000, 1, 0, 0})
     ->Args({1000000, 1, 1, 0})
     ->Args({1000000, 1, 0, 1})
+    ->Args({1000000, 1, 0, 2})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -298,6 +298,9 @@ std::string allowed_text(const FieldRule& r, const T& member) {
   } else if constexpr (IsPointList<T>::value) {
     if (!r.expected.empty()) return std::string(r.expected);
     return fmt::format("[[x, y, z] × {}]", T::ColsAtCompileTime);
+  } else if constexpr (std::is_same_v<T, std::vector<Eigen::Vector2d>>) {
+    if (!r.expected.empty()) return std::string(r.expected);
+    return "[[x, y], ...]";
   } else {
     return expected_text<T>(r);
   }
@@ -376,6 +379,12 @@ std::string value_text(const T& value, const FieldRule& r = {}) {
     for (int i = 0; i < value.cols(); ++i)
       list += (i == 0 ? "" : ", ") + value_text(Eigen::Vector3d(value.col(i)), r);
     return "[" + list + "]";
+  } else if constexpr (std::is_same_v<T, std::vector<Eigen::Vector2d>>) {
+    std::string list;
+    for (const Eigen::Vector2d& v : value)
+      list += fmt::format("{}[{}, {}]", list.empty() ? "" : ", ", real_text(v.x(), r),
+                          real_text(v.y(), r));
+    return "[" + list + "]";
   } else if constexpr (kInteger<T>) {
     return std::to_string(value);
   } else {
@@ -386,7 +395,8 @@ std::string value_text(const T& value, const FieldRule& r = {}) {
 template <class T>
 bool is_unset(const FieldRule& r, const T& value) {
   if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::string> ||
-                std::is_same_v<T, std::vector<FieldRange>>) {
+                std::is_same_v<T, std::vector<FieldRange>> ||
+                std::is_same_v<T, std::vector<Eigen::Vector2d>>) {
     return r.zero_is_unset && value.empty();
   } else if constexpr (std::is_same_v<T, FieldColumn>) {
     return r.zero_is_unset && value.members.empty();
@@ -511,6 +521,12 @@ class FieldReader {
       const std::vector<YamlValue> items = v->elements(static_cast<int>(member.size()));
       for (std::size_t i = 0; i < items.size(); ++i)
         field_detail::read_range(items[i], rule, member[i]);
+    } else if constexpr (std::is_same_v<T, std::vector<Eigen::Vector2d>>) {
+      member.clear();
+      for (const YamlValue& item : v->elements()) {
+        const std::vector<double> xy = item.as_doubles(2);
+        member.emplace_back(xy[0], xy[1]);
+      }
     } else if constexpr (field_detail::IsPointList<T>::value) {
       const std::vector<YamlValue> items = v->elements(static_cast<int>(member.cols()));
       for (std::size_t i = 0; i < items.size(); ++i) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "io/body_fields.hpp"
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
 #include "io/hexapod_fields.hpp"
@@ -89,6 +90,7 @@ void describe_fields(Fields& f, HexapodDesign& d) {
     describe_leg_shape(g, d.leg_shape);
   });
   describe_min_clearance(f, d.min_clearance);
+  describe_machine_bodies(f, d.bodies);
   f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, d.joints); });
   f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, d.tcp); });
   f.field("characteristic_length", d.characteristic_length,
@@ -126,6 +128,17 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
     check_leg_shape(design.leg_shape, design.min_clearance);
   } catch (const std::invalid_argument& e) {
     legs.fail(e.what());
+  }
+  if (root.has("bodies")) {
+    try {
+      check_machine_bodies(design.bodies);
+    } catch (const std::invalid_argument& e) {
+      root.required("bodies").fail(e.what());
+    }
+    if (!design.leg_shape.present())
+      root.required("bodies").fail(
+          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
+          "legs.cylinder and legs.rod)");
   }
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "io/body_fields.hpp"
 #include "io/compliance_fields.hpp"
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
@@ -114,6 +115,7 @@ void describe_fields(Fields& f, DeltaDesign& d) {
            .doc = "half-width of the drive angle error box of tcp_error_max"});
   MassFields masses{d.masses, kCrankBodies};
   describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, true);
 }
 
 // The keys after the links of a carriage-driven model (linear delta, hexaglide): the carriage
@@ -150,6 +152,7 @@ void describe_fields(Fields& f, LinearDeltaDesign& d) {
   describe_carriage_drive_and_rest(f, d);
   MassFields masses{d.masses, kCarriageBodies};
   describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, false);
 }
 
 template <class Fields>
@@ -180,6 +183,7 @@ void describe_fields(Fields& f, HexaglideDesign& d) {
   f.field("home_height", d.home_height, {.unit = "m", .doc = "z of the FK start pose"});
   MassFields masses{d.masses, kCarriageBodies};
   describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, false);
 }
 
 template <class Fields>
@@ -209,6 +213,7 @@ void describe_fields(Fields& f, Tripod3PrsDesign& d) {
           {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
   MassFields masses{d.masses, kCarriageBodies};
   describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, false);
 }
 
 DeltaDesign read_delta_design(const YamlValue& root) {

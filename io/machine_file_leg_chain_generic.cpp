@@ -2,6 +2,7 @@
 // its field lists, the reader of its legs and actuator error, and its docs table.
 #include <string>
 
+#include "io/body_fields.hpp"
 #include "io/leg_chain_fields.hpp"
 #include "io/machine_file_leg_chain.hpp"
 #include "io/mass_fields.hpp"
@@ -42,6 +43,7 @@ void describe_fields(Fields& f, LegChainDesign& d) {
   });
   MassFields masses{d.masses, kAllBodies};
   describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, true);
 }
 
 template <class Fields>

@@ -115,6 +115,10 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
   check_screw_drive(k.drive, "legs.drive", false);
   if (design_.masses.present) check_mass_model(design_.masses, "masses.");
   check_leg_shape(design_.leg_shape, design_.min_clearance);
+  check_machine_bodies(design_.bodies);
+  require(!design_.bodies.present() || design_.leg_shape.present(),
+          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
+          "legs.cylinder and legs.rod)");
   require(k.axial_stiffness > 0.0 || (k.E > 0.0) == (k.area > 0.0),
           "legs: the strut needs both E and area (or axial_stiffness)");
   require(k.axial_stiffness > 0.0 || (k.E > 0.0 && k.area > 0.0) || k.actuator_stiffness > 0.0 ||
@@ -203,17 +207,23 @@ int Hexapod::bodies_from_kinematics(const HexapodData& d, Capsule (&bodies)[12])
   return n;
 }
 
-Clearance Hexapod::clearance_from_kinematics(const HexapodData& d) const {
+Clearance Hexapod::clearance_from_kinematics(const HexapodData& d, const Pose& pose,
+                                             const Mat3<double>& R) const {
   Capsule bodies[12];
   const int n = bodies_from_kinematics(d, bodies);
-  return pkmopt::leg_clearance(std::span<const Capsule>(bodies, static_cast<std::size_t>(n)));
+  const std::span<const Capsule> legs(bodies, static_cast<std::size_t>(n));
+  Clearance c = pkmopt::leg_clearance(legs);
+  if (design_.bodies.present())
+    body_clearance(legs, design_.bodies, R, pose.position - R * design_.tcp, c);
+  return c;
 }
 
 Clearance Hexapod::leg_clearance(const Pose& pose) const {
   if (!design_.leg_shape.present()) return {};
   HexapodData d;
-  compute_kinematics(d, pose);
-  return clearance_from_kinematics(d);
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  compute_kinematics(d, pose, R);
+  return clearance_from_kinematics(d, pose, R);
 }
 
 bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
@@ -224,8 +234,11 @@ bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
   if (!design_.leg_shape.present()) return true;
   Capsule bodies[12];
   const int n = bodies_from_kinematics(d, bodies);
-  return legs_apart(std::span<const Capsule>(bodies, static_cast<std::size_t>(n)),
-                    design_.min_clearance);
+  const std::span<const Capsule> legs(bodies, static_cast<std::size_t>(n));
+  return legs_apart(legs, design_.min_clearance) &&
+         (!design_.bodies.present() ||
+          bodies_apart(legs, design_.bodies, R, pose.position - R * design_.tcp,
+                       design_.min_clearance));
 }
 
 void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wrench,
@@ -234,7 +247,7 @@ void Hexapod::compute_metrics(HexapodData& d, const Pose& pose, const Wrench& wr
   const bool legs_ok = compute_kinematics(d, pose, R);
   out.reachable = legs_ok && reachable_from_kinematics(d, R);
   if (design_.leg_shape.present()) {
-    const Clearance c = clearance_from_kinematics(d);
+    const Clearance c = clearance_from_kinematics(d, pose, R);
     out.leg_clearance = c.value;
     out.clearance_first = c.first;
     out.clearance_second = c.second;

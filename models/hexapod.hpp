@@ -52,6 +52,7 @@
 #include "models/machine.hpp"
 #include "models/mass_model.hpp"
 #include "models/pose.hpp"
+#include "models/solid_bodies.hpp"
 
 namespace pkmopt {
 
@@ -100,6 +101,9 @@ struct HexapodDesign {
   LegShape leg_shape;
   /// m: with a leg shape, a pose is reachable only when leg_clearance >= min_clearance.
   double min_clearance = 0.0;
+  /// Platform and base plates and the tool, checked against the legs (models/solid_bodies.hpp);
+  /// they need a leg shape.
+  MachineBodies bodies;
 };
 
 /// Joints of a semi-regular hexagon of given radius and pair separation (rad), docs/conventions.md:
@@ -241,8 +245,10 @@ class Hexapod final : public Machine {
   bool reachable_from_kinematics(const HexapodData& data, const Mat3<double>& R) const;
   /// The legs' bodies of the last compute_kinematics (a_i to a_i + q_i s_i); returns how many.
   int bodies_from_kinematics(const HexapodData& data, Capsule (&bodies)[12]) const;
-  /// The clearance of the legs of the last compute_kinematics.
-  Clearance clearance_from_kinematics(const HexapodData& data) const;
+  /// The clearance of the legs (with each other and with the solids) of the last
+  /// compute_kinematics at `pose`, R its rotation.
+  Clearance clearance_from_kinematics(const HexapodData& data, const Pose& pose,
+                                      const Mat3<double>& R) const;
   /// compliance (into data.matrices), tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction, stiffness_min_loaded and (with masses) natural_frequencies of a
   /// non-singular pose (after

@@ -182,6 +182,20 @@ __attribute__((target("avx2,fma"))) std::size_t run_batch_avx2(const Hexapod& he
 }
 #endif
 
+// The solids (plates, tool) are checked pose by pose after the kernel (models/solid_bodies.hpp):
+// the clearance and the reachability take them in, the rest stands.
+void add_solid_bodies(const Hexapod& hexapod, const Pose* poses, std::size_t n, PoseMetrics* out) {
+  if (!hexapod.design().bodies.present()) return;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Clearance c = hexapod.leg_clearance(poses[i]);
+    if (!(c.value < out[i].leg_clearance)) continue;
+    out[i].leg_clearance = c.value;
+    out[i].clearance_first = c.first;
+    out[i].clearance_second = c.second;
+    out[i].reachable = out[i].reachable && c.value >= hexapod.design().min_clearance;
+  }
+}
+
 }  // namespace
 
 bool hexapod_batch_uses_avx2() {
@@ -199,11 +213,15 @@ std::size_t analyze_hexapod_batch(const Hexapod& hexapod, const Pose* poses, std
   // A CPU without AVX2 (where the scalar fast path is quicker than the baseline kernel) runs pose
   // by pose.
   if (kernel == HexapodBatchKernel::baseline) {
-    return run_batch_baseline(hexapod, poses, n, wrench, out, matrices);
+    const std::size_t done = run_batch_baseline(hexapod, poses, n, wrench, out, matrices);
+    add_solid_bodies(hexapod, poses, n, out);
+    return done;
   }
 #if defined(PKMOPT_BATCH_X86)
   if (hexapod_batch_uses_avx2()) {
-    return run_batch_avx2(hexapod, poses, n, wrench, out, matrices);
+    const std::size_t done = run_batch_avx2(hexapod, poses, n, wrench, out, matrices);
+    add_solid_bodies(hexapod, poses, n, out);
+    return done;
   }
 #endif
   HexapodData data(hexapod);

@@ -12,6 +12,7 @@
 
 #include "models/compliance_metrics.hpp"
 #include "models/leg_chain.hpp"
+#include "models/leg_interference.hpp"
 #include "models/linalg.hpp"
 #include "models/require.hpp"
 
@@ -150,6 +151,12 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
                                                        d.module_compliance, d.module_error_map);
 
   out.reachable = m.reachable && s.attained;
+  // The module's legs are numbered as their actuators: after the serial axes.
+  out.leg_clearance = m.leg_clearance;
+  out.clearance_first = m.clearance_first < 0 ? -1 : m.clearance_first + num_serial_;
+  out.clearance_second = m.clearance_second < 0 || m.clearance_second >= kPlatformBody
+                             ? m.clearance_second
+                             : m.clearance_second + num_serial_;
   out.natural_frequencies.resize(0);  // set below with masses and the compliance metrics
   out.q.resize(n);
   out.q << s.serial, m.q;

@@ -170,6 +170,10 @@ class HybridMachine final : public Machine {
   std::string_view model() const override { return "hybrid"; }
   int num_actuators() const override { return num_serial_ + design_.module->num_actuators(); }
   bool revolute_actuators() const override { return false; }  ///< modules are prismatic
+  /// The module's interference check; clearance_pair numbers its legs as their actuators.
+  bool checks_leg_interference() const override {
+    return design_.module->checks_leg_interference();
+  }
   std::unique_ptr<MachineData> make_data() const override;
   void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                PoseMetrics& out) const override;

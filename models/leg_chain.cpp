@@ -76,6 +76,7 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
       break;
   }
   require(design_.tcp.allFinite(), "tool.tcp must be finite numbers");
+  check_link_shapes(design_);
   require(
       std::isfinite(design_.actuator_error) && design_.actuator_error >= 0.0,
       "actuator_error must be a finite number >= 0, found " + fmt_double(design_.actuator_error));
@@ -399,7 +400,7 @@ bool LegChainMachine::reachable_from_kinematics(const LegChainData& d, const Pos
 bool LegChainMachine::reachable(MachineData& data, const Pose& pose) const {
   auto& d = static_cast<LegChainData&>(data);
   compute_kinematics(d, pose);
-  return reachable_from_kinematics(d, pose);
+  return reachable_from_kinematics(d, pose) && (!design_.shapes.present() || links_apart(d));
 }
 
 void LegChainMachine::joint_angles(const Pose& pose, Eigen::VectorXd& base_angles,
@@ -441,6 +442,12 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
   const int n = num_actuators();
   compute_kinematics(d, pose);
   out.reachable = reachable_from_kinematics(d, pose);
+  const Clearance clearance = clearance_from_kinematics(d);
+  out.leg_clearance = clearance.value;
+  out.clearance_first = clearance.first;
+  out.clearance_second = clearance.second;
+  if (design_.shapes.present())
+    out.reachable = out.reachable && clearance.value >= design_.shapes.min_clearance;
   out.q = d.q;
 
   // Axial stiffness of every leg at its platform point: actuator and link in series.

@@ -123,10 +123,12 @@
 
 #include "models/compliance_chain.hpp"
 #include "models/leg_dynamics.hpp"
+#include "models/leg_interference.hpp"
 #include "models/machine.hpp"
 #include "models/machine_dynamics.hpp"
 #include "models/mass_model.hpp"
 #include "models/pose.hpp"
+#include "models/solid_bodies.hpp"
 #include "models/virtual_joint.hpp"
 
 namespace pkmopt {
@@ -192,6 +194,21 @@ struct LegChainLeg {
   Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitY();
 };
 
+/// The links' outer shape and the solids for the interference check (models/leg_interference.hpp,
+/// models/solid_bodies.hpp). Every link is a capsule from joint centre to joint centre; links of
+/// one leg are not checked against each other; carriages and guides are not checked. No
+/// diameter given: not checked.
+struct LinkShapes {
+  /// Each strut or rod (each rod of a parallelogram pair, parallelogram_width apart) and each
+  /// UPS leg (m); 0: not given.
+  double link_diameter = 0.0;
+  double crank_diameter = 0.0;  ///< RUS: the crank from its pivot to the elbow (m); 0: not given
+  /// m: with a shape, a pose is reachable only when leg_clearance >= min_clearance.
+  double min_clearance = 0.0;
+  MachineBodies bodies;  ///< platform and base plates, tool; need a link shape
+  bool present() const { return link_diameter > 0.0 || crank_diameter > 0.0; }
+};
+
 /// Everything that defines a leg-chain machine. Validated by the LegChainMachine constructor.
 struct LegChainDesign {
   std::string model = "leg_chain";  ///< reported by Machine::model()
@@ -209,8 +226,15 @@ struct LegChainDesign {
   Pose home;
   /// Platform and leg masses (models/mass_model.hpp: UPS cylinder and rod, PUS carriage and
   /// link, RUS crank and link); `present` false: none (no natural frequencies).
-  MassModel masses;
+  MassModel
+      masses;  /// The links' shape and the solids for the interference check; none: not checked.
+  LinkShapes shapes;
 };
+
+/// Throws std::invalid_argument naming the key unless the link diameters and min_clearance are
+/// finite and >= 0, a crank diameter has a RUS leg, and the solids are valid and have a link
+/// shape to be checked against.
+void check_link_shapes(const LegChainDesign& design);
 
 /// Per-thread scratch space and the last results of a leg-chain machine.
 class LegChainData : public MachineData {
@@ -265,6 +289,14 @@ class LegChainMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  bool checks_leg_interference() const override { return design_.shapes.present(); }
+  /// The links' clearance at a pose (with each other and with the solids; +inf without a link
+  /// shape or where a leg cannot close).
+  Clearance leg_clearance(const Pose& pose) const;
+  /// ... from the kinematics in `data` (compute_kinematics).
+  Clearance clearance_from_kinematics(const LegChainData& data) const;
+  /// Whether the links keep min_clearance, decided faster than clearance_from_kinematics.
+  bool links_apart(const LegChainData& data) const;
   int natural_frequency_count() const override {
     return design_.masses.present ? num_actuators() : 0;
   }
@@ -430,6 +462,7 @@ struct DeltaDesign {
   std::optional<double> characteristic_length;
   double actuator_error = 1e-3 * kDegToRad;  ///< rad
   MassModel masses;                          ///< platform and leg masses (LegChainDesign::masses)
+  LinkShapes shapes;                         ///< interference check (LegChainDesign::shapes)
 };
 LegChainDesign delta_design(const DeltaDesign& d);
 std::unique_ptr<Machine> make_delta(const DeltaDesign& d);
@@ -454,6 +487,7 @@ struct LinearDeltaDesign {
   std::optional<double> characteristic_length;
   double actuator_error = 1e-5;  ///< m
   MassModel masses;              ///< platform and leg masses (LegChainDesign::masses)
+  LinkShapes shapes;             ///< interference check (LegChainDesign::shapes)
 };
 LegChainDesign linear_delta_design(const LinearDeltaDesign& d);
 std::unique_ptr<Machine> make_linear_delta(const LinearDeltaDesign& d);
@@ -483,7 +517,8 @@ struct HexaglideDesign {
   double actuator_error = 1e-5;  ///< m
   double home_height = 0.6;      ///< m, z of the home pose (FK start)
   HexaglideDesign();
-  MassModel masses;  ///< platform and leg masses (LegChainDesign::masses)
+  MassModel masses;   ///< platform and leg masses (LegChainDesign::masses)
+  LinkShapes shapes;  ///< interference check (LegChainDesign::shapes)
 };
 LegChainDesign hexaglide_design(const HexaglideDesign& d);
 std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d);
@@ -515,6 +550,7 @@ struct Tripod3PrsDesign {
   std::optional<double> characteristic_length;
   double actuator_error = 1e-5;  ///< m
   MassModel masses;              ///< platform and leg masses (LegChainDesign::masses)
+  LinkShapes shapes;             ///< interference check (LegChainDesign::shapes)
 };
 LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& d);
 std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d);

@@ -71,6 +71,7 @@ LegChainDesign delta_design(const DeltaDesign& p) {
   const double h2 = p.rod * p.rod - dr * dr;
   d.home.position = Eigen::Vector3d(0, 0, -(h2 > 0.0 ? std::sqrt(h2) : p.rod)) + p.tcp;
   d.masses = p.masses;
+  d.shapes = p.shapes;
   return d;
 }
 
@@ -117,6 +118,7 @@ LegChainDesign linear_delta_design(const LinearDeltaDesign& p) {
   d.home.position =
       Eigen::Vector3d(0, 0, carriage.z() - (h2 > 0.0 ? std::sqrt(h2) : p.rod)) + p.tcp;
   d.masses = p.masses;
+  d.shapes = p.shapes;
   return d;
 }
 
@@ -164,6 +166,7 @@ LegChainDesign hexaglide_design(const HexaglideDesign& p) {
   d.actuator_error = p.actuator_error;
   d.home.position = Eigen::Vector3d(0, 0, p.home_height);
   d.masses = p.masses;
+  d.shapes = p.shapes;
   return d;
 }
 
@@ -210,6 +213,7 @@ LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& p) {
       Eigen::Vector3d(0, 0, 0.5 * (p.q_min + p.q_max) + (h2 > 0.0 ? std::sqrt(h2) : p.strut)) +
       d.tcp;
   d.masses = p.masses;
+  d.shapes = p.shapes;
   return d;
 }
 

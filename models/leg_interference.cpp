@@ -37,7 +37,7 @@ int leg_bodies(const LegShape& shape, const Eigen::Vector3d& a, const Eigen::Vec
                Capsule* out) {
   if (!shape.present()) return 0;
   if (!shape.two_bodies()) {
-    out[0] = {a, p, 0.5 * shape.diameter, leg};
+    out[0] = {a, p, 0.5 * shape.diameter, leg, true, true};
     return 1;
   }
   const double length = (p - a).norm();
@@ -45,9 +45,9 @@ int leg_bodies(const LegShape& shape, const Eigen::Vector3d& a, const Eigen::Vec
       length > 0.0 ? Eigen::Vector3d((p - a) / length) : Eigen::Vector3d::Zero();
   // The cylinder's open end, never beyond the platform joint.
   const Eigen::Vector3d mouth = a + std::min(shape.cylinder_length, length) * s;
-  out[0] = {a, mouth, 0.5 * shape.cylinder_diameter, leg};
+  out[0] = {a, mouth, 0.5 * shape.cylinder_diameter, leg, true, false};
   if (shape.rod_diameter <= 0.0) return 1;
-  out[1] = {p, mouth, 0.5 * shape.rod_diameter, leg};
+  out[1] = {p, mouth, 0.5 * shape.rod_diameter, leg, false, true};
   return 2;
 }
 
@@ -99,7 +99,11 @@ bool legs_apart(std::span<const Capsule> bodies, double min_clearance) {
 
 std::string clearance_pair_text(int first, int second) {
   if (first < 0 || second < 0) return "";
-  return std::to_string(first + 1) + "-" + std::to_string(second + 1);
+  const std::string leg = std::to_string(first + 1) + "-";
+  if (second == kPlatformBody) return leg + "platform";
+  if (second == kBaseBody) return leg + "base";
+  if (second == kToolBody) return leg + "tool";
+  return leg + std::to_string(second + 1);
 }
 
 }  // namespace pkmopt

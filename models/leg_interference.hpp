@@ -43,12 +43,18 @@ struct Capsule {
   Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  ///< axis ends (m)
   double radius = 0.0;                                                       ///< m
   int leg = 0;                                                               ///< 0-based
+  bool on_base = true;      ///< jointed to the base (not checked against the base plate)
+  bool on_platform = true;  ///< jointed to the platform (not checked against its plate)
 };
+
+/// Codes of the solids (models/solid_bodies.hpp) in Clearance::second (the first is the leg).
+inline constexpr int kPlatformBody = 1000, kBaseBody = 1001, kToolBody = 1002;
 
 /// The smallest clearance and the pair of legs it belongs to.
 struct Clearance {
   double value = std::numeric_limits<double>::infinity();  ///< m; +inf: nothing checked
-  int first = -1, second = -1;                             ///< 0-based legs, first < second
+  /// 0-based legs, first < second; or the leg and a solid's code (models/solid_bodies.hpp).
+  int first = -1, second = -1;
 };
 
 /// Throws std::invalid_argument naming the key ("legs.diameter", ...) unless every size is finite
@@ -74,7 +80,8 @@ Clearance leg_clearance(std::span<const Capsule> bodies);
 /// further apart than that skip the exact distance, and the first pair too close ends the test).
 bool legs_apart(std::span<const Capsule> bodies, double min_clearance);
 
-/// "3-4" (1-based legs) for a clearance that checked something, else "".
+/// "3-4" (1-based legs), "3-platform", "3-base" or "3-tool" for a clearance that checked
+/// something, else "".
 std::string clearance_pair_text(int first, int second);
 
 }  // namespace pkmopt

@@ -67,7 +67,7 @@ struct ActuatorChoice {
   /// The smaller of max_force / need.force and peak rating / need.peak_force (inf when there is
   /// no force need).
   double force_reserve = 0.0;
-  std::string reason;                    ///< when entry is null: the closest miss
+  std::string reason;  ///< when entry is null: the closest miss
 };
 
 /// Empty when usable: every entry named, finite positive force, stroke and speed, optional

@@ -14,6 +14,7 @@
 
 #include "models/acceleration_capability.hpp"
 #include "models/sample_machines.hpp"
+#include "models/swept_envelope.hpp"
 
 namespace pkmopt {
 namespace {
@@ -303,15 +304,29 @@ T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
           const Eigen::Vector3d a = base.col(i), p_i = a + q(i) * s.col(i);
           const int added = leg_bodies(tmpl.leg_shape, a, p_i, i, bodies + n);
           if (added == 0)
-            bodies[n++] = {a, p_i, 0.0, i};  // a line leg
+            bodies[n++] = {a, p_i, 0.0, i, true, true};  // a line leg
           else
             n += added;
         }
         const std::span<const Capsule> legs(bodies, static_cast<std::size_t>(n));
-        if (tmpl.leg_shape.present()) add(tmpl.min_clearance - leg_clearance(legs).value);
+        if (tmpl.leg_shape.present()) {
+          Clearance c = leg_clearance(legs);
+          if (tmpl.bodies.present()) {
+            const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+            body_clearance(legs, tmpl.bodies, R, position - R * tmpl.tcp, c);
+          }
+          add(tmpl.min_clearance - c.value);
+        }
         if (space.present()) {
           double excess = -std::numeric_limits<double>::infinity();
           for (const Capsule& body : legs) excess = std::max(excess, space.excess(body));
+          // The solids' outlines (the plates and the tool hold their circumscribed 32-gons).
+          if (tmpl.bodies.present()) {
+            const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+            std::vector<Eigen::Vector3d> outline;
+            solid_outline_points(tmpl.bodies, R, position - R * tmpl.tcp, outline);
+            for (const Eigen::Vector3d& x : outline) excess = std::max(excess, space.excess(x, 0.0));
+          }
           add(excess);  // the legs' ends include every base and platform joint
         }
       }
@@ -507,6 +522,13 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     } else {
       metric(DesignMetric::actuator_cost) = no_actuator_cost_;
     }
+  }
+  if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
+    std::vector<Pose> poses = spec_.task.poses;
+    for (Pose& pose : poses) pose.position.z() += p[kHomeHeight];
+    const SweptEnvelope envelope = swept_envelope(*hexapod, poses);
+    metric(DesignMetric::swept_volume) = envelope.volume;
+    metric(DesignMetric::footprint) = envelope.footprint;
   }
   measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);

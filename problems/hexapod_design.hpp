@@ -26,6 +26,9 @@
 //                       the orientations)                              0..1
 //   machine_size        pi r_b^2 max_length: the envelope cylinder of machine_envelope_volume
 //                       (planar base joints)                           m^3
+//   swept_volume        the convex hull of the base joints, the platform joints at every task
+//                       pose and the solids (models/swept_envelope.hpp)  m^3
+//   footprint           the area of its projection on the base's x-y plane  m^2
 //   actuator_cost       (spec.actuator_catalog set: the optimiser chooses the legs' actuator)
 //                       the relative cost (actuator_costs: the catalog's costs, or the rank by
 //                       force rating when it has none) of choose_actuator(catalog, {force =

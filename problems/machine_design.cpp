@@ -15,14 +15,23 @@ namespace pkmopt {
 namespace {
 
 constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
-    "stiffness_min",        "singularity_margin",
-    "leg_force_max",        "tcp_error_max",
-    "workspace_volume",     "conditioning_index",
-    "machine_size",         "actuator_cost",
-    "actuator_overload",    "tcp_deflection_max",
-    "stiffness_min_loaded", "natural_frequency_min",
-    "moving_mass",          "actuator_force_dynamic_max",
-    "leg_clearance_min"};
+    "stiffness_min",
+    "singularity_margin",
+    "leg_force_max",
+    "tcp_error_max",
+    "workspace_volume",
+    "conditioning_index",
+    "machine_size",
+    "actuator_cost",
+    "actuator_overload",
+    "tcp_deflection_max",
+    "stiffness_min_loaded",
+    "natural_frequency_min",
+    "moving_mass",
+    "actuator_force_dynamic_max",
+    "leg_clearance_min",
+    "swept_volume",
+    "footprint"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -429,6 +438,10 @@ double pose_reach_violation(const Machine& machine, const Pose& pose) {
     if (std::isfinite(leg.platform_max_angle))
       excess = std::max(excess, platform_angles(i) - leg.platform_max_angle);
   }
+  // The links' interference: how far they are closer than min_clearance (m).
+  if (leg_chain->checks_leg_interference())
+    excess = std::max(excess, leg_chain->design().shapes.min_clearance -
+                                  leg_chain->leg_clearance(pose).value);
   // Unreachable for a reason the terms do not see (a rotation of a translational platform...).
   if (!(excess > 0.0)) return 1.0;
   return std::min(1.0, excess);
@@ -474,11 +487,31 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
   if (spec_.task.installation_space.present())
     throw std::invalid_argument(fmt::format(
         "{}: task installation_space is checked only in hexapod design problems", where));
-  if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)])
-    throw std::invalid_argument(fmt::format(
-        "{}: leg_clearance_min needs the legs' shape, which only hexapod design problems have "
-        "(machine.legs.diameter, docs/interference.md)",
-        where));
+  for (const DesignMetric m : {DesignMetric::swept_volume, DesignMetric::footprint})
+    if (needed_[static_cast<int>(m)])
+      throw std::invalid_argument(fmt::format(
+          "{}: {} is computed only in hexapod design problems (the convex hull of the joints "
+          "over the task); this family has machine_size",
+          where, design_metric_name(m)));
+  if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)]) {
+    // The template's shape is every design's (the family's parameters are dimensions).
+    const std::vector<double> middle = [&] {
+      std::vector<double> p;
+      for (const ParameterRange& r : spec_.parameters) p.push_back(0.5 * (r.lower + r.upper));
+      return p;
+    }();
+    bool shaped = false;
+    try {
+      shaped = family.build(middle)->checks_leg_interference();
+    } catch (const std::invalid_argument&) {
+      shaped = true;  // an invalid middle design says nothing about the shape; evaluations will
+    }
+    if (!shaped)
+      throw std::invalid_argument(fmt::format(
+          "{}: leg_clearance_min needs the links' shape (machine.link_diameter or crank_diameter, "
+          "docs/interference.md)",
+          where));
+  }
 }
 
 Bounds MachineDesignProblem::bounds() const {

@@ -49,6 +49,7 @@
 //   natural_frequency_min min_k natural_frequency_1(pose k) (needs masses)  Hz
 //   moving_mass         platform plus every leg's moving bodies (needs masses)  kg
 //   leg_clearance_min   min_k leg_clearance(pose k) (needs the legs' shape)   m
+//   swept_volume, footprint   hexapod studies only (hexapod_design.hpp)      m^3, m^2
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3
@@ -146,9 +147,14 @@ enum class DesignMetric {
   actuator_force_dynamic_max,
   /// min over the task of the legs' clearance (m; needs the legs' shape, models/
   /// leg_interference.hpp; negative when legs intersect).
-  leg_clearance_min
+  leg_clearance_min,
+  /// The volume of the convex hull of the machine over the task (m^3; hexapod studies;
+  /// models/swept_envelope.hpp): base joints, platform joints and the solids at every task pose.
+  swept_volume,
+  /// The area of that hull's projection on the base's x-y plane (m^2; hexapod studies).
+  footprint
 };
-inline constexpr int kNumDesignMetrics = 15;
+inline constexpr int kNumDesignMetrics = 17;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).

@@ -44,7 +44,10 @@ std::string_view design_metric_unit(DesignMetric metric) {
       return "kg";
     case DesignMetric::workspace_volume:
     case DesignMetric::machine_size:
+    case DesignMetric::swept_volume:
       return "m^3";
+    case DesignMetric::footprint:
+      return "m^2";
     case DesignMetric::actuator_overload:
       return "N";
     case DesignMetric::singularity_margin:

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/actuator_catalog_file.hpp"
+#include "io/body_fields.hpp"
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
 #include "io/hexapod_fields.hpp"
@@ -76,6 +77,7 @@ void describe_fields(Fields& f, HexapodStudyMachine& m) {
     describe_leg_shape(g, m.design.leg_shape);
   });
   describe_min_clearance(f, m.design.min_clearance);
+  describe_machine_bodies(f, m.design.bodies);
   f.section("joints", {}, [&](auto& g) { describe_hexapod_joints(g, m.design.joints); });
   f.section("tool", {}, [&](auto& g) { describe_hexapod_tool(g, m.design.tcp); });
   describe_actuator_error(f, m.design.actuator_error);
@@ -115,6 +117,17 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
     check_leg_shape(m.design.leg_shape, m.design.min_clearance);
   } catch (const std::invalid_argument& e) {
     machine.required("legs").fail(e.what());
+  }
+  if (machine.has("bodies")) {
+    try {
+      check_machine_bodies(m.design.bodies);
+    } catch (const std::invalid_argument& e) {
+      machine.required("bodies").fail(e.what());
+    }
+    if (!m.design.leg_shape.present())
+      machine.required("bodies").fail(
+          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
+          "legs.cylinder and legs.rod)");
   }
   study.parameter_ranges = m.ranges;
   for (int i = 0; i < kNumDesignParameters; ++i) {

@@ -218,7 +218,7 @@ TEST_F(Validate, SchemaErrorsAreExact) {
   EXPECT_EQ(r.err,
             "pkmopt: error: " + file +
                 ":8:3: machine.tools: unknown key 'tools'; allowed keys here: model, "
-                "parameters, legs, min_clearance, joints, tool, actuator_error, masses, gravity\n");
+                "parameters, legs, min_clearance, bodies, joints, tool, actuator_error, masses, gravity\n");
   // Wrong type.
   r = validate(with("wrench: [300, 300, -3000, 0, 0, 0]", "wrench: [300, 300, heavy, 0, 0, 0]"));
   EXPECT_EQ(r.status, 2);

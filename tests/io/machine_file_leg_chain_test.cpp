@@ -116,6 +116,35 @@ TEST(LegChainMachineFileFields, DeltaRoundTripsEveryKey) {
             "actuator_error_deg: 0.002\n");
 }
 
+// The links' shape and the solids of a delta: read, written back, and checked.
+TEST(LegChainMachineFileFields, DeltaLinkShapesRoundTrip) {
+  DeltaDesign d;
+  d.shapes.link_diameter = 0.03;
+  d.shapes.crank_diameter = 0.08;
+  d.shapes.min_clearance = 0.002;
+  d.shapes.bodies.tool = {0.1, {0, 0, 0}, {0, 0, -0.2}};
+  d.shapes.bodies.base.polygon = {{0.3, 0}, {-0.15, 0.26}, {-0.15, -0.26}};
+  d.shapes.bodies.base.z_min = 0.0;
+  d.shapes.bodies.base.z_max = 0.03;
+  const std::string text = delta_machine_file(d);
+  const DeltaDesign r = read_delta_design(yaml(text));
+  EXPECT_EQ(r.shapes.link_diameter, 0.03) << text;
+  EXPECT_EQ(r.shapes.crank_diameter, 0.08);
+  EXPECT_EQ(r.shapes.min_clearance, 0.002);
+  EXPECT_EQ(r.shapes.bodies.tool.to, d.shapes.bodies.tool.to);
+  EXPECT_EQ(r.shapes.bodies.base.polygon, d.shapes.bodies.base.polygon);
+  EXPECT_EQ(delta_machine_file(r), text);
+  const auto machine = load_leg_chain_machine(yaml(text), "delta");
+  EXPECT_TRUE(machine->checks_leg_interference());
+  // A linear delta has no cranks: crank_diameter is not one of its keys.
+  EXPECT_NE(error_of("model: linear_delta\ncrank_diameter: 0.05\n").find("crank_diameter"),
+            std::string::npos);
+  EXPECT_NE(error_of(read_text(kSource + "/examples/linear_delta.yaml") +
+                     "bodies: {tool: {diameter: 0.1, from: [0, 0, 0], to: [0, 0, -0.1]}}\n")
+                .find("give link_diameter"),
+            std::string::npos);
+}
+
 TEST(LegChainMachineFileFields, LinearDeltaRoundTripsEveryKey) {
   LinearDeltaDesign d;
   d.guide_radius = 0.3;
@@ -555,11 +584,12 @@ TEST(LegChainMachineFileFields, KeysReadByHandKeepTheirMessages) {
                      "rod: 1.244\ndrive_range_deg: [-200, 100]\nrods: {E: 7.0e10, area: 5.0e-5}\n"),
             "m.yaml:6:18: drive_range_deg: expected a range within [-180, 180] deg, found [-200, "
             "100]");
-  EXPECT_EQ(error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncolour: red\n"),
-            "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
-            "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
-            "rods, crank_section, drive_stiffness, drive, joints, tool, characteristic_length, "
-            "actuator_error_deg, masses, gravity");
+  EXPECT_EQ(
+      error_of(delta + "rods: {E: 7.0e10, area: 5.0e-5}\ncolour: red\n"),
+      "m.yaml:8:1: colour: unknown key 'colour'; allowed keys here: model, name, "
+      "description, base_radius, platform_radius, upper_arm, rod, drive_range_deg, branch, "
+      "rods, crank_section, drive_stiffness, drive, joints, tool, characteristic_length, "
+      "actuator_error_deg, masses, gravity, link_diameter, crank_diameter, min_clearance, bodies");
   const std::string glide =
       "model: hexaglide\nguides: {y: [0.46, 0.46, 0.39, -0.55, -0.55, 0.39]}\nstrut: 0.8\n"
       "stroke: [-1.2, 1.2]\nstruts: {E: 2.1e11, area: 3.0e-4}\n";

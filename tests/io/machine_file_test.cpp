@@ -73,10 +73,11 @@ TEST(MachineFile, ErrorsNameFileLineColumnKeyExpectedAndFound) {
             "m.yaml:4:20: legs.min_length: expected a finite number, found 'abc'");
   EXPECT_EQ(error_of(replace(kGood, "max_length: 1.15", "max_length: 0.5")),
             "m.yaml:4:38: legs.max_length: expected a number > legs.min_length (0.7), found '0.5'");
-  EXPECT_EQ(error_of(replace(kGood, "tool:", "toll:")),
-            "m.yaml:6:1: toll: unknown key 'toll'; allowed keys here: model, name, description, "
-            "base, base_joints, platform, platform_joints, legs, min_clearance, joints, tool, "
-            "characteristic_length, actuator_error, masses, gravity");
+  EXPECT_EQ(
+      error_of(replace(kGood, "tool:", "toll:")),
+      "m.yaml:6:1: toll: unknown key 'toll'; allowed keys here: model, name, description, "
+      "base, base_joints, platform, platform_joints, legs, min_clearance, bodies, joints, tool, "
+      "characteristic_length, actuator_error, masses, gravity");
   EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: .nan")),
             "m.yaml:4:47: legs.E: expected a finite number, found '.nan'");
   EXPECT_EQ(error_of(replace(kGood, "E: 2.1e11", "E: inf")),
@@ -267,6 +268,43 @@ TEST(MachineFileFields, LegShapeIsReadWrittenAndChecked) {
             "into it)");
   EXPECT_EQ(error_of(std::string(kGood) + "min_clearance: -1\n"),
             "m.yaml:7:16: min_clearance: expected a number >= 0, found '-1'");
+}
+
+// The solids: read, written back, and their errors located.
+TEST(MachineFileFields, BodiesAreReadWrittenAndChecked) {
+  const std::string legs =
+      replace(kGood, "actuator_stiffness: 2.0e8}", "actuator_stiffness: 2.0e8, diameter: 0.08}");
+  const std::string bodies =
+      "bodies:\n"
+      "  platform: {radius: 0.3, z: [0, 0.04]}\n"
+      "  base: {polygon: [[0.7, 0], [-0.35, 0.61], [-0.35, -0.61]], z: [-0.05, 0]}\n"
+      "  tool: {diameter: 0.12, from: [0, 0, 0], to: [0, 0, -0.3]}\n";
+  const HexapodDesign d = read_hexapod_design(YamlValue::load_string(legs + bodies, "m.yaml"));
+  EXPECT_EQ(d.bodies.platform.radius, 0.3);
+  EXPECT_EQ(d.bodies.platform.z_min, 0.0);
+  EXPECT_EQ(d.bodies.platform.z_max, 0.04);
+  ASSERT_EQ(d.bodies.base.polygon.size(), 3u);
+  EXPECT_EQ(d.bodies.base.polygon[1], Eigen::Vector2d(-0.35, 0.61));
+  EXPECT_EQ(d.bodies.base.z_min, -0.05);
+  EXPECT_EQ(d.bodies.tool.diameter, 0.12);
+  EXPECT_EQ(d.bodies.tool.to, Eigen::Vector3d(0, 0, -0.3));
+  const std::string text = hexapod_design_to_yaml(d);
+  const HexapodDesign back = read_hexapod_design(YamlValue::load_string(text, "w.yaml"));
+  EXPECT_EQ(back.bodies.base.polygon, d.bodies.base.polygon) << text;
+  EXPECT_EQ(back.bodies.platform.z_max, 0.04) << text;
+  EXPECT_EQ(back.bodies.tool.from, d.bodies.tool.from) << text;
+  EXPECT_EQ(hexapod_design_to_yaml(back), text);
+  // Errors: no leg shape, a polygon that is not convex, a plate without z, an unknown key.
+  EXPECT_EQ(error_of(std::string(kGood) + bodies),
+            "m.yaml:8:3: bodies: bodies are checked against the legs: give the legs' shape "
+            "(legs.diameter, or legs.cylinder and legs.rod)");
+  EXPECT_EQ(error_of(legs + "bodies: {base: {polygon: [[0, 0], [1, 0], [0.2, 0.2], [0, 1]], z: "
+                            "[-0.05, 0]}}\n"),
+            "m.yaml:7:9: bodies: bodies.base.polygon must be convex, its vertices in order around "
+            "it (vertex 3 turns the other way)");
+  EXPECT_EQ(error_of(legs + "bodies: {platform: {radius: 0.3}}\n"),
+            "m.yaml:7:20: bodies.platform: missing required key 'z'");
+  EXPECT_EQ(error_of(legs + "bodies: {spindle: {diameter: 0.1}}\n").find("m.yaml:7:10: "), 0u);
 }
 
 }  // namespace

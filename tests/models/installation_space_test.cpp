@@ -21,7 +21,7 @@ TEST(InstallationSpace, BoxExcessOfBallsAndCapsules) {
   EXPECT_DOUBLE_EQ(box.excess({0.9, 0, 1}, 0.1), 0.0);    // touching
   EXPECT_DOUBLE_EQ(box.excess({0, 0, 2.25}, 0.0), 0.25);  // above the top by 0.25 m
   // A capsule is out by its worse end.
-  const Capsule leg{{0, 0, 0.1}, {0, 1.05, 1.0}, 0.05, 0};
+  const Capsule leg{{0, 0, 0.1}, {0, 1.05, 1.0}, 0.05, 0, true, true};
   EXPECT_NEAR(box.excess(leg), 0.1, 1e-15);
   EXPECT_FALSE(InstallationSpace{}.present());
   EXPECT_EQ(InstallationSpace{}.excess({5, 5, 5}, 1.0), -std::numeric_limits<double>::infinity());

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "models/acceleration_capability.hpp"
+#include "models/swept_envelope.hpp"
 #include "tests/problems/hexapod_design_specs.hpp"
 #include "tests/sample_catalogs.hpp"
 #include "tests/sample_machines.hpp"
@@ -356,9 +357,41 @@ TEST(HexapodDesign, InstallationSpaceCountsInReachability) {
   spec.task.installation_space.z_min = -0.1;
   spec.task.installation_space.z_max = 1.5;
   EXPECT_NEAR(HexapodDesignProblem(spec).evaluate({}).reach_violation, 0.05, 1e-12);
+  // A base plate of radius 0.7 m enters by its circumscribed 32-gon (radius 0.7 / cos(pi/32)).
+  spec.machine_template.leg_shape.diameter = 0.01;
+  spec.machine_template.bodies.base.radius = 0.7;
+  spec.machine_template.bodies.base.z_min = -0.05;
+  EXPECT_NEAR(HexapodDesignProblem(spec).evaluate({}).reach_violation,
+              0.7 / std::cos(std::numbers::pi / 32) - 0.55, 1e-12);
+  spec.machine_template.bodies = MachineBodies{};
+  spec.machine_template.leg_shape = LegShape{};
   HexapodDesignSpec smooth = test_specs::smooth_spec();
   smooth.task.installation_space = spec.task.installation_space;
   EXPECT_THROW(HexapodDesignProblem{smooth}, std::invalid_argument);
+}
+
+// swept_volume and footprint are the swept envelope of the design over its task poses (lifted by
+// the home height); a longer task sweeps more. Leg-chain problems refuse both.
+TEST(HexapodDesign, SweptVolumeAndFootprintAreTheEnvelopeOverTheTask) {
+  HexapodDesignSpec spec;
+  spec.objectives = {{DesignMetric::swept_volume, Sense::minimize},
+                     {DesignMetric::footprint, Sense::minimize}};
+  spec.task.poses = box_task_poses({0, 0, 0.9}, {0.1, 0.1, 0.05}, {2, 2, 2}, 0.0, 0.0);
+  spec.parameters[kHomeHeight] = {0.05, 0.05};
+  const HexapodDesignProblem problem(spec);
+  const DesignEvaluation ev = problem.evaluate({});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  const Hexapod hexapod(problem.design_of(ev.parameters));
+  std::vector<Pose> lifted = spec.task.poses;
+  for (Pose& pose : lifted) pose.position.z() += 0.05;
+  const SweptEnvelope e = swept_envelope(hexapod, lifted);
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::swept_volume)], e.volume);
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::footprint)], e.footprint);
+  EXPECT_GT(e.volume, 0.5);  // about the base circle (r 0.6 m) times the height (~1 m)
+  spec.task.poses = box_task_poses({0, 0, 0.9}, {0.3, 0.3, 0.05}, {2, 2, 2}, 0.0, 0.0);
+  EXPECT_GT(
+      HexapodDesignProblem(spec).evaluate({}).metrics[static_cast<int>(DesignMetric::swept_volume)],
+      e.volume);
 }
 
 TEST(HexapodDesign, FailingDesignsAreRecordedWithAReasonAndFiniteRows) {

@@ -232,6 +232,41 @@ TEST(MachineDesign, ReachViolationIsTheExcessOverTheStrokeOrJointLimit) {
   EXPECT_EQ(pose_reach_violation(*reference, Pose{{5, 0, -0.4}, {0, 0, 0}}), 1.0);
 }
 
+// A linear delta with rods of a diameter: leg_clearance_min is the smallest clearance of the
+// built machine over the lifted task; a pose whose rods are closer than min_clearance misses by
+// the gap. Without a link shape the metric is refused.
+TEST(MachineDesign, LegChainLinksGiveLegClearanceMin) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.objectives.push_back({DesignMetric::leg_clearance_min, Sense::maximize});
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+  LinearDeltaDesign t;
+  t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  t.carriage_max_angle = t.platform_max_angle = deg_to_rad(60);
+  t.shapes.link_diameter = 0.03;
+  spec.family = linear_delta_family(t);
+  const MachineDesignProblem problem(spec);
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation ev = problem.evaluate(x);
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  LinearDeltaDesign d = t;
+  d.rod = 0.7;
+  d.q_max = 0.6;
+  const LegChainMachine machine(linear_delta_design(d));
+  double clearance = kInf;
+  for (Pose pose : problem.spec().task.poses) {
+    pose.position.z() += 0.1;
+    clearance = std::min(clearance, machine.leg_clearance(pose).value);
+  }
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::leg_clearance_min)], clearance);
+  EXPECT_GT(clearance, 0.0);
+  // A min_clearance beyond the clearance at a pose: that pose misses by the difference.
+  const Pose pose{{0.05, -0.02, -0.1}, {0, 0, 0}};
+  d.shapes.min_clearance = machine.leg_clearance(pose).value + 0.003;
+  const LegChainMachine tight(linear_delta_design(d));
+  EXPECT_FALSE(tight.reachable(*tight.make_data(), pose));
+  EXPECT_NEAR(pose_reach_violation(tight, pose), 0.003, 1e-12);
+}
+
 TEST(MachineDesign, SpecErrorsNameTheField) {
   MachineDesignSpec spec = linear_delta_spec();
   spec.parameters.pop_back();
