@@ -226,6 +226,20 @@ Clearance Hexapod::leg_clearance(const Pose& pose) const {
   return clearance_from_kinematics(d, pose, R);
 }
 
+Clearance Hexapod::with_solid_bodies(const Pose& pose, Clearance legs) const {
+  if (!design_.bodies.present() || !design_.leg_shape.present()) return legs;
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  Capsule bodies[12];
+  int n = 0;
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d p = pose.position + R * platform_rel_.col(i);
+    n += leg_bodies(design_.leg_shape, design_.base_joints.col(i), p, i, bodies + n);
+  }
+  body_clearance(std::span<const Capsule>(bodies, static_cast<std::size_t>(n)), design_.bodies, R,
+                 pose.position - R * design_.tcp, legs);
+  return legs;
+}
+
 bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
   auto& d = static_cast<HexapodData&>(data);
   const Mat3<double> R = rotation_zyx<double>(pose.angles);

@@ -183,6 +183,8 @@ class Hexapod final : public Machine {
   bool checks_leg_interference() const override { return design_.leg_shape.present(); }
   /// The legs' clearance at a pose (+inf without a leg shape).
   Clearance leg_clearance(const Pose& pose) const;
+  /// `legs` (the legs' own clearance at `pose`) lowered by the solids' (design().bodies).
+  Clearance with_solid_bodies(const Pose& pose, Clearance legs) const;
   FkResult forward_kinematics(const Eigen::VectorXd& q, const std::optional<Pose>& guess,
                               const FkOptions& options = {}) const override;
   /// Leg i puts the TCP in the ball of radius max_length about c_i = a_i - R (b_i - tcp); with

@@ -187,8 +187,9 @@ __attribute__((target("avx2,fma"))) std::size_t run_batch_avx2(const Hexapod& he
 void add_solid_bodies(const Hexapod& hexapod, const Pose* poses, std::size_t n, PoseMetrics* out) {
   if (!hexapod.design().bodies.present()) return;
   for (std::size_t i = 0; i < n; ++i) {
-    const Clearance c = hexapod.leg_clearance(poses[i]);
-    if (!(c.value < out[i].leg_clearance)) continue;
+    const Clearance legs{out[i].leg_clearance, out[i].clearance_first, out[i].clearance_second};
+    const Clearance c = hexapod.with_solid_bodies(poses[i], legs);
+    if (!(c.value < legs.value)) continue;
     out[i].leg_clearance = c.value;
     out[i].clearance_first = c.first;
     out[i].clearance_second = c.second;

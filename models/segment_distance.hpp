@@ -6,9 +6,9 @@
 // The closest points minimise |p(s) - q(t)|^2 over the unit square (s, t in [0, 1]); the
 // algorithm is the clamped one of Ericson, "Real-Time Collision Detection" (Morgan Kaufmann
 // 2005, section 5.1.9): the unconstrained minimiser of s clamped to [0, 1], t from s and
-// clamped, then s recomputed from the clamped t (always: for an unclamped t it is the same s). For (nearly) parallel segments (angle below
-// 1e-7 rad, the 2x2 system ill-conditioned) the closest pair has an end of one segment: the
-// best of the four ends projected on the other segment.
+// clamped, then s recomputed from the clamped t (always: for an unclamped t it is the same s). For
+// (nearly) parallel segments (angle below 1e-7 rad, the 2x2 system ill-conditioned) the closest
+// pair has an end of one segment: the best of the four ends projected on the other segment.
 //
 // Example:
 //   const pkmopt::SegmentClosest c = pkmopt::segment_closest(a0, a1, b0, b1);

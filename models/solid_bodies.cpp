@@ -65,6 +65,21 @@ void bounding_ball(const ConvexPrism& prism, Eigen::Vector3d& centre, double& ra
   radius = std::hypot(r, half);
 }
 
+// A lower bound of the distance from the segment [la, lb] (local coordinates) to the prism: the
+// larger of the distance to the slab z in [z_min, z_max] and the distance to a ball holding it.
+double distance_lower_bound(const Eigen::Vector3d& la, const Eigen::Vector3d& lb,
+                            const ConvexPrism& prism) {
+  const double slab = std::max(
+      {0.0, prism.z_min - std::max(la.z(), lb.z()), std::min(la.z(), lb.z()) - prism.z_max});
+  Eigen::Vector3d centre;
+  double radius = 0.0;
+  bounding_ball(prism, centre, radius);
+  const Eigen::Vector3d d = lb - la;
+  const double dd = d.squaredNorm();
+  const double t = dd > 0.0 ? std::clamp((centre - la).dot(d) / dd, 0.0, 1.0) : 0.0;
+  return std::max(slab, (la + t * d - centre).norm() - radius);
+}
+
 // The three solids with their codes, which leg bodies they see and whether they move with the
 // platform.
 struct Placed {
@@ -193,6 +208,10 @@ void body_clearance(std::span<const Capsule> legs, const MachineBodies& bodies,
   for_each_pair(legs, bodies, R, origin,
                 [&](const Capsule& leg, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                     const ConvexPrism& prism, int code) {
+                  // Pairs that cannot beat the best so far skip the exact distance.
+                  const Eigen::Vector3d la = prism.axes.transpose() * (a - prism.origin);
+                  const Eigen::Vector3d lb = prism.axes.transpose() * (b - prism.origin);
+                  if (distance_lower_bound(la, lb, prism) - leg.radius >= best.value) return true;
                   const double gap = segment_prism_distance(a, b, prism) - leg.radius;
                   if (gap < best.value) best = {gap, leg.leg, code};
                   return true;
@@ -205,12 +224,9 @@ bool bodies_apart(std::span<const Capsule> legs, const MachineBodies& bodies,
   for_each_pair(legs, bodies, R, origin,
                 [&](const Capsule& leg, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                     const ConvexPrism& prism, int) {
-                  Eigen::Vector3d centre;
-                  double radius = 0.0;
-                  bounding_ball(prism, centre, radius);
-                  const Eigen::Vector3d c = prism.origin + prism.axes * centre;
-                  // The axis' distance to the ball's centre, less its radius, is a lower bound.
-                  if (segment_distance(a, b, c, c) - radius - leg.radius >= min_clearance)
+                  const Eigen::Vector3d la = prism.axes.transpose() * (a - prism.origin);
+                  const Eigen::Vector3d lb = prism.axes.transpose() * (b - prism.origin);
+                  if (distance_lower_bound(la, lb, prism) - leg.radius >= min_clearance)
                     return true;
                   if (segment_prism_distance(a, b, prism) - leg.radius < min_clearance)
                     apart = false;

@@ -79,7 +79,9 @@ double segment_prism_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b
                               const ConvexPrism& prism);
 
 /// Lowers `best` to the smallest clearance between the leg bodies and the solids (by the rule of
-/// the file comment), the platform frame at (R, origin) in the base frame.
+/// the file comment), the platform frame at (R, origin) in the base frame. Pairs whose lower
+/// bound (distance to the solid's slab of heights, or to a ball holding it) cannot beat `best`
+/// skip the exact distance.
 void body_clearance(std::span<const Capsule> legs, const MachineBodies& bodies,
                     const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, Clearance& best);
 

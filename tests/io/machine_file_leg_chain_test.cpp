@@ -116,35 +116,6 @@ TEST(LegChainMachineFileFields, DeltaRoundTripsEveryKey) {
             "actuator_error_deg: 0.002\n");
 }
 
-// The links' shape and the solids of a delta: read, written back, and checked.
-TEST(LegChainMachineFileFields, DeltaLinkShapesRoundTrip) {
-  DeltaDesign d;
-  d.shapes.link_diameter = 0.03;
-  d.shapes.crank_diameter = 0.08;
-  d.shapes.min_clearance = 0.002;
-  d.shapes.bodies.tool = {0.1, {0, 0, 0}, {0, 0, -0.2}};
-  d.shapes.bodies.base.polygon = {{0.3, 0}, {-0.15, 0.26}, {-0.15, -0.26}};
-  d.shapes.bodies.base.z_min = 0.0;
-  d.shapes.bodies.base.z_max = 0.03;
-  const std::string text = delta_machine_file(d);
-  const DeltaDesign r = read_delta_design(yaml(text));
-  EXPECT_EQ(r.shapes.link_diameter, 0.03) << text;
-  EXPECT_EQ(r.shapes.crank_diameter, 0.08);
-  EXPECT_EQ(r.shapes.min_clearance, 0.002);
-  EXPECT_EQ(r.shapes.bodies.tool.to, d.shapes.bodies.tool.to);
-  EXPECT_EQ(r.shapes.bodies.base.polygon, d.shapes.bodies.base.polygon);
-  EXPECT_EQ(delta_machine_file(r), text);
-  const auto machine = load_leg_chain_machine(yaml(text), "delta");
-  EXPECT_TRUE(machine->checks_leg_interference());
-  // A linear delta has no cranks: crank_diameter is not one of its keys.
-  EXPECT_NE(error_of("model: linear_delta\ncrank_diameter: 0.05\n").find("crank_diameter"),
-            std::string::npos);
-  EXPECT_NE(error_of(read_text(kSource + "/examples/linear_delta.yaml") +
-                     "bodies: {tool: {diameter: 0.1, from: [0, 0, 0], to: [0, 0, -0.1]}}\n")
-                .find("give link_diameter"),
-            std::string::npos);
-}
-
 TEST(LegChainMachineFileFields, LinearDeltaRoundTripsEveryKey) {
   LinearDeltaDesign d;
   d.guide_radius = 0.3;

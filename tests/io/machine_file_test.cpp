@@ -270,42 +270,5 @@ TEST(MachineFileFields, LegShapeIsReadWrittenAndChecked) {
             "m.yaml:7:16: min_clearance: expected a number >= 0, found '-1'");
 }
 
-// The solids: read, written back, and their errors located.
-TEST(MachineFileFields, BodiesAreReadWrittenAndChecked) {
-  const std::string legs =
-      replace(kGood, "actuator_stiffness: 2.0e8}", "actuator_stiffness: 2.0e8, diameter: 0.08}");
-  const std::string bodies =
-      "bodies:\n"
-      "  platform: {radius: 0.3, z: [0, 0.04]}\n"
-      "  base: {polygon: [[0.7, 0], [-0.35, 0.61], [-0.35, -0.61]], z: [-0.05, 0]}\n"
-      "  tool: {diameter: 0.12, from: [0, 0, 0], to: [0, 0, -0.3]}\n";
-  const HexapodDesign d = read_hexapod_design(YamlValue::load_string(legs + bodies, "m.yaml"));
-  EXPECT_EQ(d.bodies.platform.radius, 0.3);
-  EXPECT_EQ(d.bodies.platform.z_min, 0.0);
-  EXPECT_EQ(d.bodies.platform.z_max, 0.04);
-  ASSERT_EQ(d.bodies.base.polygon.size(), 3u);
-  EXPECT_EQ(d.bodies.base.polygon[1], Eigen::Vector2d(-0.35, 0.61));
-  EXPECT_EQ(d.bodies.base.z_min, -0.05);
-  EXPECT_EQ(d.bodies.tool.diameter, 0.12);
-  EXPECT_EQ(d.bodies.tool.to, Eigen::Vector3d(0, 0, -0.3));
-  const std::string text = hexapod_design_to_yaml(d);
-  const HexapodDesign back = read_hexapod_design(YamlValue::load_string(text, "w.yaml"));
-  EXPECT_EQ(back.bodies.base.polygon, d.bodies.base.polygon) << text;
-  EXPECT_EQ(back.bodies.platform.z_max, 0.04) << text;
-  EXPECT_EQ(back.bodies.tool.from, d.bodies.tool.from) << text;
-  EXPECT_EQ(hexapod_design_to_yaml(back), text);
-  // Errors: no leg shape, a polygon that is not convex, a plate without z, an unknown key.
-  EXPECT_EQ(error_of(std::string(kGood) + bodies),
-            "m.yaml:8:3: bodies: bodies are checked against the legs: give the legs' shape "
-            "(legs.diameter, or legs.cylinder and legs.rod)");
-  EXPECT_EQ(error_of(legs + "bodies: {base: {polygon: [[0, 0], [1, 0], [0.2, 0.2], [0, 1]], z: "
-                            "[-0.05, 0]}}\n"),
-            "m.yaml:7:9: bodies: bodies.base.polygon must be convex, its vertices in order around "
-            "it (vertex 3 turns the other way)");
-  EXPECT_EQ(error_of(legs + "bodies: {platform: {radius: 0.3}}\n"),
-            "m.yaml:7:20: bodies.platform: missing required key 'z'");
-  EXPECT_EQ(error_of(legs + "bodies: {spindle: {diameter: 0.1}}\n").find("m.yaml:7:10: "), 0u);
-}
-
 }  // namespace
 }  // namespace pkmopt
