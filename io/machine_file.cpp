@@ -131,14 +131,10 @@ HexapodDesign read_hexapod_design(const YamlValue& root) {
   }
   if (root.has("bodies")) {
     try {
-      check_machine_bodies(design.bodies);
+      check_hexapod_bodies(design.leg_shape, design.bodies);
     } catch (const std::invalid_argument& e) {
       root.required("bodies").fail(e.what());
     }
-    if (!design.leg_shape.present())
-      root.required("bodies").fail(
-          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
-          "legs.cylinder and legs.rod)");
   }
   try {
     Hexapod check(design);  // the constructor's own validation (degenerate platform, ...)

@@ -115,10 +115,7 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
   check_screw_drive(k.drive, "legs.drive", false);
   if (design_.masses.present) check_mass_model(design_.masses, "masses.");
   check_leg_shape(design_.leg_shape, design_.min_clearance);
-  check_machine_bodies(design_.bodies);
-  require(!design_.bodies.present() || design_.leg_shape.present(),
-          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
-          "legs.cylinder and legs.rod)");
+  check_hexapod_bodies(design_.leg_shape, design_.bodies);
   require(k.axial_stiffness > 0.0 || (k.E > 0.0) == (k.area > 0.0),
           "legs: the strut needs both E and area (or axial_stiffness)");
   require(k.axial_stiffness > 0.0 || (k.E > 0.0 && k.area > 0.0) || k.actuator_stiffness > 0.0 ||

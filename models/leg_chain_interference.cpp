@@ -60,6 +60,14 @@ void check_link_shapes(const LegChainDesign& design) {
   require(!(s.crank_diameter > 0.0) || crank,
           "crank_diameter needs a crank (RUS) leg; this machine has none");
   check_machine_bodies(s.bodies);
+  bool cranks = false, links = false;  // bodies not jointed to the platform, resp. the base
+  for (const LegChainLeg& leg : design.legs) {
+    cranks = cranks || (leg.kind == LegKind::kRUS && s.crank_diameter > 0.0);
+    links = links || (leg.kind != LegKind::kUPS && s.link_diameter > 0.0);
+  }
+  check_solids_have_leg_bodies(s.bodies, cranks, links,
+                               "the platform plate sees the cranks (crank_diameter), the base "
+                               "plate the struts and rods on carriages or cranks (link_diameter)");
   require(!s.bodies.present() || s.present(),
           "bodies are checked against the links: give link_diameter (or crank_diameter)");
 }

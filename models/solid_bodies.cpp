@@ -25,11 +25,11 @@ double twice_area(const std::vector<Eigen::Vector2d>& poly) {
   return sum;
 }
 
-// Distance from p to the cross-section of the prism (0 inside).
-double section_distance(const Eigen::Vector2d& p, const ConvexPrism& prism) {
+// Distance from p to the cross-section of the prism (0 inside); `orientation` the sign of the
+// polygon's area.
+double section_distance(const Eigen::Vector2d& p, const ConvexPrism& prism, double orientation) {
   if (prism.polygon.empty()) return std::max(0.0, p.norm() - prism.radius);
   const auto& poly = prism.polygon;
-  const double orientation = twice_area(poly) > 0.0 ? 1.0 : -1.0;
   bool inside = true;
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < poly.size(); ++i) {
@@ -44,8 +44,9 @@ double section_distance(const Eigen::Vector2d& p, const ConvexPrism& prism) {
 }
 
 // Distance from a point in the prism's local coordinates to the prism.
-double local_point_distance(const Eigen::Vector3d& x, const ConvexPrism& prism) {
-  const double dxy = section_distance(x.head<2>(), prism);
+double local_point_distance(const Eigen::Vector3d& x, const ConvexPrism& prism,
+                            double orientation) {
+  const double dxy = section_distance(x.head<2>(), prism, orientation);
   const double dz = std::max({0.0, prism.z_min - x.z(), x.z() - prism.z_max});
   return std::hypot(dxy, dz);
 }
@@ -165,6 +166,16 @@ void check_machine_bodies(const MachineBodies& bodies) {
               k + ".polygon must be convex, its vertices in order around it (vertex " +
                   std::to_string((i + 1) % poly.size() + 1) + " turns the other way)");
     }
+    // Turning one way at every vertex, a star still winds round more than once: every vertex
+    // must lie on the inner side of every edge.
+    for (std::size_t i = 0; i < poly.size(); ++i)
+      for (const Eigen::Vector2d& w : poly) {
+        const Eigen::Vector2d& u = poly[i];
+        const Eigen::Vector2d e = poly[(i + 1) % poly.size()] - u;
+        require(sign * cross2(e, w - u) >= -1e-12 * e.norm() * (w - u).norm(),
+                k + ".polygon must be convex and wind round once (a star or a polygon that "
+                    "crosses itself is not), its vertices in order around it");
+      }
   }
   const ToolBody& t = bodies.tool;
   require(std::isfinite(t.diameter) && t.diameter >= 0.0,
@@ -174,18 +185,41 @@ void check_machine_bodies(const MachineBodies& bodies) {
             "bodies.tool: 'from' and 'to' must be two different finite points (m)");
 }
 
+void check_solids_have_leg_bodies(const MachineBodies& bodies, bool base_side_bodies,
+                                  bool platform_side_bodies, const std::string& shape_keys) {
+  require(!bodies.platform.present() || base_side_bodies,
+          "bodies.platform is checked against the leg bodies on the base side, and these legs "
+          "have none (" +
+              shape_keys + ")");
+  require(!bodies.base.present() || platform_side_bodies,
+          "bodies.base is checked against the leg bodies on the platform side, and these legs "
+          "have none (" +
+              shape_keys + ")");
+}
+
+void check_hexapod_bodies(const LegShape& shape, const MachineBodies& bodies) {
+  check_machine_bodies(bodies);
+  require(!bodies.present() || shape.present(),
+          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
+          "legs.cylinder and legs.rod)");
+  check_solids_have_leg_bodies(bodies, shape.two_bodies(), shape.rod_diameter > 0.0,
+                               "a one-capsule leg (legs.diameter) is jointed to both plates: give "
+                               "legs.cylinder and legs.rod");
+}
+
 double segment_prism_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const ConvexPrism& prism) {
   const Eigen::Vector3d la = prism.axes.transpose() * (a - prism.origin);
   const Eigen::Vector3d lb = prism.axes.transpose() * (b - prism.origin);
   const Eigen::Vector3d d = lb - la;
-  auto f = [&](double s) { return local_point_distance(la + s * d, prism); };
+  const double orientation = prism.polygon.empty() || twice_area(prism.polygon) > 0.0 ? 1.0 : -1.0;
+  auto f = [&](double s) { return local_point_distance(la + s * d, prism, orientation); };
   // Golden-section search of the convex f on [0, 1]: 48 steps leave 0.618^48 < 1e-9.
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);
   double lo = 0.0, hi = 1.0;
   double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
   double f1 = f(x1), f2 = f(x2);
-  for (int it = 0; it < 48 && (f1 > 0.0 || f2 > 0.0); ++it) {
+  for (int it = 0; it < 48 && f1 > 0.0 && f2 > 0.0; ++it) {
     if (f1 <= f2) {
       hi = x2;
       x2 = x1;

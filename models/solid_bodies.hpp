@@ -74,6 +74,16 @@ struct MachineBodies {
 /// least 3 distinct vertices with non-zero area, and finite coordinates.
 void check_machine_bodies(const MachineBodies& bodies);
 
+/// Throws std::invalid_argument when a plate would be checked against nothing: the platform
+/// plate needs leg bodies on the base side (not jointed to the platform), the base plate leg
+/// bodies on the platform side; `shape_keys` says which keys give them.
+void check_solids_have_leg_bodies(const MachineBodies& bodies, bool base_side_bodies,
+                                  bool platform_side_bodies, const std::string& shape_keys);
+
+/// A hexapod's solids: check_machine_bodies, a leg shape to check them against, and leg bodies
+/// each plate can see (a cylinder for the platform plate, a rod for the base plate).
+void check_hexapod_bodies(const LegShape& shape, const MachineBodies& bodies);
+
 /// Distance (m) from the segment [a, b] to the prism, both in the prism's parent frame.
 double segment_prism_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const ConvexPrism& prism);

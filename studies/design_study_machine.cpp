@@ -120,14 +120,10 @@ void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy
   }
   if (machine.has("bodies")) {
     try {
-      check_machine_bodies(m.design.bodies);
+      check_hexapod_bodies(m.design.leg_shape, m.design.bodies);
     } catch (const std::invalid_argument& e) {
       machine.required("bodies").fail(e.what());
     }
-    if (!m.design.leg_shape.present())
-      machine.required("bodies").fail(
-          "bodies are checked against the legs: give the legs' shape (legs.diameter, or "
-          "legs.cylinder and legs.rod)");
   }
   study.parameter_ranges = m.ranges;
   for (int i = 0; i < kNumDesignParameters; ++i) {

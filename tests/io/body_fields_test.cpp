@@ -60,7 +60,9 @@ std::string leg_chain_error_of(const std::string& text) {
 // The solids: read, written back, and their errors located.
 TEST(BodyFields, HexapodBodiesAreReadWrittenAndChecked) {
   const std::string legs =
-      replace(kGood, "actuator_stiffness: 2.0e8}", "actuator_stiffness: 2.0e8, diameter: 0.08}");
+      replace(kGood, "actuator_stiffness: 2.0e8}",
+              "actuator_stiffness: 2.0e8, cylinder: {diameter: 0.1, length: 0.6}, rod: {diameter: "
+              "0.05}}");
   const std::string bodies =
       "bodies:\n"
       "  platform: {radius: 0.3, z: [0, 0.04]}\n"

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -262,6 +263,13 @@ TEST(SolidBodies, ValidationNamesTheKey) {
   EXPECT_NE(message(b).find("bodies.platform.polygon must be convex"), std::string::npos);
   b.platform.polygon = {{0, 0}, {1, 0}, {0, 1}};
   EXPECT_EQ(message(b), "");
+  // A pentagram turns the same way at every vertex but winds round twice.
+  b.platform.polygon.clear();
+  for (const int k : {0, 2, 4, 1, 3})
+    b.platform.polygon.emplace_back(std::cos(2 * std::numbers::pi * k / 5),
+                                    std::sin(2 * std::numbers::pi * k / 5));
+  EXPECT_NE(message(b).find("wind round once"), std::string::npos);
+  b.platform.polygon = {{0, 0}, {1, 0}, {0, 1}};
   b.platform.radius = 0.3;
   EXPECT_NE(message(b).find("either radius"), std::string::npos);
   b.platform = {};
@@ -273,6 +281,24 @@ TEST(SolidBodies, ValidationNamesTheKey) {
   HexapodDesign design = sample_machines::conventions_hexapod_design();
   design.bodies.tool = {0.1, {0, 0, 0}, {0, 0, -0.2}};
   EXPECT_THROW(Hexapod{design}, std::invalid_argument);  // solids need a leg shape
+  // A plate with one-capsule legs (jointed to both plates) would be checked against nothing.
+  design.leg_shape.diameter = 0.05;
+  design.bodies = {};
+  design.bodies.platform.radius = 0.3;
+  design.bodies.platform.z_max = 0.03;
+  try {
+    Hexapod{design};
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("give legs.cylinder and legs.rod"), std::string::npos);
+  }
+  design.leg_shape = {};
+  design.leg_shape.cylinder_diameter = 0.08;  // a cylinder: the platform plate sees it
+  design.leg_shape.cylinder_length = 0.5;
+  EXPECT_NO_THROW(Hexapod{design});
+  design.bodies.base.radius = 0.6;  // no rod: the base plate would see nothing
+  design.bodies.base.z_min = -0.03;
+  EXPECT_THROW(Hexapod{design}, std::invalid_argument);
 }
 
 }  // namespace

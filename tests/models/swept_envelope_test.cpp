@@ -80,7 +80,9 @@ TEST(SweptEnvelope, MorePosesAndSolidsOnlyAdd) {
   EXPECT_GT(two.volume, one.volume);
   EXPECT_GE(two.footprint, one.footprint);
   // A base disc of radius 0.9 beyond the joints: the footprint is its circumscribed 32-gon.
-  design.leg_shape.diameter = 0.05;
+  design.leg_shape.cylinder_diameter = 0.08;  // rods for the base plate to see
+  design.leg_shape.cylinder_length = 0.5;
+  design.leg_shape.rod_diameter = 0.05;
   design.bodies.base.radius = 0.9;
   design.bodies.base.z_min = -0.05;
   const Hexapod based(design);

@@ -358,7 +358,9 @@ TEST(HexapodDesign, InstallationSpaceCountsInReachability) {
   spec.task.installation_space.z_max = 1.5;
   EXPECT_NEAR(HexapodDesignProblem(spec).evaluate({}).reach_violation, 0.05, 1e-12);
   // A base plate of radius 0.7 m enters by its circumscribed 32-gon (radius 0.7 / cos(pi/32)).
-  spec.machine_template.leg_shape.diameter = 0.01;
+  spec.machine_template.leg_shape.cylinder_diameter = 0.01;  // a rod for the plate to see
+  spec.machine_template.leg_shape.cylinder_length = 0.5;
+  spec.machine_template.leg_shape.rod_diameter = 0.01;
   spec.machine_template.bodies.base.radius = 0.7;
   spec.machine_template.bodies.base.z_min = -0.05;
   EXPECT_NEAR(HexapodDesignProblem(spec).evaluate({}).reach_violation,
