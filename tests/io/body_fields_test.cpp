@@ -17,14 +17,6 @@
 namespace pkmopt {
 namespace {
 
-const char* kGood = R"(model: hexapod
-base: {radius: 0.60, pair_separation_deg: 20}
-platform: {radius: 0.25, pair_separation_deg: 20}
-legs: {min_length: 0.70, max_length: 1.15, E: 2.1e11, area: 3.0e-4, actuator_stiffness: 2.0e8}
-joints: {base_max_angle_deg: 45, platform_max_angle_deg: 45}
-tool: {tcp: [0, 0, -0.10]}
-)";
-
 std::string replace(std::string text, const std::string& from, const std::string& to) {
   text.replace(text.find(from), from.size(), to);
   return text;
@@ -38,6 +30,9 @@ std::string read_text(const std::string& path) {
 }
 
 YamlValue yaml_of(const std::string& text) { return YamlValue::load_string(text, "m.yaml"); }
+
+// The sample hexapod without a leg shape (examples/hexapod.yaml, 7 lines).
+const std::string kGood = read_text(std::string(PKMOPT_SOURCE_DIR) + "/examples/hexapod.yaml");
 
 std::string hexapod_error_of(const std::string& text) {
   try {
@@ -85,16 +80,16 @@ TEST(BodyFields, HexapodBodiesAreReadWrittenAndChecked) {
   EXPECT_EQ(hexapod_design_to_yaml(back), text);
   // Errors: no leg shape, a polygon that is not convex, a plate without z, an unknown key.
   EXPECT_EQ(hexapod_error_of(std::string(kGood) + bodies),
-            "m.yaml:8:3: bodies: bodies are checked against the legs: give the legs' shape "
+            "m.yaml:9:3: bodies: bodies are checked against the legs: give the legs' shape "
             "(legs.diameter, or legs.cylinder and legs.rod)");
   EXPECT_EQ(
       hexapod_error_of(legs + "bodies: {base: {polygon: [[0, 0], [1, 0], [0.2, 0.2], [0, 1]], z: "
                               "[-0.05, 0]}}\n"),
-      "m.yaml:7:9: bodies: bodies.base.polygon must be convex, its vertices in order around "
+      "m.yaml:8:9: bodies: bodies.base.polygon must be convex, its vertices in order around "
       "it (vertex 3 turns the other way)");
   EXPECT_EQ(hexapod_error_of(legs + "bodies: {platform: {radius: 0.3}}\n"),
-            "m.yaml:7:20: bodies.platform: missing required key 'z'");
-  EXPECT_EQ(hexapod_error_of(legs + "bodies: {spindle: {diameter: 0.1}}\n").find("m.yaml:7:10: "),
+            "m.yaml:8:20: bodies.platform: missing required key 'z'");
+  EXPECT_EQ(hexapod_error_of(legs + "bodies: {spindle: {diameter: 0.1}}\n").find("m.yaml:8:10: "),
             0u);
 }
 
