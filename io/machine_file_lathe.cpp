@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "io/body_fields.hpp"
 #include "io/compliance_fields.hpp"
 #include "io/field_list.hpp"
 #include "io/mass_fields.hpp"
@@ -101,6 +102,7 @@ void describe_fields(Fields& f, Lathe16k20f3Design& d) {
           non_negative("m", "half-width of the actuator error box of tcp_error_max"));
   MassFields masses{d.masses, {.telescopic = true, .carriage = true}};
   describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, false);
 }
 
 Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root) {

@@ -97,6 +97,7 @@ LegChainDesign lathe_16k20f3_design(const Lathe16k20f3Design& d) {
     design.legs.push_back(leg);
   }
   design.masses = d.masses;
+  design.shapes = d.shapes;
   return design;
 }
 

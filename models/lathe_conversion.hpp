@@ -115,6 +115,7 @@ struct Lathe16k20f3Design {
   /// Turret housing with turret and tools, carriages and struts, cylinders and rods
   /// (models/mass_model.hpp); `present` false: none.
   MassModel masses;
+  LinkShapes shapes;  ///< interference check of struts and legs (LegChainDesign::shapes)
 };
 
 /// The leg-chain design (model name "lathe_16k20f3", mobility kSchoenflies, e = x). Throws

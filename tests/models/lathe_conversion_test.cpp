@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
+#include "models/segment_distance.hpp"
 #include "problems/cutting_load.hpp"
 
 namespace pkmopt {
@@ -258,6 +261,44 @@ TEST(LatheConversion, MassesGiveFourNaturalFrequencies) {
       EXPECT_LT(mh.natural_frequencies(j), mb.natural_frequencies(j));
     }
   }
+}
+
+// Struts and legs with a diameter: the clearance is the smallest over the links placed here from
+// the IK (struts from the carriages c = g + q u, legs from their base joints), a pose where
+// they come closer than min_clearance is unreachable.
+TEST(LatheConversion, StrutsAndLegsKeepTheirClearance) {
+  Lathe16k20f3Design d;
+  d.shapes.link_diameter = 0.05;
+  const LegChainDesign design = lathe_16k20f3_design(d);
+  const LegChainMachine machine(design);
+  ASSERT_TRUE(machine.checks_leg_interference());
+  int checked = 0;
+  for (const Pose& pose : sample_poses()) {
+    const auto q = machine.inverse_kinematics(pose);
+    if (!q) continue;
+    const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+    std::vector<Eigen::Vector3d> a, b;
+    for (std::size_t i = 0; i < design.legs.size(); ++i) {
+      const LegChainLeg& leg = design.legs[i];
+      const double qi = (*q)(static_cast<Eigen::Index>(i));
+      Eigen::Vector3d start = leg.base_point;
+      if (leg.kind == LegKind::kPUS) start += qi * leg.axis.normalized();
+      a.push_back(start);
+      b.push_back(pose.position + R * (leg.platform_point - design.tcp));
+    }
+    double expected = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = i + 1; j < a.size(); ++j)
+        expected = std::min(expected, segment_distance(a[i], b[i], a[j], b[j]) - 0.05);
+    const Clearance c = machine.leg_clearance(pose);
+    EXPECT_NEAR(c.value, expected, 1e-12);
+    d.shapes.min_clearance = expected + 1e-3;
+    const LegChainMachine tight(lathe_16k20f3_design(d));
+    EXPECT_FALSE(tight.reachable(*tight.make_data(), pose));
+    d.shapes.min_clearance = 0.0;
+    ++checked;
+  }
+  EXPECT_GT(checked, 2);
 }
 
 TEST(LatheConversion, RejectsImpossibleDesigns) {
