@@ -66,15 +66,61 @@ void bounding_ball(const ConvexPrism& prism, Eigen::Vector3d& centre, double& ra
   radius = std::hypot(r, half);
 }
 
+// A solid prepared once per call: its prism, what its distance needs, and a ball holding it.
+struct Solid {
+  const ConvexPrism* prism = nullptr;
+  double orientation = 1.0;  // sign of the polygon's area
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0.0;  // the ball (local coordinates)
+};
+
+Solid prepare(const ConvexPrism& prism) {
+  Solid s;
+  s.prism = &prism;
+  s.orientation = prism.polygon.empty() || twice_area(prism.polygon) > 0.0 ? 1.0 : -1.0;
+  bounding_ball(prism, s.centre, s.radius);
+  return s;
+}
+
+// Distance from the segment [la, lb] (local coordinates) to the prism: golden-section search of
+// the convex distance along it on [0, 1]; 48 steps leave 0.618^48 < 1e-9.
+double local_segment_distance(const Eigen::Vector3d& la, const Eigen::Vector3d& lb,
+                              const Solid& solid) {
+  const Eigen::Vector3d d = lb - la;
+  auto f = [&](double s) {
+    return local_point_distance(la + s * d, *solid.prism, solid.orientation);
+  };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = 0.0, hi = 1.0;
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  for (int it = 0; it < 48 && f1 > 0.0 && f2 > 0.0; ++it) {
+    if (f1 <= f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - g * (hi - lo);
+      f1 = f(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + g * (hi - lo);
+      f2 = f(x2);
+    }
+  }
+  return std::min({f1, f2, f(0.0), f(1.0)});
+}
+
 // A lower bound of the distance from the segment [la, lb] (local coordinates) to the prism: the
-// larger of the distance to the slab z in [z_min, z_max] and the distance to a ball holding it.
+// larger of the distance to the slab z in [z_min, z_max] and the distance to the ball holding it.
 double distance_lower_bound(const Eigen::Vector3d& la, const Eigen::Vector3d& lb,
-                            const ConvexPrism& prism) {
+                            const Solid& solid) {
+  const ConvexPrism& prism = *solid.prism;
   const double slab = std::max(
       {0.0, prism.z_min - std::max(la.z(), lb.z()), std::min(la.z(), lb.z()) - prism.z_max});
-  Eigen::Vector3d centre;
-  double radius = 0.0;
-  bounding_ball(prism, centre, radius);
+  const Eigen::Vector3d& centre = solid.centre;
+  const double radius = solid.radius;
   const Eigen::Vector3d d = lb - la;
   const double dd = d.squaredNorm();
   const double t = dd > 0.0 ? std::clamp((centre - la).dot(d) / dd, 0.0, 1.0) : 0.0;
@@ -96,17 +142,20 @@ void for_each_pair(std::span<const Capsule> legs, const MachineBodies& bodies,
   const Placed solids[3] = {{&bodies.platform, kPlatformBody, true},
                             {&bodies.base, kBaseBody, false},
                             {&tool, kToolBody, true}};
-  for (const Placed& solid : solids) {
-    if (!solid.prism->present()) continue;
+  for (const Placed& placed : solids) {
+    const ConvexPrism& prism = *placed.prism;
+    if (!prism.present()) continue;
+    const Solid solid = prepare(prism);
+    // Base frame to the prism's local coordinates: x_local = A^T (x - o).
+    const Eigen::Matrix3d A = placed.on_platform ? Eigen::Matrix3d(R * prism.axes) : prism.axes;
+    const Eigen::Vector3d o =
+        placed.on_platform ? Eigen::Vector3d(origin + R * prism.origin) : prism.origin;
     for (const Capsule& leg : legs) {
-      if (solid.code == kPlatformBody && leg.on_platform) continue;
-      if (solid.code == kBaseBody && leg.on_base) continue;
-      // The leg's axis in the solid's parent frame.
-      const Eigen::Vector3d a =
-          solid.on_platform ? Eigen::Vector3d(R.transpose() * (leg.a - origin)) : leg.a;
-      const Eigen::Vector3d b =
-          solid.on_platform ? Eigen::Vector3d(R.transpose() * (leg.b - origin)) : leg.b;
-      if (!visit(leg, a, b, *solid.prism, solid.code)) return;
+      if (placed.code == kPlatformBody && leg.on_platform) continue;
+      if (placed.code == kBaseBody && leg.on_base) continue;
+      const Eigen::Vector3d la = A.transpose() * (leg.a - o);
+      const Eigen::Vector3d lb = A.transpose() * (leg.b - o);
+      if (!visit(leg, la, lb, solid, placed.code)) return;
     }
   }
 }
@@ -209,44 +258,18 @@ void check_hexapod_bodies(const LegShape& shape, const MachineBodies& bodies) {
 
 double segment_prism_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                               const ConvexPrism& prism) {
-  const Eigen::Vector3d la = prism.axes.transpose() * (a - prism.origin);
-  const Eigen::Vector3d lb = prism.axes.transpose() * (b - prism.origin);
-  const Eigen::Vector3d d = lb - la;
-  const double orientation = prism.polygon.empty() || twice_area(prism.polygon) > 0.0 ? 1.0 : -1.0;
-  auto f = [&](double s) { return local_point_distance(la + s * d, prism, orientation); };
-  // Golden-section search of the convex f on [0, 1]: 48 steps leave 0.618^48 < 1e-9.
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double lo = 0.0, hi = 1.0;
-  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
-  double f1 = f(x1), f2 = f(x2);
-  for (int it = 0; it < 48 && f1 > 0.0 && f2 > 0.0; ++it) {
-    if (f1 <= f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - g * (hi - lo);
-      f1 = f(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + g * (hi - lo);
-      f2 = f(x2);
-    }
-  }
-  return std::min({f1, f2, f(0.0), f(1.0)});
+  return local_segment_distance(prism.axes.transpose() * (a - prism.origin),
+                                prism.axes.transpose() * (b - prism.origin), prepare(prism));
 }
 
 void body_clearance(std::span<const Capsule> legs, const MachineBodies& bodies,
                     const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, Clearance& best) {
   for_each_pair(legs, bodies, R, origin,
-                [&](const Capsule& leg, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                    const ConvexPrism& prism, int code) {
+                [&](const Capsule& leg, const Eigen::Vector3d& la, const Eigen::Vector3d& lb,
+                    const Solid& solid, int code) {
                   // Pairs that cannot beat the best so far skip the exact distance.
-                  const Eigen::Vector3d la = prism.axes.transpose() * (a - prism.origin);
-                  const Eigen::Vector3d lb = prism.axes.transpose() * (b - prism.origin);
-                  if (distance_lower_bound(la, lb, prism) - leg.radius >= best.value) return true;
-                  const double gap = segment_prism_distance(a, b, prism) - leg.radius;
+                  if (distance_lower_bound(la, lb, solid) - leg.radius >= best.value) return true;
+                  const double gap = local_segment_distance(la, lb, solid) - leg.radius;
                   if (gap < best.value) best = {gap, leg.leg, code};
                   return true;
                 });
@@ -256,13 +279,11 @@ bool bodies_apart(std::span<const Capsule> legs, const MachineBodies& bodies,
                   const Eigen::Matrix3d& R, const Eigen::Vector3d& origin, double min_clearance) {
   bool apart = true;
   for_each_pair(legs, bodies, R, origin,
-                [&](const Capsule& leg, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                    const ConvexPrism& prism, int) {
-                  const Eigen::Vector3d la = prism.axes.transpose() * (a - prism.origin);
-                  const Eigen::Vector3d lb = prism.axes.transpose() * (b - prism.origin);
-                  if (distance_lower_bound(la, lb, prism) - leg.radius >= min_clearance)
+                [&](const Capsule& leg, const Eigen::Vector3d& la, const Eigen::Vector3d& lb,
+                    const Solid& solid, int) {
+                  if (distance_lower_bound(la, lb, solid) - leg.radius >= min_clearance)
                     return true;
-                  if (segment_prism_distance(a, b, prism) - leg.radius < min_clearance)
+                  if (local_segment_distance(la, lb, solid) - leg.radius < min_clearance)
                     apart = false;
                   return apart;
                 });

@@ -298,6 +298,8 @@ T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
     if constexpr (std::is_same_v<T, double>) {
       const InstallationSpace& space = spec_.task.installation_space;
       if (tmpl.leg_shape.present() || space.present()) {
+        const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
+        const Eigen::Vector3d origin = position - R * tmpl.tcp;  // the platform frame's
         Capsule bodies[12];
         int n = 0;
         for (int i = 0; i < 6; ++i) {
@@ -312,8 +314,7 @@ T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
         if (tmpl.leg_shape.present()) {
           Clearance c = leg_clearance(legs);
           if (tmpl.bodies.present()) {
-            const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
-            body_clearance(legs, tmpl.bodies, R, position - R * tmpl.tcp, c);
+            body_clearance(legs, tmpl.bodies, R, origin, c);
           }
           add(tmpl.min_clearance - c.value);
         }
@@ -322,10 +323,10 @@ T HexapodDesignProblem::reach_rows(const std::array<T, kNumDesignParameters>& p,
           for (const Capsule& body : legs) excess = std::max(excess, space.excess(body));
           // The solids' outlines (the plates and the tool hold their circumscribed 32-gons).
           if (tmpl.bodies.present()) {
-            const Eigen::Matrix3d R = rotation_zyx<double>(pose.angles);
             std::vector<Eigen::Vector3d> outline;
-            solid_outline_points(tmpl.bodies, R, position - R * tmpl.tcp, outline);
-            for (const Eigen::Vector3d& x : outline) excess = std::max(excess, space.excess(x, 0.0));
+            solid_outline_points(tmpl.bodies, R, origin, outline);
+            for (const Eigen::Vector3d& x : outline)
+              excess = std::max(excess, space.excess(x, 0.0));
           }
           add(excess);  // the legs' ends include every base and platform joint
         }
