@@ -39,6 +39,18 @@ struct AnalyzeCsvOptions {
   const std::vector<PoseModes>* modes = nullptr;
 };
 
+/// The numeric columns of analyze_csv after x..rz, in file order: reachable (1 or 0), q_1..q_n,
+/// tau_1..tau_n, ... (clearance_pair, a text column written after leg_clearance, is not one of
+/// them). `modes` and `compliance` add the mode-shape and C_ab columns.
+std::vector<std::string> analyze_value_columns(const Machine& machine, bool modes, bool compliance);
+
+/// The values of one pose in the order of analyze_value_columns (out holds as many), in the
+/// units of the CSV (q of revolute actuators and tcp_rotation_deflection_deg in degrees): the
+/// numbers analyze_csv writes. `modes` / `compliance` may be null when those columns are not
+/// asked for.
+void analyze_values(const Machine& machine, const PoseMetrics& metrics, const PoseModes* modes,
+                    const PoseCompliance* compliance, double* out);
+
 /// The whole CSV text (header and one row per pose; `metrics[i]` belongs to `poses.poses[i]`).
 std::string analyze_csv(const Machine& machine, const PoseTable& poses,
                         const std::vector<PoseMetrics>& metrics,

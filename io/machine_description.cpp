@@ -97,7 +97,11 @@ void add_serial(MachineDescription& d, const SerialPart& part) {
 }  // namespace
 
 MachineDescription describe_machine_file(const std::string& path) {
-  const YamlValue root = YamlValue::load_file(path);
+  return describe_machine(YamlValue::load_file(path));
+}
+
+MachineDescription describe_machine(const YamlValue& root) {
+  const std::string& path = root.file();
   root.expect_map();
   const YamlValue model_value = root.required("model");
   MachineDescription d;

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "io/yaml_reader.hpp"
+
 namespace pkmopt {
 
 struct MachineDescription {
@@ -40,6 +42,9 @@ struct MachineDescription {
 
 /// Reads and describes a machine file. Throws InputError for bad files.
 MachineDescription describe_machine_file(const std::string& path);
+/// The same for a parsed machine file (a hybrid's module file is taken relative to the folder of
+/// root.file()).
+MachineDescription describe_machine(const YamlValue& root);
 
 /// The text `pkmopt describe` prints.
 std::string format_description(const MachineDescription& description);

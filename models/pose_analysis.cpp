@@ -1,6 +1,9 @@
 #include "models/pose_analysis.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <exception>
 #include <memory>
 
 #include "models/hexapod.hpp"
@@ -14,27 +17,63 @@ std::vector<PoseMetrics> analyze_poses(const Machine& machine, std::span<const P
   const std::size_t n = poses.size();
   std::vector<PoseMetrics> metrics(n);
   if (matrices) matrices->assign(n, PoseCompliance{});
-  PoseCompliance* matrices_out = matrices ? matrices->data() : nullptr;
-  if (const auto* hexapod = dynamic_cast<const Hexapod*>(&machine)) {
-    constexpr std::size_t kSlice = 1024;
-#pragma omp parallel for schedule(static)
-    for (std::size_t start = 0; start < n; start += kSlice) {
-      analyze_hexapod_batch(*hexapod, poses.data() + start, std::min(kSlice, n - start), wrench,
-                            metrics.data() + start, HexapodBatchKernel::automatic,
-                            matrices_out ? matrices_out + start : nullptr);
-    }
-  } else {
-#pragma omp parallel
-    {
-      const std::unique_ptr<MachineData> data = machine.make_data();
+  analyze_pose_slices(
+      machine, n, wrench, matrices != nullptr, 0,
+      [&](const PoseSlice& s) {
+        std::copy_n(poses.begin() + static_cast<std::ptrdiff_t>(s.start), s.poses.size(),
+                    s.poses.begin());
+      },
+      [&](const PoseSlice& s) {
+        for (std::size_t k = 0; k < s.metrics.size(); ++k) {
+          std::swap(metrics[s.start + k], s.metrics[k]);
+          if (matrices) (*matrices)[s.start + k] = s.matrices[k];
+        }
+      });
+  return metrics;
+}
+
+void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench& wrench,
+                         bool matrices, int threads,
+                         const std::function<void(const PoseSlice&)>& fill,
+                         const std::function<void(const PoseSlice&)>& consume) {
+  const auto* hexapod = dynamic_cast<const Hexapod*>(&machine);
+  const long long slices = static_cast<long long>((count + kPoseSlice - 1) / kPoseSlice);
+  const int thread_count = threads > 0 ? threads : omp_get_max_threads();
+  std::exception_ptr first_error;
+#pragma omp parallel num_threads(thread_count)
+  {
+    std::vector<Pose> poses(kPoseSlice);
+    std::vector<PoseMetrics> metrics(kPoseSlice);
+    std::vector<PoseCompliance> compliance(matrices ? kPoseSlice : 0);
+    const std::unique_ptr<MachineData> data = hexapod ? nullptr : machine.make_data();
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
-        machine.analyze(*data, poses[i], wrench, metrics[i]);
-        if (matrices_out) matrices_out[i] = data->matrices;
+    for (long long s = 0; s < slices; ++s) {
+      try {
+        const std::size_t start = static_cast<std::size_t>(s) * kPoseSlice;
+        const std::size_t size = std::min(kPoseSlice, count - start);
+        const PoseSlice slice{.start = start,
+                              .poses = std::span(poses).first(size),
+                              .metrics = std::span(metrics).first(size),
+                              .matrices = std::span(compliance).first(matrices ? size : 0)};
+        fill(slice);
+        if (hexapod) {
+          analyze_hexapod_batch(*hexapod, poses.data(), size, wrench, metrics.data(),
+                                HexapodBatchKernel::automatic,
+                                matrices ? compliance.data() : nullptr);
+        } else {
+          for (std::size_t k = 0; k < size; ++k) {
+            machine.analyze(*data, poses[k], wrench, metrics[k]);
+            if (matrices) compliance[k] = data->matrices;
+          }
+        }
+        consume(slice);
+      } catch (...) {
+#pragma omp critical(pkmopt_pose_slices_error)
+        if (!first_error) first_error = std::current_exception();
       }
     }
   }
-  return metrics;
+  if (first_error) std::rethrow_exception(first_error);
 }
 
 std::vector<PoseModes> mode_shapes_of_poses(const Machine& machine, std::span<const Pose> poses) {

@@ -20,6 +20,7 @@ PACKAGES=(
   libbenchmark-dev
   libpagmo-dev
   libpng-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
 )
 
 missing=()

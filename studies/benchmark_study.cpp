@@ -85,7 +85,10 @@ std::vector<double> read_indicators_section(const YamlValue& section, std::size_
 }
 
 BenchmarkStudy load_benchmark_study(const std::string& path) {
-  const YamlValue root = YamlValue::load_file(path);
+  return load_benchmark_study(YamlValue::load_file(path));
+}
+
+BenchmarkStudy load_benchmark_study(const YamlValue& root) {
   root.check_keys({"study", "description", "problem", "optimizer", "indicators"});
   BenchmarkStudy study;
   study.name = root.required("study").as_string();

@@ -61,6 +61,8 @@ std::vector<double> read_indicators_section(const YamlValue& indicators_section,
 
 /// Loads a whole benchmark study file (throws InputError for bad input).
 BenchmarkStudy load_benchmark_study(const std::string& path);
+/// The same from a parsed study.
+BenchmarkStudy load_benchmark_study(const YamlValue& root);
 
 /// Writes DIR/pareto.csv and DIR/summary.json (creating DIR), each atomically; the keys of
 /// `extra_summary` are added to summary.json.

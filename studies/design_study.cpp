@@ -52,7 +52,11 @@ bool derivative_free_nlopt(std::string algorithm) {
 }  // namespace
 
 DesignStudy load_design_study(const std::string& path) {
-  const YamlValue root = YamlValue::load_file(path);
+  return load_design_study(YamlValue::load_file(path));
+}
+
+DesignStudy load_design_study(const YamlValue& root) {
+  const std::string& path = root.file();
   root.check_keys({"study", "description", "machine", "task", "objectives", "constraints",
                    "optimizer", "output"});
   DesignStudy study;

@@ -129,6 +129,10 @@ bool is_design_study_file(const std::string& path);
 
 /// Loads and validates a design study (throws InputError naming file, line, column and key).
 DesignStudy load_design_study(const std::string& path);
+/// The same from a parsed study (relative paths inside it, e.g. an actuator catalog, are taken
+/// relative to the folder of root.file(); a study built in memory names no folder, so they are
+/// taken relative to the working directory).
+DesignStudy load_design_study(const YamlValue& root);
 
 /// The unit of a metric in outputs ("N/m", "m^3", "" for the dimensionless ones).
 std::string_view design_metric_unit(DesignMetric metric);

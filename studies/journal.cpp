@@ -322,6 +322,19 @@ std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::ve
     append(unseen);
   }
   report_progress(false);
+  if (options_.on_batch) {
+    JournalProgress progress;
+    {
+      std::lock_guard lock(mutex_);
+      progress = {.requests = requests_,
+                  .expected_requests = options_.expected_requests,
+                  .cache_hits = cache_hits_,
+                  .failed = failed_,
+                  .distinct = entries_.size(),
+                  .feasible_front = feasible_front_.size()};
+    }
+    options_.on_batch(progress);
+  }
   return result;
 }
 

@@ -75,6 +75,16 @@ struct JournalContents {
 };
 JournalContents read_journal(const std::string& path);
 
+/// The counts of a run so far, given to JournalOptions::on_batch.
+struct JournalProgress {
+  long long requests = 0;           ///< fitness requests (cache hits included)
+  long long expected_requests = 0;  ///< JournalOptions::expected_requests (0: unknown)
+  long long cache_hits = 0;
+  long long failed = 0;            ///< distinct evaluations with a failure note
+  std::size_t distinct = 0;        ///< entries recorded (loaded ones included)
+  std::size_t feasible_front = 0;  ///< feasible non-dominated designs among them
+};
+
 struct JournalOptions {
   std::string directory;
   std::uint64_t study_hash = 0;
@@ -90,6 +100,10 @@ struct JournalOptions {
   bool show_progress = false;
   double log_interval_seconds = 5.0;
   int threads = 0;  ///< for the display only; batches use the threads the optimizer passes
+  /// Called after every batch, once its evaluations are journaled, from the thread that called
+  /// fitness or batch_fitness. It may throw to stop the run (e.g. on an interrupt): the journal
+  /// then holds every evaluation finished before, and a resumed run re-evaluates none of them.
+  std::function<void(const JournalProgress&)> on_batch;
 };
 
 class JournaledProblem final : public ForwardingProblem {

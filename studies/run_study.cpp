@@ -58,6 +58,7 @@ void fill_journal_options(JournalOptions& options, const StudyRunOptions& opt,
   options.expected_requests = spec.expected_requests();
   options.show_progress = opt.show_progress;
   options.threads = opt.threads;
+  options.on_batch = opt.progress;
 }
 
 // evaluations.csv of a benchmark study: x_j, f_i, constraint rows c_k, feasible.
@@ -102,6 +103,10 @@ StudyRunResult run_result(const std::string& name, const OptimizerSpec& spec,
 }  // namespace
 
 StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptions& options) {
+  return run_study(YamlValue::load_file(study_file), options);
+}
+
+StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) {
   StudyRunOptions opt = options;
   if (!opt.message)
     opt.message = [](const std::string& text) { std::cerr << "pkmopt: run: " << text << '\n'; };
@@ -113,8 +118,8 @@ StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptio
     throw InputError(fmt::format("--threads: expected an integer >= 0, found {}", opt.threads));
   if (opt.resume && opt.force)
     throw InputError("--resume and --force: expected one of them, found both");
-  if (is_design_study_file(study_file)) {
-    const DesignStudy design = load_design_study(study_file);
+  if (root.is_map() && root.has("machine")) {
+    const DesignStudy design = load_design_study(root);
     const bool resumed = prepare_output_directory(opt);
     JournalOptions journal_options = design_journal_options(design);
     fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
@@ -134,7 +139,7 @@ StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptio
     result.design_study = true;
     return result;
   }
-  const BenchmarkStudy study = load_benchmark_study(study_file);
+  const BenchmarkStudy study = load_benchmark_study(root);
   const bool resumed = prepare_output_directory(opt);
   JournalOptions journal_options;
   fill_journal_options(journal_options, opt, study.resolved_yaml, study.optimizer);

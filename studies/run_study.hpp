@@ -19,6 +19,9 @@
 #include <functional>
 #include <string>
 
+#include "io/yaml_reader.hpp"
+#include "studies/journal.hpp"
+
 namespace pkmopt {
 
 struct StudyRunOptions {
@@ -29,6 +32,9 @@ struct StudyRunOptions {
   bool show_progress = true;  ///< progress line / log lines on stderr
   /// Notes for the user ("no journal in DIR: starting a new run"); default: stderr.
   std::function<void(const std::string&)> message;
+  /// Called after every batch of evaluations with the counts so far (studies/journal.hpp); may
+  /// throw to stop the run, which then resumes from its journal.
+  std::function<void(const JournalProgress&)> progress;
 };
 
 /// What a finished run says about itself (the files in `out` hold the results).
@@ -50,5 +56,7 @@ struct StudyRunResult {
 
 /// Runs a study file into options.out (see the header comment). Throws InputError.
 StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptions& options);
+/// The same for a parsed study file (e.g. one built in memory: YamlValue with no file).
+StudyRunResult run_study(const YamlValue& study, const StudyRunOptions& options);
 
 }  // namespace pkmopt

@@ -121,5 +121,38 @@ TEST_F(AnalyzeCsv, RevoluteDeltaWritesDegreesAndPassesColumnsThrough) {
   EXPECT_EQ(row.cells[static_cast<std::size_t>(table.column("t"))], "0.5");
 }
 
+// analyze_value_columns names the numeric columns after x..rz in file order, and analyze_values
+// gives the numbers written under them (revolute q in degrees).
+TEST_F(AnalyzeCsv, ValueColumnsAreTheNumbersOfTheFile) {
+  const LegChainMachine delta(delta_design(DeltaDesign{}));
+  const std::vector<std::string> names = analyze_value_columns(delta, false, true);
+  ASSERT_EQ(names.size(), 1u + 3 + 3 + 10 + 36);
+  EXPECT_EQ(names[0], "reachable");
+  EXPECT_EQ(names[1], "q_1");
+  EXPECT_EQ(names[4], "tau_1");
+  EXPECT_EQ(names[7], "stiffness_min");
+  EXPECT_EQ(names[12], "tcp_rotation_deflection_deg");
+  EXPECT_EQ(names[16], "stiffness_dir_z");
+  EXPECT_EQ(names[17], "C_11");
+  EXPECT_EQ(names.back(), "C_66");
+  const PoseTable poses = read_pose_csv(write("p.csv", "x,y,z\n0.05,0,-1\n"));
+  std::vector<PoseCompliance> compliance;
+  const auto data = delta.make_data();
+  std::vector<PoseMetrics> metrics(1);
+  delta.analyze(*data, poses.poses[0], Wrench::Zero(), metrics[0]);
+  compliance.push_back(data->matrices);
+  std::vector<double> values(names.size());
+  analyze_values(delta, metrics[0], nullptr, &compliance[0], values.data());
+  EXPECT_EQ(values[0], metrics[0].reachable ? 1.0 : 0.0);
+  EXPECT_EQ(values[1], metrics[0].q(0) * kRadToDeg);
+  EXPECT_EQ(values[12], metrics[0].tcp_rotation_deflection * kRadToDeg);
+  EXPECT_EQ(values[17 + 6 * 2 + 1], compliance[0].compliance(2, 1));
+  const std::vector<std::string> lines =
+      lines_of(analyze_csv(delta, poses, metrics, {.compliance = &compliance}));
+  const CsvTable table = parse_csv(lines[0] + "\n" + lines[1] + "\n", "out.csv");
+  for (std::size_t c = 1; c < names.size(); ++c)
+    EXPECT_EQ(table.number(table.rows[0], table.column(names[c])), values[c]) << names[c];
+}
+
 }  // namespace
 }  // namespace pkmopt

@@ -56,6 +56,20 @@ TEST_F(MachineDescriptionTest, HexapodIsP0Z6AndLongAxisHexapodIsP1Z6) {
             std::string::npos);
 }
 
+// describe_machine on a parsed document describes it as its file; a hybrid's module file is
+// taken from the folder of the document's file.
+TEST_F(MachineDescriptionTest, ParsedDocumentIsDescribedAsItsFile) {
+  for (const char* name : {"serial_641236.yaml", "hybrid_long_axis_hexapod.yaml"}) {
+    const std::string file = kExamples + name;
+    EXPECT_EQ(format_description(describe_machine(YamlValue::load_file(file))),
+              format_description(describe_machine_file(file)))
+        << name;
+  }
+  const YamlValue moved = YamlValue::load_string(
+      read_input_file(kExamples + "hybrid_long_axis_hexapod.yaml"), path("elsewhere.yaml"));
+  EXPECT_THROW(describe_machine(moved), InputError);  // its module file is not in dir_
+}
+
 TEST_F(MachineDescriptionTest, TripodLatheAndSchoenfliesMobilities) {
   const MachineDescription tripod = describe_machine_file(kExamples + "tripod_3prs.yaml");
   EXPECT_EQ(tripod.translations, 1);  // z; x, y and rz are parasitic

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -151,6 +152,61 @@ TEST(PoseAnalysis, NoPosesGiveNoMetrics) {
   EXPECT_TRUE(analyze_poses(hexapod, {}, Wrench::Zero()).empty());
   const LegChainMachine delta(delta_design(DeltaDesign{}));
   EXPECT_TRUE(analyze_poses(delta, {}, Wrench::Zero()).empty());
+}
+
+// analyze_pose_slices hands every pose over once, in slices of kPoseSlice, and gives back what
+// analyze_poses gives, whatever the thread count; an exception in a callback reaches the caller.
+TEST(PoseAnalysis, SlicesGiveTheMetricsOfAnalyzePoses) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  const LegChainMachine delta(delta_design(DeltaDesign{}));
+  const std::vector<Pose> poses = hexapod_poses(2 * kPoseSlice + 77);
+  const Wrench w = (Wrench() << 100, -200, -1500, 10, 20, 5).finished();
+  for (const Machine* machine :
+       {static_cast<const Machine*>(&hexapod), static_cast<const Machine*>(&delta)}) {
+    std::vector<PoseCompliance> matrices;
+    const std::vector<PoseMetrics> whole = analyze_poses(*machine, poses, w, &matrices);
+    for (int threads : {1, 2, 3}) {
+      std::vector<PoseMetrics> sliced(poses.size());
+      std::vector<Matrix6d> compliance(poses.size());
+      std::vector<int> filled(poses.size(), 0), consumed(poses.size(), 0);
+      analyze_pose_slices(
+          *machine, poses.size(), w, true, threads,
+          [&](const PoseSlice& s) {
+            EXPECT_EQ(s.start % kPoseSlice, 0u);
+            EXPECT_EQ(s.poses.size(), std::min(kPoseSlice, poses.size() - s.start));
+            for (std::size_t k = 0; k < s.poses.size(); ++k) {
+              s.poses[k] = poses[s.start + k];
+              ++filled[s.start + k];
+            }
+          },
+          [&](const PoseSlice& s) {
+            ASSERT_EQ(s.metrics.size(), s.poses.size());
+            ASSERT_EQ(s.matrices.size(), s.poses.size());
+            for (std::size_t k = 0; k < s.metrics.size(); ++k) {
+              sliced[s.start + k] = s.metrics[k];
+              compliance[s.start + k] = s.matrices[k].compliance;
+              ++consumed[s.start + k];
+            }
+          });
+      for (std::size_t i = 0; i < poses.size(); ++i) {
+        ASSERT_EQ(filled[i], 1) << i;
+        ASSERT_EQ(consumed[i], 1) << i;
+        expect_identical(sliced[i], whole[i],
+                         std::string(machine->model()) + " pose " + std::to_string(i) + ", " +
+                             std::to_string(threads) + " threads");
+        for (int a = 0; a < 36; ++a)
+          ASSERT_TRUE(same_bits(compliance[i](a), matrices[i].compliance(a))) << i;
+      }
+    }
+  }
+  EXPECT_THROW(analyze_pose_slices(
+                   hexapod, poses.size(), w, false, 2,
+                   [](const PoseSlice& s) {
+                     if (s.start == kPoseSlice) throw std::runtime_error("fill failed");
+                     for (Pose& p : s.poses) p.position = {0, 0, 0.9};
+                   },
+                   [](const PoseSlice&) {}),
+               std::runtime_error);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "io/input_error.hpp"
@@ -140,6 +141,38 @@ TEST_F(StudyJournal, ResumeServesRecordedDesignsAndDropsACutLine) {
   const std::string csv = read_text(dir / "evaluations.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
   EXPECT_EQ(csv.substr(0, 14), "index,x_1,x_2\n");
+}
+
+// on_batch sees the counts after each batch is journaled; a throw from it stops the caller with
+// the batch already in the journal, and a resumed run re-evaluates none of it.
+TEST_F(StudyJournal, OnBatchReportsCountsAndMayStopTheRun) {
+  const fs::path dir = fresh_dir("on_batch");
+  CountedPair inner;
+  std::vector<JournalProgress> seen;
+  JournalOptions options = options_for(dir, 13, false);
+  options.expected_requests = 5;
+  options.on_batch = [&](const JournalProgress& p) {
+    seen.push_back(p);
+    if (seen.size() == 2) throw std::runtime_error("interrupted");
+  };
+  {
+    JournaledProblem journaled(inner, options);
+    journaled.batch_fitness(std::vector<std::vector<double>>{{0.1, 0.2}, {0.1, 0.2}, {0.9, 0.0}},
+                            1);
+    ASSERT_EQ(seen.size(), 1u);
+    EXPECT_EQ(seen[0].requests, 3);
+    EXPECT_EQ(seen[0].expected_requests, 5);
+    EXPECT_EQ(seen[0].cache_hits, 1);
+    EXPECT_EQ(seen[0].distinct, 2u);
+    EXPECT_EQ(seen[0].feasible_front, 1u);  // (0.9, 0) violates x0 <= 0.5
+    EXPECT_THROW(journaled.fitness({0.3, 0.4}), std::runtime_error);
+    EXPECT_EQ(seen[1].requests, 4);
+  }
+  EXPECT_EQ(read_journal((dir / "journal.txt").string()).entries.size(), 3u);
+  inner.calls = 0;
+  JournaledProblem resumed(inner, options_for(dir, 13, true));
+  resumed.fitness({0.3, 0.4});
+  EXPECT_EQ(inner.calls.load(), 0);
 }
 
 TEST_F(StudyJournal, ResumeRefusesAnotherStudy) {

@@ -106,6 +106,21 @@ TEST_F(RunStudy, BenchmarkStudyWritesItsResultFiles) {
             1u + summary["evaluations_distinct"].get<std::size_t>());
 }
 
+// run_study on a study parsed in memory writes the files of run_study_file on the same text, and
+// calls `progress` after every batch (the population, then each generation's offspring).
+TEST_F(RunStudy, ParsedStudyRunsAsItsFileAndReportsProgress) {
+  const std::string study = write("tiny.yaml", kDesignStudy);
+  run_study_file(study, options("from-file"));
+  StudyRunOptions o = options("parsed");
+  std::vector<long long> requests;
+  o.progress = [&](const JournalProgress& p) { requests.push_back(p.requests); };
+  const StudyRunResult r = run_study(YamlValue::load_string(kDesignStudy, "<memory>"), o);
+  EXPECT_TRUE(r.design_study);
+  EXPECT_EQ(requests, (std::vector<long long>{8, 16, 24}));
+  for (const char* file : {"pareto.csv", "pareto.json", "journal.txt", "evaluations.csv"})
+    EXPECT_EQ(read_text(dir_ / "parsed" / file), read_text(dir_ / "from-file" / file)) << file;
+}
+
 TEST_F(RunStudy, DesignStudyWritesTheFrontAndItsMachineFiles) {
   const std::string study = write("hexapod.yaml", kDesignStudy);
   const StudyRunResult r = run_study_file(study, options("out"));

@@ -1,0 +1,33 @@
+// The pieces of the Python module `pkmopt._core` (python/pkmopt/__init__.py re-exports them).
+//
+// Every binding calls the library layers below it (models, optimizer, problems, io, report,
+// studies): there is no second implementation of anything here, only the conversion between
+// numpy arrays / Python objects and the engine's types.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "io/yaml_reader.hpp"
+
+namespace pkmopt::python {
+
+namespace py = pybind11;
+
+void bind_machine(py::module_& m);
+void bind_studies(py::module_& m);
+void bind_problems(py::module_& m);
+
+/// A parsed YAML document built from Python data (dict, list, tuple, str, int, float, bool,
+/// None, numpy scalars and arrays), read with the same strict readers as a file; messages name
+/// `name` where a file would name the file, and the key path ("legs.min_length").
+YamlValue yaml_from_python(py::handle value, const std::string& name);
+
+/// A file system path from a str or os.PathLike.
+std::string path_from_python(py::handle path);
+
+/// A finite number from Python (InputError "what: expected a finite number, found ...").
+double finite_number(py::handle value, const std::string& what);
+
+}  // namespace pkmopt::python

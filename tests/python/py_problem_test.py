@@ -1,0 +1,138 @@
+"""python/src/py_problem.cpp: pkmopt's optimizers on problems written in Python."""
+
+import math
+
+import numpy as np
+import pytest
+
+import pkmopt
+
+NSGA2 = {"algorithm": "nsga2", "population": 40, "generations": 200, "seed": 5}
+
+
+class Zdt1:
+    """ZDT1 (Zitzler, Deb & Thiele 2000), in the order of operations of problems/benchmarks.cpp,
+    so that every fitness is the built-in one to the last bit."""
+
+    def __init__(self, n=30):
+        self.n = n
+        self.bounds = ([0.0] * n, [1.0] * n)
+        self.n_obj = 2
+        self.calls = 0
+
+    def fitness(self, x):
+        self.calls += 1
+        total = 0.0
+        for v in x[1:]:
+            total += float(v)
+        g = 1.0 + 9.0 * total * (1.0 / (self.n - 1))
+        f1 = float(x[0])
+        return [f1, g - math.sqrt(max(f1, 0.0) * g)]
+
+
+class BatchZdt1(Zdt1):
+    def __init__(self):
+        super().__init__()
+        self.batches = 0
+
+    def batch_fitness(self, X):
+        self.batches += 1
+        return np.array([self.fitness(x) for x in X])
+
+
+def test_a_python_zdt1_gives_the_front_of_the_built_in_one():
+    python = pkmopt.optimize(Zdt1(), NSGA2)
+    built_in = pkmopt.optimize("zdt1", NSGA2)
+    np.testing.assert_array_equal(python["x"], built_in["x"])
+    np.testing.assert_array_equal(python["objectives"], built_in["objectives"])
+    assert python["evaluations"] == built_in["evaluations"] == 40 * 201
+    assert python["problem"] == "Zdt1"
+    # Close to the true front f2 = 1 - sqrt(f1) (8040 evaluations of 30 variables: within 0.1).
+    f = python["objectives"]
+    assert np.max(f[:, 1] - (1 - np.sqrt(f[:, 0]))) < 0.1
+
+
+def test_batch_fitness_gets_whole_generations():
+    problem = BatchZdt1()
+    result = pkmopt.optimize(problem, NSGA2)
+    assert problem.batches == 201
+    np.testing.assert_array_equal(result["objectives"], pkmopt.optimize("zdt1", NSGA2)["objectives"])
+
+
+class Hs71:
+    """Hock & Schittkowski problem 71: min x1 x4 (x1 + x2 + x3) + x3 subject to
+    x1 x2 x3 x4 >= 25 and x1^2 + x2^2 + x3^2 + x4^2 = 40, 1 <= x <= 5; optimum 17.0140173."""
+
+    bounds = ([1.0] * 4, [5.0] * 4)
+    n_eq = 1
+    n_ineq = 1
+
+    def fitness(self, x):
+        x1, x2, x3, x4 = x
+        return [x1 * x4 * (x1 + x2 + x3) + x3, x1**2 + x2**2 + x3**2 + x4**2 - 40.0,
+                25.0 - x1 * x2 * x3 * x4]
+
+    def gradient(self, x):
+        x1, x2, x3, x4 = x
+        return [[x4 * (2 * x1 + x2 + x3), x1 * x4, x1 * x4 + 1.0, x1 * (x1 + x2 + x3)],
+                [2 * x1, 2 * x2, 2 * x3, 2 * x4],
+                [-x2 * x3 * x4, -x1 * x3 * x4, -x1 * x2 * x4, -x1 * x2 * x3]]
+
+
+def test_gradient_solvers_take_python_gradients():
+    result = pkmopt.optimize(Hs71(), {"algorithm": "ipopt", "start": [1, 5, 5, 1]})
+    single = result["single"]
+    assert single["usable"], single["message"]
+    assert single["objective"] == pytest.approx(17.0140173, rel=1e-7)
+    np.testing.assert_allclose(single["x"], [1.0, 4.74299964, 3.82114998, 1.37940829], rtol=1e-6)
+    slsqp = pkmopt.optimize(Hs71(), {"algorithm": "nlopt:SLSQP", "start": [1, 5, 5, 1]})
+    assert slsqp["single"]["objective"] == pytest.approx(17.0140173, rel=1e-6)
+
+
+def test_the_optimizer_section_is_read_strictly():
+    with pytest.raises(pkmopt.InputError, match=r"^optimizer: .*populaton"):
+        pkmopt.optimize(Zdt1(), {"algorithm": "nsga2", "populaton": 10})
+    with pytest.raises(pkmopt.InputError, match=r"ipopt"):
+        pkmopt.optimize(Zdt1(), {"algorithm": "ipopt"})
+
+
+def test_bad_problems_raise_clear_errors():
+    class WrongSize(Zdt1):
+        def fitness(self, x):
+            return [0.0]
+
+    with pytest.raises(pkmopt.InputError, match=r"problem.fitness: expected 2 numbers"):
+        pkmopt.optimize(WrongSize(), NSGA2)
+
+    class NoBounds:
+        def fitness(self, x):
+            return [0.0]
+
+    with pytest.raises(pkmopt.InputError, match=r"found no bounds"):
+        pkmopt.optimize(NoBounds(), NSGA2)
+
+    class Crossed:
+        bounds = ([1.0, 0.0], [0.0, 1.0])
+
+        def fitness(self, x):
+            return [0.0]
+
+    with pytest.raises(pkmopt.InputError, match=r"problem.bounds\[0\]: expected lower <= upper"):
+        pkmopt.optimize(Crossed(), NSGA2)
+    with pytest.raises(pkmopt.InputError, match=r"problem: "):
+        pkmopt.optimize("zdt9", NSGA2)
+
+
+def test_exceptions_in_fitness_reach_the_caller():
+    class Fails(Zdt1):
+        def fitness(self, x):
+            raise ZeroDivisionError("inside fitness")
+
+    with pytest.raises(ZeroDivisionError, match="inside fitness"):
+        pkmopt.optimize(Fails(), NSGA2)
+
+
+def test_built_in_problems_by_dict():
+    r = pkmopt.optimize({"name": "dtlz2", "objectives": 3},
+                        {"algorithm": "nsga2", "population": 24, "generations": 10, "seed": 1})
+    assert r["objectives"].shape[1] == 3
