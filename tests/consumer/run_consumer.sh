@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the build tree into a scratch prefix, builds tests/consumer against it with
-# find_package(pkmopt) and runs it on the sample hexapod and a small study.
+# find_package(pkmopt) and runs it on the sample hexapod and a small study; imports the
+# installed Python package (when it was built).
 # Usage: tests/consumer/run_consumer.sh SOURCE_DIR BUILD_DIR SCRATCH_DIR
 set -euo pipefail
 src=$1 build=$2 scratch=$3
@@ -16,4 +17,13 @@ sed 's/population: 60, generations: 80/population: 40, generations: 5/' \
   "$src/studies/library/hexapod-quick.yaml" >"$scratch/study.yaml"
 "$scratch/build/consumer" "$src/examples/hexapod.yaml" "$scratch/study.yaml" "$scratch/out"
 test -s "$scratch/out/pareto.csv"
+# The Python package is installed beside the libraries (PKMOPT_PYTHON_INSTALL_DIR, relative to
+# the prefix) and imports from there alone (no build tree on the path).
+site=$(find "$scratch/prefix" -path '*/dist-packages/pkmopt/__init__.py' -printf '%h\n' | head -1)
+if [[ -n $site ]]; then
+  (cd "$scratch" && PYTHONPATH="$(dirname "$site")" /usr/bin/python3 -c \
+    "import pkmopt, sys; assert pkmopt.__file__.startswith('$scratch'), pkmopt.__file__; \
+m = pkmopt.load_machine(sys.argv[1]); print('python:', m.model, pkmopt.__version__)" \
+    "$src/examples/hexapod.yaml")
+fi
 echo "consumer_project: built against $scratch/prefix and ran"
