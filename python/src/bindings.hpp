@@ -30,4 +30,7 @@ std::string path_from_python(py::handle path);
 /// A finite number from Python (InputError "what: expected a finite number, found ...").
 double finite_number(py::handle value, const std::string& what);
 
+/// OpenMP threads from Python: None (0: all cores) or an integer 1..4096 (InputError otherwise).
+int threads_from_python(const py::object& threads);
+
 }  // namespace pkmopt::python

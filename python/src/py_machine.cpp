@@ -87,22 +87,14 @@ py::array_t<double> pose_to_python(const Pose& pose) {
 Wrench wrench_from_python(const py::object& value) {
   Wrench w = Wrench::Zero();
   if (value.is_none()) return w;
-  const py::sequence s = value.cast<py::sequence>();
-  if (s.size() != 6)
+  if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) || py::len(value) != 6)
     throw InputError(
         fmt::format("wrench: expected 6 numbers fx, fy, fz (N), mx, my, mz (N*m), "
                     "found {}",
                     py::repr(value).cast<std::string>()));
+  const py::sequence s = value.cast<py::sequence>();
   for (int i = 0; i < 6; ++i) w(i) = finite_number(s[i], fmt::format("wrench[{}]", i));
   return w;
-}
-
-int threads_from_python(const py::object& threads) {
-  if (threads.is_none()) return 0;
-  const long long n = threads.cast<long long>();
-  if (n < 1 || n > 4096)
-    throw InputError(fmt::format("threads: expected an integer 1..4096 or None, found {}", n));
-  return static_cast<int>(n);
 }
 
 // Where the value of one analyze column goes: `base[pose * stride + offset]`.
@@ -336,10 +328,11 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
   const auto start = std::chrono::steady_clock::now();
   WorkspaceOptions options;
   if (!orientation.is_none()) {
-    const py::sequence s = orientation.cast<py::sequence>();
-    if (s.size() != 3)
+    if (!py::isinstance<py::sequence>(orientation) || py::isinstance<py::str>(orientation) ||
+        py::len(orientation) != 3)
       throw InputError(fmt::format("orientation: expected 3 angles rx, ry, rz (deg), found {}",
                                    py::repr(orientation).cast<std::string>()));
+    const py::sequence s = orientation.cast<py::sequence>();
     for (int k = 0; k < 3; ++k)
       options.orientations.nominal_angles(k) =
           deg_to_rad(finite_number(s[k], fmt::format("orientation[{}]", k)));

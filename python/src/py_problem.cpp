@@ -20,14 +20,23 @@ namespace {
 
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+// A count 0..1000000 from Python (InputError naming `what` otherwise).
+std::size_t count_value(const py::object& value, const std::string& what) {
+  int overflow = 0;
+  const long long n = py::isinstance<py::int_>(value) && !py::isinstance<py::bool_>(value)
+                          ? PyLong_AsLongLongAndOverflow(value.ptr(), &overflow)
+                          : -1;
+  if (overflow != 0 || n < 0 || n > 1'000'000)
+    throw InputError(fmt::format("{}: expected an integer 0..1000000, found {}", what,
+                                 py::repr(value).cast<std::string>()));
+  return static_cast<std::size_t>(n);
+}
+
 std::size_t count_attribute(const py::object& obj, const char* name, std::size_t fallback) {
   if (!py::hasattr(obj, name)) return fallback;
   py::object value = obj.attr(name);
   if (PyCallable_Check(value.ptr())) value = value();
-  const long long n = value.cast<long long>();
-  if (n < 0 || n > 1'000'000)
-    throw InputError(fmt::format("problem.{}: expected an integer 0..1000000, found {}", name, n));
-  return static_cast<std::size_t>(n);
+  return count_value(value, std::string("problem.") + name);
 }
 
 /// A Problem (optimizer/problem.hpp) whose fitness is a Python object's method. The GIL is taken
@@ -163,10 +172,13 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
     const py::dict d = problem_in.cast<py::dict>();
     if (!d.contains("name"))
       throw InputError("problem: expected {name, variables, objectives} of a built-in problem");
+    if (!py::isinstance<py::str>(d["name"]))
+      throw InputError("problem.name: expected the name of a built-in problem (zdt1, dtlz2, ...)");
     const std::string name = d["name"].cast<std::string>();
-    const std::size_t variables = d.contains("variables") ? d["variables"].cast<std::size_t>() : 0;
+    const std::size_t variables =
+        d.contains("variables") ? count_value(d["variables"], "problem.variables") : 0;
     const std::size_t objectives =
-        d.contains("objectives") ? d["objectives"].cast<std::size_t>() : 0;
+        d.contains("objectives") ? count_value(d["objectives"], "problem.objectives") : 0;
     try {
       owned = make_benchmark(name, variables, objectives);
     } catch (const std::invalid_argument& e) {
@@ -177,13 +189,7 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
   }
   if (!owned) throw InputError("problem: expected a built-in problem name or a problem object");
   const Problem& problem = *owned;
-  int threads = 0;
-  if (!threads_in.is_none()) {
-    const long long n = threads_in.cast<long long>();
-    if (n < 1 || n > 4096)
-      throw InputError(fmt::format("threads: expected an integer 1..4096 or None, found {}", n));
-    threads = static_cast<int>(n);
-  }
+  const int threads = threads_from_python(threads_in);
   const OptimizerSpec spec =
       read_optimizer_section(yaml_from_python(optimizer, "optimizer"), problem);
   RunOutcome outcome;

@@ -31,12 +31,7 @@ py::dict run_study_py(py::handle study, py::handle out, const py::object& thread
                       bool force, const py::object& progress, bool show_progress) {
   StudyRunOptions options;
   options.out = path_from_python(out);
-  if (!threads.is_none()) {
-    const long long n = threads.cast<long long>();
-    if (n < 1 || n > 4096)
-      throw InputError(fmt::format("threads: expected an integer 1..4096 or None, found {}", n));
-    options.threads = static_cast<int>(n);
-  }
+  options.threads = threads_from_python(threads);
   options.resume = resume;
   options.force = force;
   options.show_progress = show_progress;

@@ -58,26 +58,4 @@ YamlValue yaml_from_python(py::handle value, const std::string& name) {
   return YamlValue(to_node(value, "", 0), std::make_shared<const std::string>(name), "");
 }
 
-std::string path_from_python(py::handle path) {
-  const py::object text = py::module_::import("os").attr("fspath")(path);
-  if (!py::isinstance<py::str>(text))
-    throw InputError(
-        fmt::format("expected a path as text, found {}", py::repr(text).cast<std::string>()));
-  return text.cast<std::string>();
-}
-
-double finite_number(py::handle value, const std::string& what) {
-  double number = 0.0;
-  try {
-    number = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
-  } catch (const py::error_already_set&) {
-    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
-                                 py::repr(value).cast<std::string>()));
-  }
-  if (!std::isfinite(number))
-    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
-                                 py::repr(value).cast<std::string>()));
-  return number;
-}
-
 }  // namespace pkmopt::python

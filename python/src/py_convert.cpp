@@ -1,0 +1,52 @@
+// Python values -> the engine's numbers, paths and thread counts, with the messages of the
+// command line's options.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+#include "io/input_error.hpp"
+#include "python/src/bindings.hpp"
+
+namespace pkmopt::python {
+
+std::string path_from_python(py::handle path) {
+  const py::object text = py::module_::import("os").attr("fspath")(path);
+  if (!py::isinstance<py::str>(text))
+    throw InputError(
+        fmt::format("expected a path as text, found {}", py::repr(text).cast<std::string>()));
+  return text.cast<std::string>();
+}
+
+double finite_number(py::handle value, const std::string& what) {
+  double number = 0.0;
+  try {
+    number = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+  } catch (const py::error_already_set&) {
+    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
+                                 py::repr(value).cast<std::string>()));
+  }
+  if (!std::isfinite(number))
+    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
+                                 py::repr(value).cast<std::string>()));
+  return number;
+}
+
+int threads_from_python(const py::object& threads) {
+  if (threads.is_none()) return 0;
+  constexpr long long kMaxThreads = 4096;
+  const bool integer = py::isinstance<py::int_>(threads) && !py::isinstance<py::bool_>(threads);
+  long long n = 0;
+  bool overflow = false;
+  if (integer) {
+    int flag = 0;
+    n = PyLong_AsLongLongAndOverflow(threads.ptr(), &flag);
+    overflow = flag != 0;
+  }
+  if (!integer || overflow || n < 1 || n > kMaxThreads)
+    throw InputError(fmt::format("threads: expected an integer 1..{} or None, found {}",
+                                 kMaxThreads, py::repr(threads).cast<std::string>()));
+  return static_cast<int>(n);
+}
+
+}  // namespace pkmopt::python

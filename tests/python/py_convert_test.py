@@ -1,0 +1,58 @@
+"""python/src/py_convert.cpp: thread counts, numbers and paths from Python values."""
+
+import pathlib
+
+import numpy as np
+import pytest
+
+import pkmopt
+from conftest import source
+
+
+@pytest.mark.parametrize("threads", [0, -1, 4097, 1.5, True, "2", 10**30])
+def test_thread_counts_outside_1_to_4096_are_refused(hexapod, threads):
+    with pytest.raises(pkmopt.InputError, match=r"^threads: expected an integer 1..4096 or None, "
+                                                r"found "):
+        hexapod.analyze(np.zeros((1, 3)), threads=threads)
+    with pytest.raises(pkmopt.InputError, match=r"^threads: expected an integer 1..4096"):
+        pkmopt.optimize("zdt1", {"algorithm": "nsga2"}, threads=threads)
+
+
+def test_thread_counts_in_range_are_taken(hexapod):
+    for threads in (1, np.int64(2).item(), 4096):
+        hexapod.analyze(np.array([[0.0, 0.0, 0.9]]), threads=threads)
+
+
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), "x", None, [1.0]])
+def test_numbers_must_be_finite(hexapod, value):
+    with pytest.raises(pkmopt.InputError, match=r"wrench\[3\]: expected a finite number, found"):
+        hexapod.analyze(np.zeros((1, 3)), wrench=[0, 0, 0, value, 0, 0])
+
+
+def test_wrenches_are_six_numbers(hexapod):
+    for wrench in ({1: 2}, "abcdef", [0] * 5, 3.0):
+        with pytest.raises(pkmopt.InputError, match=r"^wrench: expected 6 numbers"):
+            hexapod.analyze(np.zeros((1, 3)), wrench=wrench)
+
+
+def test_paths_may_be_text_or_path_like():
+    a = pkmopt.load_machine(source("examples", "hexapod.yaml"))
+    b = pkmopt.load_machine(pathlib.Path(source("examples", "hexapod.yaml")))
+    assert a.describe() == b.describe()
+    with pytest.raises(TypeError):
+        pkmopt.load_machine(None)
+
+
+def test_problem_counts_are_integers():
+    class Bad:
+        bounds = ([0.0], [1.0])
+        n_obj = 2.5
+
+        def fitness(self, x):
+            return [0.0, 0.0]
+
+    with pytest.raises(pkmopt.InputError, match=r"problem.n_obj: expected an integer 0..1000000, "
+                                                r"found 2.5"):
+        pkmopt.optimize(Bad(), {"algorithm": "nsga2"})
+    with pytest.raises(pkmopt.InputError, match=r"problem.objectives: expected an integer"):
+        pkmopt.optimize({"name": "dtlz2", "objectives": -3}, {"algorithm": "nsga2"})
