@@ -30,6 +30,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : pkmopt::kExitInputError;
+  } catch (const pkmopt::ProbablyWrongResult& e) {
+    std::fflush(stdout);
+    fmt::print(stderr, "pkmopt: warning: {}\n", e.what());
+    return pkmopt::kExitProbablyWrong;
   } catch (const pkmopt::InputError& e) {
     std::fflush(stdout);
     fmt::print(stderr, "pkmopt: error: {}\n", e.what());

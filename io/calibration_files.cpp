@@ -165,6 +165,8 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   setup.options.loss_scale = file.loss_scale;
   setup.options.outlier_chi2 = file.outlier_chi2;
   setup.options.max_iterations = file.max_iterations;
+  setup.options.estimate_noise = file.noise_estimate;
+  setup.options.max_rejected_share = file.max_rejected_share;
   setup.options.correlation_threshold = file.correlation_threshold;
   setup.options.parameter_scale = calibration_parameter_scale(
       file.length_scale, file.gain_scale, file.frame_position_scale,
@@ -232,6 +234,31 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   report["noise"] = {{"position", setup.options.sigma_position},
                      {"orientation_deg", rad_to_deg(setup.options.sigma_orientation)},
                      {"actuator", setup.options.sigma_actuator}};
+  // The sigmas of the final fit: estimated from the residuals (problems/calibration_noise.cpp)
+  // unless the file turns that off; everything below (screening, noise floor) uses them.
+  CalibrationOptions fitted = setup.options;
+  if (result.noise_estimated) {
+    fitted.sigma_position = result.estimated_sigma(0);
+    fitted.sigma_orientation = result.estimated_sigma(1);
+    fitted.sigma_actuator = result.estimated_sigma(2);
+  }
+  {
+    const char* names[3] = {"position", "orientation_deg", "actuator"};
+    json estimate = {{"estimated", result.noise_estimated},
+                     {"iterations", result.noise_iterations},
+                     {"covariance_scale", result.covariance_scale}};
+    for (int g = 0; g < 3; ++g) {
+      const double unit = g == 1 ? kRadToDeg : 1.0;
+      const bool resolved = result.noise_resolved[static_cast<std::size_t>(g)];
+      estimate[names[g]] = {
+          {"given", result.given_sigma(g) * unit},
+          {"used", result.estimated_sigma(g) * unit},
+          {"resolved", resolved},
+          {"relative_sd", resolved ? json(result.noise_relative_sd(g)) : json(nullptr)},
+          {"redundancy", result.group_redundancy(g)}};
+    }
+    report["noise_estimate"] = estimate;
+  }
 
   std::vector<int> inliers;
   for (std::size_t r = 0; r < setup.fit.size(); ++r) {
@@ -243,7 +270,7 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   // Held-out rows screened with the calibrated machine: each row's own pose fitted with the
   // machine held; chi^2 above the threshold flags a gross outlier.
   const std::vector<double> held_out_chi2 = fixed_machine_chi2(
-      setup.nominal_design.tcp, result.estimate, setup.measurements, setup.held_out, setup.options);
+      setup.nominal_design.tcp, result.estimate, setup.measurements, setup.held_out, fitted);
   std::vector<int> held_out_inliers;
   json held_out_outliers = json::array();
   for (std::size_t r = 0; r < setup.held_out.size(); ++r) {
@@ -297,8 +324,8 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
       calibration_errors(setup.nominal_design, estimate, setup.measurements, held_out_inliers));
   report["errors"] = errors;
   report["noise_floor"] = {
-      {"tcp_position_rms", std::sqrt(3.0) * setup.options.sigma_position},
-      {"tcp_orientation_rms_deg", std::sqrt(3.0) * rad_to_deg(setup.options.sigma_orientation)}};
+      {"tcp_position_rms", std::sqrt(3.0) * fitted.sigma_position},
+      {"tcp_orientation_rms_deg", std::sqrt(3.0) * rad_to_deg(fitted.sigma_orientation)}};
 
   json parameters = json::array();
   for (int i = 0; i < kCalibrationParameters; ++i) {
@@ -351,7 +378,34 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   report["outliers"] = outliers;
   report["held_out_outliers"] = held_out_outliers;
   report["outlier_chi2"] = setup.options.outlier_chi2;
+  report["status"] = calibration_status(report, result, setup.options.max_rejected_share);
   return report;
+}
+
+nlohmann::json calibration_status(const nlohmann::json& report, const CalibrationResult& result,
+                                  double max_rejected_share) {
+  nlohmann::json warnings = nlohmann::json::array();
+  if (!result.converged)
+    warnings.push_back(fmt::format("the fit did not converge ({})", result.solver_message));
+  const int fitted = report["poses"]["fitted"].get<int>();
+  const int rejected = report["poses"]["outliers"].get<int>();
+  const int attempted = fitted + rejected;
+  if (attempted > 0 && rejected > max_rejected_share * attempted)
+    warnings.push_back(fmt::format(
+        "{} of {} poses of the fit ({:.0f} %) were rejected as outliers, more than {:.0f} %: "
+        "check the units of the readings and the poses, the quaternion order and the fixed "
+        "parameters",
+        rejected, attempted, 100.0 * rejected / attempted, 100.0 * max_rejected_share));
+  for (const char* set : {"fitted", "held_out"}) {
+    const auto& e = report["errors"]["after"][set];
+    const int failures = e["fk_failures"].get<int>();
+    if (failures > 0)
+      warnings.push_back(fmt::format(
+          "forward kinematics of the calibrated machine failed on {} of {} {} poses: their TCP "
+          "errors are not in the table",
+          failures, e["count"].get<int>(), std::string(set) == "fitted" ? "fitted" : "held-out"));
+  }
+  return {{"ok", warnings.empty()}, {"warnings", warnings}};
 }
 
 std::string calibration_report_text(const nlohmann::json& r) {
@@ -365,6 +419,32 @@ std::string calibration_report_text(const nlohmann::json& r) {
       r["frame"].get<std::string>(), r["model"].get<std::string>(), r["poses"]["total"].get<int>(),
       r["poses"]["fitted"].get<int>(), r["poses"]["held_out"].get<int>(),
       r["poses"]["outliers"].get<int>(), r["poses"]["held_out_outliers"].get<int>());
+  if (r.contains("status") && !r["status"]["ok"].get<bool>()) {
+    out += "\nWARNING: this result is probably wrong:\n";
+    for (const auto& w : r["status"]["warnings"]) out += "  - " + w.get<std::string>() + "\n";
+    out += "\n";
+  }
+  if (r.contains("noise_estimate")) {
+    const auto& n = r["noise_estimate"];
+    auto sigma = [&](const char* key, double unit, const char* unit_name, const char* format) {
+      const auto& g = n[key];
+      std::string text = fmt::format(fmt::runtime(format), g["used"].get<double>() * unit);
+      text += unit_name;
+      if (!n["estimated"].get<bool>()) return text + " (given)";
+      if (!g["resolved"].get<bool>())
+        return text + fmt::format(fmt::runtime(std::string(" (not resolved by the data; given ") +
+                                               format + "{})"),
+                                  g["given"].get<double>() * unit, unit_name);
+      return text +
+             fmt::format(
+                 fmt::runtime(std::string(" (estimated +-{:.0f} %, given ") + format + "{})"),
+                 50.0 * g["relative_sd"].get<double>(), g["given"].get<double>() * unit, unit_name);
+    };
+    out += fmt::format("noise: position {}, orientation {}, readings {}\n",
+                       sigma("position", 1e6, " um", "{:.3g}"),
+                       sigma("orientation_deg", 1.0, " deg", "{:.3g}"),
+                       sigma("actuator", 1e6, " um", "{:.3g}"));
+  }
   out += fmt::format("solver: converged {}, {} iterations, chi2/dof {:.3f}\n",
                      r["solver"]["converged"].get<bool>(), r["solver"]["iterations"].get<int>(),
                      r["solver"]["chi2_per_dof"].get<double>());
@@ -386,12 +466,23 @@ std::string calibration_report_text(const nlohmann::json& r) {
       const auto& e = r["errors"][when][set];
       double leg_max = 0.0;
       for (const auto& v : e["leg_max"]) leg_max = std::max(leg_max, v.get<double>());
-      out += fmt::format(
-          "{:<30}{:>8}{:>12.2f}{:>12.2f}{:>14.2f}{:>14.2f}{:>12.5f}{:>12.5f}\n",
-          fmt::format("{} / {}", when, set), e["count"].get<int>(),
-          1e6 * e["leg_rms_all"].get<double>(), 1e6 * leg_max,
-          1e6 * e["tcp_position_rms"].get<double>(), 1e6 * e["tcp_position_max"].get<double>(),
-          e["tcp_orientation_rms_deg"].get<double>(), e["tcp_orientation_max_deg"].get<double>());
+      const int count = e["count"].get<int>();
+      const int solved = count - e["fk_failures"].get<int>();
+      // No poses (or no forward-kinematics solution): "n/a", never a 0.00 that reads as exact.
+      auto cell = [](bool have, double value, int width, int digits) {
+        return have ? fmt::format("{:>{}.{}f}", value, width, digits)
+                    : fmt::format("{:>{}}", "n/a", width);
+      };
+      out += fmt::format("{:<30}{:>8}", fmt::format("{} / {}", when, set), count);
+      out += cell(count > 0, 1e6 * e["leg_rms_all"].get<double>(), 12, 2);
+      out += cell(count > 0, 1e6 * leg_max, 12, 2);
+      out += cell(solved > 0, 1e6 * e["tcp_position_rms"].get<double>(), 14, 2);
+      out += cell(solved > 0, 1e6 * e["tcp_position_max"].get<double>(), 14, 2);
+      out += cell(solved > 0, e["tcp_orientation_rms_deg"].get<double>(), 12, 5);
+      out += cell(solved > 0, e["tcp_orientation_max_deg"].get<double>(), 12, 5);
+      out += solved < count
+                 ? fmt::format("  ({} without a forward-kinematics solution)\n", count - solved)
+                 : "\n";
     }
   }
   out +=

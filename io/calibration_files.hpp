@@ -65,6 +65,8 @@ struct CalibrationFile {
   double noise_position = 0.0;         ///< m
   double noise_orientation_deg = 0.0;  ///< deg
   double noise_actuator = 0.0;         ///< actuator unit
+  bool noise_estimate = true;          ///< estimate the sigmas from the data (given: the start)
+  double max_rejected_share = 0.2;     ///< more rejected poses: a probably wrong result
   std::string model = "48";
   std::vector<std::string> fixed;  ///< parameter names
   std::string gauge = "auto";
@@ -135,6 +137,11 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
 /// The report of a calibration as JSON (see docs/calibration.md for every field).
 nlohmann::json calibration_report_json(const CalibrationSetup& setup,
                                        const CalibrationResult& result);
+/// The report's `status`: {ok, warnings}; not ok (a result that is probably wrong) when the fit
+/// did not converge, when more than `max_rejected_share` of the fitted poses were rejected, or
+/// when forward kinematics of the calibrated machine fails on fitted or held-out poses.
+nlohmann::json calibration_status(const nlohmann::json& report, const CalibrationResult& result,
+                                  double max_rejected_share);
 /// The same report as readable text.
 std::string calibration_report_text(const nlohmann::json& report);
 

@@ -135,6 +135,11 @@ void describe_fields(Fields& f, CalibrationFile& c) {
             positive("deg", "instrument orientation sigma", true));
     g.field("actuator", c.noise_actuator,
             positive("actuator unit", "reading sigma, in the unit of `actuators.unit`", true));
+    g.field("estimate", c.noise_estimate,
+            {.doc = "`true`: the sigmas are estimated from the residuals (variance components, "
+                    "docs/calibration.md) and the given ones are only the start; `false`: the "
+                    "given sigmas are taken as true",
+             .omit_when = [&c] { return c.noise_estimate; }});
   });
   FieldChoice<std::string> model{c.model, {{"42", "42"}, {"48", "48"}}};
   f.field("model", model,
@@ -175,6 +180,14 @@ void describe_fields(Fields& f, CalibrationFile& c) {
            .doc = "a pose is an outlier when its chi² exceeds this (the default is the 0.9999 "
                   "quantile of chi² with 6 degrees of freedom)",
            .omit_when = [&c, d = defaults.outlier_chi2] { return c.outlier_chi2 == d; }});
+  f.field(
+      "max_rejected_share", c.max_rejected_share,
+      {.min = 0,
+       .max = 1,
+       .min_exclusive = true,
+       .doc = "a calibration that rejects more than this share of the fitted poses is "
+              "reported as probably wrong (exit status 3)",
+       .omit_when = [&c, d = defaults.max_rejected_share] { return c.max_rejected_share == d; }});
   f.field("max_iterations", c.max_iterations,
           {.min = 1,
            .max = 100000,

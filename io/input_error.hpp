@@ -15,6 +15,16 @@ namespace pkmopt {
 
 inline constexpr int kExitInputError = 2;
 inline constexpr int kExitInternalError = 1;
+/// A command that finished and wrote its output, but whose result is probably wrong (a
+/// calibration that did not converge or rejected most poses): exit status 3.
+inline constexpr int kExitProbablyWrong = 3;
+
+/// Thrown by a command after its output is written when the result is probably wrong; the CLI
+/// prints "pkmopt: warning: <message>" and exits with kExitProbablyWrong.
+class ProbablyWrongResult : public std::runtime_error {
+ public:
+  explicit ProbablyWrongResult(const std::string& message) : std::runtime_error(message) {}
+};
 
 class InputError : public std::runtime_error {
  public:

@@ -220,54 +220,122 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
     }
   }
 
+  // The sigmas whiten the residuals; with estimate_noise they are re-estimated from the data
+  // (problems/calibration_noise.cpp) and the given ones are only the start.
+  CalibrationOptions opt = options;
+  result.given_sigma = {options.sigma_position, options.sigma_orientation, options.sigma_actuator};
+  auto sigma_of = [&](int g) -> double& {
+    return g == 0 ? opt.sigma_position : (g == 1 ? opt.sigma_orientation : opt.sigma_actuator);
+  };
+
   std::vector<int> active(static_cast<std::size_t>(num_poses));
   std::iota(active.begin(), active.end(), 0);
   const bool robust = options.loss != CalibrationLoss::kNone;
-  FitOutcome outcome = solve_eiv(tcp, x, poses, measurements, active, options, robust);
+  // How well the data must determine a group's variance (relative standard deviation of the
+  // variance component) before its sigma is taken from them: the instrument's sigmas, which
+  // users guess, whenever the estimate is within +-50 % of sigma; the readings' (usually known
+  // and far smaller, so that the pose unknowns absorb their rows) only when within +-10 %.
+  const Eigen::Vector3d kMaxRelativeSd(1.0, 1.0, 0.2);
+  FitOutcome outcome = solve_eiv(tcp, x, poses, measurements, active, opt, robust);
   result.iterations += outcome.iterations;
+  if (options.estimate_noise) {
+    // A robust start (medians, insensitive to a minority of gross errors), so that the outlier
+    // test below does not depend on the given sigmas; repeated with the robust fit while a
+    // sigma still moves by more than 10 %.
+    for (int round = 0; round < 5; ++round) {
+      const detail::NoiseGroups groups = detail::robust_noise_groups(
+          detail::noise_groups(x, tcp, measurements, poses, active, opt));
+      std::array<bool, 3> resolved{true, true, true};
+      const Eigen::Vector3d factors = detail::helmert_factors(groups, resolved, kMaxRelativeSd);
+      double largest_change = 0.0;
+      for (int g = 0; g < 3; ++g) {
+        sigma_of(g) *= factors(g);  // 1 for a group the data do not resolve
+        largest_change = std::max(largest_change, std::abs(std::log(factors(g))));
+      }
+      if (largest_change < std::log(1.1)) break;
+      outcome = solve_eiv(tcp, x, poses, measurements, active, opt, robust);
+      result.iterations += outcome.iterations;
+    }
+  }
 
   std::vector<double> chi2(static_cast<std::size_t>(num_poses), 0.0);
   auto pose_chi2 = [&](int k) {
     return calibration_residuals(x, tcp, measurements[static_cast<std::size_t>(k)],
-                                 pose_from_vector(poses[static_cast<std::size_t>(k)]), options)
+                                 pose_from_vector(poses[static_cast<std::size_t>(k)]), opt)
         .squaredNorm();
   };
   std::vector<bool> rejected(static_cast<std::size_t>(num_poses), false);
-  bool refit = robust;
-  for (int round = 0; round < 5; ++round) {
-    bool new_outliers = false;
-    if (options.reject_outliers) {
-      for (int k : active) {
-        chi2[static_cast<std::size_t>(k)] = pose_chi2(k);
-        if (chi2[static_cast<std::size_t>(k)] > options.outlier_chi2) {
-          rejected[static_cast<std::size_t>(k)] = true;
-          new_outliers = true;
+  // Rejects every pose whose chi^2 at the current machine exceeds the threshold (a rejected
+  // pose is re-admitted when it no longer does) and refits the inliers without a loss, until
+  // the set stops changing. Returns true when the set changed.
+  auto select_and_refit = [&](bool force_refit) {
+    bool changed_any = false;
+    for (int round = 0; round < 10; ++round) {
+      bool changed = false;
+      if (options.reject_outliers) {
+        for (int k = 0; k < num_poses; ++k) {
+          const std::size_t u = static_cast<std::size_t>(k);
+          chi2[u] =
+              rejected[u] ? fit_single_pose(tcp, x, measurements[u], poses[u], opt) : pose_chi2(k);
+          const bool out = chi2[u] > options.outlier_chi2;
+          changed = changed || out != rejected[u];
+          rejected[u] = out;
         }
       }
+      changed_any = changed_any || changed;
+      if (!changed && !force_refit) break;
+      active.clear();
+      for (int k = 0; k < num_poses; ++k) {
+        if (!rejected[static_cast<std::size_t>(k)]) active.push_back(k);
+      }
+      if (6 * static_cast<int>(active.size()) < num_free + 1) {
+        throw CalibrationError(fmt::format(
+            "{} of {} poses were rejected as outliers (chi^2 > {}); the {} inliers are too few "
+            "for {} free parameters. Check the units of the readings and poses (and the "
+            "quaternion order)",
+            num_poses - static_cast<int>(active.size()), num_poses, options.outlier_chi2,
+            active.size(), num_free));
+      }
+      outcome = solve_eiv(tcp, x, poses, measurements, active, opt, false);
+      result.iterations += outcome.iterations;
+      force_refit = false;
     }
-    if (!new_outliers && !refit) break;
-    active.clear();
-    for (int k = 0; k < num_poses; ++k) {
-      if (!rejected[static_cast<std::size_t>(k)]) active.push_back(k);
+    return changed_any;
+  };
+  select_and_refit(robust || options.estimate_noise);
+  if (options.estimate_noise) {
+    // Variance-component estimation on the inliers (Helmert: the cross terms of the groups
+    // included, so that a group whose rows the fit holds nearly exact is still corrected),
+    // iterated with the outlier test and the fit until the factors settle.
+    for (int iteration = 0; iteration < options.noise_iterations; ++iteration) {
+      const detail::NoiseGroups groups =
+          detail::noise_groups(x, tcp, measurements, poses, active, opt);
+      std::array<bool, 3> resolved{true, true, true};
+      Eigen::Vector3d relative_sd;
+      const Eigen::Vector3d factors =
+          detail::helmert_factors(groups, resolved, kMaxRelativeSd, &relative_sd);
+      result.noise_relative_sd = relative_sd;
+      double largest_change = 0.0;
+      for (int g = 0; g < 3; ++g) {
+        sigma_of(g) *= factors(g);
+        largest_change = std::max(largest_change, std::abs(factors(g) - 1.0));
+      }
+      result.noise_resolved = resolved;
+      result.group_redundancy = groups.redundancy;
+      ++result.noise_iterations;
+      const bool changed = select_and_refit(true);
+      if (largest_change < 1e-4 && !changed) break;
     }
-    if (6 * static_cast<int>(active.size()) < num_free + 1) {
-      throw CalibrationError(fmt::format(
-          "{} of {} poses were rejected as outliers (chi^2 > {}); the {} inliers are too few "
-          "for {} free parameters. Check the noise sigmas and the units of the readings",
-          num_poses - static_cast<int>(active.size()), num_poses, options.outlier_chi2,
-          active.size(), num_free));
-    }
-    outcome = solve_eiv(tcp, x, poses, measurements, active, options, false);
-    result.iterations += outcome.iterations;
-    refit = false;
   }
+  result.estimated_sigma = {opt.sigma_position, opt.sigma_orientation, opt.sigma_actuator};
+  result.noise_estimated = options.estimate_noise;
   for (int k : active) chi2[static_cast<std::size_t>(k)] = pose_chi2(k);
   for (int k = 0; k < num_poses; ++k) {
     if (rejected[static_cast<std::size_t>(k)]) {
       result.outliers.push_back(k);
       chi2[static_cast<std::size_t>(k)] =
           fit_single_pose(tcp, x, measurements[static_cast<std::size_t>(k)],
-                          poses[static_cast<std::size_t>(k)], options);
+                          poses[static_cast<std::size_t>(k)], opt);
     }
   }
 
@@ -279,7 +347,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
     inlier_poses.push_back(pose_from_vector(poses[static_cast<std::size_t>(k)]));
   }
   const IdentificationWithBasis final_identification =
-      identify_with_basis(x, tcp, inlier_measurements, inlier_poses, options);
+      identify_with_basis(x, tcp, inlier_measurements, inlier_poses, opt);
   result.identification = final_identification.identification;
 
   if (options.compute_covariance) {
@@ -290,7 +358,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
         Eigen::MatrixXd::Zero(kCalibrationParameters, kCalibrationParameters);
     if (result.identification.rank == num_free && num_free > 0) {
       if (options.covariance_method == CalibrationCovarianceMethod::kCeres) {
-        covariance = eiv_covariance(tcp, x, poses, measurements, active, options);
+        covariance = eiv_covariance(tcp, x, poses, measurements, active, opt);
       }
       if (options.covariance_method == CalibrationCovarianceMethod::kReducedInformation ||
           covariance.size() == 0) {
@@ -335,6 +403,11 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   for (int k : active) total += chi2[static_cast<std::size_t>(k)];
   const int dof = 6 * static_cast<int>(active.size()) - num_free;
   result.chi2_per_dof = dof > 0 ? total / dof : 0.0;
+  if (options.compute_covariance && result.chi2_per_dof > 0.0) {
+    result.covariance_scale = result.chi2_per_dof;
+    result.covariance *= result.covariance_scale;
+    result.sigma = result.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  }
   result.converged = outcome.converged;
   result.solver_message = outcome.message;
   return result;

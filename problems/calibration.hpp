@@ -144,6 +144,14 @@ struct CalibrationOptions {
   /// default: the 0.9999 quantile of chi^2 with 6 degrees of freedom.
   double outlier_chi2 = 27.86;
   bool reject_outliers = true;
+  /// Estimate the three sigmas from the residuals (problems/calibration_noise.cpp): a robust
+  /// start from the median residuals, then variance-component estimation on the inliers,
+  /// iterated with the outlier test and the fit; the given sigmas are only the start. Off: the
+  /// given sigmas are taken as true.
+  bool estimate_noise = true;
+  int noise_iterations = 30;  ///< variance-component iterations at most
+  /// A result with more rejected poses than this share is reported as probably wrong.
+  double max_rejected_share = 0.2;
   int max_iterations = 200;
   double rank_tolerance = 1e-8;  ///< relative to the largest singular value of J_id
   double correlation_threshold = 0.9;
@@ -199,8 +207,11 @@ struct CalibrationErrors {
 
 struct CalibrationResult {
   CalibrationVector estimate = CalibrationVector::Zero();
-  /// 60 x 60 covariance (whitened residuals); rows/columns of fixed parameters are zero.
+  /// 60 x 60 covariance of the estimate: (J_id^T J_id)^-1 of the whitened problem times the
+  /// a-posteriori variance factor chi2_per_dof (`covariance_scale`), so that the sigmas hold
+  /// whatever the noise sigmas were; rows/columns of fixed parameters are zero.
   Eigen::MatrixXd covariance;
+  double covariance_scale = 1.0;  ///< the factor the whitened covariance was multiplied by
   CalibrationVector sigma = CalibrationVector::Zero();  ///< sqrt of the covariance diagonal
   std::vector<CorrelatedPair> correlated;
   std::vector<Pose> adjusted_poses;  ///< estimated true TCP poses in the base frame
@@ -208,6 +219,22 @@ struct CalibrationResult {
   std::vector<int> outliers;  ///< indices into the measurements
   Identification identification;
   double chi2_per_dof = 0.0;  ///< a-posteriori variance factor (1 when the sigmas are right)
+  /// The noise sigmas: as given, and as used for the final fit (estimated from the data with
+  /// CalibrationOptions::estimate_noise, else the given ones): position (m), orientation (rad),
+  /// actuator (m).
+  Eigen::Vector3d given_sigma = Eigen::Vector3d::Zero();
+  Eigen::Vector3d estimated_sigma = Eigen::Vector3d::Zero();
+  bool noise_estimated = false;
+  /// Per group: whether the data resolve its sigma (Helmert's variance-component estimate with
+  /// a relative standard deviation of at most 20 %, problems/calibration_noise.cpp); an
+  /// unresolved group keeps the sigma it had (the given one after the robust start).
+  std::array<bool, 3> noise_resolved{};
+  /// The relative standard deviation of each resolved group's variance estimate (inf if not).
+  Eigen::Vector3d noise_relative_sd = Eigen::Vector3d::Zero();
+  int noise_iterations = 0;  ///< variance-component iterations done
+  /// Redundancy of each group (position, orientation, actuator) in the last estimate; they sum
+  /// to the degrees of freedom 6 N - n_free.
+  Eigen::Vector3d group_redundancy = Eigen::Vector3d::Zero();
   bool converged = false;
   int iterations = 0;
   std::string solver_message;

@@ -118,6 +118,10 @@ std::string CalibrationOptions::validate() const {
   }
   if (!(outlier_chi2 > 0.0)) return bad("outlier_chi2", outlier_chi2, "> 0");
   if (max_iterations < 1) return bad("max_iterations", max_iterations, ">= 1");
+  if (noise_iterations < 0) return bad("noise_iterations", noise_iterations, ">= 0");
+  if (!(max_rejected_share > 0.0 && max_rejected_share <= 1.0)) {
+    return bad("max_rejected_share", max_rejected_share, "0 < share <= 1");
+  }
   if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0)) {
     return bad("rank_tolerance", rank_tolerance, "0 < rank_tolerance < 1");
   }

@@ -55,6 +55,13 @@ void run_calibrate(const CalibrateOptions& opt) {
   write_file_atomically((dir / "calibrated.yaml").string(), machine);
   std::cout << text;
   std::cout.flush();
+  if (!report["status"]["ok"].get<bool>()) {
+    std::string reasons;
+    for (const auto& w : report["status"]["warnings"])
+      reasons += (reasons.empty() ? "" : "; ") + w.get<std::string>();
+    throw ProbablyWrongResult(fmt::format(
+        "{}: the calibration is probably wrong: {} (report in {})", opt.file, reasons, opt.out));
+  }
 }
 
 // ---- simulate-measurements --------------------------------------------------------------------

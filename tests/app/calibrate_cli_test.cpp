@@ -216,3 +216,52 @@ TEST_F(CalibrateCli, GaugeLeftFreeIsAnError) {
 }
 
 }  // namespace
+
+namespace {
+
+// A result that is probably wrong is written and said: more rejected poses than
+// max_rejected_share allows (the 3 simulated gross errors of 40 poses against 1 %) exits with
+// status 3, one warning line naming the reason, and the report (text and JSON) saying it first.
+TEST_F(CalibrateCli, TooManyRejectedPosesAreWrittenAndExitThree) {
+  simulate();
+  const std::string calibration =
+      calibration_file(path("sim/measurements.csv"),
+                       "actuators: {unit: mm, zero_length: 0.7}\n"
+                       "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.001}\n"
+                       "max_rejected_share: 0.01\n");
+  const CliRun r = run("calibrate " + calibration + " --out " + path("out"));
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("pkmopt: warning: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("probably wrong: 3 of 40 poses of the fit (8 %) were rejected"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("WARNING: this result is probably wrong:"), std::string::npos);
+  const nlohmann::json report = nlohmann::json::parse(read_text(path("out/report.json")));
+  EXPECT_FALSE(report["status"]["ok"].get<bool>());
+  EXPECT_EQ(report["status"]["warnings"].size(), 1u);
+  EXPECT_TRUE(fs::exists(path("out/calibrated.yaml")));
+}
+
+// The given sigmas are only the start: the report gives them beside the estimated ones.
+TEST_F(CalibrateCli, ReportGivesEstimatedAndGivenNoise) {
+  simulate();
+  const std::string calibration =
+      calibration_file(path("sim/measurements.csv"),
+                       "actuators: {unit: mm, zero_length: 0.7}\n"
+                       "noise: {position: 2.0e-6, orientation_deg: 0.03, actuator: 0.001}\n");
+  const CliRun r = run("calibrate " + calibration + " --out " + path("out"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  const nlohmann::json report = nlohmann::json::parse(read_text(path("out/report.json")));
+  const auto& noise = report["noise_estimate"];
+  EXPECT_TRUE(noise["estimated"].get<bool>());
+  EXPECT_EQ(noise["position"]["given"].get<double>(), 2.0e-6);
+  EXPECT_TRUE(noise["position"]["resolved"].get<bool>());
+  // simulate-measurements: 15 um plus 6 um per metre from the instrument.
+  EXPECT_GT(noise["position"]["used"].get<double>(), 10e-6);
+  EXPECT_LT(noise["position"]["used"].get<double>(), 30e-6);
+  EXPECT_NE(r.out.find("(estimated +-"), std::string::npos) << r.out;
+  EXPECT_TRUE(report["status"]["ok"].get<bool>());
+}
+
+}  // namespace

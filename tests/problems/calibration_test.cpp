@@ -215,13 +215,19 @@ TEST(Calibration, CeresCovarianceEqualsReducedInformationInverse) {
   for (int i = 0; i < kCalibrationParameters; ++i) {
     if (free42[static_cast<std::size_t>(i)]) free_indices.push_back(i);
   }
+  // The identification Jacobian whitened with the sigmas of the final fit (estimated from the
+  // residuals), and the covariance scaled by the a-posteriori variance factor.
+  CalibrationOptions used = options;
+  used.sigma_position = result.estimated_sigma(0);
+  used.sigma_orientation = result.estimated_sigma(1);
+  used.sigma_actuator = result.estimated_sigma(2);
   Eigen::MatrixXd J(6 * 25, 42);
   for (int k = 0; k < 25; ++k) {
     J.middleRows(6 * k, 6) =
         reduced_identification_rows(result.estimate, design.tcp, sim.measurements[k],
-                                    result.adjusted_poses[k], free_indices, options);
+                                    result.adjusted_poses[k], free_indices, used);
   }
-  const Eigen::MatrixXd inverse = (J.transpose() * J).inverse();
+  const Eigen::MatrixXd inverse = (J.transpose() * J).inverse() * result.covariance_scale;
   for (int a = 0; a < 42; ++a) {
     const int i = free_indices[static_cast<std::size_t>(a)];
     for (int b = 0; b < 42; ++b) {
