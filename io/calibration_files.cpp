@@ -66,9 +66,10 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
   for (std::size_t c = 0; c < table.header.size(); ++c) {
     if (std::find(expected.begin(), expected.end(), table.header[c]) == expected.end()) {
       throw InputError(fmt::format(
-          "{}column {} '{}': expected only the columns {} (or rx,ry,rz instead of qw,qx,qy,qz), "
-          "found an unknown column",
-          location_prefix(path, table.header_line), c + 1, table.header[c], expected_text()));
+          "{}column {} '{}': expected only the columns {} ({}), found an unknown column",
+          location_prefix(path, table.header_line), c + 1, table.header[c], expected_text(),
+          quaternion ? "or rx,ry,rz instead of qw,qx,qy,qz"
+                     : "or qw,qx,qy,qz instead of rx,ry,rz"));
     }
   }
   const PoseColumns pose_columns = find_pose_columns(table, PoseOrientation::euler_or_quaternion);

@@ -85,6 +85,29 @@ TEST_F(CalibrationSetupFile, ValidationRowOutsideTheDataIsAnError) {
   }
 }
 
+// An unknown measurement column: the message offers the other orientation form than the file's.
+TEST_F(CalibrationSetupFile, UnknownColumnOffersTheOtherOrientationForm) {
+  auto message = [&](const std::string& header) {
+    write("m.csv", header + "\n0,0,0.9,1,0,0,0,0.9,0.9,0.9,0.9,0.9,0.9,7\n");
+    try {
+      pkmopt::read_measurement_csv(path("m.csv"), 1.0);
+    } catch (const pkmopt::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string euler = message("x,y,z,rx,ry,rz,w,q_1,q_2,q_3,q_4,q_5,q_6,extra");
+  EXPECT_NE(euler.find("column 7 'w': expected only the columns x,y,z,rx,ry,rz,q_1,q_2,q_3,q_4,"
+                       "q_5,q_6 (or qw,qx,qy,qz instead of rx,ry,rz)"),
+            std::string::npos)
+      << euler;
+  const std::string quaternion = message("x,y,z,qw,qx,qy,qz,q_1,q_2,q_3,q_4,q_5,q_6,extra");
+  EXPECT_NE(quaternion.find("column 14 'extra': expected only the columns x,y,z,qw,qx,qy,qz,q_1,"
+                            "q_2,q_3,q_4,q_5,q_6 (or rx,ry,rz instead of qw,qx,qy,qz)"),
+            std::string::npos)
+      << quaternion;
+}
+
 // The written file of a setup's keys loads to the same setup.
 TEST_F(CalibrationSetupFile, WrittenKeysLoadToTheSameSetup) {
   const std::string file = setup_file(
