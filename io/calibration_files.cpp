@@ -45,8 +45,23 @@ bool is_angle(int index) {
 }  // namespace
 
 std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
-                                                         double unit_scale) {
-  const CsvTable table = read_csv_file(path);
+                                                         const MeasurementFormat& format,
+                                                         std::vector<std::string>* warnings) {
+  CsvTable table = read_csv_file(path);
+  // `columns:` renames the file's columns to pkmopt's before anything else.
+  for (const auto& [ours, theirs] : format.columns) {
+    const int c = table.column(theirs);
+    if (c < 0)
+      throw InputError(
+          fmt::format("{}columns.{}: expected a column '{}' in the file, found the columns {}",
+                      location_prefix(path, table.header_line), ours, theirs, [&] {
+                        std::string text;
+                        for (const auto& name : table.header)
+                          text += (text.empty() ? "" : ",") + name;
+                        return text;
+                      }()));
+    table.header[static_cast<std::size_t>(c)] = ours;
+  }
   const bool quaternion = table.column("qw") >= 0;
   std::vector<std::string> expected = {"x", "y", "z"};
   if (quaternion) {
@@ -72,6 +87,18 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
                      : "or qw,qx,qy,qz instead of rx,ry,rz"));
     }
   }
+  if (!format.quaternion_order.empty() && quaternion) {
+    // By column order: the four quaternion columns as they stand in the file are w, x, y, z
+    // (wxyz) or x, y, z, w (xyzw), whatever their names.
+    std::vector<int> at;
+    for (std::size_t c = 0; c < table.header.size(); ++c)
+      if (table.header[c].size() == 2 && table.header[c][0] == 'q' &&
+          std::string("wxyz").find(table.header[c][1]) != std::string::npos)
+        at.push_back(static_cast<int>(c));
+    const std::string order = format.quaternion_order;
+    for (std::size_t k = 0; k < at.size() && k < 4; ++k)
+      table.header[static_cast<std::size_t>(at[k])] = std::string("q") + order[k];
+  }
   const PoseColumns pose_columns = find_pose_columns(table, PoseOrientation::euler_or_quaternion);
   std::vector<int> reading_columns;
   for (int i = 1; i <= 6; ++i)
@@ -81,21 +108,56 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
         fmt::format("{}expected at least one measured pose, found none", location_prefix(path)));
   }
   std::vector<CalibrationMeasurement> measurements;
+  int scalar_elsewhere = 0;  // rows whose largest quaternion component is not the scalar one
   for (const CsvRow& row : table.rows) {
     CalibrationMeasurement m;
     m.line = row.line;
-    m.pose = pose_of_row(table, row, pose_columns);
+    m.pose = pose_of_row(table, row, pose_columns, format.position_scale);
     for (int i = 0; i < 6; ++i)
-      m.stroke(i) = table.number(row, reading_columns[static_cast<std::size_t>(i)]) * unit_scale;
+      m.stroke(i) =
+          table.number(row, reading_columns[static_cast<std::size_t>(i)]) * format.reading_scale(i);
+    if (quaternion) {
+      const double w = std::abs(table.number(row, pose_columns.qw));
+      const double v = std::max({std::abs(table.number(row, pose_columns.qx)),
+                                 std::abs(table.number(row, pose_columns.qy)),
+                                 std::abs(table.number(row, pose_columns.qz))});
+      if (v > 0.9 && w < 0.3) ++scalar_elsewhere;
+    }
     measurements.push_back(m);
   }
+  // A machine tool's platform turns by tens of degrees at most, so |qw| is near 1; most rows
+  // with a vector component near +-1 instead mean the scalar part is in another column.
+  if (warnings && quaternion && 2 * scalar_elsewhere > static_cast<int>(table.rows.size()))
+    warnings->push_back(fmt::format(
+        "{}: {} of {} rows have |qw| < 0.3 and a vector part near 1 (turns near 180 deg): is "
+        "the quaternion's scalar part in another column? `quaternion_order: xyzw` reads the "
+        "four columns in file order as x, y, z, w",
+        path, scalar_elsewhere, table.rows.size()));
   return measurements;
 }
 
-HexapodDesign read_calibration_machine(const std::string& path) {
+std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
+                                                         double unit_scale) {
+  MeasurementFormat format;
+  format.reading_scale.setConstant(unit_scale);
+  return read_measurement_csv(path, format, nullptr);
+}
+
+HexapodDesign read_calibration_machine(const std::string& path, bool* stiffness_placeholder) {
   const YamlValue machine = YamlValue::load_file(path);
   const YamlValue model = machine.required("model");
   if (model.as_string() != "hexapod") model.fail("'hexapod' (calibration)", model.describe());
+  // Calibration never uses the legs' stiffness: a file without one gets a placeholder (the
+  // node is shared, so the other keys keep their lines for messages).
+  bool placeholder = false;
+  if (const auto legs = machine.optional("legs");
+      legs && legs->is_map() && !legs->has("E") && !legs->has("area") &&
+      !legs->has("axial_stiffness") && !legs->has("actuator_stiffness")) {
+    YAML::Node node = legs->node();
+    node["axial_stiffness"] = "1.0";
+    placeholder = true;
+  }
+  if (stiffness_placeholder) *stiffness_placeholder = placeholder;
   return read_hexapod_design(machine);
 }
 
@@ -114,7 +176,7 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
 
   // Nominal machine.
   setup.machine_file = resolve_path(path, file.machine);
-  setup.nominal_design = read_calibration_machine(setup.machine_file);
+  setup.nominal_design = read_calibration_machine(setup.machine_file, &setup.stiffness_placeholder);
 
   // Frames.
   setup.frame = file.frame;
@@ -128,10 +190,16 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   } else if (setup.unit == "mm") {
     setup.unit_scale = 1e-3;
   } else if (setup.unit == "rev") {
-    setup.unit_scale = file.lead;
+    setup.unit_scale = 0.0;
+    for (int i = 0; i < 6; ++i) {
+      setup.leg_scale(i) =
+          file.lead.size() == 6 ? file.lead[static_cast<std::size_t>(i)] : file.lead.front();
+      setup.unit_scale += setup.leg_scale(i) / 6.0;
+    }
   } else {
     setup.unit_scale = 1.0 / file.counts_per_metre;
   }
+  if (setup.unit != "rev") setup.leg_scale.setConstant(setup.unit_scale);
   Vec6<double> zero_length = Vec6<double>::Zero();
   if (file.zero_length.size() == 6) {
     for (int i = 0; i < 6; ++i) zero_length(i) = file.zero_length[static_cast<std::size_t>(i)];
@@ -175,7 +243,12 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
 
   // Measurements.
   setup.measurement_file = resolve_path(path, file.measurements);
-  setup.measurements = read_measurement_csv(setup.measurement_file, setup.unit_scale);
+  MeasurementFormat format;
+  format.reading_scale = setup.leg_scale;
+  format.position_scale = file.pose_unit == "mm" ? 1e-3 : 1.0;
+  format.quaternion_order = file.quaternion_order;
+  format.columns = file.columns;
+  setup.measurements = read_measurement_csv(setup.measurement_file, format, &setup.warnings);
   const int num_rows = static_cast<int>(setup.measurements.size());
 
   // Validation rows (`rows` checked against the number of data rows here).
@@ -232,6 +305,9 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   report["model"] = setup.model;
   report["actuator_unit"] = setup.unit;
   report["actuator_unit_scale"] = setup.unit_scale;
+  report["actuator_leg_scale"] =
+      std::vector<double>(setup.leg_scale.data(), setup.leg_scale.data() + 6);
+  report["input_warnings"] = setup.warnings;
   report["noise"] = {{"position", setup.options.sigma_position},
                      {"orientation_deg", rad_to_deg(setup.options.sigma_orientation)},
                      {"actuator", setup.options.sigma_actuator}};
@@ -425,6 +501,9 @@ std::string calibration_report_text(const nlohmann::json& r) {
     for (const auto& w : r["status"]["warnings"]) out += "  - " + w.get<std::string>() + "\n";
     out += "\n";
   }
+  if (r.contains("input_warnings"))
+    for (const auto& w : r["input_warnings"])
+      out += "input warning: " + w.get<std::string>() + "\n";
   if (r.contains("noise_estimate")) {
     const auto& n = r["noise_estimate"];
     auto sigma = [&](const char* key, double unit, const char* unit_name, const char* format) {

@@ -59,14 +59,18 @@ struct CalibrationFile {
   Eigen::Vector3d target_position = Eigen::Vector3d::Zero();        ///< m
   Eigen::Vector3d target_angles_deg = Eigen::Vector3d::Zero();      ///< deg
   std::string unit;                                                 ///< m, mm, rev or counts
-  double lead = 0.0;                   ///< m per revolution (unit rev); 0: not given
+  std::vector<double> lead;            ///< m per revolution (unit rev); one, or one per leg
   double counts_per_metre = 0.0;       ///< unit counts; 0: not given
   std::vector<double> zero_length;     ///< m; empty: 0; one number for every leg, or six
   double noise_position = 0.0;         ///< m
   double noise_orientation_deg = 0.0;  ///< deg
   double noise_actuator = 0.0;         ///< actuator unit
   bool noise_estimate = true;          ///< estimate the sigmas from the data (given: the start)
-  double max_rejected_share = 0.2;     ///< more rejected poses: a probably wrong result
+  std::string pose_unit = "m";         ///< unit of the measured positions: m or mm
+  std::string quaternion_order;        ///< "": by column name; wxyz or xyzw: by column order
+  /// pkmopt's column names -> the measurement file's (x, y, z, rx..rz, qw..qz, q_1..q_6).
+  std::vector<std::pair<std::string, std::string>> columns;
+  double max_rejected_share = 0.2;  ///< more rejected poses: a probably wrong result
   std::string model = "48";
   std::vector<std::string> fixed;  ///< parameter names
   std::string gauge = "auto";
@@ -108,8 +112,13 @@ struct CalibrationSetup {
   CalibrationVector nominal = CalibrationVector::Zero();
   std::string frame = "base";
   std::string unit = "m";
-  double unit_scale = 1.0;  ///< metres per actuator unit
+  double unit_scale = 1.0;  ///< metres per actuator unit (the mean over the legs)
+  Vec6<double> leg_scale = Vec6<double>::Ones();  ///< metres per actuator unit, per leg
   CalibrationOptions options;
+  /// Things in the input that look wrong but are not errors (a quaternion whose scalar part
+  /// seems to be in another column, ...): printed on stderr and listed in the report.
+  std::vector<std::string> warnings;
+  bool stiffness_placeholder = false;  ///< the machine file gives no leg stiffness
   std::string model = "48";
   std::vector<int> fixed;        ///< held by the user (`fixed:`)
   std::vector<int> gauge_fixed;  ///< held to fix the gauge (`gauge: auto`)
@@ -120,8 +129,11 @@ struct CalibrationSetup {
 };
 
 /// A hexapod machine file for calibration; InputError naming file, line and column when the file
-/// is not one (`model:` other than hexapod: "expected 'hexapod' (calibration)").
-HexapodDesign read_calibration_machine(const std::string& path);
+/// is not one (`model:` other than hexapod: "expected 'hexapod' (calibration)"). The legs'
+/// stiffness may be left out (calibration does not use it): the design then gets a placeholder
+/// axial_stiffness of 1 N/m and `stiffness_placeholder` (if given) is set.
+HexapodDesign read_calibration_machine(const std::string& path,
+                                       bool* stiffness_placeholder = nullptr);
 
 /// The measurements of the fitted rows (setup.fit), in that order; the held-out rows are left out.
 std::vector<CalibrationMeasurement> fitted_measurements(const CalibrationSetup& setup);
@@ -131,6 +143,21 @@ std::vector<CalibrationMeasurement> fitted_measurements(const CalibrationSetup& 
 CalibrationSetup read_calibration_setup(const std::string& path);
 
 /// Measurements from a CSV file (readings times `unit_scale` into `stroke`).
+/// How a measurement CSV is read: metres per reading unit of each leg, metres per position unit,
+/// the quaternion order ("" by column name, "wxyz" or "xyzw" by column order) and renamed
+/// columns (pkmopt name -> the file's).
+struct MeasurementFormat {
+  Vec6<double> reading_scale = Vec6<double>::Ones();
+  double position_scale = 1.0;
+  std::string quaternion_order;
+  std::vector<std::pair<std::string, std::string>> columns;
+};
+
+/// A measurement CSV read with `format`; `warnings` (if given) receives what looks wrong
+/// (e.g. quaternions whose scalar part seems to sit in another column).
+std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
+                                                         const MeasurementFormat& format,
+                                                         std::vector<std::string>* warnings);
 std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
                                                          double unit_scale);
 

@@ -27,6 +27,15 @@ std::string calibrated_machine_yaml(const CalibrationSetup& setup,
       "# Calibrated by pkmopt calibrate {}.\n# Leg offsets (leg length at reading 0, m) and "
       "gain errors are in report.json: leg length = offset + (1 + gain) * reading * {} m.\n",
       setup.file, format_number(setup.unit_scale));
+  if (setup.stiffness_placeholder)
+    machine +=
+        "# The nominal machine file gives no leg stiffness (calibration does not use it): "
+        "axial_stiffness below is a placeholder of 1 N/m; give the real one before analyze.\n";
+  if (setup.unit == "rev" && setup.leg_scale.maxCoeff() != setup.leg_scale.minCoeff())
+    machine += fmt::format("# Screw leads per leg (m/rev): {}, {}, {}, {}, {}, {}.\n",
+                           format_number(setup.leg_scale(0)), format_number(setup.leg_scale(1)),
+                           format_number(setup.leg_scale(2)), format_number(setup.leg_scale(3)),
+                           format_number(setup.leg_scale(4)), format_number(setup.leg_scale(5)));
   machine += hexapod_design_to_yaml(calibrated_design(setup.nominal_design, result.estimate));
   return machine;
 }

@@ -2,6 +2,8 @@
 // calibration_file_yaml and the table of docs/calibration.md come from this list.
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -105,10 +107,22 @@ void describe_fields(Fields& f, CalibrationFile& c) {
             {.required = true,
              .doc = "unit of the readings: metres, millimetres, screw revolutions (with `lead`) or "
                     "encoder counts (with `counts_per_metre`)"});
-    FieldRule lead =
-        positive("m/rev", "screw lead; required with `unit: rev`, not allowed otherwise");
-    lead.zero_is_unset = true;
-    g.field("lead", c.lead, lead);
+    custom_field(
+        g, "lead", "a number > 0 or a list of 6 numbers > 0", "m/rev", "none",
+        "screw lead, one for every leg or one per leg; required with `unit: rev`, not allowed "
+        "otherwise",
+        [&](const YamlValue& v) {
+          c.lead = v.is_sequence() ? v.as_doubles(6) : std::vector<double>{v.as_double()};
+          for (double lead : c.lead)
+            if (!(lead > 0.0)) v.fail("screw leads > 0 (m/rev)", v.describe());
+        },
+        [&]() -> std::string {
+          if (c.lead.empty()) return "";
+          if (c.lead.size() == 1) return format_number(c.lead.front());
+          std::string text;
+          for (double l : c.lead) text += (text.empty() ? "" : ", ") + format_number(l);
+          return "[" + text + "]";
+        });
     FieldRule counts = positive("1/m",
                                 "encoder counts per metre; required with `unit: counts`, "
                                 "not allowed otherwise");
@@ -141,6 +155,43 @@ void describe_fields(Fields& f, CalibrationFile& c) {
                     "given sigmas are taken as true",
              .omit_when = [&c] { return c.noise_estimate; }});
   });
+  FieldChoice<std::string> pose_unit{c.pose_unit, {{"m", "m"}, {"mm", "mm"}}};
+  f.field("pose_unit", pose_unit,
+          {.doc = "unit of the measured positions x, y, z (and of `instrument` and `target` "
+                  "positions: always m)",
+           .omit_when = [&c] { return c.pose_unit == "m"; }});
+  FieldChoice<std::string> quaternion_order{c.quaternion_order,
+                                            {{"wxyz", "wxyz"}, {"xyzw", "xyzw"}}};
+  f.field("quaternion_order", quaternion_order,
+          {.default_text = "by column name",
+           .doc = "read the four quaternion columns in their file order as w, x, y, z (`wxyz`) "
+                  "or as x, y, z, w (`xyzw`, scalar last) whatever their names",
+           .omit_when = [&c] { return c.quaternion_order.empty(); }});
+  custom_field(
+      f, "columns", "a map of pkmopt column names to the file's column names", "", "none",
+      "renames the measurement file's columns, e.g. `{q_1: leg_length_1, x: pos_x}`; keys: x, y, "
+      "z, rx, ry, rz, qw, qx, qy, qz, q_1..q_6",
+      [&](const YamlValue& v) {
+        v.expect_map();
+        c.columns.clear();
+        static const std::set<std::string> kNames = {"x",   "y",   "z",   "rx", "ry",  "rz",
+                                                     "qw",  "qx",  "qy",  "qz", "q_1", "q_2",
+                                                     "q_3", "q_4", "q_5", "q_6"};
+        for (const std::string& key : v.keys()) {
+          const YamlValue item = v.required(key);
+          if (!kNames.count(key))
+            item.fail("a pkmopt column name (x, y, z, rx, ry, rz, qw, qx, qy, qz, q_1..q_6)",
+                      quote_found(key));
+          c.columns.emplace_back(key, item.as_string());
+        }
+      },
+      [&]() -> std::string {
+        if (c.columns.empty()) return "";
+        std::string text;
+        for (const auto& [ours, theirs] : c.columns)
+          text += (text.empty() ? "" : ", ") + ours + ": " + nlohmann::json(theirs).dump();
+        return "{" + text + "}";
+      });
   FieldChoice<std::string> model{c.model, {{"42", "42"}, {"48", "48"}}};
   f.field("model", model,
           {.doc = "`42`: joint coordinates and leg offsets; `48`: also the gains of the readings"});

@@ -38,6 +38,8 @@ struct CalibrateOptions {
 
 void run_calibrate(const CalibrateOptions& opt) {
   const CalibrationSetup setup = read_calibration_setup(opt.file);
+  for (const std::string& warning : setup.warnings)
+    std::cerr << "pkmopt: warning: " << warning << '\n';
   CalibrationResult result;
   try {
     result =

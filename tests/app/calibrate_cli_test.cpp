@@ -3,6 +3,7 @@
 // and no output files.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -262,6 +263,126 @@ TEST_F(CalibrateCli, ReportGivesEstimatedAndGivenNoise) {
   EXPECT_LT(noise["position"]["used"].get<double>(), 30e-6);
   EXPECT_NE(r.out.find("(estimated +-"), std::string::npos) << r.out;
   EXPECT_TRUE(report["status"]["ok"].get<bool>());
+}
+
+}  // namespace
+
+namespace {
+
+// Measurement files as they come, each read to the same data: positions in mm (`pose_unit`),
+// scalar-last quaternions under the names qw..qz (`quaternion_order: xyzw`; without it the mix-up
+// is warned about and the fit is refused or flagged), the file's own column names (`columns:`),
+// readings in screw revolutions with a different lead per leg, and a nominal machine file without
+// any leg stiffness. Every variant gives the base calibration's estimate.
+class CalibrateInputs : public CalibrateCli {
+ protected:
+  struct Row {
+    std::vector<double> v;  // x, y, z (m), rx, ry, rz (deg), q_1..q_6 (mm)
+  };
+  std::vector<Row> rows() {
+    std::vector<Row> out;
+    const std::vector<std::string> lines = simulate();
+    for (std::size_t k = 1; k < lines.size(); ++k) {
+      Row r;
+      std::stringstream in(lines[k]);
+      for (std::string cell; std::getline(in, cell, ',');) r.v.push_back(std::stod(cell));
+      out.push_back(r);
+    }
+    return out;
+  }
+  // report.json's parameter estimates of a calibration run (status 0 expected).
+  std::vector<double> estimates(const std::string& measurements, const std::string& settings,
+                                const std::string& out) {
+    const std::string calibration =
+        write(out + ".yaml", "machine: " + path("sim/nominal.yaml") +
+                                 "\nmeasurements: " + measurements + "\n" + settings);
+    const CliRun r = run("calibrate " + calibration + " --out " + path(out));
+    EXPECT_EQ(r.status, 0) << out << ": " << r.err;
+    std::vector<double> values;
+    if (r.status != 0) return values;
+    const nlohmann::json report = nlohmann::json::parse(read_text(path(out + "/report.json")));
+    for (const auto& p : report["parameters"]) values.push_back(p["estimate"].get<double>());
+    return values;
+  }
+  static std::string num(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return buffer;
+  }
+};
+
+TEST_F(CalibrateInputs, EveryFormGivesTheSameCalibration) {
+  const std::vector<Row> data = rows();
+  const std::string noise = "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.001}\n";
+  const std::vector<double> base = estimates(
+      path("sim/measurements.csv"), "actuators: {unit: mm, zero_length: 0.7}\n" + noise, "base");
+  ASSERT_EQ(base.size(), 48u);
+  auto expect_same = [&](const std::vector<double>& other, const char* what) {
+    ASSERT_EQ(other.size(), base.size()) << what;
+    for (std::size_t i = 0; i < base.size(); ++i)
+      EXPECT_NEAR(other[i], base[i], 1e-9 + 1e-9 * std::abs(base[i])) << what << " " << i;
+  };
+  // Positions in mm, readings in revolutions of screws with leads 5, 5, 4, 5, 6, 5 mm, and the
+  // file's own column names.
+  const double lead[6] = {5e-3, 5e-3, 4e-3, 5e-3, 6e-3, 5e-3};
+  std::string mm = "pos_x,pos_y,pos_z,rot_x,rot_y,rot_z,l1,l2,l3,l4,l5,l6\n";
+  for (const Row& r : data) {
+    for (int c = 0; c < 3; ++c) mm += num(r.v[c] * 1000.0) + ",";
+    for (int c = 3; c < 6; ++c) mm += num(r.v[c]) + ",";
+    for (int i = 0; i < 6; ++i) mm += num(r.v[6 + i] * 1e-3 / lead[i]) + (i < 5 ? "," : "\n");
+  }
+  write("mm.csv", mm);
+  expect_same(estimates(path("mm.csv"),
+                        "pose_unit: mm\n"
+                        "columns: {x: pos_x, y: pos_y, z: pos_z, rx: rot_x, ry: rot_y, rz: rot_z, "
+                        "q_1: l1, q_2: l2, q_3: l3, q_4: l4, q_5: l5, q_6: l6}\n"
+                        "actuators: {unit: rev, lead: [0.005, 0.005, 0.004, 0.005, 0.006, "
+                        "0.005], zero_length: 0.7}\n"
+                        // 1 um in revolutions of the mean lead (5 mm), as the base's 0.001 mm
+                        "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.0002}\n",
+                        "mm"),
+              "mm, columns, leads");
+  // Scalar-last quaternions under the names qw, qx, qy, qz.
+  std::string quaternion = "x,y,z,qw,qx,qy,qz,q_1,q_2,q_3,q_4,q_5,q_6\n";
+  for (const Row& r : data) {
+    const double d = M_PI / 180.0;
+    const Eigen::Quaterniond q = Eigen::AngleAxisd(r.v[5] * d, Eigen::Vector3d::UnitZ()) *
+                                 Eigen::AngleAxisd(r.v[4] * d, Eigen::Vector3d::UnitY()) *
+                                 Eigen::AngleAxisd(r.v[3] * d, Eigen::Vector3d::UnitX());
+    for (int c = 0; c < 3; ++c) quaternion += num(r.v[c]) + ",";
+    quaternion += num(q.x()) + "," + num(q.y()) + "," + num(q.z()) + "," + num(q.w());
+    for (int i = 0; i < 6; ++i) quaternion += "," + num(r.v[6 + i]);
+    quaternion += "\n";
+  }
+  write("quaternion.csv", quaternion);
+  expect_same(estimates(path("quaternion.csv"),
+                        "quaternion_order: xyzw\nactuators: {unit: mm, zero_length: 0.7}\n" + noise,
+                        "quaternion"),
+              "xyzw quaternions");
+  const std::string mixed =
+      write("mixed.yaml", "machine: " + path("sim/nominal.yaml") +
+                              "\nmeasurements: " + path("quaternion.csv") +
+                              "\nactuators: {unit: mm, zero_length: 0.7}\n" + noise);
+  const CliRun r = run("calibrate " + mixed + " --out " + path("mixed"));
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("is the quaternion's scalar part in another column?"), std::string::npos)
+      << r.err;
+  // A nominal machine file without leg stiffness.
+  std::string nominal = read_text(path("sim/nominal.yaml"));
+  for (const char* key : {"  E: ", "  area: ", "  actuator_stiffness: "}) {
+    const std::size_t at = nominal.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    nominal.erase(at, nominal.find('\n', at) + 1 - at);
+  }
+  write("sim/nominal_no_stiffness.yaml", nominal);
+  const std::string no_stiffness =
+      write("no_stiffness.yaml", "machine: " + path("sim/nominal_no_stiffness.yaml") +
+                                     "\nmeasurements: " + path("sim/measurements.csv") +
+                                     "\nactuators: {unit: mm, zero_length: 0.7}\n" + noise);
+  const CliRun s = run("calibrate " + no_stiffness + " --out " + path("stiffless"));
+  EXPECT_EQ(s.status, 0) << s.err;
+  EXPECT_NE(read_text(path("stiffless/calibrated.yaml")).find("placeholder of 1 N/m"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -134,7 +134,18 @@ TEST(CalibrationFileFields, HandCheckedKeys) {
             "cal.yaml:5:13: instrument: no instrument with frame: base (poses measured in the "
             "base frame); set frame: instrument");
   EXPECT_EQ(read_text(base + "actuators: {unit: rev, lead: 0.005, zero_length: 0.7}\n").lead,
-            0.005);
+            std::vector<double>{0.005});
+  EXPECT_EQ(
+      read_text(base + "actuators: {unit: rev, lead: [0.005, 0.005, 0.004, 0.005, 0.005, 0.006]}\n")
+          .lead,
+      (std::vector<double>{0.005, 0.005, 0.004, 0.005, 0.005, 0.006}));
+  EXPECT_EQ(error_of(base + "actuators: {unit: rev, lead: [0.005, -1, 1, 1, 1, 1]}\n"),
+            "cal.yaml:4:30: actuators.lead: expected screw leads > 0 (m/rev), found a list of 6");
+  EXPECT_EQ(error_of(base + "actuators: {unit: mm}\ncolumns: {leg_1: length_1}\n"),
+            "cal.yaml:5:18: columns.leg_1: expected a pkmopt column name (x, y, z, rx, ry, rz, "
+            "qw, qx, qy, qz, q_1..q_6), found 'leg_1'");
+  EXPECT_EQ(error_of(base + "actuators: {unit: mm}\nquaternion_order: zyxw\n"),
+            "cal.yaml:5:19: quaternion_order: expected wxyz or xyzw, found 'zyxw'");
 }
 
 // Every key set to a value other than its default: written, read back, written again.
@@ -167,6 +178,11 @@ TEST(CalibrationFileFields, WriterAndReaderRoundTripEveryKey) {
   c.frame_angle_scale_deg = 0.1;
   c.every = 3;
   c.rows = {1, 5, 8};
+  c.noise_estimate = false;
+  c.max_rejected_share = 0.5;
+  c.pose_unit = "mm";
+  c.quaternion_order = "xyzw";
+  c.columns = {{"q_1", "leg length 1"}, {"x", "pos_x"}};
   const std::string yaml = pkmopt::calibration_file_yaml(c);
   const pkmopt::CalibrationFile back = read_text(yaml);
   EXPECT_EQ(pkmopt::calibration_file_yaml(back), yaml);
@@ -179,6 +195,11 @@ TEST(CalibrationFileFields, WriterAndReaderRoundTripEveryKey) {
   EXPECT_EQ(back.frame_angle_scale_deg, c.frame_angle_scale_deg);
   EXPECT_EQ(back.fixed, c.fixed);
   EXPECT_EQ(back.rows, c.rows);
+  EXPECT_EQ(back.noise_estimate, c.noise_estimate);
+  EXPECT_EQ(back.max_rejected_share, c.max_rejected_share);
+  EXPECT_EQ(back.pose_unit, c.pose_unit);
+  EXPECT_EQ(back.quaternion_order, c.quaternion_order);
+  EXPECT_EQ(back.columns, c.columns);
   for (const char* key : {"instrument:", "target:", "counts_per_metre:", "fixed:", "gauge: none",
                           "outlier_chi2:", "max_iterations:", "correlation_threshold:",
                           "parameter_scale:", "frame_angle_deg:", "rows: [1, 5, 8]"}) {
