@@ -46,7 +46,8 @@ bool is_angle(int index) {
 
 std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
                                                          const MeasurementFormat& format,
-                                                         std::vector<std::string>* warnings) {
+                                                         std::vector<std::string>* warnings,
+                                                         std::vector<std::string>* campaigns) {
   CsvTable table = read_csv_file(path);
   // `columns:` renames the file's columns to pkmopt's before anything else.
   for (const auto& [ours, theirs] : format.columns) {
@@ -70,6 +71,8 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
     expected.insert(expected.end(), {"rx", "ry", "rz"});
   }
   for (int i = 1; i <= 6; ++i) expected.push_back(fmt::format("q_{}", i));
+  const int campaign_column = table.column("campaign");
+  if (campaign_column >= 0) expected.push_back("campaign");
   auto expected_text = [&] {
     std::string text;
     for (const auto& name : expected) {
@@ -108,6 +111,7 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
         fmt::format("{}expected at least one measured pose, found none", location_prefix(path)));
   }
   std::vector<CalibrationMeasurement> measurements;
+  std::vector<std::string> labels;
   int scalar_elsewhere = 0;  // rows whose largest quaternion component is not the scalar one
   for (const CsvRow& row : table.rows) {
     CalibrationMeasurement m;
@@ -116,6 +120,17 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
     for (int i = 0; i < 6; ++i)
       m.stroke(i) =
           table.number(row, reading_columns[static_cast<std::size_t>(i)]) * format.reading_scale(i);
+    if (campaign_column >= 0) {
+      const std::string& label = row.cells[static_cast<std::size_t>(campaign_column)];
+      if (label.empty())
+        throw InputError(
+            fmt::format("{}column 'campaign': expected a campaign label, found an "
+                        "empty cell",
+                        location_prefix(path, row.line)));
+      auto it = std::find(labels.begin(), labels.end(), label);
+      if (it == labels.end()) it = labels.insert(labels.end(), label);
+      m.campaign = static_cast<int>(it - labels.begin());
+    }
     if (quaternion) {
       const double w = std::abs(table.number(row, pose_columns.qw));
       const double v = std::max({std::abs(table.number(row, pose_columns.qx)),
@@ -133,6 +148,7 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
         "the quaternion's scalar part in another column? `quaternion_order: xyzw` reads the "
         "four columns in file order as x, y, z, w",
         path, scalar_elsewhere, table.rows.size()));
+  if (campaigns) *campaigns = labels.size() > 1 ? labels : std::vector<std::string>{};
   return measurements;
 }
 
@@ -248,7 +264,8 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
   format.position_scale = file.pose_unit == "mm" ? 1e-3 : 1.0;
   format.quaternion_order = file.quaternion_order;
   format.columns = file.columns;
-  setup.measurements = read_measurement_csv(setup.measurement_file, format, &setup.warnings);
+  setup.measurements =
+      read_measurement_csv(setup.measurement_file, format, &setup.warnings, &setup.campaigns);
   const int num_rows = static_cast<int>(setup.measurements.size());
 
   // Validation rows (`rows` checked against the number of data rows here).
@@ -346,8 +363,11 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   }
   // Held-out rows screened with the calibrated machine: each row's own pose fitted with the
   // machine held; chi^2 above the threshold flags a gross outlier.
+  // The calibrated machine sees each campaign with its estimated leg zero shifts.
+  const std::vector<CalibrationMeasurement> shifted =
+      with_campaign_shifts(setup.measurements, result);
   const std::vector<double> held_out_chi2 = fixed_machine_chi2(
-      setup.nominal_design.tcp, result.estimate, setup.measurements, setup.held_out, fitted);
+      setup.nominal_design.tcp, result.estimate, shifted, setup.held_out, fitted);
   std::vector<int> held_out_inliers;
   json held_out_outliers = json::array();
   for (std::size_t r = 0; r < setup.held_out.size(); ++r) {
@@ -390,15 +410,15 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   errors["before"]["fitted"] =
       errors_json(calibration_errors(setup.nominal_design, nominal, setup.measurements, inliers));
   errors["after"]["fitted"] =
-      errors_json(calibration_errors(setup.nominal_design, estimate, setup.measurements, inliers));
+      errors_json(calibration_errors(setup.nominal_design, estimate, shifted, inliers));
   errors["before"]["held_out"] = errors_json(
       calibration_errors(setup.nominal_design, nominal, setup.measurements, setup.held_out));
-  errors["after"]["held_out"] = errors_json(
-      calibration_errors(setup.nominal_design, estimate, setup.measurements, setup.held_out));
+  errors["after"]["held_out"] =
+      errors_json(calibration_errors(setup.nominal_design, estimate, shifted, setup.held_out));
   errors["before"]["held_out_inliers"] = errors_json(
       calibration_errors(setup.nominal_design, nominal, setup.measurements, held_out_inliers));
-  errors["after"]["held_out_inliers"] = errors_json(
-      calibration_errors(setup.nominal_design, estimate, setup.measurements, held_out_inliers));
+  errors["after"]["held_out_inliers"] =
+      errors_json(calibration_errors(setup.nominal_design, estimate, shifted, held_out_inliers));
   report["errors"] = errors;
   report["noise_floor"] = {
       {"tcp_position_rms", std::sqrt(3.0) * fitted.sigma_position},
@@ -418,6 +438,31 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
                           {"sigma", result.sigma(i) * scale}});
   }
   report["parameters"] = parameters;
+  // Measurement campaigns: each one's leg zero shifts against the reference (the first label).
+  json campaigns = json::array();
+  for (std::size_t c = 0; c < setup.campaigns.size(); ++c) {
+    int fitted_rows = 0, held_rows = 0;
+    for (int k : setup.fit)
+      fitted_rows +=
+          setup.measurements[static_cast<std::size_t>(k)].campaign == static_cast<int>(c);
+    for (int k : setup.held_out)
+      held_rows += setup.measurements[static_cast<std::size_t>(k)].campaign == static_cast<int>(c);
+    json entry = {{"label", setup.campaigns[c]},
+                  {"reference", c == 0},
+                  {"fitted_rows", fitted_rows},
+                  {"held_out_rows", held_rows}};
+    if (c > 0 && c <= result.campaign_shifts.size()) {
+      const Vec6<double>& shift = result.campaign_shifts[c - 1];
+      const Vec6<double> sigma = c <= result.campaign_shift_sigma.size()
+                                     ? result.campaign_shift_sigma[c - 1]
+                                     : Vec6<double>::Zero();
+      entry["shifts"] = std::vector<double>(shift.data(), shift.data() + 6);
+      entry["shift_sigma"] = std::vector<double>(sigma.data(), sigma.data() + 6);
+      entry["estimated"] = fitted_rows > 0;
+    }
+    campaigns.push_back(entry);
+  }
+  report["campaigns"] = campaigns;
   json pairs = json::array();
   for (const CorrelatedPair& p : result.correlated) {
     pairs.push_back({{"first", calibration_parameter_name(p.first)},
@@ -569,6 +614,25 @@ std::string calibration_report_text(const nlohmann::json& r) {
       fmt::format("noise floor (sqrt(3) sigma): TCP position {:.2f} um, orientation {:.5f} deg\n",
                   1e6 * r["noise_floor"]["tcp_position_rms"].get<double>(),
                   r["noise_floor"]["tcp_orientation_rms_deg"].get<double>());
+  if (r.contains("campaigns") && !r["campaigns"].empty()) {
+    out +=
+        "\nCampaigns (leg zero shifts against the reference, um; held-out rows use their "
+        "campaign's fitted shifts)\n";
+    for (const auto& c : r["campaigns"]) {
+      out += fmt::format("  {:<16} {:>4} fitted, {:>4} held out", c["label"].get<std::string>(),
+                         c["fitted_rows"].get<int>(), c["held_out_rows"].get<int>());
+      if (c["reference"].get<bool>()) {
+        out += "  (reference)\n";
+      } else if (!c.value("estimated", false)) {
+        out += "  no fitted rows: no shifts estimated (taken as 0)\n";
+      } else {
+        for (int i = 0; i < 6; ++i)
+          out += fmt::format("  {:+.1f} +-{:.1f}", 1e6 * c["shifts"][i].get<double>(),
+                             1e6 * c["shift_sigma"][i].get<double>());
+        out += "\n";
+      }
+    }
+  }
   const auto& id = r["identification"];
   out += fmt::format(
       "\nIdentification: rank {} of {} free\n"

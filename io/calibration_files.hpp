@@ -119,6 +119,9 @@ struct CalibrationSetup {
   /// seems to be in another column, ...): printed on stderr and listed in the report.
   std::vector<std::string> warnings;
   bool stiffness_placeholder = false;  ///< the machine file gives no leg stiffness
+  /// The measurement campaigns' labels (the `campaign` column), the reference first; empty when
+  /// the file has one campaign.
+  std::vector<std::string> campaigns;
   std::string model = "48";
   std::vector<int> fixed;        ///< held by the user (`fixed:`)
   std::vector<int> gauge_fixed;  ///< held to fix the gauge (`gauge: auto`)
@@ -155,9 +158,11 @@ struct MeasurementFormat {
 
 /// A measurement CSV read with `format`; `warnings` (if given) receives what looks wrong
 /// (e.g. quaternions whose scalar part seems to sit in another column).
-std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
-                                                         const MeasurementFormat& format,
-                                                         std::vector<std::string>* warnings);
+/// An optional `campaign` column labels each row's measurement campaign (any text); the labels
+/// in order of first appearance go to `campaigns` (the first is the reference, campaign 0).
+std::vector<CalibrationMeasurement> read_measurement_csv(
+    const std::string& path, const MeasurementFormat& format, std::vector<std::string>* warnings,
+    std::vector<std::string>* campaigns = nullptr);
 std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
                                                          double unit_scale);
 

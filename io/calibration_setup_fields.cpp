@@ -170,18 +170,19 @@ void describe_fields(Fields& f, CalibrationFile& c) {
   custom_field(
       f, "columns", "a map of pkmopt column names to the file's column names", "", "none",
       "renames the measurement file's columns, e.g. `{q_1: leg_length_1, x: pos_x}`; keys: x, y, "
-      "z, rx, ry, rz, qw, qx, qy, qz, q_1..q_6",
+      "z, rx, ry, rz, qw, qx, qy, qz, q_1..q_6, campaign",
       [&](const YamlValue& v) {
         v.expect_map();
         c.columns.clear();
-        static const std::set<std::string> kNames = {"x",   "y",   "z",   "rx", "ry",  "rz",
-                                                     "qw",  "qx",  "qy",  "qz", "q_1", "q_2",
-                                                     "q_3", "q_4", "q_5", "q_6"};
+        static const std::set<std::string> kNames = {"x",   "y",   "z",   "rx",  "ry",      "rz",
+                                                     "qw",  "qx",  "qy",  "qz",  "q_1",     "q_2",
+                                                     "q_3", "q_4", "q_5", "q_6", "campaign"};
         for (const std::string& key : v.keys()) {
           const YamlValue item = v.required(key);
           if (!kNames.count(key))
-            item.fail("a pkmopt column name (x, y, z, rx, ry, rz, qw, qx, qy, qz, q_1..q_6)",
-                      quote_found(key));
+            item.fail(
+                "a pkmopt column name (x, y, z, rx, ry, rz, qw, qx, qy, qz, q_1..q_6, campaign)",
+                quote_found(key));
           c.columns.emplace_back(key, item.as_string());
         }
       },

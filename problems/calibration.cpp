@@ -54,7 +54,7 @@ void build_eiv_problem(ceres::Problem& problem, const Eigen::Vector3d& tcp, Cali
                        std::vector<Vec6<double>>& poses,
                        const std::vector<CalibrationMeasurement>& measurements,
                        const std::vector<int>& active, const CalibrationOptions& options,
-                       bool robust) {
+                       bool robust, std::vector<Vec6<double>>& shifts) {
   double* machine = x.data();
   double* instrument = x.data() + kCalibrationInstrumentIndex;
   double* target = x.data() + kCalibrationTargetIndex;
@@ -66,8 +66,14 @@ void build_eiv_problem(ceres::Problem& problem, const Eigen::Vector3d& tcp, Cali
     } else if (robust && options.loss == CalibrationLoss::kCauchy) {
       loss = new ceres::CauchyLoss(options.loss_scale);
     }
-    problem.AddResidualBlock(new PoseCostFunction(tcp, m, options), loss, machine,
-                             poses[static_cast<std::size_t>(k)].data(), instrument, target);
+    if (m.campaign > 0) {
+      problem.AddResidualBlock(new detail::CampaignPoseCost(tcp, m, options), loss, machine,
+                               poses[static_cast<std::size_t>(k)].data(), instrument, target,
+                               shifts[static_cast<std::size_t>(m.campaign - 1)].data());
+    } else {
+      problem.AddResidualBlock(new PoseCostFunction(tcp, m, options), loss, machine,
+                               poses[static_cast<std::size_t>(k)].data(), instrument, target);
+    }
   }
   constrain_block(problem, machine, 0, kCalibrationMachineParameters, options.free);
   constrain_block(problem, instrument, kCalibrationInstrumentIndex, 6, options.free);
@@ -77,11 +83,11 @@ void build_eiv_problem(ceres::Problem& problem, const Eigen::Vector3d& tcp, Cali
 // Solves the EIV problem over the poses in `active`, updating x and the pose vectors.
 FitOutcome solve_eiv(const Eigen::Vector3d& tcp, CalibrationVector& x,
                      std::vector<Vec6<double>>& poses,
-                     const std::vector<CalibrationMeasurement>& measurements,
-                     const std::vector<int>& active, const CalibrationOptions& options,
-                     bool robust) {
+                     std::vector<CalibrationMeasurement>& measurements,
+                     const std::vector<int>& active, const CalibrationOptions& options, bool robust,
+                     std::vector<Vec6<double>>& shifts) {
   ceres::Problem problem;
-  build_eiv_problem(problem, tcp, x, poses, measurements, active, options, robust);
+  build_eiv_problem(problem, tcp, x, poses, measurements, active, options, robust, shifts);
   ceres::Solver::Options solver_options;
   // Poses are eliminated (Schur complement); the reduced system over the machine parameters
   // is small and dense.
@@ -102,9 +108,15 @@ FitOutcome solve_eiv(const Eigen::Vector3d& tcp, CalibrationVector& x,
   ordering->AddElementToGroup(x.data(), 1);
   ordering->AddElementToGroup(x.data() + kCalibrationInstrumentIndex, 1);
   ordering->AddElementToGroup(x.data() + kCalibrationTargetIndex, 1);
+  for (Vec6<double>& shift : shifts)
+    if (problem.HasParameterBlock(shift.data())) ordering->AddElementToGroup(shift.data(), 1);
   solver_options.linear_solver_ordering.reset(ordering);
   ceres::Solver::Summary summary;
   ceres::Solve(solver_options, &problem, &summary);
+  // The other per-pose functions read the shifts from the measurements.
+  for (CalibrationMeasurement& m : measurements)
+    m.offset_shift =
+        m.campaign > 0 ? shifts[static_cast<std::size_t>(m.campaign - 1)] : Vec6<double>::Zero();
 
   FitOutcome outcome;
   outcome.converged = summary.termination_type == ceres::CONVERGENCE;
@@ -118,9 +130,10 @@ FitOutcome solve_eiv(const Eigen::Vector3d& tcp, CalibrationVector& x,
 Eigen::MatrixXd eiv_covariance(const Eigen::Vector3d& tcp, CalibrationVector& x,
                                std::vector<Vec6<double>>& poses,
                                const std::vector<CalibrationMeasurement>& measurements,
-                               const std::vector<int>& active, const CalibrationOptions& options) {
+                               const std::vector<int>& active, const CalibrationOptions& options,
+                               std::vector<Vec6<double>>& shifts) {
   ceres::Problem problem;
-  build_eiv_problem(problem, tcp, x, poses, measurements, active, options, false);
+  build_eiv_problem(problem, tcp, x, poses, measurements, active, options, false, shifts);
   std::vector<std::pair<double*, int>> blocks;
   for (auto [block, start] :
        {std::pair{x.data(), 0},
@@ -153,6 +166,32 @@ Eigen::MatrixXd eiv_covariance(const Eigen::Vector3d& tcp, CalibrationVector& x,
   return out;
 }
 
+// The standard deviations of the campaigns' shifts (ceres::Covariance of the final, loss-free
+// problem over `active`, times `scale`); zero where Ceres cannot compute them.
+std::vector<Vec6<double>> campaign_shift_sigma(
+    const Eigen::Vector3d& tcp, CalibrationVector& x, std::vector<Vec6<double>>& poses,
+    const std::vector<CalibrationMeasurement>& measurements, const std::vector<int>& active,
+    const CalibrationOptions& options, std::vector<Vec6<double>>& shifts, double scale) {
+  std::vector<Vec6<double>> sigma(shifts.size(), Vec6<double>::Zero());
+  ceres::Problem problem;
+  build_eiv_problem(problem, tcp, x, poses, measurements, active, options, false, shifts);
+  std::vector<std::pair<const double*, const double*>> pairs;
+  for (Vec6<double>& shift : shifts)
+    if (problem.HasParameterBlock(shift.data())) pairs.emplace_back(shift.data(), shift.data());
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::SPARSE_QR;
+  covariance_options.num_threads = 1;
+  ceres::Covariance covariance(covariance_options);
+  if (pairs.empty() || !covariance.Compute(pairs, &problem)) return sigma;
+  for (std::size_t c = 0; c < shifts.size(); ++c) {
+    if (!problem.HasParameterBlock(shifts[c].data())) continue;
+    Eigen::Matrix<double, 6, 6, Eigen::RowMajor> block;
+    covariance.GetCovarianceBlock(shifts[c].data(), shifts[c].data(), block.data());
+    sigma[c] = (block.diagonal() * scale).cwiseMax(0.0).cwiseSqrt();
+  }
+  return sigma;
+}
+
 // Fits the pose of one measurement with the machine held fixed; returns its chi^2.
 double fit_single_pose(const Eigen::Vector3d& tcp, const CalibrationVector& x_in,
                        const CalibrationMeasurement& m, Vec6<double>& pose,
@@ -182,8 +221,17 @@ double fit_single_pose(const Eigen::Vector3d& tcp, const CalibrationVector& x_in
 // ---- Calibration ------------------------------------------------------------------------------
 
 CalibrationResult calibrate(const HexapodDesign& nominal_design, const CalibrationVector& start,
-                            const std::vector<CalibrationMeasurement>& measurements,
+                            const std::vector<CalibrationMeasurement>& measurements_in,
                             const CalibrationOptions& options) {
+  // A copy: the campaigns' leg zero shifts are written into it after every solve.
+  std::vector<CalibrationMeasurement> measurements = measurements_in;
+  int num_campaigns = 1;
+  for (const CalibrationMeasurement& m : measurements) {
+    if (m.campaign < 0) throw std::invalid_argument("CalibrationMeasurement::campaign < 0");
+    num_campaigns = std::max(num_campaigns, m.campaign + 1);
+  }
+  std::vector<Vec6<double>> shifts(static_cast<std::size_t>(num_campaigns - 1),
+                                   Vec6<double>::Zero());
   if (const std::string error = options.validate(); !error.empty()) {
     throw std::invalid_argument(error);
   }
@@ -236,7 +284,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   // users guess, whenever the estimate is within +-50 % of sigma; the readings' (usually known
   // and far smaller, so that the pose unknowns absorb their rows) only when within +-10 %.
   const Eigen::Vector3d kMaxRelativeSd(1.0, 1.0, 0.2);
-  FitOutcome outcome = solve_eiv(tcp, x, poses, measurements, active, opt, robust);
+  FitOutcome outcome = solve_eiv(tcp, x, poses, measurements, active, opt, robust, shifts);
   result.iterations += outcome.iterations;
   if (options.estimate_noise) {
     // A robust start (medians, insensitive to a minority of gross errors), so that the outlier
@@ -253,7 +301,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
         largest_change = std::max(largest_change, std::abs(std::log(factors(g))));
       }
       if (largest_change < std::log(1.1)) break;
-      outcome = solve_eiv(tcp, x, poses, measurements, active, opt, robust);
+      outcome = solve_eiv(tcp, x, poses, measurements, active, opt, robust, shifts);
       result.iterations += outcome.iterations;
     }
   }
@@ -296,7 +344,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
             num_poses - static_cast<int>(active.size()), num_poses, options.outlier_chi2,
             active.size(), num_free));
       }
-      outcome = solve_eiv(tcp, x, poses, measurements, active, opt, false);
+      outcome = solve_eiv(tcp, x, poses, measurements, active, opt, false, shifts);
       result.iterations += outcome.iterations;
       force_refit = false;
     }
@@ -358,7 +406,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
         Eigen::MatrixXd::Zero(kCalibrationParameters, kCalibrationParameters);
     if (result.identification.rank == num_free && num_free > 0) {
       if (options.covariance_method == CalibrationCovarianceMethod::kCeres) {
-        covariance = eiv_covariance(tcp, x, poses, measurements, active, opt);
+        covariance = eiv_covariance(tcp, x, poses, measurements, active, opt, shifts);
       }
       if (options.covariance_method == CalibrationCovarianceMethod::kReducedInformation ||
           covariance.size() == 0) {
@@ -410,7 +458,23 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   }
   result.converged = outcome.converged;
   result.solver_message = outcome.message;
+  result.campaign_shifts = shifts;
+  if (!shifts.empty())
+    result.campaign_shift_sigma = campaign_shift_sigma(tcp, x, poses, measurements, active, opt,
+                                                       shifts, result.covariance_scale);
   return result;
+}
+
+std::vector<CalibrationMeasurement> with_campaign_shifts(
+    const std::vector<CalibrationMeasurement>& measurements, const CalibrationResult& result) {
+  std::vector<CalibrationMeasurement> out = measurements;
+  for (CalibrationMeasurement& m : out) {
+    const std::size_t c = static_cast<std::size_t>(m.campaign);
+    m.offset_shift = m.campaign > 0 && c <= result.campaign_shifts.size()
+                         ? result.campaign_shifts[c - 1]
+                         : Vec6<double>::Zero();
+  }
+  return out;
 }
 
 CalibrationErrors calibration_errors(const HexapodDesign& nominal_design,
@@ -425,7 +489,7 @@ CalibrationErrors calibration_errors(const HexapodDesign& nominal_design,
   for (int k : indices) {
     const auto& m = measurements[static_cast<std::size_t>(k)];
     const Pose measured = tcp_pose_from_measurement(x, m.pose);
-    const Vec6<double> lengths = leg_lengths_from_stroke(x, m.stroke);
+    const Vec6<double> lengths = leg_lengths_of(x, m);
     const Vec6<double> leg_error = hexapod.inverse_kinematics(measured) - lengths;
     leg_sum += leg_error.cwiseAbs2();
     errors.leg_max = errors.leg_max.cwiseMax(leg_error.cwiseAbs());

@@ -113,6 +113,12 @@ struct CalibrationMeasurement {
   Pose pose;                                   ///< target pose in the instrument frame (rad)
   Vec6<double> stroke = Vec6<double>::Zero();  ///< readings times the nominal scale (m)
   int line = 0;                                ///< line in the measurement file (messages)
+  /// The measurement campaign (0: the reference). Campaigns 1, 2, ... have their own leg zero
+  /// offsets: leg length = d_i + shift_i + (1 + g_i) stroke_i, shift estimated by calibrate.
+  int campaign = 0;
+  /// The campaign's leg zero shifts (m) the residuals use; calibrate sets them in its copies
+  /// (0 for the reference campaign).
+  Vec6<double> offset_shift = Vec6<double>::Zero();
 };
 
 enum class CalibrationLoss { kNone, kHuber, kCauchy };
@@ -238,6 +244,10 @@ struct CalibrationResult {
   bool converged = false;
   int iterations = 0;
   std::string solver_message;
+  /// Per measurement campaign c = 1, 2, ... (index c - 1): the leg zero shifts against the
+  /// reference campaign 0 (m) and their standard deviations (scaled as the covariance).
+  std::vector<Vec6<double>> campaign_shifts;
+  std::vector<Vec6<double>> campaign_shift_sigma;
 };
 
 /// Whitened residuals of one pose (12: 6 legs, 3 position, 3 orientation) for a TCP pose in
@@ -270,6 +280,8 @@ Pose tcp_pose_from_measurement(const CalibrationVector& x, const Pose& measured)
 Pose measurement_from_tcp_pose(const CalibrationVector& x, const Pose& tcp_pose);
 /// Readings-to-length: d_i + (1 + g_i) stroke_i.
 Vec6<double> leg_lengths_from_stroke(const CalibrationVector& x, const Vec6<double>& stroke);
+/// The same for a measurement, with its campaign's shifts: d_i + shift_i + (1 + g_i) stroke_i.
+Vec6<double> leg_lengths_of(const CalibrationVector& x, const CalibrationMeasurement& m);
 
 /// The 6 x n_free reduced identification rows of one pose (pose unknowns eliminated).
 Eigen::MatrixXd reduced_identification_rows(const CalibrationVector& x, const Eigen::Vector3d& tcp,
@@ -296,6 +308,12 @@ std::vector<int> choose_gauge_fixing(const CalibrationVector& x, const Eigen::Ve
 CalibrationResult calibrate(const HexapodDesign& nominal_design, const CalibrationVector& start,
                             const std::vector<CalibrationMeasurement>& measurements,
                             const CalibrationOptions& options);
+
+/// The measurements with their campaigns' leg zero shifts from `result` (offset_shift), as the
+/// fit saw them: for errors and screening of the calibrated machine. A campaign without fitted
+/// poses has no estimated shift and gets none.
+std::vector<CalibrationMeasurement> with_campaign_shifts(
+    const std::vector<CalibrationMeasurement>& measurements, const CalibrationResult& result);
 
 /// Errors of the machine x on the given measurements (indices), TCP errors by forward
 /// kinematics from the readings compared with the measured pose mapped into the base frame.

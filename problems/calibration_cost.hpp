@@ -65,6 +65,7 @@ class PoseCostFunction final
         measured_cost_(std::make_unique<MeasuredPoseCost>(new MeasuredPoseResidual(measured_))),
         tcp_(tcp),
         stroke_(m.stroke),
+        offset_shift_(m.offset_shift),
         inv_sigma_actuator_(1.0 / options.sigma_actuator) {}
 
   bool Evaluate(double const* const* parameters, double* residuals,
@@ -90,7 +91,7 @@ class PoseCostFunction final
       const Eigen::Vector3d Rv = R * v;
       const Eigen::Vector3d l = position + Rv - base_joint;
       const double length = l.norm();
-      const double from_reading = leg[6] + (1.0 + leg[7]) * stroke_(i);
+      const double from_reading = leg[6] + offset_shift_(i) + (1.0 + leg[7]) * stroke_(i);
       residuals[i] = (length - from_reading) * w;
       if (!jacobians) continue;
       const Eigen::Vector3d u = l / length;
@@ -159,6 +160,44 @@ class PoseCostFunction final
   std::unique_ptr<MeasuredPoseCost> measured_cost_;
   Eigen::Vector3d tcp_;
   Vec6<double> stroke_;
+  Vec6<double> offset_shift_;
+  double inv_sigma_actuator_;
+};
+
+// A pose of a measurement campaign c >= 1: the pose cost with the campaign's six leg zero shifts
+// as a fifth parameter block; leg i's residual depends on shift_i as on offset_i (-1/sigma), the
+// other rows not at all. The measurement's own offset_shift is ignored (the block replaces it).
+class CampaignPoseCost final
+    : public ceres::SizedCostFunction<12, kCalibrationMachineParameters, 6, 6, 6, 6> {
+ public:
+  CampaignPoseCost(const Eigen::Vector3d& tcp, CalibrationMeasurement m,
+                   const CalibrationOptions& options)
+      : inner_(tcp, without_shift(std::move(m)), options),
+        inv_sigma_actuator_(1.0 / options.sigma_actuator) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    std::array<double, kCalibrationMachineParameters> machine;
+    std::copy(parameters[0], parameters[0] + kCalibrationMachineParameters, machine.begin());
+    for (int i = 0; i < 6; ++i) machine[kCalibrationLegParameters * i + 6] += parameters[4][i];
+    const double* inner_parameters[4] = {machine.data(), parameters[1], parameters[2],
+                                         parameters[3]};
+    if (!jacobians) return inner_.Evaluate(inner_parameters, residuals, nullptr);
+    double* inner_jacobians[4] = {jacobians[0], jacobians[1], jacobians[2], jacobians[3]};
+    if (!inner_.Evaluate(inner_parameters, residuals, inner_jacobians)) return false;
+    if (jacobians[4]) {
+      std::fill(jacobians[4], jacobians[4] + 72, 0.0);
+      for (int i = 0; i < 6; ++i) jacobians[4][6 * i + i] = -inv_sigma_actuator_;
+    }
+    return true;
+  }
+
+ private:
+  static CalibrationMeasurement without_shift(CalibrationMeasurement m) {
+    m.offset_shift.setZero();
+    return m;
+  }
+  PoseCostFunction inner_;
   double inv_sigma_actuator_;
 };
 

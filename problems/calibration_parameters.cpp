@@ -167,4 +167,8 @@ Vec6<double> leg_lengths_from_stroke(const CalibrationVector& x, const Vec6<doub
   return lengths;
 }
 
+Vec6<double> leg_lengths_of(const CalibrationVector& x, const CalibrationMeasurement& m) {
+  return leg_lengths_from_stroke(x, m.stroke) + m.offset_shift;
+}
+
 }  // namespace pkmopt

@@ -386,3 +386,35 @@ TEST_F(CalibrateInputs, EveryFormGivesTheSameCalibration) {
 }
 
 }  // namespace
+
+namespace {
+
+// A `campaign` column gives the second campaign its own leg zeros: the report lists both, the
+// first as the reference, and the second's shifts (none simulated here) within four sigmas of 0.
+TEST_F(CalibrateInputs, CampaignColumnGivesEachCampaignItsZeros) {
+  const std::vector<std::string> lines = simulate();
+  std::string csv = lines[0] + ",campaign\n";
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    csv += lines[k] + (k <= lines.size() / 2 ? ",day 1\n" : ",day 2\n");
+  write("campaigns.csv", csv);
+  const std::string calibration =
+      write("campaigns.yaml",
+            "machine: " + path("sim/nominal.yaml") + "\nmeasurements: " + path("campaigns.csv") +
+                "\nactuators: {unit: mm, zero_length: 0.7}\n"
+                "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.001}\n");
+  const CliRun r = run("calibrate " + calibration + " --out " + path("campaigns"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("Campaigns (leg zero shifts"), std::string::npos) << r.out;
+  const nlohmann::json report = nlohmann::json::parse(read_text(path("campaigns/report.json")));
+  ASSERT_EQ(report["campaigns"].size(), 2u);
+  EXPECT_EQ(report["campaigns"][0]["label"], "day 1");
+  EXPECT_TRUE(report["campaigns"][0]["reference"].get<bool>());
+  const auto& second = report["campaigns"][1];
+  EXPECT_EQ(second["label"], "day 2");
+  for (int i = 0; i < 6; ++i)
+    EXPECT_LT(std::abs(second["shifts"][i].get<double>()),
+              4.0 * second["shift_sigma"][i].get<double>())
+        << i;
+}
+
+}  // namespace

@@ -143,7 +143,7 @@ TEST(CalibrationFileFields, HandCheckedKeys) {
             "cal.yaml:4:30: actuators.lead: expected screw leads > 0 (m/rev), found a list of 6");
   EXPECT_EQ(error_of(base + "actuators: {unit: mm}\ncolumns: {leg_1: length_1}\n"),
             "cal.yaml:5:18: columns.leg_1: expected a pkmopt column name (x, y, z, rx, ry, rz, "
-            "qw, qx, qy, qz, q_1..q_6), found 'leg_1'");
+            "qw, qx, qy, qz, q_1..q_6, campaign), found 'leg_1'");
   EXPECT_EQ(error_of(base + "actuators: {unit: mm}\nquaternion_order: zyxw\n"),
             "cal.yaml:5:19: quaternion_order: expected wxyz or xyzw, found 'zyxw'");
 }

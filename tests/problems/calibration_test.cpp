@@ -477,5 +477,84 @@ TEST(Simulation, IsDeterministicForASeed) {
   EXPECT_EQ(a.outliers.size(), 3u);
 }
 
+// Two measurement campaigns a day apart: the second re-homed its legs, so its readings start
+// from other zeros (shifts up to 1.9 mm). Labelled as a campaign, the shifts are estimated with
+// one geometry: exactly on noise-free data, within their sigmas with noise (the held-out poses
+// of the second campaign then at the noise floor); unlabelled, no geometry fits both.
+std::vector<CalibrationMeasurement> rehomed(const SimulatedMeasurements& sim,
+                                            const Vec6<double>& shift, bool labelled) {
+  std::vector<CalibrationMeasurement> measurements = sim.measurements;
+  for (std::size_t k = measurements.size() / 2; k < measurements.size(); ++k) {
+    for (int i = 0; i < 6; ++i)
+      measurements[k].stroke(i) -= shift(i) / (1.0 + sim.truth(kCalibrationLegParameters * i + 7));
+    if (labelled) measurements[k].campaign = 1;
+  }
+  return measurements;
+}
+
+TEST(Calibration, CampaignShiftsAreRecovered) {
+  const HexapodDesign design = sample_hexapod();
+  const CalibrationVector nominal = sample_nominal(design);
+  const CalibrationMask free = model_free_mask(CalibrationModelKind::k48);
+  Vec6<double> shift;
+  shift << 1.9e-3, -0.7e-3, 0.4e-3, 0.0, -1.2e-3, 0.8e-3;
+  {
+    const SimulatedMeasurements sim =
+        simulate_measurements(design, nominal, free, noise_free(21, 60));
+    CalibrationOptions options;
+    options.free = free;
+    options.estimate_noise = false;
+    const CalibrationResult r = calibrate(design, nominal, rehomed(sim, shift, true), options);
+    ASSERT_EQ(r.campaign_shifts.size(), 1u);
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(r.campaign_shifts[0](i), shift(i), 1e-9) << i;
+    for (int i = 0; i < kCalibrationMachineParameters; ++i)
+      EXPECT_NEAR(r.estimate(i), sim.truth(i), 1e-9) << calibration_parameter_name(i);
+    EXPECT_TRUE(r.outliers.empty());
+  }
+  MeasurementSimulationOptions noisy = noise_free(22, 80);
+  noisy.tracker_sigma = 15e-6;
+  noisy.orientation_sigma = 5e-5;
+  noisy.actuator_sigma = 1e-6;
+  const SimulatedMeasurements sim = simulate_measurements(design, nominal, free, noisy);
+  CalibrationOptions options;
+  options.free = free;
+  std::vector<CalibrationMeasurement> labelled = rehomed(sim, shift, true);
+  // Every 4th row of each campaign held out.
+  std::vector<CalibrationMeasurement> fit;
+  std::vector<int> held;
+  for (std::size_t k = 0; k < labelled.size(); ++k) {
+    if (k % 4 == 3) {
+      held.push_back(static_cast<int>(k));
+    } else {
+      fit.push_back(labelled[k]);
+    }
+  }
+  const CalibrationResult r = calibrate(design, nominal, fit, options);
+  ASSERT_EQ(r.campaign_shifts.size(), 1u);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_GT(r.campaign_shift_sigma[0](i), 0.0);
+    EXPECT_NEAR(r.campaign_shifts[0](i), shift(i), 4.0 * r.campaign_shift_sigma[0](i)) << i;
+  }
+  EXPECT_LE(r.outliers.size(), 1u);
+  const std::vector<CalibrationMeasurement> shifted = with_campaign_shifts(labelled, r);
+  std::vector<int> held_second;
+  for (int k : held)
+    if (labelled[static_cast<std::size_t>(k)].campaign == 1) held_second.push_back(k);
+  const CalibrationErrors errors = calibration_errors(design, r.estimate, shifted, held_second);
+  EXPECT_GT(errors.count, 5);
+  EXPECT_EQ(errors.fk_failures, 0);
+  // The noise floor sqrt(3) sigma is 26 um here; a 1.9 mm zero error would show as ~1 mm.
+  EXPECT_LT(errors.tcp_position_rms, 2.0 * std::sqrt(3.0) * 15e-6);
+  // Unlabelled, the same data cannot be fitted by one geometry: most poses are rejected, so many
+  // that the fit is refused.
+  std::size_t rejected = 0;
+  try {
+    rejected = calibrate(design, nominal, rehomed(sim, shift, false), options).outliers.size();
+  } catch (const CalibrationError&) {
+    rejected = sim.measurements.size();
+  }
+  EXPECT_GT(rejected, 20u);
+}
+
 }  // namespace
 }  // namespace pkmopt
