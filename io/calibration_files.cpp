@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -500,8 +501,55 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
   report["outliers"] = outliers;
   report["held_out_outliers"] = held_out_outliers;
   report["outlier_chi2"] = setup.options.outlier_chi2;
+  report["split_half"] = split_half_check(setup, result);
   report["status"] = calibration_status(report, result, setup.options.max_rejected_share);
   return report;
+}
+
+nlohmann::json split_half_check(const CalibrationSetup& setup, const CalibrationResult& result) {
+  // The inliers of the fit, alternately into two halves (so both span the workspace alike).
+  std::array<std::vector<CalibrationMeasurement>, 2> halves;
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < setup.fit.size(); ++r) {
+    if (std::find(result.outliers.begin(), result.outliers.end(), static_cast<int>(r)) !=
+        result.outliers.end())
+      continue;
+    halves[n++ % 2].push_back(setup.measurements[static_cast<std::size_t>(setup.fit[r])]);
+  }
+  CalibrationOptions options = setup.options;
+  options.reject_outliers = false;  // the inliers only; their sigmas as the full fit found them
+  options.estimate_noise = false;
+  options.sigma_position = result.estimated_sigma(0);
+  options.sigma_orientation = result.estimated_sigma(1);
+  options.sigma_actuator = result.estimated_sigma(2);
+  std::array<CalibrationResult, 2> fits;
+  try {
+    for (int h = 0; h < 2; ++h)
+      fits[static_cast<std::size_t>(h)] = calibrate(setup.nominal_design, setup.nominal,
+                                                    halves[static_cast<std::size_t>(h)], options);
+  } catch (const CalibrationError& e) {
+    return {{"done", false}, {"reason", e.what()}};
+  }
+  // z = (theta_A - theta_B) / sqrt(sigma_A^2 + sigma_B^2) over the free parameters: about
+  // standard normal when the reported sigmas are believable.
+  double sum = 0.0, worst = 0.0;
+  int count = 0;
+  std::string worst_name;
+  for (int i = 0; i < kCalibrationParameters; ++i) {
+    if (!options.free[static_cast<std::size_t>(i)]) continue;
+    const double s = std::hypot(fits[0].sigma(i), fits[1].sigma(i));
+    if (!(s > 0.0)) continue;
+    const double z = (fits[0].estimate(i) - fits[1].estimate(i)) / s;
+    sum += z * z;
+    ++count;
+    if (std::abs(z) > worst) {
+      worst = std::abs(z);
+      worst_name = calibration_parameter_name(i);
+    }
+  }
+  return {{"done", count > 0},   {"poses", {halves[0].size(), halves[1].size()}},
+          {"parameters", count}, {"z_rms", count > 0 ? std::sqrt(sum / count) : 0.0},
+          {"z_max", worst},      {"z_max_parameter", worst_name}};
 }
 
 nlohmann::json calibration_status(const nlohmann::json& report, const CalibrationResult& result,
@@ -632,6 +680,19 @@ std::string calibration_report_text(const nlohmann::json& r) {
         out += "\n";
       }
     }
+  }
+  if (r.contains("split_half")) {
+    const auto& s = r["split_half"];
+    if (s["done"].get<bool>())
+      out += fmt::format(
+          "\nSplit-half check (the inliers fitted in two alternate halves of {} and {} poses): "
+          "parameter differences over their sigmas, rms {:.2f} (about 1 when the sigmas are "
+          "believable), largest {:.2f} ({})\n",
+          s["poses"][0].get<int>(), s["poses"][1].get<int>(), s["z_rms"].get<double>(),
+          s["z_max"].get<double>(), s["z_max_parameter"].get<std::string>());
+    else
+      out += "\nSplit-half check: not possible (" +
+             s.value("reason", std::string("no free parameter")) + ")\n";
   }
   const auto& id = r["identification"];
   out += fmt::format(

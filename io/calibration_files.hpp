@@ -174,6 +174,12 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
 /// when forward kinematics of the calibrated machine fails on fitted or held-out poses.
 nlohmann::json calibration_status(const nlohmann::json& report, const CalibrationResult& result,
                                   double max_rejected_share);
+/// The split-half check of a calibration: its inlier poses fitted again in two alternate
+/// halves (the sigmas of the full fit, no outlier rejection), and for the free parameters
+/// z = (estimate_A - estimate_B) / sqrt(sigma_A^2 + sigma_B^2): {done, poses, parameters, z_rms,
+/// z_max, z_max_parameter}; z_rms near 1 says the reported sigmas are believable. {done: false,
+/// reason} when a half cannot identify the parameters.
+nlohmann::json split_half_check(const CalibrationSetup& setup, const CalibrationResult& result);
 /// The same report as readable text.
 std::string calibration_report_text(const nlohmann::json& report);
 

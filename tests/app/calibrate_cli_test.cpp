@@ -263,6 +263,14 @@ TEST_F(CalibrateCli, ReportGivesEstimatedAndGivenNoise) {
   EXPECT_LT(noise["position"]["used"].get<double>(), 30e-6);
   EXPECT_NE(r.out.find("(estimated +-"), std::string::npos) << r.out;
   EXPECT_TRUE(report["status"]["ok"].get<bool>());
+  // The split-half check: the two halves' estimates differ by about their sigmas (z rms of 48
+  // parameters near 1; 0.6..1.6 holds its sampling spread with room).
+  const auto& split = report["split_half"];
+  ASSERT_TRUE(split["done"].get<bool>()) << split.dump();
+  EXPECT_EQ(split["parameters"].get<int>(), 48);
+  EXPECT_GT(split["z_rms"].get<double>(), 0.6);
+  EXPECT_LT(split["z_rms"].get<double>(), 1.6);
+  EXPECT_NE(r.out.find("Split-half check"), std::string::npos);
 }
 
 }  // namespace
