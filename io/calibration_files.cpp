@@ -149,6 +149,19 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
         "the quaternion's scalar part in another column? `quaternion_order: xyzw` reads the "
         "four columns in file order as x, y, z, w",
         path, scalar_elsewhere, table.rows.size()));
+  // No machine tool measures its TCP tens of metres from the instrument: positions that large
+  // are millimetres read as metres.
+  std::vector<double> distances;
+  for (const CalibrationMeasurement& m : measurements) distances.push_back(m.pose.position.norm());
+  std::nth_element(distances.begin(),
+                   distances.begin() + static_cast<std::ptrdiff_t>(distances.size() / 2),
+                   distances.end());
+  const double median_distance = distances[distances.size() / 2];
+  if (warnings && median_distance > 20.0)
+    warnings->push_back(fmt::format(
+        "{}: the measured positions are {:.4g} m from the origin (median): are they in mm? "
+        "`pose_unit: mm` reads them so",
+        path, median_distance));
   if (campaigns) *campaigns = labels.size() > 1 ? labels : std::vector<std::string>{};
   return measurements;
 }

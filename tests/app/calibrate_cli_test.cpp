@@ -350,6 +350,19 @@ TEST_F(CalibrateInputs, EveryFormGivesTheSameCalibration) {
                         "noise: {position: 2.0e-5, orientation_deg: 0.003, actuator: 0.0002}\n",
                         "mm"),
               "mm, columns, leads");
+  // The same millimetres read as metres: warned about, and the calibration refused or flagged.
+  const std::string as_metres =
+      write("as_metres.yaml",
+            "machine: " + path("sim/nominal.yaml") + "\nmeasurements: " + path("mm.csv") +
+                "\ncolumns: {x: pos_x, y: pos_y, z: pos_z, rx: rot_x, ry: rot_y, "
+                "rz: rot_z, q_1: l1, q_2: l2, q_3: l3, q_4: l4, q_5: l5, q_6: l6}\n"
+                "actuators: {unit: rev, lead: [0.005, 0.005, 0.004, 0.005, "
+                "0.006, 0.005], zero_length: 0.7}\n" +
+                noise);
+  const CliRun metres = run("calibrate " + as_metres + " --out " + path("as_metres"));
+  EXPECT_NE(metres.status, 0);
+  EXPECT_NE(metres.err.find("are they in mm? `pose_unit: mm` reads them so"), std::string::npos)
+      << metres.err;
   // Scalar-last quaternions under the names qw, qx, qy, qz.
   std::string quaternion = "x,y,z,qw,qx,qy,qz,q_1,q_2,q_3,q_4,q_5,q_6\n";
   for (const Row& r : data) {
