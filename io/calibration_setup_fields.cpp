@@ -50,6 +50,15 @@ std::string list_text(const std::vector<T>& items) {
   return "[" + text + "]";
 }
 
+// The written value of a key that takes one number or six: "" (left out), "0.7" or "[a, ...]".
+std::string one_or_six_text(const std::vector<double>& values) {
+  if (values.empty()) return "";
+  if (values.size() == 1) return format_number(values.front());
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ", ") + format_number(v);
+  return "[" + text + "]";
+}
+
 constexpr std::string_view kParameterNames =
     "a1.x .. b6.z, offset1..6, gain1..6, instrument.x..rz, target.x..rz";
 
@@ -116,13 +125,7 @@ void describe_fields(Fields& f, CalibrationFile& c) {
           for (double lead : c.lead)
             if (!(lead > 0.0)) v.fail("screw leads > 0 (m/rev)", v.describe());
         },
-        [&]() -> std::string {
-          if (c.lead.empty()) return "";
-          if (c.lead.size() == 1) return format_number(c.lead.front());
-          std::string text;
-          for (double l : c.lead) text += (text.empty() ? "" : ", ") + format_number(l);
-          return "[" + text + "]";
-        });
+        [&] { return one_or_six_text(c.lead); });
     FieldRule counts = positive("1/m",
                                 "encoder counts per metre; required with `unit: counts`, "
                                 "not allowed otherwise");
@@ -135,13 +138,7 @@ void describe_fields(Fields& f, CalibrationFile& c) {
         [&](const YamlValue& v) {
           c.zero_length = v.is_sequence() ? v.as_doubles(6) : std::vector<double>{v.as_double()};
         },
-        [&]() -> std::string {
-          if (c.zero_length.empty()) return "";
-          if (c.zero_length.size() == 1) return format_number(c.zero_length.front());
-          std::string text;
-          for (double z : c.zero_length) text += (text.empty() ? "" : ", ") + format_number(z);
-          return "[" + text + "]";
-        });
+        [&] { return one_or_six_text(c.zero_length); });
   });
   f.section("noise", {.required = true, .doc = "the measurement noise (one sigma)"}, [&](auto& g) {
     g.field("position", c.noise_position, positive("m", "instrument position sigma", true));

@@ -5,9 +5,11 @@
 // numpy arrays / Python objects and the engine's types.
 #pragma once
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <string>
+#include <vector>
 
 #include "io/yaml_reader.hpp"
 
@@ -29,6 +31,10 @@ std::string path_from_python(py::handle path);
 
 /// A finite number from Python (InputError "what: expected a finite number, found ...").
 double finite_number(py::handle value, const std::string& what);
+
+/// An (N, columns) float array of N rows (each at least `columns` long).
+pybind11::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows,
+                                        std::size_t columns);
 
 /// OpenMP threads from Python: None (0: all cores) or an integer 1..4096 (InputError otherwise).
 int threads_from_python(const py::object& threads);

@@ -49,4 +49,14 @@ int threads_from_python(const py::object& threads) {
   return static_cast<int>(n);
 }
 
+py::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows,
+                                  std::size_t columns) {
+  py::array_t<double> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(columns)});
+  auto r = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < columns; ++j)
+      r(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = rows[i][j];
+  return a;
+}
+
 }  // namespace pkmopt::python

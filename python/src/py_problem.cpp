@@ -150,15 +150,6 @@ class PythonProblem final : public Problem {
   std::string name_;
 };
 
-py::array_t<double> rows_array(const std::vector<std::vector<double>>& rows, std::size_t columns) {
-  py::array_t<double> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(columns)});
-  auto r = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < columns; ++j)
-      r(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = rows[i][j];
-  return a;
-}
-
 py::dict optimize(const py::object& problem_in, const py::object& optimizer,
                   const py::object& threads_in) {
   std::unique_ptr<Problem> owned;
@@ -203,13 +194,13 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
   d["problem"] = problem.name();
   d["status"] = outcome.status;
   d["message"] = front.message;
-  d["x"] = rows_array(front.x, problem.num_variables());
-  d["fitness"] = rows_array(front.fitness, problem.fitness_size());
+  d["x"] = rows_to_array(front.x, problem.num_variables());
+  d["fitness"] = rows_to_array(front.fitness, problem.fitness_size());
   std::vector<std::vector<double>> objectives;
   for (const auto& f : front.fitness)
     objectives.emplace_back(f.begin(),
                             f.begin() + static_cast<std::ptrdiff_t>(problem.num_objectives()));
-  d["objectives"] = rows_array(objectives, problem.num_objectives());
+  d["objectives"] = rows_to_array(objectives, problem.num_objectives());
   d["evaluations"] = front.fitness_evaluations;
   d["gradient_evaluations"] = front.gradient_evaluations;
   d["seconds"] = front.seconds;

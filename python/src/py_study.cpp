@@ -77,15 +77,6 @@ py::dict run_study_py(py::handle study, py::handle out, const py::object& thread
   return d;
 }
 
-py::array_t<double> matrix(const std::vector<std::vector<double>>& rows, std::size_t columns) {
-  py::array_t<double> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(columns)});
-  auto r = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < columns; ++j)
-      r(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(j)) = rows[i][j];
-  return a;
-}
-
 py::dict read_front(py::handle dir_in) {
   const fs::path dir(path_from_python(dir_in));
   if (!fs::is_directory(dir))
@@ -163,10 +154,10 @@ py::dict read_front(py::handle dir_in) {
   out["parameter_info"] = parameter_info;
   out["objective_info"] = objective_info;
   out["constraint_info"] = constraint_info;
-  out["parameters"] = matrix(parameters, front.parameters.size());
+  out["parameters"] = rows_to_array(parameters, front.parameters.size());
   out["home_height"] = home;
-  out["objectives"] = matrix(objectives, front.objectives.size());
-  out["constraints"] = matrix(constraints, front.constraints.size());
+  out["objectives"] = rows_to_array(objectives, front.objectives.size());
+  out["constraints"] = rows_to_array(constraints, front.constraints.size());
   out["feasible"] = feasible;
   out["machine_files"] = machine_files;
   out["knee"] = front.knee ? py::cast(*front.knee) : py::object(py::none());

@@ -518,6 +518,9 @@ TEST(Calibration, CampaignShiftsAreRecovered) {
   const SimulatedMeasurements sim = simulate_measurements(design, nominal, free, noisy);
   CalibrationOptions options;
   options.free = free;
+  // Sigmas guessed wrong by 5 and 10 times: the noise comes from the data.
+  options.sigma_position = 3e-6;
+  options.sigma_orientation = 5e-4;
   std::vector<CalibrationMeasurement> labelled = rehomed(sim, shift, true);
   // Every 4th row of each campaign held out.
   std::vector<CalibrationMeasurement> fit;
