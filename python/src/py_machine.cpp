@@ -205,44 +205,51 @@ py::dict analyze(const PyMachine& self, py::handle poses_in, const py::object& w
   bool* reach = reachable.mutable_data();
   const bool interference = machine.checks_leg_interference();
   std::vector<std::string> pairs(interference ? n : 0);
-  {
-    py::gil_scoped_release release;
-    analyze_pose_slices(
-        machine, n, wrench, compliance, threads,
-        [&](const PoseSlice& s) {
-          for (std::size_t k = 0; k < s.poses.size(); ++k) {
-            const double* row = in + (s.start + k) * width;
-            Pose& pose = s.poses[k];
-            pose.position = {row[0], row[1], row[2]};
-            const Eigen::Vector3d deg =
-                width == 6 ? Eigen::Vector3d(row[3], row[4], row[5]) : Eigen::Vector3d::Zero();
-            pose.angles = deg_to_rad(deg);
-          }
-        },
-        [&](const PoseSlice& s) {
-          const std::size_t columns = names.size();
-          std::vector<double> values(columns);
-          std::vector<double*> at(columns, nullptr);  // column c of pose s.start + k
-          for (std::size_t col = 1; col < columns; ++col)
-            at[col] = targets[col].base + s.start * targets[col].stride + targets[col].offset;
-          std::unique_ptr<MachineData> data = mode_shapes ? machine.make_data() : nullptr;
-          PoseModes pose_modes;
-          for (std::size_t k = 0; k < s.metrics.size(); ++k) {
-            const std::size_t i = s.start + k;
-            if (mode_shapes && !machine.mode_shapes(*data, s.poses[k], pose_modes))
-              pose_modes = PoseModes{};
-            analyze_values(machine, s.metrics[k], mode_shapes ? &pose_modes : nullptr,
-                           compliance ? &s.matrices[k] : nullptr, values.data());
-            reach[i] = s.metrics[k].reachable;
-            for (std::size_t col = 1; col < columns; ++col) {
-              *at[col] = values[col];
-              at[col] += targets[col].stride;
+  // Chunks of 64 slices (65,536 poses); between two the GIL is taken back for a moment so that
+  // Ctrl-C (KeyboardInterrupt) stops a long call. A pose's numbers do not depend on its chunk.
+  constexpr std::size_t kChunk = 64 * kPoseSlice;
+  for (std::size_t first = 0; first < n; first += kChunk) {
+    {
+      py::gil_scoped_release release;
+      analyze_pose_slices(
+          machine, std::min(kChunk, n - first), wrench, compliance, threads,
+          [&](const PoseSlice& s) {
+            for (std::size_t k = 0; k < s.poses.size(); ++k) {
+              const double* row = in + (first + s.start + k) * width;
+              Pose& pose = s.poses[k];
+              pose.position = {row[0], row[1], row[2]};
+              const Eigen::Vector3d deg =
+                  width == 6 ? Eigen::Vector3d(row[3], row[4], row[5]) : Eigen::Vector3d::Zero();
+              pose.angles = deg_to_rad(deg);
             }
-            if (interference)
-              pairs[i] =
-                  clearance_pair_text(s.metrics[k].clearance_first, s.metrics[k].clearance_second);
-          }
-        });
+          },
+          [&](const PoseSlice& s) {
+            const std::size_t columns = names.size();
+            std::vector<double> values(columns);
+            std::vector<double*> at(columns, nullptr);  // column c of pose s.start + k
+            for (std::size_t col = 1; col < columns; ++col)
+              at[col] =
+                  targets[col].base + (first + s.start) * targets[col].stride + targets[col].offset;
+            std::unique_ptr<MachineData> data = mode_shapes ? machine.make_data() : nullptr;
+            PoseModes pose_modes;
+            for (std::size_t k = 0; k < s.metrics.size(); ++k) {
+              const std::size_t i = first + s.start + k;
+              if (mode_shapes && !machine.mode_shapes(*data, s.poses[k], pose_modes))
+                pose_modes = PoseModes{};
+              analyze_values(machine, s.metrics[k], mode_shapes ? &pose_modes : nullptr,
+                             compliance ? &s.matrices[k] : nullptr, values.data());
+              reach[i] = s.metrics[k].reachable;
+              for (std::size_t col = 1; col < columns; ++col) {
+                *at[col] = values[col];
+                at[col] += targets[col].stride;
+              }
+              if (interference)
+                pairs[i] = clearance_pair_text(s.metrics[k].clearance_first,
+                                               s.metrics[k].clearance_second);
+            }
+          });
+    }
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
   if (interference) result["clearance_pair"] = py::cast(pairs);
   return result;

@@ -4,6 +4,8 @@ import csv
 import io
 import json
 import math
+import os
+import signal
 import threading
 import time
 import tracemalloc
@@ -166,6 +168,20 @@ def test_the_gil_is_released_while_analyze_runs(hexapod):
     counter.join()
     # Holding the GIL would freeze the counter for the whole call.
     assert ticks[0] > 0.03 * seconds / 0.001, (ticks[0], seconds)
+
+
+def test_ctrl_c_stops_a_long_analyze(hexapod):
+    poses = np.zeros((4_000_000, 6))
+    poses[:, 2] = 0.9
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        hexapod.analyze(poses, threads=1)  # about 3 s to the end
+    elapsed = time.perf_counter() - start
+    timer.join()
+    # Seen at the next chunk of 65,536 poses (about 50 ms).
+    assert elapsed < 1.5, elapsed
 
 
 def test_bad_poses_and_wrenches_raise_input_error(hexapod):
