@@ -50,19 +50,30 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
                                                          std::vector<std::string>* warnings,
                                                          std::vector<std::string>* campaigns) {
   CsvTable table = read_csv_file(path);
-  // `columns:` renames the file's columns to pkmopt's before anything else.
-  for (const auto& [ours, theirs] : format.columns) {
-    const int c = table.column(theirs);
-    if (c < 0)
-      throw InputError(
-          fmt::format("{}columns.{}: expected a column '{}' in the file, found the columns {}",
-                      location_prefix(path, table.header_line), ours, theirs, [&] {
-                        std::string text;
-                        for (const auto& name : table.header)
-                          text += (text.empty() ? "" : ",") + name;
-                        return text;
-                      }()));
-    table.header[static_cast<std::size_t>(c)] = ours;
+  // `columns:` renames the file's columns to pkmopt's before anything else, all at once (by the
+  // file's own names); two columns may not end up with one name.
+  {
+    std::vector<std::string> renamed = table.header;
+    for (const auto& [ours, theirs] : format.columns) {
+      const auto it = std::find(table.header.begin(), table.header.end(), theirs);
+      if (it == table.header.end()) {
+        std::string names;
+        for (const auto& name : table.header) names += (names.empty() ? "" : ",") + name;
+        throw InputError(
+            fmt::format("{}columns.{}: expected a column '{}' in the file, found the columns {}",
+                        location_prefix(path, table.header_line), ours, theirs, names));
+      }
+      renamed[static_cast<std::size_t>(it - table.header.begin())] = ours;
+    }
+    for (std::size_t c = 0; c < renamed.size(); ++c)
+      for (std::size_t d = c + 1; d < renamed.size(); ++d)
+        if (renamed[c] == renamed[d])
+          throw InputError(fmt::format(
+              "{}columns: expected one column named '{}', found two after the renaming: the "
+              "file's '{}' (column {}) and '{}' (column {})",
+              location_prefix(path, table.header_line), renamed[c], table.header[c], c + 1,
+              table.header[d], d + 1));
+    table.header = renamed;
   }
   const bool quaternion = table.column("qw") >= 0;
   std::vector<std::string> expected = {"x", "y", "z"};
@@ -91,6 +102,11 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
                      : "or qw,qx,qy,qz instead of rx,ry,rz"));
     }
   }
+  if (!format.quaternion_order.empty() && !quaternion)
+    throw InputError(
+        fmt::format("{}quaternion_order: expected the columns qw, qx, qy, qz, "
+                    "found rx, ry, rz (angles need no order)",
+                    location_prefix(path, table.header_line)));
   if (!format.quaternion_order.empty() && quaternion) {
     // By column order: the four quaternion columns as they stand in the file are w, x, y, z
     // (wxyz) or x, y, z, w (xyzw), whatever their names.
@@ -303,6 +319,23 @@ CalibrationSetup read_calibration_setup(const std::string& path) {
     (held_out.count(k) ? setup.held_out : setup.fit).push_back(k);
   }
 
+  // Every campaign needs fitted rows (the reference's fix the leg offsets; a further campaign's
+  // six shifts need at least 3).
+  for (std::size_t c = 0; c < setup.campaigns.size(); ++c) {
+    int count = 0;
+    for (int k : setup.fit)
+      count += setup.measurements[static_cast<std::size_t>(k)].campaign == static_cast<int>(c);
+    if (c == 0 ? count == 0 : count < 3)
+      throw InputError(fmt::format(
+          "{}: campaign '{}': expected {}, found {} fitted row(s){}", setup.measurement_file,
+          setup.campaigns[c],
+          c == 0 ? "fitted rows of the reference campaign (the first label in the file)"
+                 : "at least 3 fitted rows for its six leg zero shifts",
+          count,
+          c == 0 ? ": without them its leg offsets cannot be told from the other campaigns' "
+                   "shifts; hold out fewer of its rows or put another campaign first"
+                 : ""));
+  }
   std::vector<CalibrationMeasurement> fitted;
   for (int k : setup.fit) fitted.push_back(setup.measurements[static_cast<std::size_t>(k)]);
   int num_free = 0;
@@ -472,7 +505,8 @@ nlohmann::json calibration_report_json(const CalibrationSetup& setup,
                                      : Vec6<double>::Zero();
       entry["shifts"] = std::vector<double>(shift.data(), shift.data() + 6);
       entry["shift_sigma"] = std::vector<double>(sigma.data(), sigma.data() + 6);
-      entry["estimated"] = fitted_rows > 0;
+      entry["estimated"] =
+          c <= result.campaign_estimated.size() && result.campaign_estimated[c - 1];
     }
     campaigns.push_back(entry);
   }

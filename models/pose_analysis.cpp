@@ -45,9 +45,16 @@ void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench
     std::vector<Pose> poses(kPoseSlice);
     std::vector<PoseMetrics> metrics(kPoseSlice);
     std::vector<PoseCompliance> compliance(matrices ? kPoseSlice : 0);
-    const std::unique_ptr<MachineData> data = hexapod ? nullptr : machine.make_data();
+    std::unique_ptr<MachineData> data;
+    try {
+      if (!hexapod) data = machine.make_data();
+    } catch (...) {
+#pragma omp critical(pkmopt_pose_slices_error)
+      if (!first_error) first_error = std::current_exception();
+    }
 #pragma omp for schedule(static)
     for (long long s = 0; s < slices; ++s) {
+      if (!hexapod && !data) continue;  // its error is kept
       try {
         const std::size_t start = static_cast<std::size_t>(s) * kPoseSlice;
         const std::size_t size = std::min(kPoseSlice, count - start);

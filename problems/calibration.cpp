@@ -232,6 +232,24 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   }
   std::vector<Vec6<double>> shifts(static_cast<std::size_t>(num_campaigns - 1),
                                    Vec6<double>::Zero());
+  // Each campaign needs poses of its own: the reference's fix the offsets (without them the
+  // offsets and every campaign's shifts are one and the same unknown), and a further campaign's
+  // six shifts need at least 3 poses for their rows to keep any redundancy.
+  {
+    std::vector<int> per_campaign(static_cast<std::size_t>(num_campaigns), 0);
+    for (const CalibrationMeasurement& m : measurements)
+      ++per_campaign[static_cast<std::size_t>(m.campaign)];
+    for (int c = 0; c < num_campaigns; ++c) {
+      const int count = per_campaign[static_cast<std::size_t>(c)];
+      if (c == 0 ? count == 0 : count < 3)
+        throw CalibrationError(fmt::format(
+            "measurement campaign {} has {} fitted pose(s): {}", c, count,
+            c == 0 ? "the reference campaign (the first in the file) needs fitted poses, or its "
+                     "leg offsets cannot be told from the other campaigns' shifts"
+                   : "a campaign's six leg zero shifts need at least 3 fitted poses"));
+    }
+  }
+  const int num_shift_parameters = 6 * (num_campaigns - 1);
   if (const std::string error = options.validate(); !error.empty()) {
     throw std::invalid_argument(error);
   }
@@ -239,7 +257,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   const std::vector<int> free_indices = free_indices_of(options.free);
   const int num_free = static_cast<int>(free_indices.size());
   const int num_poses = static_cast<int>(measurements.size());
-  if (6 * num_poses < num_free + 1) {
+  if (6 * num_poses < num_free + num_shift_parameters + 1) {
     throw CalibrationError(fmt::format(
         "too few poses: {} fitted poses give {} equations (6 per pose after the pose unknowns), "
         "the {} free parameters need more than {}; measure at least {} poses (3 times as many "
@@ -336,7 +354,7 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
       for (int k = 0; k < num_poses; ++k) {
         if (!rejected[static_cast<std::size_t>(k)]) active.push_back(k);
       }
-      if (6 * static_cast<int>(active.size()) < num_free + 1) {
+      if (6 * static_cast<int>(active.size()) < num_free + num_shift_parameters + 1) {
         throw CalibrationError(fmt::format(
             "{} of {} poses were rejected as outliers (chi^2 > {}); the {} inliers are too few "
             "for {} free parameters. Check the units of the readings and poses (and the "
@@ -449,7 +467,20 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   result.chi2 = chi2;
   double total = 0.0;
   for (int k : active) total += chi2[static_cast<std::size_t>(k)];
-  const int dof = 6 * static_cast<int>(active.size()) - num_free;
+  // A campaign whose poses were all rejected has no estimated shifts.
+  std::vector<bool> campaign_fitted(static_cast<std::size_t>(num_campaigns), false);
+  for (int k : active)
+    campaign_fitted[static_cast<std::size_t>(measurements[static_cast<std::size_t>(k)].campaign)] =
+        true;
+  int estimated_shifts = 0;
+  for (int c = 1; c < num_campaigns; ++c) {
+    if (campaign_fitted[static_cast<std::size_t>(c)]) {
+      estimated_shifts += 6;
+    } else {
+      shifts[static_cast<std::size_t>(c - 1)].setZero();
+    }
+  }
+  const int dof = 6 * static_cast<int>(active.size()) - num_free - estimated_shifts;
   result.chi2_per_dof = dof > 0 ? total / dof : 0.0;
   if (options.compute_covariance && result.chi2_per_dof > 0.0) {
     result.covariance_scale = result.chi2_per_dof;
@@ -459,6 +490,8 @@ CalibrationResult calibrate(const HexapodDesign& nominal_design, const Calibrati
   result.converged = outcome.converged;
   result.solver_message = outcome.message;
   result.campaign_shifts = shifts;
+  for (int c = 1; c < num_campaigns; ++c)
+    result.campaign_estimated.push_back(campaign_fitted[static_cast<std::size_t>(c)]);
   if (!shifts.empty())
     result.campaign_shift_sigma = campaign_shift_sigma(tcp, x, poses, measurements, active, opt,
                                                        shifts, result.covariance_scale);

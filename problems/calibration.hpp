@@ -248,6 +248,8 @@ struct CalibrationResult {
   /// reference campaign 0 (m) and their standard deviations (scaled as the covariance).
   std::vector<Vec6<double>> campaign_shifts;
   std::vector<Vec6<double>> campaign_shift_sigma;
+  /// Whether campaign c's shifts were estimated (false: every pose of it rejected; shifts 0).
+  std::vector<bool> campaign_estimated;
 };
 
 /// Whitened residuals of one pose (12: 6 legs, 3 position, 3 orientation) for a TCP pose in

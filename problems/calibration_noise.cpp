@@ -33,7 +33,13 @@ NoiseGroups noise_groups(const CalibrationVector& x, const Eigen::Vector3d& tcp,
                          const CalibrationOptions& options) {
   static constexpr int kGroupOfRow[12] = {2, 2, 2, 2, 2, 2, 0, 0, 0, 1, 1, 1};
   const std::vector<int> free = free_indices_of(options.free);
-  const Eigen::Index n = static_cast<Eigen::Index>(free.size());
+  // The campaigns' leg zero shifts are unknowns too: 6 columns per campaign c >= 1 that has
+  // poses here, each the offset column of leg i on that campaign's poses.
+  int campaigns = 1;
+  for (int k : active)
+    campaigns = std::max(campaigns, measurements[static_cast<std::size_t>(k)].campaign + 1);
+  const Eigen::Index n_machine = static_cast<Eigen::Index>(free.size());
+  const Eigen::Index n = n_machine + 6 * (campaigns - 1);
   const std::size_t count = active.size();
   using Matrix12 = Eigen::Matrix<double, 12, 12>;
   std::vector<Matrix12> P(count);         // projection onto the pose directions of pose k
@@ -50,8 +56,12 @@ NoiseGroups noise_groups(const CalibrationVector& x, const Eigen::Vector3d& tcp,
     const Matrix12 Q = qr.householderQ();
     const Eigen::Matrix<double, 6, 12> U = Q.rightCols<6>().transpose();
     P[k] = Matrix12::Identity() - U.transpose() * U;
-    A[k].resize(12, n);
-    for (Eigen::Index j = 0; j < n; ++j) A[k].col(j) = J.col(free[static_cast<std::size_t>(j)]);
+    A[k] = Eigen::MatrixXd::Zero(12, n);
+    for (Eigen::Index j = 0; j < n_machine; ++j)
+      A[k].col(j) = J.col(free[static_cast<std::size_t>(j)]);
+    if (m.campaign > 0)
+      for (int i = 0; i < 6; ++i)
+        A[k].col(n_machine + 6 * (m.campaign - 1) + i) = J.col(kCalibrationLegParameters * i + 6);
     A[k] = (U.transpose() * U * A[k]).eval();
     M.noalias() += A[k].transpose() * A[k];
     for (int i = 0; i < 12; ++i)

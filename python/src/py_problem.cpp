@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
@@ -85,13 +86,31 @@ class PythonProblem final : public Problem {
 
   std::vector<double> fitness(const std::vector<double>& x) const override {
     py::gil_scoped_acquire acquire;
-    return row(obj_.attr("fitness")(vector_array(x)), "fitness");
+    return guarded([&] { return row(obj_.attr("fitness")(vector_array(x)), "fitness"); });
   }
+
+  /// The first exception out of the object's methods (a Python one, KeyboardInterrupt included,
+  /// or a wrong result shape), kept because some solvers (Ipopt, NLopt) turn an exception in a
+  /// callback into a status; optimize raises it once the solver has returned.
+  std::exception_ptr pending_error() const { return pending_; }
 
   std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
                                                  int threads) const override {
     if (!batch_) return Problem::batch_fitness(xs, threads);
     py::gil_scoped_acquire acquire;
+    return guarded([&] { return batch(xs); });
+  }
+
+  bool has_gradient() const override { return gradient_; }
+
+  /// gradient(x): the dense Jacobian of the fitness, (fitness size, n), row-major here.
+  std::vector<double> gradient(const std::vector<double>& x) const override {
+    py::gil_scoped_acquire acquire;
+    return guarded([&] { return jacobian(x); });
+  }
+
+ private:
+  std::vector<std::vector<double>> batch(std::span<const std::vector<double>> xs) const {
     const std::size_t n = bounds_.lower.size();
     py::array_t<double> X({static_cast<py::ssize_t>(xs.size()), static_cast<py::ssize_t>(n)});
     auto w = X.mutable_unchecked<2>();
@@ -113,20 +132,30 @@ class PythonProblem final : public Problem {
     return out;
   }
 
-  bool has_gradient() const override { return gradient_; }
-
-  /// gradient(x): the dense Jacobian of the fitness, (fitness size, n), row-major here.
-  std::vector<double> gradient(const std::vector<double>& x) const override {
-    py::gil_scoped_acquire acquire;
+  std::vector<double> jacobian(const std::vector<double>& x) const {
     const DoubleArray G = DoubleArray::ensure(obj_.attr("gradient")(vector_array(x)));
     const std::size_t m = fitness_size(), n = bounds_.lower.size();
-    if (!G || G.size() != static_cast<py::ssize_t>(m * n))
+    const bool shaped =
+        G && ((G.ndim() == 2 && G.shape(0) == static_cast<py::ssize_t>(m) &&
+               G.shape(1) == static_cast<py::ssize_t>(n)) ||
+              (G.ndim() == 1 && m == 1 && G.shape(0) == static_cast<py::ssize_t>(n)));
+    if (!shaped)
       throw InputError(fmt::format(
           "problem.gradient: expected an array of shape ({}, {}) (d fitness_i / d x_j)", m, n));
     return std::vector<double>(G.data(), G.data() + m * n);
   }
 
- private:
+  // Calls f (with the GIL held); its exception is kept (the first) and rethrown.
+  template <class F>
+  auto guarded(F&& f) const -> decltype(f()) {
+    try {
+      return f();
+    } catch (...) {
+      if (!pending_) pending_ = std::current_exception();
+      throw;
+    }
+  }
+
   static py::array_t<double> vector_array(const std::vector<double>& x) {
     py::array_t<double> a(static_cast<py::ssize_t>(x.size()));
     std::copy(x.begin(), x.end(), a.mutable_data());
@@ -148,11 +177,13 @@ class PythonProblem final : public Problem {
   std::size_t n_obj_ = 1, n_eq_ = 0, n_ineq_ = 0;
   bool batch_ = false, gradient_ = false;
   std::string name_;
+  mutable std::exception_ptr pending_;
 };
 
 py::dict optimize(const py::object& problem_in, const py::object& optimizer,
                   const py::object& threads_in) {
   std::unique_ptr<Problem> owned;
+  const PythonProblem* python_problem = nullptr;
   if (py::isinstance<py::str>(problem_in)) {
     try {
       owned = make_benchmark(problem_in.cast<std::string>());
@@ -177,6 +208,7 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
     }
   } else {
     owned = std::make_unique<PythonProblem>(problem_in);
+    python_problem = static_cast<const PythonProblem*>(owned.get());
   }
   if (!owned) throw InputError("problem: expected a built-in problem name or a problem object");
   const Problem& problem = *owned;
@@ -188,6 +220,8 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
     py::gil_scoped_release release;
     outcome = run_optimizer(problem, spec, threads);
   }
+  if (python_problem && python_problem->pending_error())
+    std::rethrow_exception(python_problem->pending_error());
   const FrontResult& front = outcome.front;
   py::dict d;
   d["algorithm"] = spec.name();

@@ -6,7 +6,9 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "io/calibration_files.hpp"
@@ -37,19 +39,31 @@ py::dict run_study_py(py::handle study, py::handle out, const py::object& thread
   options.show_progress = show_progress;
   // After every batch: let Python handle a pending Ctrl-C (KeyboardInterrupt stops the run with
   // its journal intact; `resume=True` continues it) and call the user's progress function.
-  options.progress = [progress](const JournalProgress& p) {
+  // The callback is held as a raw handle (`progress` outlives the run), so that the copies
+  // run_study makes of this function touch no Python reference count without the GIL. A Python
+  // exception is kept and raised after the run: some solvers turn an exception in a callback
+  // into a status.
+  PyObject* callback = progress.ptr();
+  auto pending = std::make_shared<std::optional<py::error_already_set>>();
+  options.progress = [callback, pending](const JournalProgress& p) {
     if (omp_in_parallel()) return;  // only from the thread that runs the optimizer
     py::gil_scoped_acquire acquire;
-    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    if (progress.is_none()) return;
-    py::dict d;
-    d["requests"] = p.requests;
-    d["expected_requests"] = p.expected_requests;
-    d["cache_hits"] = p.cache_hits;
-    d["failed"] = p.failed;
-    d["distinct"] = p.distinct;
-    d["feasible_front"] = p.feasible_front;
-    progress(d);
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      const py::handle function(callback);
+      if (function.is_none()) return;
+      py::dict d;
+      d["requests"] = p.requests;
+      d["expected_requests"] = p.expected_requests;
+      d["cache_hits"] = p.cache_hits;
+      d["failed"] = p.failed;
+      d["distinct"] = p.distinct;
+      d["feasible_front"] = p.feasible_front;
+      function(d);
+    } catch (py::error_already_set& e) {
+      if (!*pending) *pending = e;
+      throw;
+    }
   };
   const bool from_file = !py::isinstance<py::dict>(study);
   const YamlValue root =
@@ -59,6 +73,7 @@ py::dict run_study_py(py::handle study, py::handle out, const py::object& thread
     py::gil_scoped_release release;
     r = run_study(root, options);
   }
+  if (*pending) throw **pending;
   py::dict d;
   d["design_study"] = r.design_study;
   d["name"] = r.name;

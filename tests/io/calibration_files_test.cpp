@@ -108,6 +108,40 @@ TEST_F(CalibrationSetupFile, UnknownColumnOffersTheOtherOrientationForm) {
       << quaternion;
 }
 
+// columns: renames by the file's own names, all at once (a swap works in any key order), and
+// refuses two columns of one name; quaternion_order needs quaternion columns.
+TEST_F(CalibrationSetupFile, ColumnsRenameAtOnceAndRefuseCollisions) {
+  write("m.csv",
+        "x,y,z,rx,ry,rz,q_1,q_2,q_3,q_4,q_5,q_6,X\n0,0,0.9,1,2,3,0.1,0.2,0.3,0.4,0.5,0.6,7\n");
+  for (const auto& order :
+       {std::vector<std::pair<std::string, std::string>>{{"q_1", "q_2"}, {"q_2", "q_1"}},
+        std::vector<std::pair<std::string, std::string>>{{"q_2", "q_1"}, {"q_1", "q_2"}}}) {
+    pkmopt::MeasurementFormat format;
+    format.columns = order;
+    format.columns.emplace_back("z", "X");
+    format.columns.emplace_back("campaign", "z");  // keeps the file's z as a campaign label
+    const auto m = pkmopt::read_measurement_csv(path("m.csv"), format, nullptr);
+    ASSERT_EQ(m.size(), 1u);
+    EXPECT_EQ(m[0].stroke(0), 0.2);
+    EXPECT_EQ(m[0].stroke(1), 0.1);
+    EXPECT_EQ(m[0].pose.position(2), 7.0);
+  }
+  pkmopt::MeasurementFormat collide;
+  collide.columns = {{"x", "X"}};
+  try {
+    pkmopt::read_measurement_csv(path("m.csv"), collide, nullptr);
+    FAIL() << "expected InputError";
+  } catch (const pkmopt::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("columns: expected one column named 'x', found two"),
+              std::string::npos)
+        << e.what();
+  }
+  pkmopt::MeasurementFormat order;
+  order.quaternion_order = "xyzw";
+  order.columns = {{"q_1", "X"}, {"campaign", "q_1"}};
+  EXPECT_THROW(pkmopt::read_measurement_csv(path("m.csv"), order, nullptr), pkmopt::InputError);
+}
+
 // The status of a report: each probably-wrong condition gives its warning, none gives ok.
 TEST(CalibrationStatus, EachProblemIsNamed) {
   nlohmann::json report;

@@ -557,6 +557,14 @@ TEST(Calibration, CampaignShiftsAreRecovered) {
     rejected = sim.measurements.size();
   }
   EXPECT_GT(rejected, 20u);
+  // Without fitted poses of the reference campaign, or with fewer than 3 of another, the shifts
+  // cannot be told from the offsets: refused.
+  std::vector<CalibrationMeasurement> no_reference = labelled;
+  for (CalibrationMeasurement& m : no_reference) m.campaign = 1;
+  EXPECT_THROW(calibrate(design, nominal, no_reference, options), CalibrationError);
+  std::vector<CalibrationMeasurement> two = rehomed(sim, shift, false);
+  two[0].campaign = two[1].campaign = 1;
+  EXPECT_THROW(calibrate(design, nominal, two, options), CalibrationError);
 }
 
 }  // namespace

@@ -136,3 +136,29 @@ def test_built_in_problems_by_dict():
     r = pkmopt.optimize({"name": "dtlz2", "objectives": 3},
                         {"algorithm": "nsga2", "population": 24, "generations": 10, "seed": 1})
     assert r["objectives"].shape[1] == 3
+
+
+def test_exceptions_in_ipopt_and_nlopt_callbacks_are_raised():
+    class Fails(Hs71):
+        def __init__(self):
+            self.calls = 0
+
+        def fitness(self, x):
+            self.calls += 1
+            if self.calls > 3:
+                raise KeyboardInterrupt
+            return Hs71.fitness(self, x)
+
+    for algorithm in ("ipopt", "nlopt:SLSQP"):
+        with pytest.raises(KeyboardInterrupt):
+            pkmopt.optimize(Fails(), {"algorithm": algorithm, "start": [1, 5, 5, 1]})
+
+
+def test_a_gradient_of_the_wrong_shape_is_refused():
+    class Transposed(Hs71):
+        def gradient(self, x):
+            return np.array(Hs71.gradient(self, x)).T  # (4, 3) instead of (3, 4)
+
+    with pytest.raises(pkmopt.InputError, match=r"problem.gradient: expected an array of shape "
+                                                r"\(3, 4\)"):
+        pkmopt.optimize(Transposed(), {"algorithm": "ipopt", "start": [1, 5, 5, 1]})
