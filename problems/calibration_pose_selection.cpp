@@ -27,6 +27,9 @@ PoseSelection select_calibration_poses(const CalibrationVector& x, const Eigen::
   const std::vector<int> free_indices = free_indices_of(options.free);
   const int n = static_cast<int>(free_indices.size());
   const int num_candidates = static_cast<int>(candidates.size());
+  if (!x.allFinite())
+    throw CalibrationError(
+        "the machine's parameters are not all finite numbers (a zero length of nan or inf?)");
   if (count < 1 || 6 * count < n + 1) {
     throw CalibrationError(fmt::format(
         "--count {} poses give {} equations; the {} free parameters need at least {} poses", count,
@@ -87,6 +90,10 @@ PoseSelection select_calibration_poses(const CalibrationVector& x, const Eigen::
         best = c;
       }
     }
+    if (best < 0)
+      throw CalibrationError(
+          "no candidate pose gives a finite information gain: the sigmas or the machine's "
+          "parameters are out of range");
     chosen[static_cast<std::size_t>(best)] = true;
     selection.selected.push_back(best);
     M += rows[static_cast<std::size_t>(best)].transpose() * rows[static_cast<std::size_t>(best)];

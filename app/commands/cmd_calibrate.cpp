@@ -3,6 +3,7 @@
 // pkmopt calibration-poses MACHINE.yaml --count N (--candidates FILE.csv | --grid)
 #include <fmt/format.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -86,6 +87,9 @@ struct SimulateOptions {
 };
 
 void run_simulate(const SimulateOptions& opt) {
+  if (!(std::isfinite(opt.zero_length) && opt.zero_length >= 0.0 && opt.zero_length < 1e3))
+    bad_option("--zero-length", "a leg length at reading 0 in metres, 0 <= L < 1000",
+               opt.zero_length);
   const HexapodDesign design = read_calibration_machine(opt.machine);
   if (opt.model != "42" && opt.model != "48") {
     throw InputError(fmt::format("--model: expected 42 or 48, found '{}'", opt.model));
@@ -164,6 +168,9 @@ struct PosesOptions {
 };
 
 void run_poses(const PosesOptions& opt) {
+  if (!(std::isfinite(opt.zero_length) && opt.zero_length >= 0.0 && opt.zero_length < 1e3))
+    bad_option("--zero-length", "a leg length at reading 0 in metres, 0 <= L < 1000",
+               opt.zero_length);
   const HexapodDesign design = read_calibration_machine(opt.machine);
   if (opt.model != "42" && opt.model != "48") {
     throw InputError(fmt::format("--model: expected 42 or 48, found '{}'", opt.model));

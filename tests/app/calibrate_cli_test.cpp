@@ -439,3 +439,24 @@ TEST_F(CalibrateInputs, CampaignColumnGivesEachCampaignItsZeros) {
 }
 
 }  // namespace
+
+namespace {
+
+// A zero length that is not a finite number is refused with one message (it used to crash
+// calibration-poses and to write `zero_length: nan` into the simulated calibration file).
+TEST_F(CalibrateCli, NonFiniteZeroLengthIsRefused) {
+  for (const char* value : {"nan", "inf", "1e308", "-1"}) {
+    const CliRun poses = run("calibration-poses " + machine_ + " --count 10 --grid --steps 2 " +
+                             "--zero-length " + value);
+    EXPECT_EQ(poses.status, 2) << value << ": " << poses.err;
+    EXPECT_NE(poses.err.find("--zero-length: expected a leg length at reading 0"),
+              std::string::npos)
+        << poses.err;
+    const CliRun sim = run("simulate-measurements " + machine_ + " --out " + path("z") +
+                           " --zero-length " + value);
+    EXPECT_EQ(sim.status, 2) << value << ": " << sim.err;
+    EXPECT_FALSE(fs::exists(path("z/calibration.yaml")));
+  }
+}
+
+}  // namespace

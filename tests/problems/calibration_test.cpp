@@ -477,6 +477,21 @@ TEST(Simulation, IsDeterministicForASeed) {
   EXPECT_EQ(a.outliers.size(), 3u);
 }
 
+// Pose selection on a machine with a non-finite parameter (a zero length of nan) is refused,
+// never an out-of-range index.
+TEST(Calibration, PoseSelectionRefusesNonFiniteParameters) {
+  const HexapodDesign design = sample_hexapod();
+  const CalibrationVector nominal =
+      nominal_calibration_vector(design, Vec6<double>::Constant(std::nan("")));
+  const SimulatedMeasurements sim =
+      simulate_measurements(design, sample_nominal(design),
+                            model_free_mask(CalibrationModelKind::k42), noise_free(3, 20));
+  CalibrationOptions options;
+  options.free = model_free_mask(CalibrationModelKind::k42);
+  EXPECT_THROW(select_calibration_poses(nominal, design.tcp, sim.true_poses, 10, options),
+               CalibrationError);
+}
+
 // Two measurement campaigns a day apart: the second re-homed its legs, so its readings start
 // from other zeros (shifts up to 1.9 mm). Labelled as a campaign, the shifts are estimated with
 // one geometry: exactly on noise-free data, within their sigmas with noise (the held-out poses
