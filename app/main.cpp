@@ -1,5 +1,4 @@
 // pkmopt: the command line. See README.md for every command, file format and column.
-#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -8,6 +7,18 @@
 #include "app/commands.hpp"
 #include "io/input_error.hpp"
 #include "pkmopt/version.hpp"
+
+namespace {
+
+// "pkmopt: <kind>: <message>" on stderr. C stdio, which reports a failed write (stderr a full
+// disk, a closed descriptor) by its return value instead of an exception: the exit status is
+// then still the one the message belongs to.
+void report(const char* kind, const char* message) noexcept {
+  std::fprintf(stderr, "pkmopt: %s: %s\n", kind, message);
+  std::fflush(stderr);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"pkmopt: multi-objective design optimisation of parallel kinematic machine tools"};
@@ -32,15 +43,15 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : pkmopt::kExitInputError;
   } catch (const pkmopt::ProbablyWrongResult& e) {
     std::fflush(stdout);
-    fmt::print(stderr, "pkmopt: warning: {}\n", e.what());
+    report("warning", e.what());
     return pkmopt::kExitProbablyWrong;
   } catch (const pkmopt::InputError& e) {
     std::fflush(stdout);
-    fmt::print(stderr, "pkmopt: error: {}\n", e.what());
+    report("error", e.what());
     return pkmopt::kExitInputError;
   } catch (const std::exception& e) {
     std::fflush(stdout);
-    fmt::print(stderr, "pkmopt: internal error: {}\n", e.what());
+    report("internal error", e.what());
     return pkmopt::kExitInternalError;
   }
   return 0;

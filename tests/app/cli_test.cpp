@@ -1,6 +1,7 @@
 // Tests of the pkmopt binary: analyze and fk end to end, and every kind of bad input giving
 // one clear message, exit status 2 and no output file.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -274,6 +275,20 @@ TEST_F(Cli, BadFkInput) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--guess"), std::string::npos);
   EXPECT_TRUE(r.out.empty());
+}
+
+}  // namespace
+
+namespace {
+
+// An error message that cannot be written (stderr on a full device) still ends in the exit
+// status of the error, never an abort.
+TEST(CliErrors, UnwritableStderrKeepsTheExitStatus) {
+  const std::string command =
+      std::string(PKMOPT_CLI) + " describe /nonexistent/machine.yaml >/dev/null 2>/dev/full";
+  const int raw = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(raw)) << raw;
+  EXPECT_EQ(WEXITSTATUS(raw), 2);
 }
 
 }  // namespace
