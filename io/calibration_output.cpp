@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/csv.hpp"
+#include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 
 namespace pkmopt {
@@ -114,6 +115,35 @@ std::string selected_poses_csv(const CalibrationCandidates& candidates,
     csv += fmt::format("{},{}\n", pose_fields(candidates.poses[i]), candidates.labels[i]);
   }
   return csv;
+}
+
+CalibrationRun run_calibration(const CalibrationSetup& setup) {
+  CalibrationResult result;
+  try {
+    result =
+        calibrate(setup.nominal_design, setup.nominal, fitted_measurements(setup), setup.options);
+  } catch (const CalibrationError& e) {
+    throw InputError(fmt::format("{}: {}", setup.file, e.what()));
+  }
+  CalibrationRun run;
+  run.report = calibration_report_json(setup, result);
+  run.text = calibration_report_text(run.report);
+  run.machine_yaml = calibrated_machine_yaml(setup, result);
+  return run;
+}
+
+std::vector<std::pair<std::string, std::string>> CalibrationRun::files() const {
+  return {{"report.json", report.dump(2) + "\n"},
+          {"report.txt", text},
+          {"calibrated.yaml", machine_yaml}};
+}
+
+std::string CalibrationRun::problems() const {
+  std::string reasons;
+  if (report["status"]["ok"].get<bool>()) return reasons;
+  for (const auto& w : report["status"]["warnings"])
+    reasons += (reasons.empty() ? "" : "; ") + w.get<std::string>();
+  return reasons;
 }
 
 }  // namespace pkmopt

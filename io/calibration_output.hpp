@@ -32,6 +32,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,5 +82,19 @@ std::vector<std::pair<std::string, std::string>> simulated_measurement_files(
 /// The chosen poses; selection.selected indexes candidates.poses and candidates.labels.
 std::string selected_poses_csv(const CalibrationCandidates& candidates,
                                const PoseSelection& selection);
+
+/// What `pkmopt calibrate` makes of a calibration setup: the report (report.json), its text
+/// (report.txt) and the calibrated machine (calibrated.yaml). A calibration that cannot be done
+/// (CalibrationError) throws InputError naming setup.file.
+struct CalibrationRun {
+  nlohmann::json report;
+  std::string text;
+  std::string machine_yaml;
+  /// The files of the run by name: report.json, report.txt, calibrated.yaml.
+  std::vector<std::pair<std::string, std::string>> files() const;
+  /// "" when the report's status is ok, else its warnings joined by "; ".
+  std::string problems() const;
+};
+CalibrationRun run_calibration(const CalibrationSetup& setup);
 
 }  // namespace pkmopt

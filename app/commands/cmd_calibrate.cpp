@@ -41,30 +41,15 @@ void run_calibrate(const CalibrateOptions& opt) {
   const CalibrationSetup setup = read_calibration_setup(opt.file);
   for (const std::string& warning : setup.warnings)
     std::cerr << "pkmopt: warning: " << warning << '\n';
-  CalibrationResult result;
-  try {
-    result =
-        calibrate(setup.nominal_design, setup.nominal, fitted_measurements(setup), setup.options);
-  } catch (const CalibrationError& e) {
-    throw InputError(fmt::format("{}: {}", opt.file, e.what()));
-  }
-  const nlohmann::json report = calibration_report_json(setup, result);
-  const std::string text = calibration_report_text(report);
-  const std::string machine = calibrated_machine_yaml(setup, result);
+  const CalibrationRun run = run_calibration(setup);
   make_output_directory(opt.out);
   const std::filesystem::path dir(opt.out);
-  write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
-  write_file_atomically((dir / "report.txt").string(), text);
-  write_file_atomically((dir / "calibrated.yaml").string(), machine);
-  std::cout << text;
+  for (const auto& [name, bytes] : run.files()) write_file_atomically((dir / name).string(), bytes);
+  std::cout << run.text;
   std::cout.flush();
-  if (!report["status"]["ok"].get<bool>()) {
-    std::string reasons;
-    for (const auto& w : report["status"]["warnings"])
-      reasons += (reasons.empty() ? "" : "; ") + w.get<std::string>();
+  if (const std::string problems = run.problems(); !problems.empty())
     throw ProbablyWrongResult(fmt::format(
-        "{}: the calibration is probably wrong: {} (report in {})", opt.file, reasons, opt.out));
-  }
+        "{}: the calibration is probably wrong: {} (report in {})", opt.file, problems, opt.out));
 }
 
 // ---- simulate-measurements --------------------------------------------------------------------

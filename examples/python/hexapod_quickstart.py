@@ -25,6 +25,17 @@ import pkmopt
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 
 
+def pyplot():
+    """matplotlib.pyplot on the file-only Agg backend, or None without Debian's python3-matplotlib."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return None
+    return plt
+
+
 def stiffness_map(out):
     machine = pkmopt.load_machine(os.path.join(ROOT, "examples", "hexapod.yaml"))
     print(machine.describe(), end="")
@@ -38,11 +49,8 @@ def stiffness_map(out):
     print(f"plane z = 0.90 m: {100 * reachable:.1f} % of {len(poses)} poses reachable, "
           f"stiffness_min {np.nanmin(k) / 1e6:.2f} .. {np.nanmax(k) / 1e6:.2f} N/um, "
           f"largest leg force {np.max(np.abs(r['tau'][r['reachable']])):.0f} N")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
+    plt = pyplot()
+    if plt is None:
         return
     fig, ax = plt.subplots(figsize=(6, 5))
     image = ax.pcolormesh(X * 1e3, Y * 1e3, k / 1e6, shading="auto", cmap="viridis")
@@ -66,11 +74,8 @@ def study_front(out):
     knee = front["ids"].index(front["knee"])
     print(f"knee: {info[0]['name']} = {f[knee, 0]:.4g} {info[0]['unit']}, "
           f"{info[1]['name']} = {f[knee, 1]:.4g} {info[1]['unit']}")
-    try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
+    plt = pyplot()
+    if plt is None:
         return
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(f[:, 1], f[:, 0] / 1e6, "o", label="Pareto front")

@@ -182,19 +182,11 @@ py::dict read_front(py::handle dir_in) {
 py::dict calibrate_py(py::handle file_in, const py::object& out_in) {
   const std::string file = path_from_python(file_in);
   const CalibrationSetup setup = read_calibration_setup(file);
-  CalibrationResult result;
+  CalibrationRun run;
   {
     py::gil_scoped_release release;
-    try {
-      result =
-          calibrate(setup.nominal_design, setup.nominal, fitted_measurements(setup), setup.options);
-    } catch (const CalibrationError& e) {
-      throw InputError(fmt::format("{}: {}", file, e.what()));
-    }
+    run = run_calibration(setup);
   }
-  const nlohmann::json report = calibration_report_json(setup, result);
-  const std::string text = calibration_report_text(report);
-  const std::string machine = calibrated_machine_yaml(setup, result);
   if (!out_in.is_none()) {
     const fs::path dir(path_from_python(out_in));
     std::error_code error;
@@ -202,13 +194,12 @@ py::dict calibrate_py(py::handle file_in, const py::object& out_in) {
     if (error || !fs::is_directory(dir))
       throw InputError(fmt::format("out {}: expected a writable directory, found: {}", dir.string(),
                                    error ? error.message() : "not a directory"));
-    write_file_atomically((dir / "report.json").string(), report.dump(2) + "\n");
-    write_file_atomically((dir / "report.txt").string(), text);
-    write_file_atomically((dir / "calibrated.yaml").string(), machine);
+    for (const auto& [name, bytes] : run.files())
+      write_file_atomically((dir / name).string(), bytes);
   }
-  py::dict d = json_to_python(report.dump());
-  d["report_text"] = text;
-  d["calibrated_machine_yaml"] = machine;
+  py::dict d = json_to_python(run.report.dump());
+  d["report_text"] = run.text;
+  d["calibrated_machine_yaml"] = run.machine_yaml;
   return d;
 }
 
