@@ -2,15 +2,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
 #include "io/input_error.hpp"
+#include "io/number_policy.hpp"
 
 namespace pkmopt {
 
 std::vector<double> parse_number_list(std::string_view option, const std::string& text,
-                                      std::size_t count) {
+                                      std::size_t count, double max_magnitude) {
   std::vector<double> values;
   auto fail = [&](std::string_view why) {
     throw InputError(fmt::format("{}: expected {} comma-separated finite numbers, found {}{}",
@@ -29,12 +31,23 @@ std::vector<double> parse_number_list(std::string_view option, const std::string
       fail(fmt::format(" (item {} is not a number)", values.size() + 1));
     }
     if (!std::isfinite(v)) fail(fmt::format(" (item {} is not finite)", values.size() + 1));
+    if (!sane_input_number(v) || std::abs(v) > max_magnitude) {
+      fail(fmt::format(" (item {} is outside +-{:g}{})", values.size() + 1,
+                       std::min(max_magnitude, kMaxInputMagnitude),
+                       std::abs(v) > 0.0 && std::abs(v) < kMinInputMagnitude
+                           ? " or below 1e-30 in magnitude"
+                           : ""));
+    }
     values.push_back(v);
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
   if (values.size() != count) fail(fmt::format(" ({} numbers)", values.size()));
   return values;
+}
+
+std::vector<double> parse_wrench_option(const std::string& text) {
+  return parse_number_list("--wrench", text, 6, kMaxInputForce);
 }
 
 void bad_option(std::string_view option, std::string_view expected, double found) {

@@ -7,10 +7,14 @@
 
 namespace pkmopt {
 
-/// `count` comma-separated finite numbers; throws InputError
+/// `count` comma-separated finite numbers within the input number policy
+/// (io/number_policy.hpp) and of magnitude at most `max_magnitude`; throws InputError
 /// "--wrench: expected 6 comma-separated finite numbers, found '1,2'".
 std::vector<double> parse_number_list(std::string_view option, const std::string& text,
-                                      std::size_t count);
+                                      std::size_t count, double max_magnitude = 1e15);
+
+/// A wrench option (--wrench fx,fy,fz,mx,my,mz): six numbers, each within +-1e9 N or N*m.
+std::vector<double> parse_wrench_option(const std::string& text);
 
 /// Throws InputError "OPTION: expected EXPECTED, found FOUND" for a bad numeric option value.
 [[noreturn]] void bad_option(std::string_view option, std::string_view expected, double found);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "io/input_error.hpp"
+#include "io/number_policy.hpp"
 
 namespace pkmopt {
 namespace {
@@ -49,10 +50,16 @@ double CsvTable::number(const CsvRow& row, int col) const {
                                  location_prefix(file, row.line), col + 1,
                                  header[static_cast<std::size_t>(col)], quote_found(text)));
   }
+  if (!sane_input_number(value)) {
+    throw InputError(fmt::format(
+        "{}column {} '{}': expected {}, found {}", location_prefix(file, row.line), col + 1,
+        header[static_cast<std::size_t>(col)], kSaneNumberText, quote_found(text)));
+  }
   return value;
 }
 
 CsvTable parse_csv(const std::string& text_in, const std::string& file) {
+  require_utf8(text_in, file);
   std::string_view text(text_in);
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   CsvTable table;

@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "io/csv.hpp"
+#include "io/number_policy.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace pkmopt {
@@ -418,6 +419,20 @@ bool is_unset(const FieldRule& r, const T& value) {
   }
 }
 
+/// The rule with the input policy's bounds on lengths (io/number_policy.hpp): a key in metres
+/// holds at most +-1000 m (in mm +-1e6, in µm +-1e9) even where its own rule is unbounded.
+inline FieldRule with_input_limits(const FieldRule& r) {
+  double limit = 0.0;
+  if (r.unit == "m") limit = kMaxInputLength;
+  if (r.unit == "mm") limit = 1e3 * kMaxInputLength;
+  if (r.unit == "µm") limit = 1e6 * kMaxInputLength;
+  if (limit == 0.0) return r;
+  FieldRule out = r;
+  if (!(out.min > -limit)) out.min = -limit, out.min_exclusive = false;
+  if (!(out.max < limit)) out.max = limit, out.max_exclusive = false;
+  return out;
+}
+
 /// A number of a file converted to the member's unit (degrees to radians for angle fields).
 inline double from_file(double x, const FieldRule& r) {
   return r.degrees ? x * (std::numbers::pi / 180.0) : x;
@@ -470,13 +485,50 @@ class FieldReader {
   explicit FieldReader(const YamlValue& section) : section_(section) { section_.expect_map(); }
 
   template <class T>
-  void field(std::string_view key, T& member, const FieldRule& rule = {}) {
+  void field(std::string_view key, T& member, const FieldRule& declared = {}) {
+    keys_.emplace_back(key);
+    const std::optional<YamlValue> v = section_.optional(key);
+    if (!v) {
+      if (declared.required) section_.fail(fmt::format("missing required key '{}'", key));
+      return;
+    }
+    // The declared rule first (its message), then the input policy's bounds on lengths.
+    read_value(*v, member, declared);
+    const FieldRule limited = field_detail::with_input_limits(declared);
+    if (limited.min != declared.min || limited.max != declared.max)
+      read_value(*v, member, limited);
+  }
+
+  /// A nested map under `key`: its keys checked, then `describe(reader)` reads them.
+  template <class Describe>
+  void section(std::string_view key, const FieldRule& rule, Describe&& describe) {
     keys_.emplace_back(key);
     const std::optional<YamlValue> v = section_.optional(key);
     if (!v) {
       if (rule.required) section_.fail(fmt::format("missing required key '{}'", key));
       return;
     }
+    read_section(*v, describe);
+  }
+
+  template <class Describe>
+  static void read_section(const YamlValue& value, Describe&& describe);
+
+  /// A key read by hand next to the list: allowed here, documented by FieldDocs.
+  void note(std::string_view key, std::string_view, std::string_view, std::string_view,
+            std::string_view) {
+    keys_.emplace_back(key);
+  }
+
+  /// Throws for any key of the map that no field named.
+  void check_no_other_keys() const { section_.check_keys(keys_); }
+
+  const YamlValue& section() const { return section_; }
+
+ private:
+  template <class T>
+  static void read_value(const YamlValue& value, T& member, const FieldRule& rule) {
+    const YamlValue* v = &value;
     if constexpr (std::is_same_v<T, bool>) {
       member = v->as_bool();
     } else if constexpr (std::is_same_v<T, std::string>) {
@@ -484,9 +536,8 @@ class FieldReader {
     } else if constexpr (std::is_same_v<T, std::vector<double>>) {
       member = v->as_doubles();
     } else if constexpr (std::is_same_v<T, Eigen::Vector3d>) {
-      const std::vector<double> xyz = v->as_doubles(3);
-      member = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
-      if (rule.degrees) member *= std::numbers::pi / 180.0;
+      const std::vector<YamlValue> xyz = v->elements(3);
+      for (int k = 0; k < 3; ++k) member(k) = field_detail::read_element(xyz[k], rule);
     } else if constexpr (std::is_same_v<T, FieldRange>) {
       field_detail::read_range(*v, rule, member);
     } else if constexpr (std::is_same_v<T, FieldBounds>) {
@@ -530,8 +581,9 @@ class FieldReader {
     } else if constexpr (field_detail::IsPointList<T>::value) {
       const std::vector<YamlValue> items = v->elements(static_cast<int>(member.cols()));
       for (std::size_t i = 0; i < items.size(); ++i) {
-        const std::vector<double> xyz = items[i].as_doubles(3);
-        member.col(static_cast<Eigen::Index>(i)) = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+        const std::vector<YamlValue> xyz = items[i].elements(3);
+        for (int k = 0; k < 3; ++k)
+          member(k, static_cast<Eigen::Index>(i)) = field_detail::read_element(xyz[k], rule);
       }
     } else if constexpr (std::is_same_v<T, std::optional<double>>) {
       const double x = v->as_double();
@@ -552,33 +604,6 @@ class FieldReader {
     }
   }
 
-  /// A nested map under `key`: its keys checked, then `describe(reader)` reads them.
-  template <class Describe>
-  void section(std::string_view key, const FieldRule& rule, Describe&& describe) {
-    keys_.emplace_back(key);
-    const std::optional<YamlValue> v = section_.optional(key);
-    if (!v) {
-      if (rule.required) section_.fail(fmt::format("missing required key '{}'", key));
-      return;
-    }
-    read_section(*v, describe);
-  }
-
-  template <class Describe>
-  static void read_section(const YamlValue& value, Describe&& describe);
-
-  /// A key read by hand next to the list: allowed here, documented by FieldDocs.
-  void note(std::string_view key, std::string_view, std::string_view, std::string_view,
-            std::string_view) {
-    keys_.emplace_back(key);
-  }
-
-  /// Throws for any key of the map that no field named.
-  void check_no_other_keys() const { section_.check_keys(keys_); }
-
-  const YamlValue& section() const { return section_; }
-
- private:
   const YamlValue& section_;
   std::vector<std::string> keys_;
 };

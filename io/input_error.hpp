@@ -7,6 +7,7 @@
 // failures exit with status 1.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -34,9 +35,19 @@ class InputError : public std::runtime_error {
 /// "file:line:col: " (line and column 1-based; omitted when <= 0).
 std::string location_prefix(std::string_view file, int line = 0, int column = 0);
 
-/// The whole content of a file; throws InputError "path: cannot open the file ..." when it is
-/// missing or unreadable.
+/// Inputs larger than this are refused before they are read ("larger than 1 GiB").
+inline constexpr std::size_t kMaxInputFileBytes = std::size_t{1} << 30;
+
+/// The whole content of a regular file; throws InputError "path: cannot open the file ..." when
+/// it is missing or unreadable, "path: expected a regular file, found a directory" (a FIFO, a
+/// device, a socket) without reading it, and "path: ... larger than 1 GiB" for a file (or a
+/// /proc file that keeps producing bytes) past kMaxInputFileBytes.
 std::string read_input_file(const std::string& path);
+
+/// Throws InputError "file:line:col: expected UTF-8 text, found the byte 0xff" at the first
+/// byte of `text` that is not part of a valid UTF-8 sequence (overlong forms, surrogates and
+/// code points above U+10FFFF included).
+void require_utf8(std::string_view text, std::string_view file);
 
 /// A short, printable rendering of a found value for messages ('abc', 'a very lo...').
 std::string quote_found(std::string_view text);

@@ -110,8 +110,16 @@ class ParetoReader {
 };
 
 json parse_json_text(const std::string& text, const std::string& file) {
+  require_utf8(text, file);
   try {
     return json::parse(text);
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double (1e999): nlohmann names it in its message.
+    std::string detail = e.what();
+    const auto at = detail.find("number overflow");
+    throw InputError(fmt::format("{}expected JSON numbers that fit a double, found {}",
+                                 location_prefix(file),
+                                 at == std::string::npos ? detail : detail.substr(at)));
   } catch (const json::parse_error& e) {
     // e.byte: 1-based index of the last byte read.
     const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());

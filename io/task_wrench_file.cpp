@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/field_list.hpp"
+#include "io/number_policy.hpp"
 #include "problems/cutting_load.hpp"
 
 namespace pkmopt {
@@ -139,11 +140,18 @@ TaskWrench read_milling(const YamlValue& root) {
 
 }  // namespace
 
+static_assert(kMaxInputForce == kMaxWrenchComponent, "one wrench limit for files and models");
+
 TaskWrench read_task_wrench(const YamlValue& value) {
   if (value.is_sequence()) {
-    const std::vector<double> w = value.as_doubles(6);
+    const std::vector<YamlValue> items = value.elements(6);
     TaskWrench result;
-    for (int i = 0; i < 6; ++i) result.wrench(i) = w[static_cast<std::size_t>(i)];
+    for (int i = 0; i < 6; ++i) {
+      result.wrench(i) = items[static_cast<std::size_t>(i)].as_double();
+      if (std::abs(result.wrench(i)) > kMaxWrenchComponent)
+        items[static_cast<std::size_t>(i)].fail("a force or moment within +-1e9 N or N*m",
+                                                items[static_cast<std::size_t>(i)].describe());
+    }
     return result;
   }
   if (!value.is_map()) {
@@ -155,6 +163,8 @@ TaskWrench read_task_wrench(const YamlValue& value) {
       const double factor = f->as_double();
       if (!(factor > 0.0 && factor <= 100.0)) f->fail("a number in (0, 100]", f->describe());
       result.wrench *= factor;
+      if (!wrench_within_limits(result.wrench))
+        f->fail("a factor that keeps every wrench component within +-1e9 N or N*m", f->describe());
       result.origin += fmt::format(", times factor {:g}", factor);
     }
     return result;

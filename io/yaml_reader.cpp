@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/number_policy.hpp"
+
 namespace pkmopt {
 namespace {
 
@@ -34,9 +36,19 @@ YamlValue YamlValue::load_file(const std::string& path) {
 
 YamlValue YamlValue::load_string(const std::string& text, const std::string& file) {
   auto file_name = std::make_shared<const std::string>(file);
+  require_utf8(text, file);
   YAML::Node node;
   try {
-    node = YAML::Load(text);
+    std::vector<YAML::Node> documents = YAML::LoadAll(text);
+    if (documents.size() > 1) {
+      const YAML::Mark mark = documents[1].Mark();
+      throw InputError(fmt::format(
+          "{}expected one YAML document, found a second one (a '---' line); a machine or study "
+          "file holds one document",
+          mark.line >= 0 ? location_prefix(file, mark.line + 1, mark.column + 1)
+                         : location_prefix(file)));
+    }
+    if (!documents.empty()) node = documents.front();
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}malformed YAML: {}",
                                  location_prefix(file, e.mark.line + 1, e.mark.column + 1), e.msg));
@@ -173,6 +185,7 @@ double YamlValue::as_double() const {
   double value = 0.0;
   if (!parse_double(node_.Scalar(), value)) fail("a finite number", describe());
   if (!std::isfinite(value)) fail("a finite number", describe());
+  if (!sane_input_number(value)) fail(kSaneNumberText, describe());
   return value;
 }
 

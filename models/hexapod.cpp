@@ -448,8 +448,10 @@ Pose Hexapod::home_pose_for(const Vec6<double>& q) const {
     return sum / 6.0;
   };
   double lo = -offset.row(2).minCoeff();
-  double hi = lo + std::max(target, 1e-3);
-  while (mean_length(hi) < target && hi < 1e12) hi = lo + 2.0 * (hi - lo);
+  // Grow the step, not lo + step: with a far-off TCP, lo + small step rounds back to lo.
+  double step = std::max(target, 1e-3);
+  while (mean_length(lo + step) < target && step < 1e12) step *= 2.0;
+  double hi = lo + step;
   if (mean_length(lo) < target) {
     for (int it = 0; it < 200 && hi - lo > 1e-15 * (1.0 + std::abs(hi)); ++it) {
       const double mid = 0.5 * (lo + hi);

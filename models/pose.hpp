@@ -35,6 +35,13 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 /// A wrench [fx, fy, fz, mx, my, mz] at the TCP in base axes (N, N*m).
 using Wrench = Vector6d;
+/// The largest force (N) or moment (N*m) component a wrench may have: 1e9, far beyond any
+/// machine tool, so that leg forces and deflections computed from it stay finite.
+inline constexpr double kMaxWrenchComponent = 1e9;
+/// True when every component is finite and within +-kMaxWrenchComponent.
+inline bool wrench_within_limits(const Wrench& w) {
+  return w.allFinite() && w.cwiseAbs().maxCoeff() <= kMaxWrenchComponent;
+}
 
 /// TCP pose: position (m, base frame) and angles (rx, ry, rz) in radians.
 template <typename T>

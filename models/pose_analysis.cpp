@@ -8,6 +8,7 @@
 
 #include "models/hexapod.hpp"
 #include "models/hexapod_batch.hpp"
+#include "models/require.hpp"
 
 namespace pkmopt {
 
@@ -36,6 +37,8 @@ void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench
                          bool matrices, int threads,
                          const std::function<void(const PoseSlice&)>& fill,
                          const std::function<void(const PoseSlice&)>& consume) {
+  require(wrench_within_limits(wrench),
+          "the wrench must be finite with every component within +-1e9 (N, N*m)");
   const auto* hexapod = dynamic_cast<const Hexapod*>(&machine);
   const long long slices = static_cast<long long>((count + kPoseSlice - 1) / kPoseSlice);
   const int thread_count = threads > 0 ? threads : omp_get_max_threads();

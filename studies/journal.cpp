@@ -22,7 +22,8 @@
 namespace pkmopt {
 namespace {
 
-constexpr std::string_view kJournalMagic = "pkmopt-journal 1";
+constexpr std::string_view kJournalName = "pkmopt-journal";
+constexpr int kJournalVersion = 2;  // 1: lines without checksums (still read)
 
 std::string key_of(const std::vector<double>& x) {
   return std::string(reinterpret_cast<const char*>(x.data()), x.size() * sizeof(double));
@@ -35,7 +36,7 @@ std::string hex(double value) {
 }
 
 std::string header_line(std::uint64_t hash, std::size_t n, std::size_t m) {
-  return fmt::format("{} {:016x} {} {}\n", kJournalMagic, hash, n, m);
+  return fmt::format("{} {} {:016x} {} {}\n", kJournalName, kJournalVersion, hash, n, m);
 }
 
 void write_all(int fd, const std::string& text, const std::string& what) {
@@ -44,7 +45,10 @@ void write_all(int fd, const std::string& text, const std::string& what) {
     const ssize_t written = ::write(fd, text.data() + done, text.size() - done);
     if (written < 0) {
       if (errno == EINTR) continue;
-      throw std::runtime_error(fmt::format("{}: write failed: {}", what, std::strerror(errno)));
+      throw InputError(fmt::format(
+          "{}: write failed: {}; the journal holds every evaluation finished before: make room "
+          "and continue with --resume",
+          what, std::strerror(errno)));
     }
     done += static_cast<std::size_t>(written);
   }
@@ -105,14 +109,28 @@ std::string journal_line(const JournalEntry& entry) {
   for (double v : entry.fitness) line += (line.empty() ? "" : " ") + hex(v);
   line += '\t';
   for (char c : entry.note) line += (c == '\t' || c == '\n' || c == '\r') ? ' ' : c;
-  line += '\n';
+  line += '\t';
+  line += fmt::format("{:016x}\n", study_hash(line));
   return line;
 }
 
-bool parse_journal_line(std::string_view line, std::size_t num_variables, std::size_t fitness_size,
-                        JournalEntry& entry) {
+std::string parse_journal_line(std::string_view line, std::size_t num_variables,
+                               std::size_t fitness_size, JournalEntry& entry, bool checksummed) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);  // CRLF line ends
   const std::size_t tab = line.find('\t');
-  if (tab == std::string_view::npos) return false;
+  if (tab == std::string_view::npos) return "no tab between the numbers and the note";
+  std::string_view note = line.substr(tab + 1);
+  if (checksummed) {
+    const std::size_t last = line.rfind('\t');
+    if (last == tab) return "no checksum at the end of the line";
+    const std::string_view sum = line.substr(last + 1);
+    if (sum.size() != 16 || sum.find_first_not_of("0123456789abcdef") != std::string_view::npos)
+      return fmt::format("the checksum is not 16 hex digits: '{}'", sum.substr(0, 40));
+    const std::uint64_t expected = std::strtoull(std::string(sum).c_str(), nullptr, 16);
+    if (study_hash(line.substr(0, last + 1)) != expected)
+      return "checksum mismatch (the line was changed after it was written)";
+    note = line.substr(tab + 1, last - tab - 1);
+  }
   const std::string numbers(line.substr(0, tab));
   entry.x.clear();
   entry.fitness.clear();
@@ -124,43 +142,102 @@ bool parse_journal_line(std::string_view line, std::size_t num_variables, std::s
     if (p >= end) break;
     char* next = nullptr;
     const double v = std::strtod(p, &next);
-    if (next == p || (next < end && *next != ' ')) return false;
+    if (next == p || (next < end && *next != ' '))
+      return fmt::format("number {} is not a number", values.size() + 1);
     values.push_back(v);
     p = next;
   }
-  if (values.size() != num_variables + fitness_size) return false;
+  if (values.size() != num_variables + fitness_size)
+    return fmt::format("expected {} numbers ({} variables, {} fitness values), found {}",
+                       num_variables + fitness_size, num_variables, fitness_size, values.size());
+  for (std::size_t j = 0; j < num_variables; ++j)
+    if (!std::isfinite(values[j])) return fmt::format("variable {} is not finite", j + 1);
   entry.x.assign(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(num_variables));
   entry.fitness.assign(values.begin() + static_cast<std::ptrdiff_t>(num_variables), values.end());
-  entry.note = std::string(line.substr(tab + 1));
-  return true;
+  entry.note = std::string(note);
+  return {};
 }
 
 JournalContents read_journal(const std::string& path) {
   const std::string text = read_input_file(path);
   JournalContents contents;
   const std::size_t first_end = text.find('\n');
-  std::istringstream header(first_end == std::string::npos ? "" : text.substr(0, first_end));
-  std::string magic, version, hash_text;
-  header >> magic >> version >> hash_text >> contents.num_variables >> contents.fitness_size;
-  if (magic + " " + version != kJournalMagic || !header || hash_text.size() != 16)
-    throw InputError(fmt::format(
-        "{}:1: expected a pkmopt journal header '{} HASH N M', found '{}'", path, kJournalMagic,
-        first_end == std::string::npos ? text.substr(0, 60) : text.substr(0, first_end)));
+  std::string first =
+      first_end == std::string::npos ? text.substr(0, 60) : text.substr(0, first_end);
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  std::istringstream header(first);
+  std::string name, hash_text;
+  int version = 0;
+  header >> name >> version >> hash_text >> contents.num_variables >> contents.fitness_size;
+  if (name != kJournalName || !header || (version != 1 && version != kJournalVersion) ||
+      hash_text.size() != 16 ||
+      hash_text.find_first_not_of("0123456789abcdef") != std::string::npos)
+    throw InputError(
+        fmt::format("{}:1: expected a pkmopt journal header '{} {} HASH N M', found {}", path,
+                    kJournalName, kJournalVersion, quote_found(first)));
+  contents.version = version;
   contents.study_hash = std::strtoull(hash_text.c_str(), nullptr, 16);
   std::size_t at = first_end + 1;
   contents.valid_bytes = at;
+  std::size_t line_number = 1;
   while (at < text.size()) {
     const std::size_t end = text.find('\n', at);
-    if (end == std::string::npos) break;  // a line cut by a kill
+    ++line_number;
+    if (end == std::string::npos) {  // a last line cut by a kill (expected; not damage)
+      contents.cut_last_line = true;
+      break;
+    }
+    const std::string_view line = std::string_view(text).substr(at, end - at);
+    if (!line.empty() && line.back() == '\r') contents.crlf = true;
     JournalEntry entry;
-    if (!parse_journal_line(std::string_view(text).substr(at, end - at), contents.num_variables,
-                            contents.fitness_size, entry))
-      break;  // a damaged line: everything after it is ignored (and cut off on resume)
-    contents.entries.push_back(std::move(entry));
+    const std::string problem = parse_journal_line(line, contents.num_variables,
+                                                   contents.fitness_size, entry, version >= 2);
+    if (problem.empty()) {
+      contents.entries.push_back(std::move(entry));
+    } else {
+      contents.damaged.push_back({line_number, problem, std::string(line)});
+    }
     at = end + 1;
     contents.valid_bytes = at;
   }
   return contents;
+}
+
+void JournaledProblem::recover(const std::string& journal_path, JournalContents& contents) const {
+  namespace fs = std::filesystem;
+  auto warn = [&](const std::string& text) {
+    if (options_.warn) options_.warn(text);
+  };
+  constexpr std::size_t kShown = 10;
+  for (std::size_t k = 0; k < contents.damaged.size() && k < kShown; ++k)
+    warn(fmt::format("{}:{}: damaged journal line ({}): its design is evaluated again",
+                     journal_path, contents.damaged[k].line, contents.damaged[k].problem));
+  if (contents.damaged.size() > kShown)
+    warn(fmt::format("{}: {} more damaged lines (all of them are in journal.damaged.txt)",
+                     journal_path, contents.damaged.size() - kShown));
+  const bool rewrite =
+      !contents.damaged.empty() || contents.crlf || contents.version != kJournalVersion;
+  if (!rewrite) {
+    fs::resize_file(journal_path, contents.valid_bytes);  // drop a cut last line
+    return;
+  }
+  if (!contents.damaged.empty()) {  // kept for inspection, never lost
+    std::string kept;
+    for (const JournalDamage& d : contents.damaged)
+      kept += fmt::format("{}\t{}\t{}\n", d.line, d.problem, d.text);
+    const int fd = open_append((fs::path(options_.directory) / "journal.damaged.txt").string());
+    try {
+      write_all(fd, kept, "journal.damaged.txt");
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
+    ::close(fd);
+  }
+  std::string text =
+      header_line(contents.study_hash, contents.num_variables, contents.fitness_size);
+  for (const JournalEntry& entry : contents.entries) text += journal_line(entry);
+  write_file_atomically(journal_path, text);
 }
 
 JournaledProblem::JournaledProblem(const Problem& inner, JournalOptions options)
@@ -183,7 +260,7 @@ JournaledProblem::JournaledProblem(const Problem& inner, JournalOptions options)
           fmt::format("{}: --resume: the journal has {} variables and {} fitness "
                       "values per line, the study {} and {}",
                       journal_path, contents.num_variables, contents.fitness_size, n, m));
-    fs::resize_file(journal_path, contents.valid_bytes);  // drop a cut last line
+    recover(journal_path, contents);
     entries_ = std::move(contents.entries);
   } else {
     write_file_atomically(journal_path, header_line(options_.study_hash, n, m));

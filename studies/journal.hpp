@@ -11,11 +11,15 @@
 // killed. Gradients are not journaled (recomputed on resume).
 //
 // DIR/journal.txt (text, append-only, bit-exact):
-//   pkmopt-journal 1 <study hash, 16 hex digits> <n variables> <fitness size>
-//   <x_1> ... <x_n> <f_1> ... <f_m>\t<note>          one line per distinct evaluation
+//   pkmopt-journal 2 <study hash, 16 hex digits> <n variables> <fitness size>
+//   <x_1> ... <x_n> <f_1> ... <f_m>\t<note>\t<checksum>   one line per distinct evaluation
 // Numbers are C99 hexadecimal floats (printf %a: exact), the note is the failure reason (empty
-// when the evaluation succeeded; tabs and newlines replaced by spaces). A last line without its
-// newline (cut by a kill) or with a wrong number count is ignored and cut off on resume.
+// when the evaluation succeeded; tabs and newlines replaced by spaces), the checksum the FNV-1a
+// 64 hash (16 hex digits) of the line up to and including the second tab. On resume a last line
+// without its newline (cut by a kill) is dropped silently; a damaged line (bad checksum, wrong
+// number count) is reported through JournalOptions::warn, copied to DIR/journal.damaged.txt and
+// dropped, so only its design is evaluated again; the lines after it are kept. CR LF line ends
+// are read. Journals of version 1 (no checksums) are read and rewritten as version 2.
 //
 // DIR/evaluations.csv: its header and rows come from the caller (`csv_header`, `csv_row`); on
 // resume it is rewritten from the journal, then appended to.
@@ -58,20 +62,33 @@ struct JournalEntry {
 /// FNV-1a 64-bit hash of a text (stable across runs and machines).
 std::uint64_t study_hash(std::string_view text);
 
-/// A journal line for an entry (with its newline) and its reader (nullopt-like: false for a bad
-/// line). Exposed for tests.
+/// A journal line for an entry (with its checksum and newline) and its reader: the empty string
+/// for a good line, else what is wrong with it. Exposed for tests.
 std::string journal_line(const JournalEntry& entry);
-bool parse_journal_line(std::string_view line, std::size_t num_variables, std::size_t fitness_size,
-                        JournalEntry& entry);
+std::string parse_journal_line(std::string_view line, std::size_t num_variables,
+                               std::size_t fitness_size, JournalEntry& entry,
+                               bool checksummed = true);
 
-/// The complete entries of a journal file and the byte length they occupy (a cut last line is
-/// not counted). Throws InputError when the header is missing or does not match.
+/// A journal line that cannot be read (1-based line number, the reason, its text).
+struct JournalDamage {
+  std::size_t line = 0;
+  std::string problem;
+  std::string text;
+};
+
+/// The entries of a journal file. A cut last line (a kill mid-write) is not counted; damaged
+/// lines are listed and skipped, the lines after them still count. Throws InputError when the
+/// header is missing or does not match.
 struct JournalContents {
+  int version = 0;
   std::uint64_t study_hash = 0;
   std::size_t num_variables = 0;
   std::size_t fitness_size = 0;
   std::vector<JournalEntry> entries;
-  std::size_t valid_bytes = 0;
+  std::vector<JournalDamage> damaged;
+  bool crlf = false;            ///< some lines end in CR LF
+  bool cut_last_line = false;   ///< the file ends without a newline
+  std::size_t valid_bytes = 0;  ///< bytes up to the last newline
 };
 JournalContents read_journal(const std::string& path);
 
@@ -104,6 +121,9 @@ struct JournalOptions {
   /// fitness or batch_fitness. It may throw to stop the run (e.g. on an interrupt): the journal
   /// then holds every evaluation finished before, and a resumed run re-evaluates none of them.
   std::function<void(const JournalProgress&)> on_batch;
+  /// Warnings while resuming (a damaged line: "DIR/journal.txt:LINE: damaged journal line
+  /// (REASON): its design is evaluated again"); none when empty.
+  std::function<void(const std::string&)> warn;
 };
 
 class JournaledProblem final : public ForwardingProblem {
@@ -136,6 +156,7 @@ class JournaledProblem final : public ForwardingProblem {
                                          int threads) const;
   void append(std::span<const JournalEntry> fresh) const;
   void report_progress(bool force) const;
+  void recover(const std::string& journal_path, JournalContents& contents) const;
 
   JournalOptions options_;
   int journal_fd_ = -1;

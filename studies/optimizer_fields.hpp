@@ -17,9 +17,10 @@ namespace pkmopt {
 template <class Fields>
 void describe_fields(Fields& f, Nsga2Options& o) {
   f.field("population", o.population,
-          {.min = 4, .even = true, .doc = "individuals per generation"});
+          {.min = 4, .max = 1e6, .even = true, .doc = "individuals per generation"});
   f.field("generations", o.generations,
           {.min = 0,
+           .max = 1e7,
            .doc = "generations after the first; evaluations = population × (generations + 1)"});
   f.field("crossover_probability", o.crossover_probability,
           {.min = 0,
@@ -40,7 +41,7 @@ void describe_fields(Fields& f, Nsga2Options& o) {
 template <class Fields>
 void describe_fields(Fields& f, IpoptOptions& o) {
   f.field("max_iterations", o.max_iterations,
-          {.min = 1, .doc = "Ipopt iterations per solve (max_iter)"});
+          {.min = 1, .max = 1e7, .doc = "Ipopt iterations per solve (max_iter)"});
   f.field("tolerance", o.tolerance,
           {.min = 0,
            .min_exclusive = true,
@@ -64,12 +65,13 @@ template <class Fields>
 void describe_fields(Fields& f, HybridSpec& s) {
   describe_fields(f, s.options.nsga2);
   f.field("polish_iterations", s.options.ipopt.max_iterations,
-          {.min = 1, .doc = "Ipopt iterations per polished front design"});
+          {.min = 1, .max = 1e7, .doc = "Ipopt iterations per polished front design"});
 }
 
 template <class Fields>
 void describe_fields(Fields& f, EpsilonConstraintSpec& s) {
-  f.field("points", s.options.points, {.min = 2, .doc = "front points (epsilon levels)"});
+  f.field("points", s.options.points,
+          {.min = 2, .max = 1e5, .doc = "front points (epsilon levels)"});
   std::size_t primary = s.options.primary_objective + 1;
   f.field("primary_objective", primary,
           {.min = 1,
@@ -82,7 +84,8 @@ void describe_fields(Fields& f, EpsilonConstraintSpec& s) {
 
 template <class Fields>
 void describe_fields(Fields& f, NbiSpec& s) {
-  f.field("points", s.options.points, {.min = 2, .doc = "front points (lattice points)"});
+  f.field("points", s.options.points,
+          {.min = 2, .max = 1e5, .doc = "front points (lattice points)"});
   f.field("equality_form", s.options.equality_form,
           {.doc = "the NBI line as an equality (Das & Dennis 1998) instead of ≤"});
   describe_fields(f, s.options.ipopt);
@@ -98,7 +101,7 @@ void describe_fields(Fields& f, IpoptSpec& s) {
 template <class Fields>
 void describe_fields(Fields& f, NloptSpec& s) {
   f.field("max_evaluations", s.options.max_evaluations,
-          {.min = 1, .doc = "objective evaluations at most"});
+          {.min = 1, .max = 1e10, .doc = "objective evaluations at most"});
   f.field("tolerance", s.options.relative_tolerance_x,
           {.min = 0,
            .min_exclusive = true,
@@ -106,6 +109,7 @@ void describe_fields(Fields& f, NloptSpec& s) {
            .doc = "relative tolerance on x (xtol_rel)"});
   f.field("population", s.options.population,
           {.min = 1,
+           .max = 1e6,
            .zero_is_unset = true,
            .doc = "population of the stochastic global algorithms (NLopt's default when unset)"});
   f.field("local_algorithm", s.options.local_algorithm,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "io/csv.hpp"
@@ -14,14 +15,21 @@
 #include "studies/benchmark_study.hpp"
 #include "studies/design_study.hpp"
 #include "studies/journal.hpp"
+#include "studies/run_lock.hpp"
 
 namespace pkmopt {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Checks DIR against --resume / --force and creates it. Returns true when a journal is resumed.
-bool prepare_output_directory(const StudyRunOptions& opt) {
+// Checks DIR against --resume / --force, creates it and locks it (studies/run_lock.hpp) for the
+// run; then (with the lock held) clears a replaced run and the temporaries a killed run left.
+struct PreparedDirectory {
+  std::unique_ptr<RunLock> lock;
+  bool resumed = false;  ///< a journal is resumed
+};
+
+PreparedDirectory prepare_output_directory(const StudyRunOptions& opt) {
   const fs::path dir(opt.out);
   const bool has_journal = fs::exists(dir / "journal.txt");
   const bool holds_run =
@@ -31,23 +39,30 @@ bool prepare_output_directory(const StudyRunOptions& opt) {
         "--out: '{}' holds a previous run ({}); continue it with --resume or replace it with "
         "--force",
         opt.out, has_journal ? "journal.txt" : "summary.json or pareto.csv"));
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir))
+    throw InputError(fmt::format("--out: cannot create the folder '{}': {}", opt.out,
+                                 error ? error.message() : "not a folder"));
+  PreparedDirectory prepared;
+  prepared.lock = std::make_unique<RunLock>(opt.out);
   if (opt.force) {
     for (const char* name : {"journal.txt", "evaluations.csv", "pareto.csv", "pareto.json",
-                             "summary.json", "study.resolved.yaml"})
+                             "summary.json", "study.resolved.yaml", "journal.damaged.txt"})
       fs::remove(dir / name);
     if (fs::is_directory(dir / "designs"))
       for (const fs::directory_entry& e : fs::directory_iterator(dir / "designs"))
         if (e.path().extension() == ".yaml" && e.path().filename().string().starts_with("d"))
           fs::remove(e.path());
   }
-  std::error_code error;
-  fs::create_directories(dir, error);
-  if (error || !fs::is_directory(dir))
-    throw InputError(fmt::format("--out: cannot create the folder '{}': {}", opt.out,
-                                 error ? error.message() : "not a folder"));
-  if (opt.resume && !has_journal)
+  if (const std::size_t stale = remove_stale_temporaries(opt.out); stale > 0)
+    opt.message(fmt::format("removed {} temporary file{} left in '{}' by an interrupted run", stale,
+                            stale == 1 ? "" : "s", opt.out));
+  const bool journal_now = fs::exists(dir / "journal.txt");
+  if (opt.resume && !journal_now)
     opt.message(fmt::format("no journal in '{}': starting a new run", opt.out));
-  return opt.resume && has_journal;
+  prepared.resumed = opt.resume && journal_now;
+  return prepared;
 }
 
 void fill_journal_options(JournalOptions& options, const StudyRunOptions& opt,
@@ -59,6 +74,7 @@ void fill_journal_options(JournalOptions& options, const StudyRunOptions& opt,
   options.show_progress = opt.show_progress;
   options.threads = opt.threads;
   options.on_batch = opt.progress;
+  options.warn = opt.message;
 }
 
 // evaluations.csv of a benchmark study: x_j, f_i, constraint rows c_k, feasible.
@@ -114,13 +130,16 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   auto wall_seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   };
-  if (opt.threads < 0)
-    throw InputError(fmt::format("--threads: expected an integer >= 0, found {}", opt.threads));
+  if (opt.threads < 0 || opt.threads > kMaxStudyThreads)
+    throw InputError(
+        fmt::format("--threads: expected an integer in [0, {}] (0: all cores), found {}",
+                    kMaxStudyThreads, opt.threads));
   if (opt.resume && opt.force)
     throw InputError("--resume and --force: expected one of them, found both");
   if (root.is_map() && root.has("machine")) {
     const DesignStudy design = load_design_study(root);
-    const bool resumed = prepare_output_directory(opt);
+    const PreparedDirectory prepared = prepare_output_directory(opt);
+    const bool resumed = prepared.resumed;
     JournalOptions journal_options = design_journal_options(design);
     fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
     JournaledProblem journaled(design.optimization_problem(), journal_options);
@@ -140,7 +159,8 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
     return result;
   }
   const BenchmarkStudy study = load_benchmark_study(root);
-  const bool resumed = prepare_output_directory(opt);
+  const PreparedDirectory prepared = prepare_output_directory(opt);
+  const bool resumed = prepared.resumed;
   JournalOptions journal_options;
   fill_journal_options(journal_options, opt, study.resolved_yaml, study.optimizer);
   benchmark_csv(journal_options, *study.problem);

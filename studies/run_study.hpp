@@ -24,9 +24,12 @@
 
 namespace pkmopt {
 
+/// The most OpenMP threads a run may ask for (far more would exhaust the runtime's stacks).
+inline constexpr int kMaxStudyThreads = 512;
+
 struct StudyRunOptions {
   std::string out;            ///< the result folder (created when missing)
-  int threads = 0;            ///< OpenMP threads for batch evaluations (0: all cores)
+  int threads = 0;            ///< OpenMP threads for batch evaluations (0: all cores), <= 512
   bool resume = false;        ///< continue the run in `out` from its journal
   bool force = false;         ///< replace a previous run in `out`
   bool show_progress = true;  ///< progress line / log lines on stderr

@@ -37,7 +37,7 @@ void run_analyze(const AnalyzeOptions& opt) {
   }
   Wrench wrench = Wrench::Zero();
   if (!opt.wrench.empty()) {
-    const auto w = parse_number_list("--wrench", opt.wrench, 6);
+    const auto w = parse_wrench_option(opt.wrench);
     for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
   }
   const PoseTable poses = read_pose_csv(opt.poses_file);

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "report/compare_report.hpp"
 #include "io/input_error.hpp"
 #include "io/output_file.hpp"
+#include "report/compare_report.hpp"
 
 namespace pkmopt::cli {
 namespace {

@@ -42,7 +42,8 @@ void add_run_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "run", "Run a study: optimise the problem of a study file and write the Pareto front");
   cmd->add_option("study", opt->study_file, "Study file (YAML)")->required();
-  cmd->add_option("--out", opt->run.out, "Results folder (pareto.csv, summary.json, journal.txt...)")
+  cmd->add_option("--out", opt->run.out,
+                  "Results folder (pareto.csv, summary.json, journal.txt...)")
       ->required();
   cmd->add_option("--threads", opt->run.threads, "Threads for parallel evaluation (0: all cores)");
   cmd->add_flag("--resume", opt->run.resume,

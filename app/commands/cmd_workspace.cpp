@@ -93,7 +93,7 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   options.min_singularity_margin = opt.min_margin;
   options.min_stiffness = opt.min_stiffness;
   if (!opt.wrench.empty()) {
-    const auto w = parse_number_list("--wrench", opt.wrench, 6);
+    const auto w = parse_wrench_option(opt.wrench);
     for (int i = 0; i < 6; ++i) options.wrench(i) = w[static_cast<std::size_t>(i)];
   }
   if (opt.slice_axis != "x" && opt.slice_axis != "y" && opt.slice_axis != "z") {
@@ -146,16 +146,25 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     ws = compute_workspace(*machine, options);
     if (opt.resolution) accuracy = workspace_volume_accuracy(*machine, options, ws.volume);
   } catch (const std::invalid_argument& e) {
-    throw InputError(fmt::format("--resolution: {}", e.what()));
+    // Only a grid too fine is the resolution's fault; anything else is the machine's.
+    const std::string what = e.what();
+    const bool grid = what.find("workspace grid") != std::string::npos;
+    throw InputError(fmt::format("{}: {}", grid ? "--resolution" : opt.machine_file, what));
   }
 
   // The slice: through the middle of the workspace unless --slice-at is given.
   const SlicePlane plane =
       choose_slice_plane(ws, options.resolution, opt.slice_axis[0], opt.slice_at, opt.slice_pixel);
-  if (plane.pixel_count > 4e6) {
+  if (!(plane.pixel_count <= 4e6)) {
+    if (opt.slice_pixel) {
+      throw InputError(fmt::format(
+          "--slice-pixel: expected at most 4e6 pixels in the slice, found {:.3g} (pixel {} m)",
+          plane.pixel_count, plane.pixel));
+    }
     throw InputError(fmt::format(
-        "--slice-pixel: expected at most 4e6 pixels in the slice, found {:.3g} (pixel {} m)",
-        plane.pixel_count, plane.pixel));
+        "{}: the workspace slice would have {:.3g} pixels of {} m (the grid spacing), more than "
+        "4e6; give a coarser --slice-pixel or --resolution",
+        opt.machine_file, plane.pixel_count, plane.pixel));
   }
   const WorkspaceSlice slice = compute_workspace_slice(
       *machine, options, plane.box, plane.normal_axis, plane.offset, plane.pixel);

@@ -1,5 +1,6 @@
 #include "models/workspace/workspace.hpp"
 
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <Eigen/Geometry>
@@ -158,17 +159,25 @@ struct Grid {
   }
 };
 
-Grid make_grid(const Eigen::AlignedBox3d& box, double h) {
+// Throws std::invalid_argument when the grid would have more than max_nodes nodes; the counts
+// are computed in double first, so that a tiny resolution cannot overflow the integer sizes.
+Grid make_grid(const Eigen::AlignedBox3d& box, double h, std::int64_t max_nodes) {
   Grid grid;
   grid.h = h;
   grid.origin = box.min() - Eigen::Vector3d::Constant(h);
   const Eigen::Vector3d extent = box.max() - box.min();
-  auto count = [&](double length) {
-    return static_cast<std::int64_t>(std::ceil(length / h - 1e-9)) + 3;
-  };
-  grid.nx = count(extent(0));
-  grid.ny = count(extent(1));
-  grid.nz = count(extent(2));
+  auto count = [&](double length) { return std::ceil(length / h - 1e-9) + 3.0; };
+  const Eigen::Vector3d n(count(extent(0)), count(extent(1)), count(extent(2)));
+  const double nodes = n(0) * n(1) * n(2);
+  if (!(nodes <= static_cast<double>(max_nodes))) {
+    throw std::invalid_argument(
+        fmt::format("the workspace grid would have {:.4g} nodes ({:.4g} x {:.4g} x {:.4g}) at a "
+                    "resolution of {:g} m, more than max_grid_nodes = {}; use a coarser resolution",
+                    nodes, n(0), n(1), n(2), h, max_nodes));
+  }
+  grid.nx = static_cast<std::int64_t>(n(0));
+  grid.ny = static_cast<std::int64_t>(n(1));
+  grid.nz = static_cast<std::int64_t>(n(2));
   return grid;
 }
 
@@ -186,14 +195,7 @@ Classification classify_grid(const Machine& machine, const std::vector<Eigen::Ve
                              const WorkspaceOptions& options, const Eigen::AlignedBox3d& box) {
   Classification cls;
   Grid& grid = cls.grid;
-  grid = make_grid(box, options.resolution);
-  if (grid.size() > options.max_grid_nodes) {
-    throw std::invalid_argument(
-        "the workspace grid would have " + std::to_string(grid.size()) + " nodes (" +
-        std::to_string(grid.nx) + " x " + std::to_string(grid.ny) + " x " +
-        std::to_string(grid.nz) + "), more than max_grid_nodes = " +
-        std::to_string(options.max_grid_nodes) + "; use a coarser resolution");
-  }
+  grid = make_grid(box, options.resolution, options.max_grid_nodes);
   const std::int64_t nx = grid.nx, ny = grid.ny, nz = grid.nz;
   cls.inside.assign(static_cast<std::size_t>(grid.size()), 0);
   bool touches_rim = false;
@@ -448,7 +450,8 @@ std::string validate(const WorkspaceOptions& options) {
       !(*options.min_stiffness >= 0.0 && std::isfinite(*options.min_stiffness))) {
     return violated("min_stiffness", *options.min_stiffness, "min_stiffness >= 0 (finite)");
   }
-  if (!options.wrench.allFinite()) return "WorkspaceOptions::wrench must be finite";
+  if (!wrench_within_limits(options.wrench))
+    return "WorkspaceOptions::wrench must be finite with every component within +-1e9 (N, N*m)";
   if (options.search_box) {
     const auto& b = *options.search_box;
     if (!b.min().allFinite() || !b.max().allFinite() ||

@@ -52,7 +52,7 @@ TEST(BenchmarkStudy, ProblemSection) {
   EXPECT_NE(unknown.find("found 'zdt5'"), std::string::npos) << unknown;
   EXPECT_NE(error_of([] {
               read_benchmark_problem(section("problem", "{benchmark: zdt1, variables: 0}"));
-            }).find("problem.variables: expected an integer >= 1"),
+            }).find("problem.variables: expected an integer in [1, 10000]"),
             std::string::npos);
   EXPECT_NE(error_of([] {
               read_benchmark_problem(section("problem", "{benchmark: zdt1, size: 3}"));

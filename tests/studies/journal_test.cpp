@@ -1,8 +1,10 @@
-// Tests of studies/journal: bit-exact journal lines, cut lines, cache, resume and refusal.
+// Tests of studies/journal: bit-exact checksummed journal lines, cut and damaged lines, CR LF,
+// version 1 journals, cache, resume and refusal.
 #include "studies/journal.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cmath>
@@ -76,7 +78,7 @@ TEST_F(StudyJournal, LinesAreBitExact) {
   const std::string line = journal_line(entry);
   ASSERT_EQ(line.back(), '\n');
   JournalEntry back;
-  ASSERT_TRUE(parse_journal_line(std::string_view(line).substr(0, line.size() - 1), 4, 3, back));
+  ASSERT_EQ(parse_journal_line(std::string_view(line).substr(0, line.size() - 1), 4, 3, back), "");
   ASSERT_EQ(back.x.size(), 4u);
   ASSERT_EQ(back.fitness.size(), 3u);
   for (std::size_t j = 0; j < 4; ++j)
@@ -85,9 +87,22 @@ TEST_F(StudyJournal, LinesAreBitExact) {
     EXPECT_EQ(std::bit_cast<std::uint64_t>(back.fitness[i]),
               std::bit_cast<std::uint64_t>(entry.fitness[i]));
   EXPECT_EQ(back.note, "singular at pose 3 ");
-  // Wrong counts and cut numbers are rejected.
-  EXPECT_FALSE(parse_journal_line(std::string_view(line).substr(0, line.size() - 1), 3, 3, back));
-  EXPECT_FALSE(parse_journal_line(std::string_view(line).substr(0, 20), 4, 3, back));
+  // Wrong counts, cut lines and changed bytes are rejected with the reason.
+  const std::string_view whole = std::string_view(line).substr(0, line.size() - 1);
+  EXPECT_EQ(parse_journal_line(whole, 3, 3, back),
+            "expected 6 numbers (3 variables, 3 fitness values), found 7");
+  EXPECT_EQ(parse_journal_line(whole.substr(0, 20), 4, 3, back),
+            "no tab between the numbers and the note");
+  std::string changed(whole);
+  changed[2] = changed[2] == '1' ? '2' : '1';
+  EXPECT_EQ(parse_journal_line(changed, 4, 3, back),
+            "checksum mismatch (the line was changed after it was written)");
+  // CR LF line ends are read as LF.
+  EXPECT_EQ(parse_journal_line(std::string(whole) + "\r", 4, 3, back), "");
+  // Version 1 lines (no checksum) are read when asked.
+  const std::string v1 = std::string(whole.substr(0, whole.rfind('\t')));
+  EXPECT_EQ(parse_journal_line(v1, 4, 3, back, false), "");
+  EXPECT_EQ(back.note, "singular at pose 3 ");
 }
 
 TEST_F(StudyJournal, StudyHashIsFnv1a) {
@@ -173,6 +188,90 @@ TEST_F(StudyJournal, OnBatchReportsCountsAndMayStopTheRun) {
   JournaledProblem resumed(inner, options_for(dir, 13, true));
   resumed.fitness({0.3, 0.4});
   EXPECT_EQ(inner.calls.load(), 0);
+}
+
+// A damaged line in the middle is reported with its line number, kept in journal.damaged.txt, and
+// only its design is evaluated again; the lines after it still count (never a silent cut).
+TEST_F(StudyJournal, DamagedMiddleLineIsReportedAndOnlyItIsReevaluated) {
+  const fs::path dir = fresh_dir("damaged");
+  CountedPair inner;
+  const std::vector<std::vector<double>> designs = {{0.1, 0.2}, {0.3, 0.4}, {0.5, 0.6}};
+  {
+    JournaledProblem journaled(inner, options_for(dir, 17, false));
+    journaled.batch_fitness(designs, 1);
+  }
+  std::string text = read_text(dir / "journal.txt");
+  const std::size_t line3 = text.find('\n', text.find('\n') + 1) + 1;  // the second entry
+  text[line3 + 3] = text[line3 + 3] == '3' ? '4' : '3';
+  std::ofstream(dir / "journal.txt", std::ios::binary | std::ios::trunc) << text;
+
+  const JournalContents contents = read_journal((dir / "journal.txt").string());
+  ASSERT_EQ(contents.entries.size(), 2u);
+  ASSERT_EQ(contents.damaged.size(), 1u);
+  EXPECT_EQ(contents.damaged[0].line, 3u);
+
+  std::vector<std::string> warnings;
+  JournalOptions options = options_for(dir, 17, true);
+  options.warn = [&](const std::string& w) { warnings.push_back(w); };
+  inner.calls = 0;
+  JournaledProblem resumed(inner, options);
+  EXPECT_EQ(resumed.loaded_entries(), 2u);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], (dir / "journal.txt").string() +
+                             ":3: damaged journal line (checksum mismatch (the line was changed "
+                             "after it was written)): its design is evaluated again");
+  const auto f = resumed.batch_fitness(designs, 1);
+  EXPECT_EQ(inner.calls.load(), 1);  // only the damaged one
+  EXPECT_EQ(f[1], inner.fitness({0.3, 0.4}));
+  EXPECT_EQ(read_journal((dir / "journal.txt").string()).damaged.size(), 0u);
+  EXPECT_EQ(read_journal((dir / "journal.txt").string()).entries.size(), 3u);
+  const std::string kept = read_text(dir / "journal.damaged.txt");
+  EXPECT_EQ(kept.substr(0, 2), "3\t");
+  EXPECT_EQ(std::count(kept.begin(), kept.end(), '\n'), 1);
+}
+
+// A journal whose line ends were turned into CR LF (a copy through another system) loses nothing.
+TEST_F(StudyJournal, CrlfJournalResumesWithEveryEntry) {
+  const fs::path dir = fresh_dir("crlf");
+  CountedPair inner;
+  const std::vector<std::vector<double>> designs = {{0.1, 0.2}, {0.3, 0.4}};
+  {
+    JournaledProblem journaled(inner, options_for(dir, 19, false));
+    journaled.batch_fitness(designs, 1);
+  }
+  std::string crlf;
+  for (char c : read_text(dir / "journal.txt"))
+    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  std::ofstream(dir / "journal.txt", std::ios::binary | std::ios::trunc) << crlf;
+  std::vector<std::string> warnings;
+  JournalOptions options = options_for(dir, 19, true);
+  options.warn = [&](const std::string& w) { warnings.push_back(w); };
+  inner.calls = 0;
+  JournaledProblem resumed(inner, options);
+  EXPECT_EQ(resumed.loaded_entries(), 2u);
+  EXPECT_TRUE(warnings.empty());
+  resumed.batch_fitness(designs, 1);
+  EXPECT_EQ(inner.calls.load(), 0);
+  const std::string after = read_text(dir / "journal.txt");
+  EXPECT_EQ(after.find('\r'), std::string::npos);  // rewritten with LF
+  EXPECT_EQ(resumed.failed(), 0);
+}
+
+// Journals written before lines had checksums (version 1) are resumed and upgraded.
+TEST_F(StudyJournal, VersionOneJournalIsReadAndUpgraded) {
+  const fs::path dir = fresh_dir("v1");
+  std::ofstream(dir / "journal.txt", std::ios::binary)
+      << "pkmopt-journal 1 0000000000000017 2 3\n"
+      << "0x1.999999999999ap-4 0x1.999999999999ap-3 0x1.eb851eb851eb8p-3 -0x1.999999999999ap-4 "
+         "-0x1.999999999999ap-2\t\n";
+  CountedPair inner;
+  JournaledProblem resumed(inner, options_for(dir, 0x17, true));
+  EXPECT_EQ(resumed.loaded_entries(), 1u);
+  resumed.fitness({0.1, 0.2});
+  EXPECT_EQ(inner.calls.load(), 0);
+  const JournalContents contents = read_journal((dir / "journal.txt").string());
+  EXPECT_EQ(contents.version, 2);
+  EXPECT_EQ(contents.entries.size(), 1u);
 }
 
 TEST_F(StudyJournal, ResumeRefusesAnotherStudy) {

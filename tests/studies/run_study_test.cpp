@@ -6,15 +6,18 @@
 #include "studies/run_study.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "studies/run_lock.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -181,11 +184,42 @@ TEST_F(RunStudy, SecondRunIsRefusedResumeGivesTheSameFrontForceStartsOver) {
   EXPECT_NE(messages_.back().find("starting a new run"), std::string::npos) << messages_.back();
 }
 
+// Two runs into one folder: the second is refused (naming the first's PID) and changes nothing;
+// temporaries left by a killed run are removed when the next run starts.
+TEST_F(RunStudy, ConcurrentRunIsRefusedAndStaleTemporariesAreRemoved) {
+  const std::string study = write("zdt1.yaml", kBenchmarkStudy);
+  run_study_file(study, options("out"));
+  const std::string front = read_text(dir_ / "out" / "pareto.csv");
+  std::ofstream(dir_ / "out" / "pareto.csv.tmp.999999") << "half";
+  {
+    const RunLock holder((dir_ / "out").string());
+    StudyRunOptions resume = options("out");
+    resume.resume = true;
+    const std::string refused = refusal(study, resume);
+    EXPECT_NE(refused.find("another pkmopt run (PID " + std::to_string(::getpid()) + ")"),
+              std::string::npos)
+        << refused;
+    StudyRunOptions force = options("out");
+    force.force = true;
+    EXPECT_NE(refusal(study, force).find("another pkmopt run"), std::string::npos);
+    EXPECT_EQ(read_text(dir_ / "out" / "pareto.csv"), front);
+  }
+  StudyRunOptions resume = options("out");
+  resume.resume = true;
+  messages_.clear();
+  run_study_file(study, resume);
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "pareto.csv.tmp.999999"));
+  ASSERT_FALSE(messages_.empty());
+  EXPECT_NE(messages_.front().find("removed 1 temporary file"), std::string::npos)
+      << messages_.front();
+}
+
 TEST_F(RunStudy, BadOptionsAndStudiesAreRefusedBeforeAnythingIsWritten) {
   const std::string study = write("zdt1.yaml", kBenchmarkStudy);
   StudyRunOptions negative = options("out");
   negative.threads = -1;
-  EXPECT_EQ(refusal(study, negative), "--threads: expected an integer >= 0, found -1");
+  EXPECT_EQ(refusal(study, negative),
+            "--threads: expected an integer in [0, 512] (0: all cores), found -1");
   StudyRunOptions both = options("out");
   both.resume = both.force = true;
   EXPECT_EQ(refusal(study, both), "--resume and --force: expected one of them, found both");
