@@ -34,8 +34,8 @@ int CsvTable::require_column(std::string_view name) const {
   if (index < 0) {
     std::string found;
     for (std::size_t i = 0; i < header.size(); ++i) found += (i ? "," : "") + header[i];
-    throw InputError(fmt::format("{}expected a column '{}' in the header, found '{}'",
-                                 location_prefix(file, header_line), name, found));
+    throw InputError(fmt::format("{}expected a column '{}' in the header, found {}",
+                                 location_prefix(file, header_line), name, quote_found(found)));
   }
   return index;
 }
@@ -46,14 +46,14 @@ double CsvTable::number(const CsvRow& row, int col) const {
   char* end = nullptr;
   const double value = text.empty() ? 0.0 : std::strtod(begin, &end);
   if (text.empty() || end != begin + text.size() || !std::isfinite(value)) {
-    throw InputError(fmt::format("{}column {} '{}': expected a finite number, found {}",
-                                 location_prefix(file, row.line), col + 1,
-                                 header[static_cast<std::size_t>(col)], quote_found(text)));
+    throw InputError(fmt::format(
+        "{}column {} {}: expected a finite number, found {}", location_prefix(file, row.line),
+        col + 1, quote_found(header[static_cast<std::size_t>(col)]), quote_found(text)));
   }
   if (!sane_input_number(value)) {
     throw InputError(fmt::format(
-        "{}column {} '{}': expected {}, found {}", location_prefix(file, row.line), col + 1,
-        header[static_cast<std::size_t>(col)], kSaneNumberText, quote_found(text)));
+        "{}column {} {}: expected {}, found {}", location_prefix(file, row.line), col + 1,
+        quote_found(header[static_cast<std::size_t>(col)]), kSaneNumberText, quote_found(text)));
   }
   return value;
 }
@@ -144,9 +144,9 @@ CsvTable parse_csv(const std::string& text_in, const std::string& file) {
         }
         for (std::size_t j = 0; j < i; ++j) {
           if (table.header[i] == table.header[j]) {
-            throw InputError(fmt::format("{}column {}: duplicate column name '{}'",
+            throw InputError(fmt::format("{}column {}: duplicate column name {}",
                                          location_prefix(file, record_line), i + 1,
-                                         table.header[i]));
+                                         quote_found(table.header[i])));
           }
         }
       }

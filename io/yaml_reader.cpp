@@ -1,6 +1,7 @@
 #include "io/yaml_reader.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
 
 #include <cerrno>
 #include <cmath>
@@ -28,6 +29,48 @@ bool parse_double(const std::string& text, double& value) {
   return end != begin && *end == '\0';
 }
 
+// Counts the documents of a YAML text through yaml-cpp's event parser, keeping only where each
+// one starts.
+class DocumentStarts final : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+  void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+// A machine or study file holds one document: a second one (after a '---' line) would be
+// silently ignored by YAML::Load. Reads at most two documents (yaml-cpp 0.7's LoadAll never ends
+// on some malformed texts, e.g. ", a", whose documents do not advance: that is reported too).
+void check_single_document(const std::string& text, const std::string& file) {
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentStarts documents;
+  for (int k = 0; k < 2 && parser.HandleNextDocument(documents); ++k) {
+  }
+  if (documents.starts.size() < 2) return;
+  const YAML::Mark first = documents.starts[0], second = documents.starts[1];
+  const std::string where = second.line >= 0
+                                ? location_prefix(file, second.line + 1, second.column + 1)
+                                : location_prefix(file);
+  if (second.pos == first.pos)
+    throw InputError(where +
+                     "malformed YAML: expected a map of keys, found text the YAML parser "
+                     "cannot read (it does not advance past this point)");
+  throw InputError(where +
+                   "expected one YAML document, found a second one (a '---' line); a machine or "
+                   "study file holds one document");
+}
+
 }  // namespace
 
 YamlValue YamlValue::load_file(const std::string& path) {
@@ -39,16 +82,8 @@ YamlValue YamlValue::load_string(const std::string& text, const std::string& fil
   require_utf8(text, file);
   YAML::Node node;
   try {
-    std::vector<YAML::Node> documents = YAML::LoadAll(text);
-    if (documents.size() > 1) {
-      const YAML::Mark mark = documents[1].Mark();
-      throw InputError(fmt::format(
-          "{}expected one YAML document, found a second one (a '---' line); a machine or study "
-          "file holds one document",
-          mark.line >= 0 ? location_prefix(file, mark.line + 1, mark.column + 1)
-                         : location_prefix(file)));
-    }
-    if (!documents.empty()) node = documents.front();
+    node = YAML::Load(text);
+    check_single_document(text, file);
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}malformed YAML: {}",
                                  location_prefix(file, e.mark.line + 1, e.mark.column + 1), e.msg));
@@ -115,7 +150,8 @@ void YamlValue::check_keys(const std::vector<std::string>& allowed) const {
     for (const auto& a : allowed) known = known || a == key;
     if (!known) {
       YamlValue key_value(it->first, file_, child_path(key));
-      key_value.fail(fmt::format("unknown key '{}'; allowed keys here: {}", key, join(allowed)));
+      key_value.fail(
+          fmt::format("unknown key {}; allowed keys here: {}", quote_found(key), join(allowed)));
     }
   }
   // Duplicate keys: yaml-cpp keeps both; reject them.

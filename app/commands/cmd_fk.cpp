@@ -45,7 +45,8 @@ void run_fk(const FkCommandOptions& opt) {
   const FkResult r = machine->forward_kinematics(q, guess, fk_options);
   std::cout << fk_csv(r);
   std::cout.flush();
-  if (!r.converged) std::cerr << "pkmopt: fk: " << r.message << '\n';
+  // The pose columns of a solve that did not converge are not a pose of the machine: exit 3.
+  if (!r.converged) throw ProbablyWrongResult("fk: " + r.message);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
+#include "io/input_error.hpp"
 #include "studies/run_study.hpp"
 
 namespace pkmopt::cli {
@@ -32,7 +33,22 @@ void run_study(const RunCommandOptions& opt) {
     std::cout << fmt::format("{}: {} on {}: {} design(s), {} evaluations, {:.3f} s, status {}\n",
                              r.name, r.algorithm, r.problem, r.designs, r.evaluations,
                              r.optimizer_seconds, r.status);
-  if (!r.message.empty()) std::cerr << "pkmopt: run: " << r.message << '\n';
+  // A run that ends without a usable result says so with exit status 3 (the files are written).
+  const bool probably_wrong = r.status == "no_feasible_design" || r.status == "infeasible" ||
+                              r.status == "diverging" || r.status == "evaluation_error" ||
+                              r.status == "failed";
+  if (!probably_wrong) {
+    if (!r.message.empty()) std::cerr << "pkmopt: run: " << r.message << '\n';
+    return;
+  }
+  std::string what =
+      r.status == "no_feasible_design"
+          ? "no feasible design: every evaluated design failed or violates a constraint (see "
+            "evaluations.csv: columns feasible and failure); relax the constraints, widen the "
+            "parameter ranges or check the task"
+          : "the solver ended with status " + r.status + ": its point is not a usable result";
+  if (!r.message.empty()) what += " (" + r.message + ")";
+  throw ProbablyWrongResult("run: " + what);
 }
 
 }  // namespace

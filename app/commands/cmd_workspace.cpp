@@ -12,6 +12,8 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
@@ -198,17 +200,22 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
       ws.convex_hull_volume, ws.maps.global_conditioning_index,
       ws.envelope_ratio ? fmt::format("{:.4g}", *ws.envelope_ratio) : "n/a", ws.resolution, seconds,
       opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
-  if (!opt.resolution && !accuracy.met && ws.volume > 0.0) {
-    fmt::print(stderr,
-               "pkmopt: warning: the volume's estimated error {:.2g} % is above --tolerance {:.2g} "
-               "%: the finest grid the refinement allows ({} m) was not fine enough; give "
-               "--resolution\n",
-               100.0 * accuracy.relative_error(), 100.0 * opt.tolerance, accuracy.resolution);
-  }
-  if (ws.touches_search_box) {
+  // The search box of some models is their travel (a tripod's z stroke): touching it is then
+  // no error, so it is a warning only.
+  if (ws.touches_search_box)
     fmt::print(stderr, "pkmopt: warning: the workspace reaches the search box; volume cut off\n");
-  }
   std::fflush(stdout);
+  // An empty workspace is a finding (the joint limits of a design may forbid a tilt), said
+  // loudly; a volume whose refinement did not reach --tolerance is written, said, and exits 3.
+  if (!(ws.volume > 0.0))
+    fmt::print(stderr,
+               "pkmopt: warning: the workspace is empty: no node of the search grid is reachable "
+               "(check the strokes, the joint limits and the orientations)\n");
+  if (!opt.resolution && !accuracy.met && ws.volume > 0.0)
+    throw ProbablyWrongResult(fmt::format(
+        "the volume's estimated error {:.2g} % is above --tolerance {:.2g} %: the finest grid the "
+        "refinement allows ({} m) was not fine enough; give --resolution",
+        100.0 * accuracy.relative_error(), 100.0 * opt.tolerance, accuracy.resolution));
 }
 
 }  // namespace

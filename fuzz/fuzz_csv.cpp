@@ -1,0 +1,18 @@
+// libFuzzer target: the CSV readers: pose files (analyze --poses), timed paths (trajectory
+// --path) and calibration measurements, each from the same bytes.
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz/fuzz_input.hpp"
+#include "io/calibration_files.hpp"
+#include "io/csv.hpp"
+#include "io/pose_csv.hpp"
+#include "io/trajectory_files.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = fuzz::write_input(data, size, "input.csv");
+  fuzz::expect_input_errors([&] { (void)pkmopt::read_pose_csv(path); });
+  fuzz::expect_input_errors([&] { (void)pkmopt::read_path_csv(path); });
+  fuzz::expect_input_errors([&] { (void)pkmopt::read_measurement_csv(path, 1e-3); });
+  return 0;
+}

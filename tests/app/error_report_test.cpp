@@ -1,0 +1,332 @@
+// Tests of app/error_report and the error contract of every command: hostile input gives one
+// line "pkmopt: error: ..." and exit status 2 (never a crash, a hang, a NaN, exit 1 or an output
+// file), a result that is probably wrong exits 3, and every command's exit statuses are the
+// documented ones (docs/conventions.md, "Exit status"). Each regression test is named after the
+// input that once crashed, hung, wrote NaN or exited 1.
+#include "app/error_report.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tests/cli_runner.hpp"
+#include "tests/scratch_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using cli_runner::CliRun;
+using cli_runner::read_text;
+
+class ErrorContract : public scratch::ScratchDirTest {
+ protected:
+  static std::string example(const std::string& name) {
+    return (fs::path(PKMOPT_SOURCE_DIR) / "examples" / name).string();
+  }
+  static std::string library(const std::string& name) {
+    return (fs::path(PKMOPT_SOURCE_DIR) / "studies/library" / name).string();
+  }
+  // pkmopt with a 120 s limit (a hang shows as status 124) and its stdout/stderr captured.
+  CliRun run(const std::string& args) const {
+    return cli_runner::run_command(dir_, "timeout 120 " + std::string(PKMOPT_CLI) + " " + args);
+  }
+  // Status 2, one line "pkmopt: error: ..." holding `fragment`, and the folder holding nothing
+  // it did not hold before (no output file, no temporary).
+  void expect_refused(const std::string& args, const std::string& fragment) const {
+    std::vector<fs::path> before;
+    for (const auto& e : fs::recursive_directory_iterator(dir_)) before.push_back(e.path());
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_EQ(r.err.rfind("pkmopt: error: ", 0), 0u) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << args << "\n" << r.err;
+    for (const auto& e : fs::recursive_directory_iterator(dir_))
+      EXPECT_NE(std::find(before.begin(), before.end(), e.path()), before.end())
+          << args << " left " << e.path();
+  }
+  // examples/hexapod.yaml with another tool line.
+  static std::string with_tool(const std::string& tool) {
+    std::string machine = read_text(example("hexapod.yaml"));
+    const std::string line = "tool: {tcp: [0, 0, -0.10]}";
+    machine.replace(machine.find(line), line.size(), "tool: {" + tool + "}");
+    return machine;
+  }
+  // pkmopt with its standard output (or error) sent where `redirect` says, e.g. ">/dev/full";
+  // returns the exit status and what reached the other stream.
+  CliRun run_redirected(const std::string& args, const std::string& redirect) const {
+    const fs::path other = dir_ / "other.txt";
+    const bool stdout_redirected = redirect.find('>') == 0;
+    const std::string cmd = "timeout 120 " + std::string(PKMOPT_CLI) + " " + args + " " + redirect +
+                            (stdout_redirected ? " 2>" : " >") + other.string() + " </dev/null";
+    const int raw = std::system(cmd.c_str());
+    CliRun r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    (stdout_redirected ? r.err : r.out) = read_text(other);
+    fs::remove(other);
+    return r;
+  }
+  std::string tiny_study() const {
+    return write("tiny.yaml",
+                 "study: tiny\nproblem: {benchmark: zdt1, variables: 4}\n"
+                 "optimizer: {algorithm: nsga2, population: 8, generations: 2, seed: 1}\n");
+  }
+};
+
+// ---- Crashes ----------------------------------------------------------------------------------
+
+TEST_F(ErrorContract, CalibrationPosesWithNanZeroLengthOrTinySigma) {
+  for (const char* value : {"nan", "inf", "1e308", "1e-320"})
+    expect_refused("calibration-poses " + example("hexapod.yaml") +
+                       " --count 10 --grid --steps 2 --zero-length " + value,
+                   "--zero-length");
+  expect_refused("calibration-poses " + example("hexapod.yaml") +
+                     " --count 10 --grid --steps 2 --sigma-actuator 1e-320",
+                 "--sigma-actuator");
+}
+
+TEST_F(ErrorContract, RunWithHundredThousandThreads) {
+  for (const char* threads : {"100000", "2147483647", "-1"})
+    expect_refused(
+        "run " + tiny_study() + " --out " + path("out") + " --threads " + threads,
+        "--threads: expected an integer in [0, 512] (0: all cores), found " + std::string(threads));
+}
+
+TEST_F(ErrorContract, DescribeWithStderrOnAFullDisk) {
+  const CliRun r = run_redirected("describe " + path("missing.yaml"), "2>/dev/full");
+  EXPECT_EQ(r.status, 2);
+}
+
+// ---- Hangs ------------------------------------------------------------------------------------
+
+TEST_F(ErrorContract, FkWithATcpFarBeyondTheMachine) {
+  const std::string machine = with_tool("tcp: [0, 0, -1e16]");
+  expect_refused("fk " + write("far.yaml", machine) + " --q 0.9,0.9,0.9,0.9,0.9,0.9", "tool.tcp");
+  // Within the input limits (a 900 m tool): an answer, not a hang.
+  const std::string reach = with_tool("tcp: [0, 0, -900]");
+  const CliRun r = run("fk " + write("reach.yaml", reach) + " --q 0.9,0.9,0.9,0.9,0.9,0.9");
+  EXPECT_TRUE(r.status == 0 || r.status == 3) << r.status << "\n" << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+}
+
+TEST_F(ErrorContract, SpecialFilesAsInput) {
+  ASSERT_EQ(::mkfifo(path("fifo.yaml").c_str(), 0644), 0);
+  expect_refused("describe " + path("fifo.yaml"), "expected a regular file, found a FIFO");
+  expect_refused("describe /dev/zero", "/dev/zero: expected a regular file, found a character");
+  expect_refused("describe /dev/urandom", "expected a regular file");
+  fs::create_directories(dir_ / "folder.yaml");
+  expect_refused("describe " + path("folder.yaml"), "expected a regular file, found a directory");
+  expect_refused("analyze " + example("hexapod.yaml") + " --poses " + path("fifo.yaml"),
+                 "expected a regular file, found a FIFO");
+}
+
+TEST_F(ErrorContract, ProcSelfMemAsInput) {
+  const CliRun r = run("describe /proc/self/mem");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.find("(null)"), std::string::npos) << r.err;
+}
+
+// ---- NaN in output ----------------------------------------------------------------------------
+
+TEST_F(ErrorContract, AnalyzeWithAWrenchOf1e308) {
+  const std::string poses = write("p.csv", "x,y,z\n0,0,0.9\n");
+  expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses +
+                     " --wrench 1.7e308,0,0,0,0,0 --out " + path("a.csv"),
+                 "--wrench");
+  expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses +
+                     " --wrench 2e9,0,0,0,0,0 --out " + path("a.csv"),
+                 "--wrench");
+}
+
+TEST_F(ErrorContract, TrajectoryWithHugeHelixNumbers) {
+  const std::string machine = example("hexapod.yaml");
+  expect_refused("trajectory " + machine + " --helix --helix-height 0.01,-1e308", "--helix-height");
+  expect_refused("trajectory " + machine + " --helix --helix-frequency 1e308", "--helix-frequency");
+  expect_refused("trajectory " + machine + " --helix --t-start -1e308", "--t-start");
+  expect_refused("trajectory " + machine + " --helix --samples 1e308", "--samples");
+  // Large but allowed numbers give big finite values and no NaN.
+  const CliRun r = run("trajectory " + machine + " --helix --samples 21 --helix-frequency 1e14");
+  EXPECT_TRUE(r.status == 0 || r.status == 3) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos);
+}
+
+TEST_F(ErrorContract, SimulateMeasurementsWithNanZeroLength) {
+  expect_refused("simulate-measurements " + example("hexapod.yaml") + " --out " + path("sim") +
+                     " --zero-length nan",
+                 "--zero-length");
+}
+
+TEST_F(ErrorContract, WorkspaceWithAWrenchOf1e308) {
+  expect_refused("workspace " + example("hexapod.yaml") +
+                     " --resolution 0.05 --wrench 1e308,0,0,0,0,0 --out " + path("ws"),
+                 "--wrench");
+}
+
+// ---- Exit 1 for bad input ---------------------------------------------------------------------
+
+TEST_F(ErrorContract, InvalidUtf8InAStudyString) {
+  const std::string study = write("bad.yaml",
+                                  "study: \"b\xff\"\nproblem: {benchmark: zdt1}\n"
+                                  "optimizer: {algorithm: nsga2}\n");
+  expect_refused("run " + study + " --out " + path("out"),
+                 "bad.yaml:1:10: expected UTF-8 text, found the byte 0xff");
+}
+
+TEST_F(ErrorContract, WorkspaceResolutionOf1e308Or1e320) {
+  for (const char* value : {"1e308", "1e-320", "1e-12"})
+    expect_refused(
+        "workspace " + example("hexapod.yaml") + " --resolution " + value + " --out " + path("ws"),
+        "--resolution");
+}
+
+TEST_F(ErrorContract, MachineOfAMillionMetres) {
+  const std::string machine = with_tool("tcp: [0, 0, 1.0e6]");
+  expect_refused("describe " + write("big.yaml", machine), "tool.tcp");
+}
+
+TEST_F(ErrorContract, CalibrationNoiseOf5e324) {
+  std::string calibration = read_text(library("calibration-demo/calibration.yaml"));
+  const std::string from = "actuator: 0.001}";
+  ASSERT_NE(calibration.find(from), std::string::npos);
+  calibration.replace(calibration.find(from), from.size(), "actuator: 4.9e-324}");
+  for (const char* name : {"nominal.yaml", "measurements.csv"})
+    fs::copy_file(fs::path(library("calibration-demo")) / name, dir_ / name);
+  const std::string file = write("calibration.yaml", calibration);
+  expect_refused("calibrate " + file + " --out " + path("fit"), "noise.actuator");
+  const CliRun r = run("calibrate " + file + " --out " + path("fit"));
+  EXPECT_EQ(r.err.find("CalibrationOptions"), std::string::npos) << r.err;
+}
+
+TEST_F(ErrorContract, BenchmarkWithTwoBillionObjectivesOrVariables) {
+  for (const char* key : {"objectives", "variables"}) {
+    const std::string study = write(std::string(key) + ".yaml",
+                                    std::string("study: b\nproblem: {benchmark: dtlz2, ") + key +
+                                        ": 2147483648}\noptimizer: {algorithm: nsga2}\n");
+    expect_refused("run " + study + " --out " + path("out"), std::string("problem.") + key);
+  }
+}
+
+TEST_F(ErrorContract, NbiWithInt64MaxPoints) {
+  const std::string study = write("nbi.yaml",
+                                  "study: b\nproblem: {benchmark: zdt1}\n"
+                                  "optimizer: {algorithm: nbi, points: 9223372036854775807}\n");
+  expect_refused("run " + study + " --out " + path("out"), "optimizer.points");
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "journal.txt"));
+}
+
+TEST_F(ErrorContract, ParetoJsonWith1e999) {
+  const fs::path source = fs::path(PKMOPT_SOURCE_DIR) / "tests/io/data/pareto_json/two";
+  std::string json = read_text(source / "pareto.json");
+  const std::size_t at = json.find("\"objectives\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t number = json.find_first_of("0123456789", json.find("\"designs\""));
+  ASSERT_NE(number, std::string::npos);
+  json.insert(number, "1e999");
+  fs::create_directories(dir_ / "front");
+  write("front/pareto.json", json);
+  const CliRun r = run("export " + path("front") + " --out " + path("x.csv"));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
+}
+
+// ---- Not one located line ---------------------------------------------------------------------
+
+TEST_F(ErrorContract, CommandLineOptionErrorsAreOneLine) {
+  const std::string study = tiny_study();
+  expect_refused("run " + study + " --out " + path("o") + " --threads abc",
+                 "run: --threads: expected an integer, found 'abc' (see 'pkmopt run --help')");
+  expect_refused("run " + study + " --out " + path("o") + " --threads",
+                 "--threads: expected an integer after it, found nothing");
+  expect_refused("run " + study + " --ouy " + path("o"),
+                 "run: expected the options and arguments listed by --help, found unknown '--ouy'");
+  expect_refused("nosuch", "expected a command (analyze, fk, ");
+  expect_refused("", "found none (see 'pkmopt --help')");
+  expect_refused("workspace " + example("hexapod.yaml") + " --tolerance abc",
+                 "--tolerance: expected a number, found 'abc'");
+  expect_refused("describe \xff", "expected UTF-8 text");
+}
+
+TEST_F(ErrorContract, CsvHeaderWithAQuotedNewline) {
+  const std::string poses = write("q.csv", "a,\"b\nc\"\n1,2\n");
+  expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses, "b\\nc");
+}
+
+TEST_F(ErrorContract, SecondYamlDocument) {
+  const std::string machine = read_text(example("hexapod.yaml")) + "---\nmodel: delta\n";
+  expect_refused("describe " + write("two.yaml", machine),
+                 "expected one YAML document, found a second one");
+}
+
+TEST_F(ErrorContract, YamlTheParserCannotAdvanceIn) {  // yaml-cpp's LoadAll never returned
+  expect_refused("describe " + write("comma.yaml", ", Cal"), "comma.yaml:1:");
+}
+
+// ---- Lost output ------------------------------------------------------------------------------
+
+TEST_F(ErrorContract, OutputToAFullDisk) {
+  const std::string poses = write("p.csv", "x,y,z\n0,0,0.9\n");
+  for (const std::string& args :
+       {"analyze " + example("hexapod.yaml") + " --poses " + poses,
+        "fk " + example("hexapod.yaml") + " --q 0.9,0.9,0.9,0.9,0.9,0.9",
+        "validate " + library("zdt1-nsga2.yaml"), "describe " + example("delta.yaml")}) {
+    const CliRun r = run_redirected(args, ">/dev/full");
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("cannot write to standard output"), std::string::npos) << r.err;
+  }
+}
+
+// ---- Every command's exit statuses --------------------------------------------------------------
+
+TEST_F(ErrorContract, EveryCommandExitsZeroTwoOrThreeAsDocumented) {
+  const std::string hexapod = example("hexapod.yaml");
+  const std::string poses = write("p.csv", "x,y,z\n0,0,0.9\n");
+  // 0: a good run of every command.
+  const std::vector<std::string> good = {
+      "describe " + hexapod,
+      "analyze " + hexapod + " --poses " + poses,
+      "fk " + hexapod + " --q 0.9,0.9,0.9,0.9,0.9,0.9",
+      "validate " + tiny_study(),
+      "run " + tiny_study() + " --out " + path("zdt1") + " --no-progress",
+      "run " + library("hexapod-quick.yaml") + " --out " + path("front") + " --no-progress",
+      "run " + library("hexapod-quick.yaml") + " --out " + path("front2") + " --no-progress",
+      "export " + path("front") + " --format csv --out " + path("front.csv"),
+      "compare " + path("front") + " " + path("front2") + " --out " + path("compare.html"),
+      "calibrate " + library("calibration-demo/calibration.yaml") + " --out " + path("fit"),
+      "workspace " + hexapod + " --resolution 0.05",
+      "trajectory " + hexapod + " --helix --samples 11",
+      "calibration-poses " + hexapod + " --count 10 --grid --steps 2",
+      "simulate-measurements " + hexapod + " --out " + path("sim"),
+  };
+  for (const std::string& args : good) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
+  }
+  // 2: a missing input file, for every command that reads one.
+  for (const char* command :
+       {"describe", "analyze", "fk", "validate", "run", "workspace", "trajectory",
+        "calibration-poses", "simulate-measurements", "calibrate", "export", "compare"}) {
+    const CliRun r = run(std::string(command) + " " + path("missing.yaml"));
+    EXPECT_EQ(r.status, 2) << command << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << command << "\n" << r.err;
+  }
+  // 3: a result written but probably wrong.
+  const CliRun fk = run("fk " + hexapod + " --q 0.01,0.01,0.01,0.01,0.01,0.01");
+  EXPECT_EQ(fk.status, 3) << fk.err;
+  EXPECT_EQ(fk.err.rfind("pkmopt: warning: fk: ", 0), 0u) << fk.err;
+  std::string tripod = read_text(example("tripod_3prs.yaml"));
+  tripod.replace(tripod.find("strut: 0.55 "), 12, "strut: 0.15 ");
+  // An empty workspace is a result (a design whose joints forbid the task), said loudly.
+  const CliRun empty = run("workspace " + write("short.yaml", tripod));
+  EXPECT_EQ(empty.status, 0) << empty.err;
+  EXPECT_NE(empty.err.find("pkmopt: warning: the workspace is empty"), std::string::npos)
+      << empty.err;
+}
+
+}  // namespace
