@@ -21,6 +21,7 @@ PACKAGES=(
   libpagmo-dev
   libpng-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  clang libclang-rt-dev libomp-dev
 )
 
 missing=()

@@ -93,6 +93,15 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     read_fields(region, box);
     const Eigen::Vector3d centre(box.centre[0], box.centre[1], box.centre[2]);
     const Eigen::Vector3i counts(box.points[0], box.points[1], box.points[2]);
+    // The count is checked before the poses are made (1000^3 points would exhaust memory).
+    const double orientations_per_point = static_cast<double>(
+        box_task_poses(centre, Eigen::Vector3d::Zero(), Eigen::Vector3i::Ones(), tilt, yaw, step)
+            .size());
+    const double total =
+        static_cast<double>(box.points[0]) * box.points[1] * box.points[2] * orientations_per_point;
+    if (total > 100000)
+      region.fail(
+          fmt::format("at most 100000 task poses (points × orientations), found {:.0f}", total));
     task_spec.poses =
         box_task_poses(centre, 0.5 * Eigen::Vector3d(box.size[0], box.size[1], box.size[2]), counts,
                        tilt, yaw, step);
@@ -103,6 +112,14 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     CylinderRegionSection cylinder;
     read_fields(region, cylinder);
     const Eigen::Vector3d centre(cylinder.centre[0], cylinder.centre[1], cylinder.centre[2]);
+    const double orientations_per_point = static_cast<double>(
+        box_task_poses(centre, Eigen::Vector3d::Zero(), Eigen::Vector3i::Ones(), tilt, yaw, step)
+            .size());
+    const double total = (1.0 + static_cast<double>(cylinder.rings) * cylinder.per_ring) *
+                         cylinder.layers * orientations_per_point;
+    if (total > 100000)
+      region.fail(
+          fmt::format("at most 100000 task poses (points × orientations), found {:.0f}", total));
     task_spec.poses = cylinder_task_poses(centre, cylinder.radius, cylinder.height, cylinder.rings,
                                           cylinder.per_ring, cylinder.layers, tilt, yaw, step);
     study.task_centre = cylinder.centre;

@@ -36,7 +36,7 @@ double finite_number(py::handle value, const std::string& what);
 pybind11::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows,
                                         std::size_t columns);
 
-/// OpenMP threads from Python: None (0: all cores) or an integer 1..4096 (InputError otherwise).
+/// OpenMP threads from Python: None (0: all cores) or an integer 1..512 (InputError otherwise).
 int threads_from_python(const py::object& threads);
 
 }  // namespace pkmopt::python

@@ -7,6 +7,7 @@
 
 #include "io/input_error.hpp"
 #include "python/src/bindings.hpp"
+#include "studies/run_study.hpp"
 
 namespace pkmopt::python {
 
@@ -34,7 +35,7 @@ double finite_number(py::handle value, const std::string& what) {
 
 int threads_from_python(const py::object& threads) {
   if (threads.is_none()) return 0;
-  constexpr long long kMaxThreads = 4096;
+  constexpr long long kMaxThreads = kMaxStudyThreads;  // as `pkmopt run --threads`
   const bool integer = py::isinstance<py::int_>(threads) && !py::isinstance<py::bool_>(threads);
   long long n = 0;
   bool overflow = false;

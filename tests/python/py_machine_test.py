@@ -194,7 +194,7 @@ def test_bad_poses_and_wrenches_raise_input_error(hexapod):
         hexapod.analyze(np.zeros((1, 3)), wrench=[1, 2])
     with pytest.raises(pkmopt.InputError, match=r"wrench\[2\]: expected a finite number"):
         hexapod.analyze(np.zeros((1, 3)), wrench=[0, 0, math.inf, 0, 0, 0])
-    with pytest.raises(pkmopt.InputError, match=r"threads: expected an integer 1..4096"):
+    with pytest.raises(pkmopt.InputError, match=r"threads: expected an integer 1..512"):
         hexapod.analyze(np.zeros((1, 3)), threads=0)
     with pytest.raises(pkmopt.InputError, match=r"mode_shapes: needs a mass model"):
         hexapod.analyze(np.zeros((1, 3)), mode_shapes=True)

@@ -153,7 +153,7 @@ def test_bad_studies_raise_input_error_with_the_key(tmp_path):
     with pytest.raises(pkmopt.InputError, match=r"^<dict>: optimizer.population: expected"):
         pkmopt.run_study(bad, out=tmp_path / "b")
     assert not (tmp_path / "b" / "journal.txt").exists()
-    with pytest.raises(pkmopt.InputError, match=r"threads: expected an integer 1..4096"):
+    with pytest.raises(pkmopt.InputError, match=r"threads: expected an integer 1..512"):
         pkmopt.run_study(STUDY, out=tmp_path / "t", threads=-1)
 
 

@@ -3,11 +3,15 @@
 #include "studies/journal.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -272,6 +276,40 @@ TEST_F(StudyJournal, VersionOneJournalIsReadAndUpgraded) {
   const JournalContents contents = read_journal((dir / "journal.txt").string());
   EXPECT_EQ(contents.version, 2);
   EXPECT_EQ(contents.entries.size(), 1u);
+}
+
+// A journal that cannot be written (here: a file size limit, as a full disk) is bad input for the
+// run's folder (exit status 2 from the command line), with the file and the system's reason.
+TEST_F(StudyJournal, WriteFailureIsAnInputErrorNamingTheFile) {
+  const fs::path dir = fresh_dir("full");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);  // write() then fails with EFBIG instead of killing us
+    CountedPair inner;
+    int code = 1;
+    try {
+      JournaledProblem journaled(inner, options_for(dir, 23, false));
+      const rlimit limit{4096, 4096};
+      ::setrlimit(RLIMIT_FSIZE, &limit);
+      std::vector<std::vector<double>> batch;
+      for (int k = 0; k < 200; ++k) batch.push_back({0.001 * k, -0.001 * k});
+      journaled.batch_fitness(batch, 1);
+    } catch (const InputError& error) {
+      const std::string what = error.what();
+      code = what.find("journal.txt: write failed: File too large") != std::string::npos &&
+                     what.find("--resume") != std::string::npos
+                 ? 0
+                 : 2;
+    } catch (...) {
+      code = 3;
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "1: no error, 2: another message, 3: not an InputError";
 }
 
 TEST_F(StudyJournal, ResumeRefusesAnotherStudy) {
