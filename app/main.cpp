@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
@@ -66,6 +67,14 @@ int main(int argc, char** argv) {
   } catch (const pkmopt::InputError& e) {
     flush_stdout();
     report("error", e.what());
+    return pkmopt::kExitInputError;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the user gave that the file system refuses (a symbolic link loop, a name too
+    // long, no permission): bad input, with the path and the system's reason.
+    flush_stdout();
+    report("error",
+           (e.path1().empty() ? std::string() : pkmopt::quote_found(e.path1().string()) + ": ") +
+               e.code().message());
     return pkmopt::kExitInputError;
   } catch (const std::bad_alloc&) {
     flush_stdout();

@@ -40,8 +40,11 @@ std::string read_input_file(const std::string& path) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; the type check below refuses it.
   Descriptor d{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (d.fd < 0) {
-    throw InputError(
-        fmt::format("{}: cannot open the file (does it exist and is it readable?)", path));
+    const int error = errno;
+    if (error == ENOENT || error == EACCES || error == ENOTDIR)
+      throw InputError(
+          fmt::format("{}: cannot open the file (does it exist and is it readable?)", path));
+    throw InputError(fmt::format("{}: cannot open the file: {}", path, std::strerror(error)));
   }
   struct stat st {};
   if (::fstat(d.fd, &st) != 0) {

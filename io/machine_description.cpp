@@ -120,13 +120,20 @@ MachineDescription describe_machine(const YamlValue& root) {
     const YamlValue file = parallel.required("file");
     const std::filesystem::path module =
         std::filesystem::path(path).parent_path() / file.as_string();
-    if (!std::filesystem::exists(module)) {
-      file.fail("an existing machine file", "'" + module.string() + "' (no such file)");
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(module, error)) {
+      file.fail("an existing machine file",
+                "'" + module.string() + "' (" + (error ? error.message() : "no such file") + ")");
     }
-    const MachineDescription inner = describe_machine_file(module.string());
-    if (inner.serial_drives > 0) {
-      file.fail("a parallel machine file", "'" + inner.model + "'");
-    }
+    // The module is a parallel machine: a hybrid module (this file itself, say) is refused
+    // before it is described, so a file naming itself cannot recurse.
+    const YamlValue module_root = YamlValue::load_file(module.string());
+    module_root.expect_map();
+    const std::string module_model = module_root.required("model").as_string();
+    if (module_model == "hybrid" || module_model == "serial")
+      file.fail("a parallel machine file",
+                "'" + module.string() + "' (model: " + module_model + ")");
+    const MachineDescription inner = describe_machine(module_root);
     d.translations += inner.translations;
     d.rotations += inner.rotations;
     d.parallel_drives = inner.parallel_drives;

@@ -195,8 +195,10 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   const YamlValue file = parallel.required("file");
   const std::filesystem::path module =
       std::filesystem::path(root.file()).parent_path() / file.as_string();
-  if (!std::filesystem::is_regular_file(module)) {
-    file.fail("an existing machine file", "'" + module.string() + "' (no such file)");
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(module, error)) {
+    file.fail("an existing machine file",
+              "'" + module.string() + "' (" + (error ? error.message() : "no such file") + ")");
   }
   const YamlValue module_root = YamlValue::load_file(module.string());
   module_root.expect_map();

@@ -268,6 +268,30 @@ TEST_F(ErrorContract, YamlTheParserCannotAdvanceIn) {  // yaml-cpp's LoadAll nev
   expect_refused("describe " + write("comma.yaml", ", Cal"), "comma.yaml:1:");
 }
 
+TEST_F(ErrorContract, HybridWhoseModuleIsItself) {  // recursed until the stack overflowed
+  std::string hybrid = read_text(example("hybrid_gantry_3prs.yaml"));
+  const std::string from = "file: tripod_3prs.yaml";
+  ASSERT_NE(hybrid.find(from), std::string::npos);
+  hybrid.replace(hybrid.find(from), from.size(), "file: self.yaml");
+  const std::string file = write("self.yaml", hybrid);
+  expect_refused("describe " + file, "parallel.file: expected a parallel machine file");
+  const std::string poses = write("p.csv", "x,y,z\n0,0,1.0\n");
+  expect_refused("analyze " + file + " --poses " + poses, "expected a parallel machine file");
+}
+
+TEST_F(ErrorContract, PathsTheFileSystemRefuses) {  // std::filesystem errors exited 1
+  fs::create_symlink("loop.yaml", dir_ / "loop.yaml");
+  expect_refused("describe " + path("loop.yaml"), "loop.yaml");
+  std::string hybrid = read_text(example("hybrid_gantry_3prs.yaml"));
+  const std::string from = "file: tripod_3prs.yaml";
+  hybrid.replace(hybrid.find(from), from.size(), "file: loop.yaml");
+  expect_refused("describe " + write("via-loop.yaml", hybrid), "loop.yaml");
+  hybrid = read_text(example("hybrid_gantry_3prs.yaml"));
+  hybrid.replace(hybrid.find(from), from.size(), "file: " + std::string(300, 'o') + ".yaml");
+  expect_refused("describe " + write("long.yaml", hybrid), "expected an existing machine file");
+  expect_refused("describe " + std::string(5000, 'o') + ".yaml", "File name too long");
+}
+
 // ---- Lost output ------------------------------------------------------------------------------
 
 TEST_F(ErrorContract, OutputToAFullDisk) {
