@@ -10,6 +10,7 @@
 
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/number_policy.hpp"
 
 namespace pkmopt {
 namespace {
@@ -87,7 +88,10 @@ class ParetoReader {
   double number_value(const json& v, const std::string& where, bool null_allowed) const {
     if (v.is_null() && null_allowed) return kNaN;
     if (!v.is_number()) fail(where, null_allowed ? "a number or null" : "a number", describe(v));
-    return v.get<double>();
+    const double x = v.get<double>();
+    // The input number policy (io/number_policy.hpp): plots and tables stay finite.
+    if (!sane_input_number(x)) fail(where, std::string(kSaneNumberText), describe(v));
+    return x;
   }
 
   bool boolean(const json& parent, const std::string& path, const std::string& key) const {

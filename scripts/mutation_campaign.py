@@ -816,6 +816,16 @@ def json_mutation(text, rng, mild=False):
         return u(json_dump_raw(obj)), "extra top-level key"
     if op == "num_raw" and nums:
         p, v = rng.choice(nums)
+        design_nums = [(q, w) for q, w in nums if q and q[0] == "designs"]
+        if design_nums and rng.random() < 0.5:
+            # Finite extremes in the values a report plots and sums (objectives first).
+            objs = [(q, w) for q, w in design_nums if "objectives" in q]
+            p, v = rng.choice(objs if objs and rng.random() < 0.7 else design_nums)
+            raw = rng.choice(["1.7976931348623157e308", "-1.7976931348623157e308", "1e308",
+                              "-1e308", "1e300", "-1e300", "1e200", "4.9e-324", "1e-320",
+                              "2.2250738585072014e-308", "1e15", "-1e15", "0", "-0"])
+            obj = json_set(obj, p, _Raw(raw))
+            return u(json_dump_raw(obj)), f"{_jp(p)}: {v} -> {raw}"
         raw = rng.choice(["NaN", "-NaN", "Infinity", "-Infinity", "1e400", "-1e400", "1e-400",
                           "-0", "123456789012345678901234567890", "0x10", "1.", ".5", "01",
                           "+1", "1e", "nan", "inf", "\"1\"", "\"nan\"", "9" * 400,
@@ -1429,6 +1439,9 @@ def mutate_options(case, rng, ctx):
                     val = mild_number(rng, cur)
                 elif kind in ("int", "uint") and r < 0.35:
                     val = rng.choice(["1.5", "1e3", "0x10", "-1", "0", "+3", "3 ", "2e0"])
+                elif kind in ("int", "uint") and r < 0.5:
+                    # Counts that fit an int but ask for far too much work.
+                    val = rng.choice(["2147483647", "1000000000", "100000000", "10000000"])
                 else:
                     val = hostile_number(rng)
                     val = s2b(val).decode("utf-8", "replace")

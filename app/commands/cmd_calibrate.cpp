@@ -82,9 +82,10 @@ void run_simulate(const SimulateOptions& opt) {
   if (opt.unit != "m" && opt.unit != "mm") {
     throw InputError(fmt::format("--unit: expected m or mm, found '{}'", opt.unit));
   }
-  if (opt.poses < 1 || opt.outliers < 0 || opt.outliers > opt.poses) {
+  if (opt.poses < 1 || opt.poses > 100000 || opt.outliers < 0 || opt.outliers > opt.poses) {
     throw InputError(fmt::format(
-        "--poses/--outliers: expected poses >= 1 and 0 <= outliers <= poses, found {} and {}",
+        "--poses/--outliers: expected 1 <= poses <= 100000 and 0 <= outliers <= poses, found {} "
+        "and {}",
         opt.poses, opt.outliers));
   }
   for (auto [name, value] : {std::pair{"--joint-error", opt.joint_error},

@@ -71,6 +71,9 @@ VolumeAccuracy choose_workspace_resolution(const Machine& machine, const Workspa
     // At most kMaxAutoNodes nodes (about 10 s for a hexapod), and never past the options' limit.
     const double limit = std::min(kMaxAutoNodes, static_cast<double>(options.max_grid_nodes));
     if (grid_nodes(box, 0.5 * h) > limit) return out;
+    // At most 7 halvings (1/16 to 1/2048 of the box): a volume that does not converge by then
+    // (a tripod's, which grows with the grid spacing) will not, and each grid costs more.
+    if (out.grids >= 8) return out;
     coarse = fine;
     h *= 0.5;
   }

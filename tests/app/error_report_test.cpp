@@ -236,6 +236,34 @@ TEST_F(ErrorContract, ParetoJsonWith1e999) {
   EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
 }
 
+TEST_F(ErrorContract, ParetoJsonWithAnObjectiveOf1e308) {  // plots got -nan coordinates
+  const fs::path source = fs::path(PKMOPT_SOURCE_DIR) / "tests/io/data/pareto_json/two";
+  std::string json = read_text(source / "pareto.json");
+  const std::string from = "1.2345678901234567e7";  // designs[0].objectives.stiffness_min
+  ASSERT_NE(json.find(from), std::string::npos);
+  json.replace(json.find(from), from.size(), "-1.7976931348623157e308");
+  fs::create_directories(dir_ / "front");
+  write("front/pareto.json", json);
+  const CliRun r = run("export " + path("front") + " --format html --out " + path("r.html"));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("stiffness_min: expected a finite number within +-1e15"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "r.html"));
+}
+
+TEST_F(ErrorContract, SimulateMeasurementsWithTenMillionPoses) {  // ran for minutes
+  expect_refused("simulate-measurements " + example("hexapod.yaml") + " --out " + path("sim") +
+                     " --poses 10000000",
+                 "1 <= poses <= 100000");
+}
+
+TEST_F(ErrorContract, TripodWorkspaceWithoutResolution) {  // the refinement never ended
+  const CliRun r = run("workspace " + example("tripod_3prs.yaml"));
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("pkmopt: warning: the volume's estimated error"), std::string::npos)
+      << r.err;
+}
+
 // ---- Not one located line ---------------------------------------------------------------------
 
 TEST_F(ErrorContract, CommandLineOptionErrorsAreOneLine) {
