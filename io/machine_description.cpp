@@ -123,7 +123,10 @@ MachineDescription describe_machine(const YamlValue& root) {
     std::error_code error;
     if (!std::filesystem::is_regular_file(module, error)) {
       file.fail("an existing machine file",
-                "'" + module.string() + "' (" + (error ? error.message() : "no such file") + ")");
+                "'" + module.string() + "' (" +
+                    (error && error != std::errc::no_such_file_or_directory ? error.message()
+                                                                            : "no such file") +
+                    ")");
     }
     // The module is a parallel machine: a hybrid module (this file itself, say) is refused
     // before it is described, so a file naming itself cannot recurse.

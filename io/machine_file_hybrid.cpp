@@ -198,7 +198,10 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(module, error)) {
     file.fail("an existing machine file",
-              "'" + module.string() + "' (" + (error ? error.message() : "no such file") + ")");
+              "'" + module.string() + "' (" +
+                  (error && error != std::errc::no_such_file_or_directory ? error.message()
+                                                                          : "no such file") +
+                  ")");
   }
   const YamlValue module_root = YamlValue::load_file(module.string());
   module_root.expect_map();
