@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "io/machine_file.hpp"
+#include "io/machine_file_hybrid.hpp"
 #include "io/yaml_reader.hpp"
 #include "models/serial_chain.hpp"
 
@@ -111,36 +112,19 @@ MachineDescription describe_machine(const YamlValue& root) {
     root.check_keys({"model", "name", "description", "code", "axes", "spindle"});
     add_serial(d, read_serial(root, true));
   } else if (d.model == "hybrid") {
-    root.check_keys({"model", "name", "description", "serial", "parallel"});
+    root.check_keys({"model", "name", "description", "serial", "parallel", "gravity"});
     const YamlValue serial = root.required("serial");
-    serial.check_keys({"code", "axes", "range", "stiffness", "error"});
+    serial.check_keys({"code", "axes", "range", "stiffness", "error", "mass"});
     add_serial(d, read_serial(serial, false));
     const YamlValue parallel = root.required("parallel");
     parallel.check_keys({"file", "home"});
     const YamlValue file = parallel.required("file");
-    const std::filesystem::path module =
-        std::filesystem::path(path).parent_path() / file.as_string();
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(module, error)) {
-      file.fail("an existing machine file",
-                "'" + module.string() + "' (" +
-                    (error && error != std::errc::no_such_file_or_directory ? error.message()
-                                                                            : "no such file") +
-                    ")");
-    }
-    // The module is a parallel machine: a hybrid module (this file itself, say) is refused
-    // before it is described, so a file naming itself cannot recurse.
-    const YamlValue module_root = YamlValue::load_file(module.string());
-    module_root.expect_map();
-    const std::string module_model = module_root.required("model").as_string();
-    if (module_model == "hybrid" || module_model == "serial")
-      file.fail("a parallel machine file",
-                "'" + module.string() + "' (model: " + module_model + ")");
+    const YamlValue module_root = read_hybrid_module_file(file, path);
     const MachineDescription inner = describe_machine(module_root);
     d.translations += inner.translations;
     d.rotations += inner.rotations;
     d.parallel_drives = inner.parallel_drives;
-    d.details.push_back(fmt::format("parallel: {} ({})", inner.model, module.string()));
+    d.details.push_back(fmt::format("parallel: {} ({})", inner.model, module_root.file()));
   } else {
     const std::unique_ptr<Machine> machine = load_machine(root);
     const auto [translations, rotations] =

@@ -147,6 +147,27 @@ void check_keys_of(const YamlValue& map, Describe&& describe) {
 
 }  // namespace
 
+YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybrid_file) {
+  const std::filesystem::path module =
+      std::filesystem::path(hybrid_file).parent_path() / file.as_string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(module, error)) {
+    file.fail("an existing machine file",
+              "'" + module.string() + "' (" +
+                  (error && error != std::errc::no_such_file_or_directory ? error.message()
+                                                                          : "no such file") +
+                  ")");
+  }
+  // A hybrid or serial module (this file itself, say) is refused before anything reads it
+  // further, so a file naming itself cannot recurse.
+  YamlValue module_root = YamlValue::load_file(module.string());
+  module_root.expect_map();
+  const std::string module_model = module_root.required("model").as_string();
+  if (module_model == "hybrid" || module_model == "serial")
+    file.fail("a parallel machine file", "'" + module.string() + "' (model: " + module_model + ")");
+  return module_root;
+}
+
 HybridDesign read_hybrid_design(const YamlValue& root) {
   HybridDesign design;
   check_keys_of(root, [&](auto& keys) { describe_fields(keys, design); });
@@ -193,28 +214,14 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   const YamlValue parallel = root.required("parallel");
   check_keys_of(parallel, [&](auto& keys) { describe_parallel(keys, design); });
   const YamlValue file = parallel.required("file");
-  const std::filesystem::path module =
-      std::filesystem::path(root.file()).parent_path() / file.as_string();
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(module, error)) {
-    file.fail("an existing machine file",
-              "'" + module.string() + "' (" +
-                  (error && error != std::errc::no_such_file_or_directory ? error.message()
-                                                                          : "no such file") +
-                  ")");
-  }
-  const YamlValue module_root = YamlValue::load_file(module.string());
-  module_root.expect_map();
-  const std::string module_model = module_root.required("model").as_string();
-  if (module_model == "hybrid" || module_model == "serial") {
-    file.fail("a parallel machine file", "'" + module.string() + "' (model: " + module_model + ")");
-  }
+  const YamlValue module_root = read_hybrid_module_file(file, root.file());
   design.module = load_machine(module_root);
   if (design.module->revolute_actuators()) {
     file.fail(
         "a parallel machine with prismatic actuators (revolute drives would mix degrees "
         "with the axes' metres in q)",
-        "'" + module.string() + "' (model: " + module_model + ", revolute drives)");
+        "'" + module_root.file() + "' (model: " + module_root.required("model").as_string() +
+            ", revolute drives)");
   }
   {
     FieldReader reader(parallel);  // home

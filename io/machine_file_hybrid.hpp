@@ -45,6 +45,9 @@ HybridDesign read_hybrid_design(const YamlValue& root);
 std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file);
 /// The machine of a `model: hybrid` map.
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
+/// The module file a hybrid's `parallel.file` names (relative to `hybrid_file`), parsed; throws
+/// InputError at `file` when it is missing, not a regular file, or a hybrid or serial machine.
+YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybrid_file);
 
 /// The docs table of the hybrid machine file's keys, from the field list its reader uses.
 std::string hybrid_machine_fields_markdown();

@@ -56,6 +56,13 @@ TEST_F(MachineDescriptionTest, HexapodIsP0Z6AndLongAxisHexapodIsP1Z6) {
             std::string::npos);
 }
 
+// Every file that analyze reads is described: a hybrid with axis masses and gravity too.
+TEST_F(MachineDescriptionTest, HybridWithMassesIsDescribed) {
+  const MachineDescription hybrid =
+      describe_machine_file(kExamples + "hybrid_long_axis_masses.yaml");
+  EXPECT_EQ(hybrid.structure, "P1З6");
+}
+
 // describe_machine on a parsed document describes it as its file; a hybrid's module file is
 // taken from the folder of the document's file.
 TEST_F(MachineDescriptionTest, ParsedDocumentIsDescribedAsItsFile) {
