@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -181,14 +182,29 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
     summary += drive_check_text(*drive, reduced, carries);
   }
 
+  // Both files are written to temporaries first and moved into place together: when the
+  // second cannot be, the first is removed again (no output is left by a failed command).
+  std::optional<AtomicOutputFile> out, singular;
+  if (!opt.out_file.empty()) {
+    out.emplace(opt.out_file);
+    out->stream() << table;
+  }
+  if (!opt.singular_out_file.empty()) {
+    singular.emplace(opt.singular_out_file);
+    singular->stream() << singular_poses_csv(result);
+  }
+  if (out) out->commit();
+  if (singular) {
+    try {
+      singular->commit();
+    } catch (...) {
+      if (out) std::filesystem::remove(opt.out_file);
+      throw;
+    }
+  }
   if (opt.out_file.empty()) {
     std::cout << table;
     std::cout.flush();
-  } else {
-    write_file_atomically(opt.out_file, table);
-  }
-  if (!opt.singular_out_file.empty()) {
-    write_file_atomically(opt.singular_out_file, singular_poses_csv(result));
   }
   if (opt.out_file.empty()) {
     std::cerr << summary;

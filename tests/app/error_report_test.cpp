@@ -156,6 +156,12 @@ TEST_F(ErrorContract, TrajectoryWithHugeHelixNumbers) {
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
 }
 
+TEST_F(ErrorContract, TrajectoryWithAFolderAsSingularOut) {  // left traj.csv behind
+  expect_refused("trajectory " + example("hexapod.yaml") + " --helix --samples 21 --out " +
+                     path("traj.csv") + " --singular-out " + dir_.string(),
+                 dir_.string());
+}
+
 TEST_F(ErrorContract, SimulateMeasurementsWithNanZeroLength) {
   expect_refused("simulate-measurements " + example("hexapod.yaml") + " --out " + path("sim") +
                      " --zero-length nan",
