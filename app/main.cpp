@@ -5,21 +5,15 @@
 // "pkmopt: error: ..." on stderr.
 
 #include <CLI/CLI.hpp>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
-#include <string_view>
-#include <vector>
 
 #include "app/commands.hpp"
 #include "app/error_report.hpp"
 #include "io/input_error.hpp"
-#include "io/number_policy.hpp"
 #include "pkmopt/version.hpp"
 
 using pkmopt::cli::flush_stdout;

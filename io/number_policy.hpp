@@ -15,12 +15,15 @@
 #include <cmath>
 #include <string_view>
 
+#include "models/pose.hpp"
+
 namespace pkmopt {
 
 inline constexpr double kMaxInputMagnitude = 1e15;
 inline constexpr double kMinInputMagnitude = 1e-30;
 inline constexpr double kMaxInputLength = 1e3;  ///< m: no machine is a kilometre long
-inline constexpr double kMaxInputForce = 1e9;   ///< N and N*m: 100,000 tonnes-force
+/// N and N*m: 100,000 tonnes-force; the models' own limit on a wrench (models/pose.hpp).
+inline constexpr double kMaxInputForce = kMaxWrenchComponent;
 
 /// "a finite number within +-1e15 (0 or at least 1e-30 in magnitude)", for messages.
 inline constexpr std::string_view kSaneNumberText =

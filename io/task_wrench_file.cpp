@@ -140,8 +140,6 @@ TaskWrench read_milling(const YamlValue& root) {
 
 }  // namespace
 
-static_assert(kMaxInputForce == kMaxWrenchComponent, "one wrench limit for files and models");
-
 TaskWrench read_task_wrench(const YamlValue& value) {
   if (value.is_sequence()) {
     const std::vector<YamlValue> items = value.elements(6);

@@ -13,7 +13,6 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
