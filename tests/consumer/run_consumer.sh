@@ -2,16 +2,18 @@
 # Installs the build tree into a scratch prefix, builds tests/consumer against it with
 # find_package(pkmopt) and runs it on the sample hexapod and a small study; imports the
 # installed Python package (when it was built).
-# Usage: tests/consumer/run_consumer.sh SOURCE_DIR BUILD_DIR SCRATCH_DIR
+# The consumer is built with the compiler of the build tree (a sanitizer build's libraries need
+# that compiler's sanitizer runtime).
+# Usage: tests/consumer/run_consumer.sh SOURCE_DIR BUILD_DIR SCRATCH_DIR [CXX_COMPILER]
 set -euo pipefail
-src=$1 build=$2 scratch=$3
+src=$1 build=$2 scratch=$3 cxx=${4:-c++}
 rm -rf "$scratch"
 mkdir -p "$scratch"
 cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S "$src/tests/consumer" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$scratch/prefix" "${launcher[@]}" >/dev/null
+  -DCMAKE_PREFIX_PATH="$scratch/prefix" -DCMAKE_CXX_COMPILER="$cxx" "${launcher[@]}" >/dev/null
 cmake --build "$scratch/build" -j2 >/dev/null
 sed 's/population: 60, generations: 80/population: 40, generations: 5/' \
   "$src/studies/library/hexapod-quick.yaml" >"$scratch/study.yaml"
