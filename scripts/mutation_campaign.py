@@ -1245,6 +1245,10 @@ def gen_run(case, rng, ctx):
             case.opt("--resume")
         elif how == "force":
             case.opt("--force")
+        else:
+            # Neither --resume nor --force into a folder that holds a run: refused (exit 2) even
+            # unmutated.
+            case.meta["ok_status"] = 2
         res = Path(st["result"])
         if rng.random() < 0.6:
             case.files["res/pareto.json"] = ("gone",)
