@@ -20,6 +20,7 @@ a fresh folder and checks the error contract:
 Usage:
   /usr/bin/python3 scripts/mutation_campaign.py [--runs 1000] [--seed 1] [--jobs NCORES]
       [--timeout 20] [--binary build/bin/pkmopt] [--out /tmp/pkmopt-campaign] [--only K]
+      [--resume]
 
 The mutations of run K depend only on (--seed, K), so `--only K` repeats run K alone and prints
 what it did. Every run works in its own folder under OUT/runs/, removed when the run keeps the
@@ -27,6 +28,11 @@ contract; a run that breaks it is kept as OUT/failures/K/ with its input files (
 folder after the run (work/), the command line, stdout, stderr, exit status, the list of
 mutations and a `repro.sh` that repeats it. Before the first run the campaign prepares its seed
 inputs in OUT/prep/ from the unmodified shipped files (each is checked to pass there first).
+
+Each finished run is appended to OUT/runs.jsonl at once, so a campaign that is killed (or
+stopped with Ctrl-C) continues with `--resume`: the runs already there are kept and only the
+others are run (the same --seed and the same binary, by its SHA-256 in OUT/campaign.json, are
+required). The runs are spread over --jobs worker processes.
 
 At the end a summary is printed and written to OUT/summary.json: runs, runs per command and the
 share of them that exit 0, the exit status histogram, crashes, hangs, NaN outputs, exit 1 on
@@ -47,6 +53,7 @@ import hashlib
 import io
 import json
 import math
+import multiprocessing
 import os
 import random
 import re
@@ -2307,6 +2314,48 @@ CATEGORY_LABELS = [
 ]
 
 
+_WORKER = None  # (seed, ctx, binary, scratch, timeout, env, failures), set before the pool forks
+
+
+def worker_run(k):
+    seed, ctx, binary, scratch, timeout, env, failures = _WORKER
+    case = None
+    try:
+        case = make_case(seed, k, ctx)
+        return execute(case, binary, scratch, timeout, env, failures)
+    except Exception as e:  # a harness error is reported, never hidden
+        return {"k": k, "cmd": case.cmd if case else COMMANDS[k % len(COMMANDS)],
+                "rc": "harness-error", "secs": 0,
+                "mutated": bool(case and case.mutated),
+                "mutations": case.mutations if case else [],
+                "findings": [["harness_error", repr(e)]],
+                "argv": case.argv() if case else []}
+
+
+def file_sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def read_journal(path):
+    """The results of runs.jsonl; a line cut by a kill (the last one) is dropped and rerun."""
+    results, seen = [], set()
+    if not path.exists():
+        return results
+    for line in path.read_text().splitlines():
+        try:
+            r = json.loads(line)
+        except json.JSONDecodeError:
+            continue
+        if isinstance(r, dict) and "k" in r and r["k"] not in seen:
+            seen.add(r["k"])
+            results.append(r)
+    return results
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--runs", type=int, default=1000)
@@ -2317,6 +2366,8 @@ def main():
     ap.add_argument("--out", default="/tmp/pkmopt-campaign")
     ap.add_argument("--only", type=int, default=None, help="run only run K and print it")
     ap.add_argument("--omp-threads", type=int, default=1)
+    ap.add_argument("--resume", action="store_true",
+                    help="continue a killed campaign in --out (same --seed and binary)")
     args = ap.parse_args()
     binary = os.path.abspath(args.binary)
     if not os.access(binary, os.X_OK):
@@ -2342,49 +2393,62 @@ def main():
         res = execute(case, binary, scratch, args.timeout, env, failures)
         print(json.dumps(res, indent=2, default=str))
         return 1 if res["findings"] else 0
-    for d in (scratch, failures):
-        if d.exists():
-            shutil.rmtree(d)
-    scratch.mkdir(parents=True)
-    t0 = time.monotonic()
+    # The campaign's identity: a resumed campaign must run the same binary with the same seed.
+    identity = {"seed": args.seed, "binary_sha256": file_sha256(binary)}
+    ident_path = out / "campaign.json"
+    journal = out / "runs.jsonl"
     results = []
-
-    def one(k):
-        case = None
-        try:
-            case = make_case(args.seed, k, ctx)
-            return execute(case, binary, scratch, args.timeout, env, failures)
-        except Exception as e:  # a harness error is reported, never hidden
-            return {"k": k, "cmd": case.cmd if case else COMMANDS[k % len(COMMANDS)],
-                    "rc": "harness-error", "secs": 0,
-                    "mutated": bool(case and case.mutated),
-                    "mutations": case.mutations if case else [],
-                    "findings": [["harness_error", repr(e)]],
-                    "argv": case.argv() if case else []}
-
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
-        futs = [ex.submit(one, k) for k in range(args.runs)]
-        done = 0
-        for f in concurrent.futures.as_completed(futs):
-            results.append(f.result())
+    if args.resume and ident_path.exists():
+        old = json.loads(ident_path.read_text())
+        if old != identity:
+            print(f"mutation_campaign: --resume: {ident_path} holds {old}, this campaign is "
+                  f"{identity} (the same --seed and binary are needed)", file=sys.stderr)
+            return 2
+        results = read_journal(journal)
+        print(f"  resuming: {len(results)} runs already in {journal}", file=sys.stderr)
+    else:
+        for d in (scratch, failures):
+            if d.exists():
+                shutil.rmtree(d)
+        journal.unlink(missing_ok=True)
+    shutil.rmtree(scratch, ignore_errors=True)
+    scratch.mkdir(parents=True)
+    ident_path.write_text(json.dumps(identity) + "\n")
+    done_ks = {r["k"] for r in results}
+    todo = [k for k in range(args.runs) if k not in done_ks]
+    t0 = time.monotonic()
+    global _WORKER
+    _WORKER = (args.seed, ctx, binary, scratch, args.timeout, env, failures)
+    # Processes, not threads: the harness's own work (mutating, checking outputs) runs on every
+    # core. Forked workers inherit the prepared inputs.
+    pool = concurrent.futures.ProcessPoolExecutor(
+        max_workers=max(1, args.jobs), mp_context=multiprocessing.get_context("fork"))
+    done = 0
+    with pool as ex, open(journal, "a") as jf:
+        for res in ex.map(worker_run, todo, chunksize=8):
+            jf.write(json.dumps(res, default=str) + "\n")
+            jf.flush()
+            results.append(res)
             done += 1
-            if done % 100 == 0 or done == args.runs:
+            if done % 100 == 0 or done == len(todo):
                 bad = sum(1 for r in results if r["findings"])
-                print(f"  {done}/{args.runs} runs, {bad} breaking the contract, "
+                print(f"  {len(results)}/{args.runs} runs, {bad} breaking the contract, "
                       f"{done / (time.monotonic() - t0):.1f} runs/s", file=sys.stderr)
     elapsed = time.monotonic() - t0
     results.sort(key=lambda r: r["k"])
     shutil.rmtree(scratch, ignore_errors=True)
-    summary = summarise(results, args, binary, elapsed, t_prep, ctx)
+    summary = summarise(results, args, binary, elapsed, t_prep, ctx, done)
     (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-    with open(out / "runs.jsonl", "w") as f:
+    tmp = journal.with_suffix(".jsonl.tmp")
+    with open(tmp, "w") as f:
         for r in results:
             f.write(json.dumps(r, default=str) + "\n")
+    os.replace(tmp, journal)
     print_summary(summary, out)
     return 1 if summary["contract_failures"] else 0
 
 
-def summarise(results, args, binary, elapsed, t_prep, ctx):
+def summarise(results, args, binary, elapsed, t_prep, ctx, runs_now):
     per_cmd = {}
     hist = {}
     cats = {c: [] for c, _ in CATEGORY_LABELS}
@@ -2406,10 +2470,10 @@ def summarise(results, args, binary, elapsed, t_prep, ctx):
         pc["exit2_share"] = round(pc["exit_status"].get("2", 0) / pc["runs"], 3)
     failing = [r for r in results if r["findings"]]
     return {
-        "binary": binary, "seed": args.seed, "runs": len(results), "jobs": args.jobs,
+        "binary": binary, "binary_sha256": file_sha256(binary), "seed": args.seed, "runs": len(results), "jobs": args.jobs,
         "timeout_s": args.timeout, "elapsed_s": round(elapsed, 1),
-        "prep_s": round(t_prep, 1),
-        "runs_per_second": round(len(results) / elapsed, 2) if elapsed else None,
+        "prep_s": round(t_prep, 1), "runs_this_invocation": runs_now,
+        "runs_per_second": round(runs_now / elapsed, 2) if elapsed else None,
         "mutated_runs": sum(1 for r in results if r["mutated"]),
         "per_command": dict(sorted(per_cmd.items())),
         "exit_status_histogram": dict(sorted(hist.items())),
@@ -2437,7 +2501,8 @@ def summarise(results, args, binary, elapsed, t_prep, ctx):
 
 def print_summary(s, out):
     print(f"pkmopt mutation campaign: {s['runs']} runs ({s['mutated_runs']} mutated), seed "
-          f"{s['seed']}, {s['elapsed_s']} s, {s['runs_per_second']} runs/s")
+          f"{s['seed']}; this invocation {s['runs_this_invocation']} runs in {s['elapsed_s']} s, "
+          f"{s['runs_per_second']} runs/s")
     print("per command: runs, exit 0 share, exit 2 share, failures")
     for c, pc in s["per_command"].items():
         print(f"  {c:22s} {pc['runs']:5d}  {pc['exit0_share']:6.1%}  {pc['exit2_share']:6.1%}"

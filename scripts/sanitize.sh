@@ -10,7 +10,9 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+# -O1, as the sanitizers' authors advise: fast enough to run, much faster to build than -O2.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" \
+  -DCMAKE_CXX_COMPILER=clang++ \
   -DPKMOPT_SANITIZE=address,undefined \
   -DPKMOPT_BUILD_BENCH=OFF -DPKMOPT_BUILD_PYTHON=OFF "${launcher[@]}" >/dev/null
 cmake --build build-asan -j"$(nproc)"

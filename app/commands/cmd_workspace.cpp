@@ -153,6 +153,15 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     throw InputError(fmt::format("{}: {}", grid ? "--resolution" : opt.machine_file, what));
   }
 
+  // A machine whose legs have no common reach at any orientation has an empty search box: it
+  // cannot be assembled anywhere, and there is no plane to slice.
+  if (ws.bounding_box.isEmpty() && ws.search_box.isEmpty()) {
+    throw InputError(fmt::format(
+        "{}: expected legs that reach a common platform pose, found none at any orientation (the "
+        "reach of the legs does not overlap: check the leg or strut lengths, the radii and the "
+        "strokes)",
+        opt.machine_file));
+  }
   // The slice: through the middle of the workspace unless --slice-at is given.
   const SlicePlane plane =
       choose_slice_plane(ws, options.resolution, opt.slice_axis[0], opt.slice_at, opt.slice_pixel);

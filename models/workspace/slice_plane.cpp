@@ -12,6 +12,8 @@ SlicePlane choose_slice_plane(const WorkspaceResult& ws, double resolution, char
   SlicePlane plane;
   plane.normal_axis = normal_axis;
   Eigen::AlignedBox3d box = ws.bounding_box.isEmpty() ? ws.search_box : ws.bounding_box;
+  require(!box.isEmpty() && box.sizes().allFinite(),
+          "choose_slice_plane: the workspace and its search box are empty (nothing to slice)");
   const Eigen::Vector3d pad = 0.05 * box.sizes() + Eigen::Vector3d::Constant(resolution);
   plane.box = Eigen::AlignedBox3d(box.min() - pad, box.max() + pad);
   plane.offset = offset ? *offset : plane.box.center()(axis_index);

@@ -35,8 +35,9 @@ struct SlicePlane {
 };
 
 /// The slice plane through `ws` (see the header comment). `normal_axis` is 'x', 'y' or 'z'
-/// (std::invalid_argument otherwise); `resolution` is the grid spacing the workspace was computed
-/// with (m); `offset` and `pixel` (m) replace the defaults when given.
+/// (std::invalid_argument otherwise, and when both the workspace's bounding box and its search
+/// box are empty: a machine whose legs have no common reach); `resolution` is the grid spacing the
+/// workspace was computed with (m); `offset` and `pixel` (m) replace the defaults when given.
 SlicePlane choose_slice_plane(const WorkspaceResult& ws, double resolution, char normal_axis,
                               std::optional<double> offset = std::nullopt,
                               std::optional<double> pixel = std::nullopt);

@@ -272,6 +272,21 @@ TEST_F(ErrorContract, TripodWorkspaceWithoutResolution) {  // the refinement nev
 
 // ---- Not one located line ---------------------------------------------------------------------
 
+TEST_F(ErrorContract, TripodWhoseStrutsCannotReachThePlatform) {
+  // Struts of 1 µm between slides 0.30 m and joints 0.15 m from the axis: no pose assembles,
+  // the search box is empty. Once reported as a slice of "inf pixels of 0 m (the grid spacing)".
+  std::string machine = read_text(example("tripod_3prs.yaml"));
+  const std::string line = "strut: 0.55 ";
+  machine.replace(machine.find(line), line.size(), "strut: 1e-6 ");
+  const std::string file = write("short_struts.yaml", machine);
+  expect_refused("workspace " + file + " --resolution 0.02 --out " + path("ws"),
+                 file + ": expected legs that reach a common platform pose, found none");
+  // The message speaks of the machine, never of an option that was not given.
+  const CliRun r = run("workspace " + file + " --resolution 0.02");
+  EXPECT_EQ(r.err.find("--slice-pixel"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("pixels"), std::string::npos) << r.err;
+}
+
 TEST_F(ErrorContract, CommandLineOptionErrorsAreOneLine) {
   const std::string study = tiny_study();
   expect_refused("run " + study + " --out " + path("o") + " --threads abc",

@@ -61,6 +61,14 @@ TEST(SlicePlane, EmptyWorkspaceFallsBackToTheSearchBox) {
   EXPECT_NEAR(p.pixel, 4.44 / 300.0, 1e-15);
 }
 
+TEST(SlicePlane, RejectsAnEmptyWorkspaceInAnEmptySearchBox) {
+  // A machine whose legs have no common reach: both boxes empty (once a slice of 0 m pixels).
+  WorkspaceResult ws = boxes();
+  ws.bounding_box.setEmpty();
+  ws.search_box.setEmpty();
+  EXPECT_THROW(choose_slice_plane(ws, 0.02, 'z'), std::invalid_argument);
+}
+
 TEST(SlicePlane, RejectsAnAxisOtherThanXYZ) {
   EXPECT_THROW(choose_slice_plane(boxes(), 0.1, 'w'), std::invalid_argument);
 }
