@@ -22,6 +22,7 @@ PACKAGES=(
   libpng-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
   clang libclang-rt-dev libomp-dev
+  ccache
 )
 
 missing=()
