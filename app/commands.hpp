@@ -18,5 +18,6 @@ void add_workspace_command(CLI::App& app);
 void add_export_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_trajectory_command(CLI::App& app);
+void add_task_poses_command(CLI::App& app);
 
 }  // namespace pkmopt::cli

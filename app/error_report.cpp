@@ -1,5 +1,6 @@
 #include "app/error_report.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +32,45 @@ std::string expected_value(const CLI::Option* option) {
   return "a value of the form " + type;
 }
 
+// Edit distance with adjacent transpositions (optimal string alignment: "rnu" is one edit
+// from "run"), for "did you mean".
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min(
+          {d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// "; did you mean '--out'?" when one of `names` is close to `given` (at most 2 edits, and at
+// most half its length), else "".
+std::string did_you_mean(std::string_view given, const std::vector<std::string>& names) {
+  std::string best;
+  std::size_t best_distance = 3;
+  for (const std::string& name : names) {
+    const std::size_t d = edit_distance(given, name);
+    if (d < best_distance && 2 * d <= name.size()) {
+      best = name;
+      best_distance = d;
+    }
+  }
+  return best.empty() ? std::string() : "; did you mean '" + best + "'?";
+}
+
+// The long option names of a command ("--out", "--threads", ...).
+std::vector<std::string> option_names(const CLI::App& command) {
+  std::vector<std::string> names;
+  for (const CLI::Option* option : command.get_options())
+    for (const std::string& name : option->get_lnames()) names.push_back("--" + name);
+  return names;
+}
+
 // CLI11's parse errors in the words of every other pkmopt message: what was expected, what was
 // found. Unknown texts are kept as CLI11 wrote them.
 std::string parse_error_text(CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
@@ -42,14 +82,23 @@ std::string parse_error_text(CLI::App& app, const CLI::ParseError& error, int ar
   if (!extras.empty() && command != &app) {
     std::string list;
     for (const std::string& e : extras) list += (list.empty() ? "" : " ") + quote_found(e);
-    return "expected the options and arguments listed by --help, found unknown " + list;
+    std::string hint;
+    for (const std::string& e : extras) {
+      const std::string given = e.substr(0, e.find('='));  // --ouy=x
+      if (given.starts_with("-") && hint.empty())
+        hint = did_you_mean(given, option_names(*command));
+    }
+    return "expected the options and arguments listed by --help, found unknown " + list + hint;
   }
   if (command == &app && what.find("subcommand is required") != std::string::npos) {
     std::string names;
-    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    std::vector<std::string> list;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
       names += (names.empty() ? "" : ", ") + sub->get_name();
+      list.push_back(sub->get_name());
+    }
     return std::string("expected a command (") + names + "), found " +
-           (argc > 1 ? quote_found(argv[1]) : std::string("none"));
+           (argc > 1 ? quote_found(argv[1]) + did_you_mean(argv[1], list) : std::string("none"));
   }
   constexpr std::string_view kConvert = "Could not convert: ";
   if (what.starts_with(kConvert)) {  // "Could not convert: --threads = abc"

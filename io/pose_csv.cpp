@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "io/csv.hpp"
 #include "io/input_error.hpp"
 
 namespace pkmopt {
@@ -105,6 +106,17 @@ PoseTable read_pose_csv(const std::string& path) { return read_poses(path, false
 
 PoseTable read_timed_pose_csv(const std::string& path, std::size_t min_rows) {
   return read_poses(path, true, min_rows);
+}
+
+std::string pose_csv_text(const std::vector<Pose>& poses) {
+  std::string text = "x,y,z,rx,ry,rz\n";
+  for (const Pose& p : poses) {
+    const Eigen::Vector3d deg = rad_to_deg(p.angles);
+    text += fmt::format("{},{},{},{},{},{}\n", format_number(p.position.x()),
+                        format_number(p.position.y()), format_number(p.position.z()),
+                        format_number(deg.x()), format_number(deg.y()), format_number(deg.z()));
+  }
+  return text;
 }
 
 }  // namespace pkmopt

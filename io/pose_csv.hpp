@@ -64,6 +64,10 @@ struct PoseTable {
 /// Reads a pose file (columns x, y, z, optional rx, ry, rz).
 PoseTable read_pose_csv(const std::string& path);
 
+/// A pose file of `poses`: header `x,y,z,rx,ry,rz` (m, degrees), one row per pose, numbers that
+/// read back to the same values; read_pose_csv reads it.
+std::string pose_csv_text(const std::vector<Pose>& poses);
+
 /// Reads a path file: a `t` column (s, strictly increasing, InputError naming the row
 /// otherwise) and at least `min_rows` rows besides the pose columns.
 PoseTable read_timed_pose_csv(const std::string& path, std::size_t min_rows = 2);

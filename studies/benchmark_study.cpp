@@ -13,6 +13,7 @@
 #include "io/field_list.hpp"
 #include "io/input_error.hpp"
 #include "io/output_file.hpp"
+#include "optimizer/front_thinning.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 
@@ -59,6 +60,22 @@ BenchmarkProblemSection read_problem_section(const YamlValue& section) {
   return p;
 }
 
+// The `output:` section of a benchmark study.
+struct BenchmarkOutputSection {
+  int front_size = 0;  ///< 0: every non-dominated design
+};
+
+template <class Fields>
+void describe_fields(Fields& f, BenchmarkOutputSection& o) {
+  f.field("front_size", o.front_size,
+          {.min = 0,
+           .max = kMaxFrontSize,
+           .zero_is_unset = true,
+           .expected = "an integer in [1, 100000]",
+           .doc = "thin the front to this many points (SPEA2 truncation, the extremes kept); "
+                  "unset: every non-dominated feasible point of the run"});
+}
+
 }  // namespace
 
 std::unique_ptr<BenchmarkProblem> read_benchmark_problem(const YamlValue& section) {
@@ -91,7 +108,7 @@ BenchmarkStudy load_benchmark_study(const std::string& path) {
 }
 
 BenchmarkStudy load_benchmark_study(const YamlValue& root) {
-  root.check_keys({"study", "description", "problem", "optimizer", "indicators"});
+  root.check_keys({"study", "description", "problem", "optimizer", "indicators", "output"});
   BenchmarkStudy study;
   study.name = root.required("study").as_string();
   if (auto v = root.optional("description")) v->as_string();
@@ -99,6 +116,9 @@ BenchmarkStudy load_benchmark_study(const YamlValue& root) {
   study.optimizer = read_optimizer_section(root.required("optimizer"), *study.problem);
   if (auto v = root.optional("indicators"))
     study.reference_point = read_indicators_section(*v, study.problem->num_objectives());
+  BenchmarkOutputSection output;
+  if (auto v = root.optional("output")) read_fields(*v, output);
+  study.front_size = static_cast<std::size_t>(output.front_size);
   // study.resolved.yaml: the problem section as written, the optimizer with every default.
   std::string resolved = fmt::format("study: {}\n", nlohmann::json(study.name).dump());
   if (auto v = root.optional("description"))
@@ -110,6 +130,7 @@ BenchmarkStudy load_benchmark_study(const YamlValue& root) {
     for (double r : study.reference_point) list += (list.empty() ? "" : ", ") + format_number(r);
     resolved += "indicators: {reference_point: [" + list + "]}\n";
   }
+  if (output.front_size > 0) resolved += "output: " + fields_flow_map(output) + "\n";
   study.resolved_yaml = resolved;
   return study;
 }
@@ -121,6 +142,36 @@ nlohmann::json finite_or_null(double value) {
 }
 
 }  // namespace
+
+bool benchmark_feasible(const Problem& problem, const std::vector<double>& fitness) {
+  for (std::size_t i = 0; i < problem.num_objectives(); ++i)
+    if (!std::isfinite(fitness[i])) return false;
+  return constraint_violation(problem, fitness, kBenchmarkFeasibilityTolerance,
+                              kBenchmarkFeasibilityTolerance) == 0.0;
+}
+
+ArchivedFront archive_front(const Problem& problem, const std::vector<std::vector<double>>& xs,
+                            const std::vector<std::vector<double>>& fitness,
+                            std::size_t front_size) {
+  const std::size_t m = problem.num_objectives();
+  std::vector<std::size_t> candidates;
+  ObjectiveSet objectives;
+  for (std::size_t k = 0; k < xs.size(); ++k)
+    if (fitness[k].size() == problem.fitness_size() && benchmark_feasible(problem, fitness[k])) {
+      candidates.push_back(k);
+      objectives.emplace_back(fitness[k].begin(),
+                              fitness[k].begin() + static_cast<std::ptrdiff_t>(m));
+    }
+  ArchivedFront result;
+  result.feasible_evaluations = candidates.size();
+  result.archive_size = select_front(objectives, 0).size();
+  result.front.num_objectives = m;
+  for (std::size_t k : select_front(objectives, front_size)) {
+    result.front.x.push_back(xs[candidates[k]]);
+    result.front.fitness.push_back(fitness[candidates[k]]);
+  }
+  return result;
+}
 
 void write_run_outputs(const std::string& directory, const std::string& study_name,
                        const Problem& problem, const OptimizerSpec& spec, const RunOutcome& outcome,
@@ -180,6 +231,7 @@ void write_run_outputs(const std::string& directory, const std::string& study_na
   } else {
     summary["reference_point"] = nullptr;
     summary["hypervolume"] = nullptr;
+    summary["hypervolume_missing"] = "a single objective has no hypervolume";
     summary["igd_plus"] = nullptr;
     summary["knee_point"] = nullptr;
     if (outcome.single) {

@@ -44,6 +44,8 @@ struct BenchmarkStudy {
   std::unique_ptr<BenchmarkProblem> problem;
   OptimizerSpec optimizer;
   std::vector<double> reference_point;  ///< empty: chosen by write_run_outputs
+  /// output.front_size: the front is thinned to this many points; 0: not thinned.
+  std::size_t front_size = 0;
   /// The study with every optimizer default filled in (study.resolved.yaml; a valid study file).
   std::string resolved_yaml;
 };
@@ -63,6 +65,24 @@ std::vector<double> read_indicators_section(const YamlValue& indicators_section,
 BenchmarkStudy load_benchmark_study(const std::string& path);
 /// The same from a parsed study.
 BenchmarkStudy load_benchmark_study(const YamlValue& root);
+
+/// A benchmark evaluation is feasible when its objectives are finite and every equality is
+/// within this tolerance of 0 and every inequality at most this (the solvers' tolerance,
+/// SolveResult::usable()): evaluations.csv's `feasible` column and the archive use this rule.
+inline constexpr double kBenchmarkFeasibilityTolerance = 1e-6;
+bool benchmark_feasible(const Problem& problem, const std::vector<double>& fitness);
+
+/// The front of a run from every evaluation it made (xs[k] with fitness[k]): the non-dominated
+/// set of the feasible ones, thinned to `front_size` when > 0 (optimizer/front_thinning.hpp), in
+/// ascending order of objective vectors.
+struct ArchivedFront {
+  FrontResult front;                     ///< x and fitness of the chosen points
+  std::size_t feasible_evaluations = 0;  ///< feasible evaluations among the inputs
+  std::size_t archive_size = 0;          ///< of them non-dominated (before thinning)
+};
+ArchivedFront archive_front(const Problem& problem, const std::vector<std::vector<double>>& xs,
+                            const std::vector<std::vector<double>>& fitness,
+                            std::size_t front_size);
 
 /// Writes DIR/pareto.csv and DIR/summary.json (creating DIR), each atomically; the keys of
 /// `extra_summary` are added to summary.json.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -18,6 +19,7 @@
 #include "io/machine_file_writer.hpp"
 #include "io/output_file.hpp"
 #include "io/task_wrench_file.hpp"
+#include "optimizer/front_thinning.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 #include "problems/lathe_design.hpp"
@@ -196,8 +198,160 @@ nlohmann::json json_number(double value) {
 
 }  // namespace
 
-void write_design_outputs(const std::string& directory, const DesignStudy& study,
-                          const RunOutcome& outcome, const DesignRunFacts& facts) {
+namespace {
+
+// True when a fitness vector [objectives | constraint rows] is feasible as evaluations.csv says:
+// finite objectives and every row <= 0 (a NaN row is not).
+bool feasible_fitness(const std::vector<double>& fitness, std::size_t m) {
+  for (std::size_t k = 0; k < fitness.size(); ++k)
+    if (k < m ? !std::isfinite(fitness[k]) : !(fitness[k] <= 0.0)) return false;
+  return true;
+}
+
+// The designs of the front (measured again with the aggregate metrics, machine files when the
+// study writes them) and the archive they were chosen from.
+struct FrontSelection {
+  std::vector<MeasuredDesign> designs;
+  std::size_t feasible_evaluations = 0;  // distinct feasible designs (aggregate metrics)
+  std::size_t archive_size = 0;          // of them non-dominated
+};
+
+// Measures designs in parallel (the result's order is the input's whatever the threads).
+std::vector<MeasuredDesign> measure_designs(const DesignStudy& study,
+                                            const std::vector<std::vector<double>>& xs,
+                                            bool machine_files, int threads) {
+  std::vector<MeasuredDesign> measured(xs.size());
+  const long long count = static_cast<long long>(xs.size());
+#pragma omp parallel for num_threads(resolve_thread_count(threads)) schedule(dynamic)
+  for (long long k = 0; k < count; ++k)
+    measured[static_cast<std::size_t>(k)] =
+        measure_design(study, xs[static_cast<std::size_t>(k)], machine_files);
+  return measured;
+}
+
+// The front is the non-dominated set of every feasible design the run evaluated (the journal's
+// archive, whichever algorithm ran), thinned to output.front_size when that is set
+// (optimizer/front_thinning.hpp). A single-objective run keeps its solver's answer.
+FrontSelection select_design_front(const DesignStudy& study, const RunOutcome& outcome,
+                                   const DesignRunFacts& facts) {
+  const std::size_t m = study.objectives().size();
+  std::vector<std::vector<double>> xs;
+  std::vector<std::vector<double>> fitness;
+  if (facts.journal && m >= 2) {
+    for (const JournalEntry& e : facts.journal->entries())
+      if (e.note.empty() && feasible_fitness(e.fitness, m)) {
+        xs.push_back(e.x);
+        fitness.push_back(e.fitness);
+      }
+  } else {
+    xs = outcome.front.x;
+    fitness = outcome.front.fitness;
+  }
+  if (!study.aggregate() && m >= 2) {
+    // The smooth formulation journals epigraph bounds: measure the candidates' aggregate metrics.
+    const std::vector<MeasuredDesign> measured = measure_designs(study, xs, false, facts.threads);
+    xs.clear();
+    fitness.clear();
+    for (const MeasuredDesign& d : measured)
+      if (d.ok() && feasible_fitness(d.aggregate, m)) {
+        xs.push_back(d.x);
+        fitness.push_back(d.aggregate);
+      }
+  }
+  FrontSelection selection;
+  selection.feasible_evaluations = xs.size();
+  ObjectiveSet candidates;
+  for (const std::vector<double>& f : fitness)
+    candidates.emplace_back(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(m));
+  selection.archive_size = select_front(candidates, 0).size();
+  std::vector<std::vector<double>> chosen;
+  for (std::size_t k : select_front(candidates, m >= 2 ? study.front_size : 0))
+    chosen.push_back(xs[k]);
+  selection.designs = measure_designs(study, chosen, study.write_designs, facts.threads);
+  // A failed design never enters the front (a single-objective solver's answer may fail).
+  std::erase_if(selection.designs, [](const MeasuredDesign& d) { return !d.ok(); });
+  return selection;
+}
+
+// Why the run's designs were infeasible: failures by reason and violated constraint rows by
+// name, counted over the distinct evaluations (summary.json "infeasibility" and the warning of a
+// run without a feasible design).
+struct Infeasibility {
+  std::size_t evaluations = 0;
+  std::size_t feasible = 0;
+  std::vector<std::pair<std::string, std::size_t>> failures;  // reason, count (most first)
+  std::vector<std::pair<std::string, std::size_t>> violated;  // constraint, count (most first)
+
+  nlohmann::json json() const {
+    nlohmann::json j;
+    j["evaluations"] = evaluations;
+    j["feasible"] = feasible;
+    j["failed"] = nlohmann::json::object();
+    for (const auto& [reason, n] : failures) j["failed"][reason] = n;
+    j["violated"] = nlohmann::json::object();
+    for (const auto& [name, n] : violated) j["violated"][name] = n;
+    return j;
+  }
+  // "g_task_reachable > 0 in 4412, g_leg_force_max_max > 0 in 311 of 4880 evaluations; 57
+  // failed ('...' 40, ...)": the three most frequent of each.
+  std::string text() const {
+    std::string t;
+    for (std::size_t k = 0; k < violated.size() && k < 3; ++k)
+      t += fmt::format("{}{} > 0 in {}", k ? ", " : "", violated[k].first, violated[k].second);
+    t += fmt::format("{}{} evaluations", t.empty() ? "" : " of ", evaluations);
+    std::size_t failed = 0;
+    for (const auto& f : failures) failed += f.second;
+    if (failed > 0) {
+      t += fmt::format("; {} failed (", failed);
+      for (std::size_t k = 0; k < failures.size() && k < 3; ++k)
+        t += fmt::format("{}{} {}", k ? ", " : "", quote_found(failures[k].first),
+                         failures[k].second);
+      t += failures.size() > 3 ? ", ...)" : ")";
+    }
+    return t;
+  }
+};
+
+Infeasibility count_infeasibility(const DesignStudy& study,
+                                  const std::vector<JournalEntry>& entries) {
+  const std::size_t m = study.objectives().size();
+  const std::vector<std::string> names =
+      study.aggregate() ? constraint_names(study) : std::vector<std::string>{"g_max"};
+  std::map<std::string, std::size_t> failures;
+  std::vector<std::size_t> violated(names.size(), 0);
+  Infeasibility result;
+  result.evaluations = entries.size();
+  for (const JournalEntry& e : entries) {
+    if (!e.note.empty()) {
+      ++failures[e.note];
+      continue;
+    }
+    if (feasible_fitness(e.fitness, m)) ++result.feasible;
+    for (std::size_t r = m; r < e.fitness.size(); ++r)
+      if (!(e.fitness[r] <= 0.0)) {
+        if (study.aggregate()) {
+          ++violated[r - m];
+        } else {
+          ++violated[0];
+          break;
+        }
+      }
+  }
+  auto by_count = [](const auto& a, const auto& b) {
+    return a.second != b.second ? a.second > b.second : a.first < b.first;
+  };
+  result.failures.assign(failures.begin(), failures.end());
+  std::sort(result.failures.begin(), result.failures.end(), by_count);
+  for (std::size_t r = 0; r < names.size(); ++r)
+    if (violated[r] > 0) result.violated.emplace_back(names[r], violated[r]);
+  std::sort(result.violated.begin(), result.violated.end(), by_count);
+  return result;
+}
+
+}  // namespace
+
+DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
+                                         const RunOutcome& outcome, const DesignRunFacts& facts) {
   namespace fs = std::filesystem;
   const std::vector<DesignObjective>& objectives_spec = study.objectives();
   const std::vector<DesignConstraint>& constraints_spec = study.constraints();
@@ -211,15 +365,8 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
   const bool home_free =
       home_index >= 0 && study.parameters[static_cast<std::size_t>(home_index)].free();
 
-  // Re-measure the front designs (aggregate metrics in user units for every formulation); a
-  // failed design never enters the front.
-  std::vector<MeasuredDesign> front(outcome.front.x.size());
-  const long long count = static_cast<long long>(front.size());
-#pragma omp parallel for num_threads(resolve_thread_count(facts.threads)) schedule(dynamic)
-  for (long long k = 0; k < count; ++k)
-    front[static_cast<std::size_t>(k)] =
-        measure_design(study, outcome.front.x[static_cast<std::size_t>(k)], study.write_designs);
-  std::erase_if(front, [](const MeasuredDesign& d) { return !d.ok(); });
+  const FrontSelection selection = select_design_front(study, outcome, facts);
+  const std::vector<MeasuredDesign>& front = selection.designs;
   ObjectiveSet objectives;  // internal (minimised) sign
   for (const MeasuredDesign& d : front)
     objectives.emplace_back(d.aggregate.begin(),
@@ -397,6 +544,9 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
     summary["iterations"] = outcome.single->iterations;
   }
   summary["points"] = front.size();
+  summary["feasible_evaluations"] = selection.feasible_evaluations;
+  summary["archive_size"] = selection.archive_size;
+  summary["front_rule"] = front_rule_text(study.front_size, m);
   summary["objectives"] = objective_list;
   if (!objectives.empty() && m >= 2) {
     const std::vector<double> reference = reference_point_from(objectives);
@@ -411,14 +561,25 @@ void write_design_outputs(const std::string& directory, const DesignStudy& study
   } else {
     summary["reference_point"] = nullptr;
     summary["hypervolume"] = nullptr;
+    summary["hypervolume_missing"] =
+        m < 2 ? "a single objective has no hypervolume" : "no feasible design: the front is empty";
   }
   summary["knee"] = knee;
+  DesignOutputSummary result;
+  result.designs = front.size();
+  result.status = summary["status"].get<std::string>();
+  if (facts.journal) {
+    const Infeasibility infeasibility = count_infeasibility(study, facts.journal->entries());
+    summary["infeasibility"] = infeasibility.json();
+    if (front.empty()) result.infeasibility = infeasibility.text();
+  }
   summary["time_seconds"] = outcome.front.seconds;
   summary["wall_seconds"] = facts.wall_seconds;
 
   write_file_atomically(directory + "/pareto.csv", csv.str());
   write_file_atomically(directory + "/pareto.json", pareto.dump(2) + "\n");
   write_file_atomically(directory + "/summary.json", summary.dump(2) + "\n");
+  return result;
 }
 
 }  // namespace pkmopt

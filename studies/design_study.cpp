@@ -196,6 +196,7 @@ DesignStudy load_design_study(const YamlValue& root) {
   OutputSection output;
   if (auto section = root.optional("output")) read_fields(*section, output);
   study.write_designs = output.designs;
+  study.front_size = static_cast<std::size_t>(output.front_size);
   yaml += "optimizer: " + optimizer_section_yaml(study.optimizer) + "\n";
   yaml += "output: " + fields_flow_map(output) + "\n";
   study.resolved_yaml = yaml;

@@ -103,12 +103,17 @@ struct DesignStudy {
   std::unique_ptr<MachineDesignProblem> machine_problem;  ///< leg-chain models, else null
   OptimizerSpec optimizer;
   bool write_designs = true;
+  /// output.front_size: the front is thinned to this many designs; 0: not thinned.
+  std::size_t front_size = 0;
   /// Each parameter's [min, max] in file units (m, degrees for *_deg); min == max when fixed.
   std::array<std::pair<double, double>, kNumDesignParameters> parameter_ranges{};
   std::array<double, 3> task_centre{};  ///< m, before the home_height lift
   double task_tilt_deg = 0.0;
   double task_yaw_deg = 0.0;
-  std::size_t task_positions = 0;  ///< positions of the region (times orientations = poses)
+  std::size_t task_positions = 0;   ///< positions of the region (times orientations = poses)
+  std::string task_region = "box";  ///< "box" or "cylinder"
+  /// Where the task wrench comes from: "as typed", the cutting model's summary, or "" (none).
+  std::string task_wrench_origin;
   /// study.resolved.yaml: the study with every default filled in (a valid study file).
   std::string resolved_yaml;
   /// Every parameter of the model in problem order (the free ones are the variables, in order).
@@ -149,9 +154,16 @@ struct DesignRunFacts {
   const JournaledProblem* journal = nullptr;  ///< evaluation counts (may be null)
 };
 
+/// What write_design_outputs wrote.
+struct DesignOutputSummary {
+  std::size_t designs = 0;    ///< designs on the front
+  std::string status;         ///< summary.json's status (no_feasible_design for an empty front)
+  std::string infeasibility;  ///< for an empty front: the most frequent causes, in words
+};
+
 /// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`.
-void write_design_outputs(const std::string& directory, const DesignStudy& study,
-                          const RunOutcome& outcome, const DesignRunFacts& facts);
+DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
+                                         const RunOutcome& outcome, const DesignRunFacts& facts);
 
 /// The docs table of a study section described by a field list, from the same list its reader
 /// and the resolved writer use: "machine hexapod", "machine.parameters MODEL" (a leg-chain

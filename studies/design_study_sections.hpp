@@ -147,6 +147,7 @@ std::string family_parameters_markdown(const std::string& model);
 /// output: which extra result files a run writes.
 struct OutputSection {
   bool designs = true;
+  int front_size = 0;  ///< 0: every non-dominated design
 };
 
 template <class Fields>
@@ -204,6 +205,13 @@ template <class Fields>
 void describe_fields(Fields& f, OutputSection& o) {
   f.field("designs", o.designs,
           {.doc = "write designs/<id>.yaml, a machine file per Pareto design"});
+  f.field("front_size", o.front_size,
+          {.min = 0,
+           .max = kMaxFrontSize,
+           .zero_is_unset = true,
+           .expected = "an integer in [1, 100000]",
+           .doc = "thin the front to this many designs (SPEA2 truncation, the extremes kept); "
+                  "unset: every non-dominated feasible design of the run"});
 }
 
 /// {actuator: cheapest, catalog: FILE}: the optimiser chooses the entry.

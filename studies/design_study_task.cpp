@@ -123,6 +123,7 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     task_spec.poses = cylinder_task_poses(centre, cylinder.radius, cylinder.height, cylinder.rings,
                                           cylinder.per_ring, cylinder.layers, tilt, yaw, step);
     study.task_centre = cylinder.centre;
+    study.task_region = "cylinder";
     study.task_positions =
         static_cast<std::size_t>((1 + cylinder.rings * cylinder.per_ring) * cylinder.layers);
     yaml += "  region: {shape: cylinder, " + fields_flow_map(cylinder).substr(1) + "\n";
@@ -138,6 +139,7 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     const TaskWrench task_wrench = read_task_wrench(*v);  // a list, or a turning/milling model
     task_spec.wrench = task_wrench.wrench;
     wrench_origin = task_wrench.origin;
+    study.task_wrench_origin = wrench_origin.empty() ? "as typed" : wrench_origin;
   }
   const std::vector<double> wrench(task_spec.wrench.data(), task_spec.wrench.data() + 6);
   if (!wrench_origin.empty()) yaml += "  # wrench from the cutting model: " + wrench_origin + "\n";

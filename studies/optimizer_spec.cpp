@@ -267,4 +267,16 @@ RunOutcome run_optimizer(const Problem& problem, const OptimizerSpec& spec, int 
       spec.algorithm);
 }
 
+std::string front_rule_text(std::size_t front_size, std::size_t num_objectives) {
+  if (num_objectives < 2) return "the single-objective solver's answer";
+  std::string rule =
+      "the non-dominated set of every feasible design the run evaluated (its archive)";
+  if (front_size > 0)
+    rule += fmt::format(
+        ", thinned to at most {} designs by SPEA2 truncation (the designs nearest to another in "
+        "range-scaled objectives removed first, the best design of each objective kept)",
+        front_size);
+  return rule;
+}
+
 }  // namespace pkmopt

@@ -105,6 +105,12 @@ std::string optimizer_section_yaml(const OptimizerSpec& spec);
 /// from the same field list the reader and writer use (studies/optimizer_fields.hpp).
 std::string optimizer_fields_markdown(std::string_view algorithm);
 
+/// The largest `output: {front_size: N}` a study may ask for.
+inline constexpr int kMaxFrontSize = 100000;
+
+/// How the front of a run was chosen, in words for summary.json (`front_size` 0: not thinned).
+std::string front_rule_text(std::size_t front_size, std::size_t num_objectives);
+
 /// Runs the optimizer of `spec` on `problem` (`threads` = 0: OpenMP's default). A solver that
 /// does not converge is a result (its status in RunOutcome::status), not an exception.
 RunOutcome run_optimizer(const Problem& problem, const OptimizerSpec& spec, int threads);

@@ -34,6 +34,21 @@ PreparedDirectory prepare_output_directory(const StudyRunOptions& opt) {
   const bool has_journal = fs::exists(dir / "journal.txt");
   const bool holds_run =
       has_journal || fs::exists(dir / "summary.json") || fs::exists(dir / "pareto.csv");
+  if (!holds_run && fs::is_directory(dir)) {
+    // A folder of something else (a home folder, a source tree) is never written into: --force
+    // would remove files there. A folder a killed run left before its journal has its lock.
+    std::error_code error;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, error)) {
+      const std::string name = e.path().filename().string();
+      if (name == "run.lock" || name == "study.resolved.yaml" ||
+          name.find(".tmp.") != std::string::npos)
+        continue;
+      throw InputError(fmt::format(
+          "--out: expected a new or empty folder or a previous run, found the folder '{}' holding "
+          "other files (such as {}); give another folder",
+          opt.out, quote_found(name)));
+    }
+  }
   if (holds_run && !opt.resume && !opt.force)
     throw InputError(fmt::format(
         "--out: '{}' holds a previous run ({}); continue it with --resume or replace it with "
@@ -93,7 +108,7 @@ void benchmark_csv(JournalOptions& options, const Problem& problem) {
       finite = finite && std::isfinite(v);
       row += std::isfinite(v) || std::isinf(v) ? "," + format_number(v) : ",";
     }
-    const bool feasible = finite && e.note.empty() && constraint_violation(*p, e.fitness) == 0.0;
+    const bool feasible = finite && e.note.empty() && benchmark_feasible(*p, e.fitness);
     return row + (feasible ? ",1," : ",0,") + csv_field(e.note);
   };
 }
@@ -152,10 +167,13 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
     facts.resumed = resumed;
     facts.journal = &journaled;
     facts.wall_seconds = wall_seconds();
-    write_design_outputs(opt.out, design, outcome, facts);
+    const DesignOutputSummary written = write_design_outputs(opt.out, design, outcome, facts);
     StudyRunResult result =
         run_result(design.name, design.optimizer, outcome, journaled, resumed, facts.wall_seconds);
     result.design_study = true;
+    result.designs = written.designs;
+    result.status = written.status;
+    result.infeasibility = written.infeasibility;
     return result;
   }
   const BenchmarkStudy study = load_benchmark_study(root);
@@ -166,11 +184,26 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   benchmark_csv(journal_options, *study.problem);
   JournaledProblem journaled(*study.problem, journal_options);
   write_file_atomically((fs::path(opt.out) / "study.resolved.yaml").string(), study.resolved_yaml);
-  const RunOutcome outcome = run_optimizer(journaled, study.optimizer, opt.threads);
+  RunOutcome outcome = run_optimizer(journaled, study.optimizer, opt.threads);
   journaled.finish();
+  nlohmann::json extra;
+  if (study.problem->num_objectives() >= 2) {
+    // The front is the archive of every evaluation, whichever algorithm ran.
+    std::vector<std::vector<double>> xs, fitness;
+    for (const JournalEntry& e : journaled.entries())
+      if (e.note.empty()) {
+        xs.push_back(e.x);
+        fitness.push_back(e.fitness);
+      }
+    ArchivedFront archived = archive_front(*study.problem, xs, fitness, study.front_size);
+    outcome.front.x = std::move(archived.front.x);
+    outcome.front.fitness = std::move(archived.front.fitness);
+    extra["feasible_evaluations"] = archived.feasible_evaluations;
+    extra["archive_size"] = archived.archive_size;
+  }
+  extra["front_rule"] = front_rule_text(study.front_size, study.problem->num_objectives());
   const ObjectiveSet reference_front =
       study.problem->num_objectives() >= 2 ? study.problem->reference_front(1000) : ObjectiveSet{};
-  nlohmann::json extra;
   extra["resumed"] = resumed;
   extra["evaluations_from_cache"] = journaled.cache_hits();
   extra["evaluations_distinct"] = journaled.entries().size();

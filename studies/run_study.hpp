@@ -43,11 +43,14 @@ struct StudyRunOptions {
 /// What a finished run says about itself (the files in `out` hold the results).
 struct StudyRunResult {
   bool design_study = false;
-  std::string name;           ///< the study's name
-  std::string algorithm;      ///< as in the study file (nsga2, nlopt:SLSQP, ...)
-  std::string problem;        ///< the problem's name (benchmark studies)
-  std::string status;         ///< ok, no_feasible_design, or the single solver's status
-  std::string message;        ///< the optimizer's message (empty when it has none)
+  std::string name;       ///< the study's name
+  std::string algorithm;  ///< as in the study file (nsga2, nlopt:SLSQP, ...)
+  std::string problem;    ///< the problem's name (benchmark studies)
+  std::string status;     ///< ok, no_feasible_design, or the single solver's status
+  std::string message;    ///< the optimizer's message (empty when it has none)
+  /// Design studies without a feasible design: the most frequent violated constraints and
+  /// failure reasons with their counts, in words.
+  std::string infeasibility;
   std::size_t designs = 0;    ///< points of the front
   long long evaluations = 0;  ///< fitness evaluations requested by the optimizer
   std::size_t from_cache = 0;

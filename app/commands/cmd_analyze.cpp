@@ -2,6 +2,8 @@
 //                [--mode-shapes] [--out FILE.csv]
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -25,6 +27,27 @@ struct AnalyzeOptions {
   bool compliance = false;
   bool modes = false;
 };
+
+// Every pose unreachable is almost always a wrong pose file (millimetres for metres, another
+// machine's frame): said on stderr; the output is still written (exit 0).
+void warn_if_nothing_reachable(const PoseTable& poses, const std::vector<PoseMetrics>& metrics,
+                               const std::string& poses_file) {
+  if (metrics.empty()) return;
+  for (const PoseMetrics& m : metrics)
+    if (m.reachable) return;
+  double farthest = 0.0;
+  for (const Pose& p : poses.poses) farthest = std::max(farthest, p.position.cwiseAbs().maxCoeff());
+  fmt::print(stderr,
+             "pkmopt: warning: analyze: none of the {} poses of '{}' is reachable (every row has "
+             "reachable = 0){}\n",
+             metrics.size(), poses_file,
+             farthest > 10.0
+                 ? fmt::format("; a coordinate reaches {:.4g} m: pose positions are in metres, "
+                               "not millimetres",
+                               farthest)
+                 : std::string("; check that the positions are in metres in the base frame and "
+                               "the angles in degrees"));
+}
 
 void run_analyze(const AnalyzeOptions& opt) {
   // Read and validate every input before anything is written.
@@ -55,6 +78,7 @@ void run_analyze(const AnalyzeOptions& opt) {
   } else {
     write_file_atomically(opt.out_file, csv);
   }
+  warn_if_nothing_reachable(poses, metrics, opt.poses_file);
 }
 
 }  // namespace

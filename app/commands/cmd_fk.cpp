@@ -1,6 +1,7 @@
 // pkmopt fk MACHINE.yaml --q q1,...,qn [--guess x,y,z,rx,ry,rz]
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -47,6 +48,15 @@ void run_fk(const FkCommandOptions& opt) {
   std::cout.flush();
   // The pose columns of a solve that did not converge are not a pose of the machine: exit 3.
   if (!r.converged) throw ProbablyWrongResult("fk: " + r.message);
+  // A pose the machine cannot take (strokes, joint limits) from actuator coordinates that the
+  // leg geometry allows is most often a unit mix-up: said, the pose is still printed.
+  std::unique_ptr<MachineData> data = machine->make_data();
+  if (!machine->reachable(*data, r.pose))
+    fmt::print(stderr,
+               "pkmopt: warning: fk: the pose solves --q but lies outside the machine's strokes "
+               "or joint limits ({}); check the units of --q ({})\n",
+               opt.machine_file,
+               machine->revolute_actuators() ? "degrees" : "metres, not millimetres");
 }
 
 }  // namespace

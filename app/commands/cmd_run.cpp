@@ -43,9 +43,11 @@ void run_study(const RunCommandOptions& opt) {
   }
   std::string what =
       r.status == "no_feasible_design"
-          ? "no feasible design: every evaluated design failed or violates a constraint (see "
-            "evaluations.csv: columns feasible and failure); relax the constraints, widen the "
-            "parameter ranges or check the task"
+          ? "no feasible design: every evaluated design failed or violates a constraint" +
+                (r.infeasibility.empty() ? std::string() : " (" + r.infeasibility + ")") +
+                "; see evaluations.csv (columns feasible and failure) and summary.json "
+                "(infeasibility); relax the constraints, widen the parameter ranges or check the "
+                "task"
           : "the solver ended with status " + r.status + ": its point is not a usable result";
   if (!r.message.empty()) what += " (" + r.message + ")";
   throw ProbablyWrongResult("run: " + what);

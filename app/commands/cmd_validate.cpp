@@ -4,6 +4,7 @@
 // exits 0, or prints the exact error (file:line:col: key: expected X, found Y) and exits 2.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -22,43 +23,100 @@ std::string optimizer_text(const OptimizerSpec& spec) {
   return fmt::format("{} (seed {})", spec.name(), spec.seed);
 }
 
+std::string design_space_text(const DesignStudy& study) {
+  std::string free, fixed;
+  std::size_t n_free = 0;
+  for (const StudyParameter& p : study.parameters) {
+    if (p.free()) {
+      ++n_free;
+      free += fmt::format("\n    {:<30} {:>10.6g} .. {:<10.6g} {}", p.name, p.min, p.max, p.unit);
+    } else {
+      fixed += fmt::format("{}{} {:.6g} {}", fixed.empty() ? "" : ", ", p.name, p.min, p.unit);
+    }
+  }
+  std::string text = fmt::format("  design space: {} free of {} parameters{}", n_free,
+                                 study.parameters.size(), free);
+  if (!fixed.empty()) text += "\n    fixed: " + fixed;
+  return text + "\n";
+}
+
+std::string objectives_text(const DesignStudy& study) {
+  std::string text = fmt::format("  objectives ({}):", study.objectives().size());
+  for (const DesignObjective& o : study.objectives()) {
+    const std::string_view unit = design_metric_unit(o.metric);
+    text += fmt::format("\n    {} {} ({})", o.sense == Sense::maximize ? "maximize" : "minimize",
+                        design_metric_name(o.metric), unit.empty() ? "dimensionless" : unit);
+  }
+  text += fmt::format("\n  constraints ({}):",
+                      study.constraints().size() + (study.require_reachable() ? 1 : 0));
+  if (study.require_reachable())
+    text += "\n    task_reachable (every task pose within the strokes and joint limits)";
+  for (const DesignConstraint& c : study.constraints()) {
+    const std::string_view unit = design_metric_unit(c.metric);
+    text += fmt::format("\n    {} {} {:.6g}{}{}", design_metric_name(c.metric),
+                        c.relation == Relation::less_equal ? "<=" : ">=", c.bound,
+                        unit.empty() ? "" : " ", unit);
+  }
+  if (study.problem && study.problem->spec().actuator_catalog) {
+    const ActuatorCatalog& catalog = *study.problem->spec().actuator_catalog;
+    text += fmt::format(
+        "\n  actuators: each design's cheapest entry of catalog '{}' ({} entries, {}) that "
+        "carries its legs",
+        catalog.name, catalog.entries.size(),
+        catalog.entries.front().cost ? "by cost" : "by force rating");
+  }
+  return text + "\n";
+}
+
+// The task as it will be computed: poses (count, extent of positions and angles, in the base
+// frame before each design's home_height lift) and the wrench with its origin.
+std::string task_text(const DesignStudy& study) {
+  const DesignTask& task = study.task();
+  const std::size_t poses = task.poses.size();
+  std::string text = fmt::format(
+      "  task: {} region centred at ({:.6g}, {:.6g}, {:.6g}) m; {} poses = {} positions x {} "
+      "orientations (tilt <= {:.6g} deg, yaw +-{:.6g} deg)\n",
+      study.task_region, study.task_centre[0], study.task_centre[1], study.task_centre[2], poses,
+      study.task_positions, poses / std::max<std::size_t>(1, study.task_positions),
+      study.task_tilt_deg, study.task_yaw_deg);
+  if (poses > 0) {
+    Eigen::Vector3d lo = task.poses[0].position, hi = lo;
+    Eigen::Vector3d alo = rad_to_deg(task.poses[0].angles), ahi = alo;
+    for (const Pose& p : task.poses) {
+      lo = lo.cwiseMin(p.position);
+      hi = hi.cwiseMax(p.position);
+      alo = alo.cwiseMin(rad_to_deg(p.angles));
+      ahi = ahi.cwiseMax(rad_to_deg(p.angles));
+    }
+    text += fmt::format(
+        "    positions (base frame, before the home_height lift): x {:.6g} .. {:.6g}, y {:.6g} .. "
+        "{:.6g}, z {:.6g} .. {:.6g} m\n    angles: rx {:.4g} .. {:.4g}, ry {:.4g} .. {:.4g}, rz "
+        "{:.4g} .. {:.4g} deg\n",
+        lo.x(), hi.x(), lo.y(), hi.y(), lo.z(), hi.z(), alo.x(), ahi.x(), alo.y(), ahi.y(), alo.z(),
+        ahi.z());
+  }
+  const Wrench& w = task.wrench;
+  text += study.task_wrench_origin.empty()
+              ? std::string("    wrench: none (zero)\n")
+              : fmt::format(
+                    "    wrench at the TCP (base axes): force [{:.6g}, {:.6g}, {:.6g}] N, moment "
+                    "[{:.6g}, {:.6g}, {:.6g}] N*m; {}\n",
+                    w(0), w(1), w(2), w(3), w(4), w(5), study.task_wrench_origin);
+  if (task.acceleration_max > 0.0)
+    text += fmt::format("    a_max: {:.6g} m/s^2 (drives sized for it)\n", task.acceleration_max);
+  return text;
+}
+
 void validate_study(const std::string& path) {
   if (is_design_study_file(path)) {
     const DesignStudy study = load_design_study(path);
     std::string text =
         fmt::format("{}: design study '{}' (model {}) is valid\n", path, study.name, study.model);
-    std::string free;
-    std::size_t n_free = 0;
-    for (const StudyParameter& p : study.parameters) {
-      if (!p.free()) continue;
-      ++n_free;
-      free += fmt::format(" {} [{}, {}]", p.name, p.min, p.max);
-    }
-    text += fmt::format("  free parameters ({}):{}", n_free, free);
-    text += fmt::format("\n  objectives ({}):", study.objectives().size());
-    for (const DesignObjective& o : study.objectives())
-      text += fmt::format(" {} {}", o.sense == Sense::maximize ? "maximize" : "minimize",
-                          design_metric_name(o.metric));
-    text += fmt::format("\n  constraints ({}):",
-                        study.constraints().size() + (study.require_reachable() ? 1 : 0));
-    if (study.require_reachable()) text += " task_reachable";
-    for (const DesignConstraint& c : study.constraints())
-      text += fmt::format(" {} {} {}", design_metric_name(c.metric),
-                          c.relation == Relation::less_equal ? "<=" : ">=", c.bound);
-    if (study.problem && study.problem->spec().actuator_catalog) {
-      const ActuatorCatalog& catalog = *study.problem->spec().actuator_catalog;
-      text += fmt::format(
-          "\n  actuators: each design's cheapest entry of catalog '{}' ({} entries, "
-          "{}) that carries its legs",
-          catalog.name, catalog.entries.size(),
-          catalog.entries.front().cost ? "by cost" : "by force rating");
-    }
-    const std::size_t poses = study.task().poses.size();
-    text +=
-        fmt::format("\n  task: {} poses ({} positions x {} orientations)\n", poses,
-                    study.task_positions, poses / std::max<std::size_t>(1, study.task_positions));
+    text += design_space_text(study) + objectives_text(study) + task_text(study);
     text += fmt::format("  optimizer: {}, {} formulation\n", optimizer_text(study.optimizer),
                         study.aggregate() ? "aggregate" : "smooth");
+    if (study.front_size > 0)
+      text += fmt::format("  front: thinned to {} designs\n", study.front_size);
     std::cout << text;
     return;
   }

@@ -302,6 +302,69 @@ TEST_F(ErrorContract, CommandLineOptionErrorsAreOneLine) {
   expect_refused("describe \xff", "expected UTF-8 text");
 }
 
+TEST_F(ErrorContract, MisspeltCommandsAndOptionsGetADidYouMean) {
+  const std::string study = tiny_study();
+  expect_refused("rnu " + study, "found 'rnu'; did you mean 'run'?");
+  expect_refused("run " + study + " --ouy " + path("o"), "did you mean '--out'?");
+  expect_refused("analyze " + example("hexapod.yaml") + " --pose p.csv", "did you mean '--poses'?");
+  // Nothing close: no guess.
+  const CliRun r = run("run " + study + " --out " + path("o") + " --zzzzzz");
+  EXPECT_EQ(r.err.find("did you mean"), std::string::npos) << r.err;
+}
+
+TEST_F(ErrorContract, RunIntoAFolderOfOtherFiles) {
+  // --out naming a folder that holds files of something else (not a run) is refused, with
+  // --force too: a run there would mix its files with the user's, --force would delete some.
+  write("mine/notes.txt", "my notes\n");
+  const std::string study = tiny_study();
+  expect_refused("run " + study + " --out " + path("mine"),
+                 "--out: expected a new or empty folder or a previous run, found the folder");
+  expect_refused("run " + study + " --out " + path("mine") + " --force", "'notes.txt'");
+  EXPECT_EQ(read_text(dir_ / "mine" / "notes.txt"), "my notes\n");
+  // An empty folder is fine.
+  fs::create_directories(dir_ / "empty");
+  EXPECT_EQ(run("run " + study + " --out " + path("empty") + " --no-progress").status, 0);
+}
+
+TEST_F(ErrorContract, RunWithoutAFeasibleDesignSaysWhy) {
+  std::string study = read_text(library("hexapod-quick.yaml"));
+  study.replace(study.find("max: 10500"), 10, "max: 1");
+  study.replace(study.find("population: 60, generations: 80"), 31, "population: 8, generations: 2");
+  const CliRun r =
+      run("run " + write("never.yaml", study) + " --out " + path("o") + " --no-progress");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("pkmopt: warning: run: no feasible design"), std::string::npos) << r.err;
+  // Every design's leg force exceeds 1 N: the row is named with its count, of the 23 distinct
+  // evaluations (8 x (2 + 1) = 24 requested, one a repeat served from the cache).
+  EXPECT_NE(r.err.find("g_leg_force_max_max > 0 in 23"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("of 23 evaluations"), std::string::npos) << r.err;
+  const std::string summary = read_text(dir_ / "o" / "summary.json");
+  EXPECT_NE(summary.find("\"g_leg_force_max_max\": 23"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"hypervolume_missing\": \"no feasible design"), std::string::npos)
+      << summary;
+}
+
+TEST_F(ErrorContract, PosesInMillimetresAreWarnedAbout) {
+  const std::string hexapod = example("hexapod.yaml");
+  CliRun r =
+      run("analyze " + hexapod + " --poses " + write("mm.csv", "x,y,z\n0,0,900\n10,0,900\n"));
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("pkmopt: warning: analyze: none of the 2 poses"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("not millimetres"), std::string::npos) << r.err;
+  r = run("analyze " + hexapod + " --poses " + write("m.csv", "x,y,z\n0,0,0.9\n"));
+  EXPECT_EQ(r.err, "");
+  // Leg lengths beyond the strokes (1.15 m at most) solve to a pose the machine cannot take.
+  r = run("fk " + hexapod + " --q 1.5,1.5,1.5,1.5,1.5,1.5");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("pkmopt: warning: fk: the pose solves --q but lies outside"),
+            std::string::npos)
+      << r.err;
+  r = run("fk " + hexapod + " --q 0.9,0.9,0.9,0.9,0.9,0.9");
+  EXPECT_EQ(r.err, "");
+}
+
 TEST_F(ErrorContract, CsvHeaderWithAQuotedNewline) {
   const std::string poses = write("q.csv", "a,\"b\nc\"\n1,2\n");
   expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses, "b\\nc");

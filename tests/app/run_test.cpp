@@ -168,15 +168,34 @@ TEST_F(Validate, PrintsASummaryOfAValidStudy) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("design study 'hexapod-quick' (model hexapod) is valid"), std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("free parameters (7):"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("objectives (2): maximize stiffness_min minimize machine_size"),
+  EXPECT_NE(r.err.find("design space: 7 free of 7 parameters"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("    base_pair_separation_deg               10 .. 40         deg\n"),
             std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("constraints (2): task_reachable leg_force_max <= 10500"), std::string::npos)
+  EXPECT_NE(r.err.find("objectives (2):\n    maximize stiffness_min (N/m)\n    minimize "
+                       "machine_size (m^3)\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("constraints (2):\n    task_reachable (every task pose within the strokes "
+                       "and joint limits)\n    leg_force_max <= 10500 N\n"),
+            std::string::npos)
       << r.err;
   // 2 x 2 x 2 positions x (1 + 7) orientations: the rim of a 20 deg cone sampled every 20 deg
   // holds max(4, ceil(2 pi sin(20 deg) / 20 deg)) = ceil(6.16) = 7 azimuths.
-  EXPECT_NE(r.err.find("task: 64 poses (8 positions x 8 orientations)"), std::string::npos)
+  EXPECT_NE(r.err.find("task: box region centred at (0, 0, 0.9) m; 64 poses = 8 positions x 8 "
+                       "orientations (tilt <= 20 deg, yaw +-0 deg)"),
+            std::string::npos)
+      << r.err;
+  // The box 0.3 x 0.3 x 0.2 m about (0, 0, 0.9). The angle extents are a regression pin of the
+  // sampled cone's rx, ry (R = Rz Ry Rx), from `pkmopt validate studies/library/hexapod-quick.yaml`
+  // (the 20 deg bound itself is checked in tests/app/task_poses_cli_test.cpp).
+  EXPECT_NE(r.err.find("x -0.15 .. 0.15, y -0.15 .. 0.15, z 0.8 .. 1 m\n    angles: rx -18.16 .. "
+                       "20, ry -19.48 .. 19.48"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("wrench at the TCP (base axes): force [300, 300, -3000] N, moment [0, 0, 0] "
+                       "N*m; as typed"),
+            std::string::npos)
       << r.err;
   // 60 x (80 + 1) = 4860 evaluations.
   EXPECT_NE(r.err.find("optimizer: nsga2 (population 60, generations 80, seed 1: 4860 "
@@ -215,10 +234,10 @@ TEST_F(Validate, SchemaErrorsAreExact) {
   // Unknown key.
   CliRun r = validate(with("  tool: {tcp:", "  tools: {tcp:"));
   EXPECT_EQ(r.status, 2);
-  EXPECT_EQ(r.err,
-            "pkmopt: error: " + file +
-                ":8:3: machine.tools: unknown key 'tools'; allowed keys here: model, "
-                "parameters, legs, min_clearance, bodies, joints, tool, actuator_error, masses, gravity\n");
+  EXPECT_EQ(r.err, "pkmopt: error: " + file +
+                       ":8:3: machine.tools: unknown key 'tools'; allowed keys here: model, "
+                       "parameters, legs, min_clearance, bodies, joints, tool, actuator_error, "
+                       "masses, gravity\n");
   // Wrong type.
   r = validate(with("wrench: [300, 300, -3000, 0, 0, 0]", "wrench: [300, 300, heavy, 0, 0, 0]"));
   EXPECT_EQ(r.status, 2);

@@ -94,8 +94,22 @@ TEST(BenchmarkStudy, StudyFileAndItsResolvedForm) {
   EXPECT_EQ(again.optimizer.nsga2()->generations, study.optimizer.nsga2()->generations);
   // Strict top-level keys.
   const std::string extra = error_of(
-      [&] { load_benchmark_study(dir.write("extra.yaml", read_text(file) + "output: {}\n")); });
-  EXPECT_NE(extra.find("extra.yaml:6:1: output: unknown key 'output'"), std::string::npos) << extra;
+      [&] { load_benchmark_study(dir.write("extra.yaml", read_text(file) + "outputs: {}\n")); });
+  EXPECT_NE(extra.find("extra.yaml:6:1: outputs: unknown key 'outputs'"), std::string::npos)
+      << extra;
+  // output.front_size: in the resolved study when set, checked like every other field.
+  const BenchmarkStudy thinned =
+      load_benchmark_study(dir.write("thin.yaml", read_text(file) + "output: {front_size: 7}\n"));
+  EXPECT_EQ(thinned.front_size, 7u);
+  EXPECT_NE(thinned.resolved_yaml.find("output: {front_size: 7}"), std::string::npos)
+      << thinned.resolved_yaml;
+  EXPECT_EQ(load_benchmark_study(dir.write("thin2.yaml", thinned.resolved_yaml)).front_size, 7u);
+  const std::string zero = error_of([&] {
+    load_benchmark_study(dir.write("zero.yaml", read_text(file) + "output: {front_size: -1}\n"));
+  });
+  EXPECT_NE(zero.find("front_size: expected an integer in [1, 100000], found '-1'"),
+            std::string::npos)
+      << zero;
   const std::string missing = error_of([&] {
     load_benchmark_study(dir.write("missing.yaml", "study: x\nproblem: {benchmark: zdt1}\n"));
   });

@@ -3,11 +3,11 @@
 # the same hexapod carried by a 2 m X axis (examples/hybrid_long_axis_hexapod.yaml). Usage:
 #   studies/library/hexamech-long-axis/run.sh [OUT_DIR] [RESOLUTION_M] [HELIX_SAMPLES]
 # defaults: results/hexamech-long-axis, 0.02 m, 721. PKMOPT selects the binary (default: pkmopt
-# on PATH). The reduced form the tests run: OUT 0.04 61.
+# on the PATH, else the repository's build/bin/pkmopt). The reduced form the tests run: OUT 0.04 61.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 examples="$here/../../../examples"
-pkmopt=${PKMOPT:-pkmopt}
+pkmopt=${PKMOPT:-$(command -v pkmopt || echo "$here/../../../build/bin/pkmopt")}
 out=${1:-results/hexamech-long-axis}
 resolution=${2:-0.02}
 samples=${3:-721}

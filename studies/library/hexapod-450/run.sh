@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The hexapod-450 study, every step (README.md explains each). Usage:
 #   studies/library/hexapod-450/run.sh [OUT_DIR] [RESOLUTION_M] [HELIX_SAMPLES]
-# defaults: results/hexapod-450, 0.01 m, 721. PKMOPT selects the binary (default: pkmopt on PATH).
+# defaults: results/hexapod-450, 0.01 m, 721. PKMOPT selects the binary (default: pkmopt on the PATH, else
+# the repository's build/bin/pkmopt).
 # The reduced form the tests run: OUT 0.02 61.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-pkmopt=${PKMOPT:-pkmopt}
+pkmopt=${PKMOPT:-$(command -v pkmopt || echo "$here/../../../build/bin/pkmopt")}
 out=${1:-results/hexapod-450}
 resolution=${2:-0.01}
 samples=${3:-721}

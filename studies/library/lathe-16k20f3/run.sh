@@ -1,12 +1,13 @@
 #!/bin/sh
 # Runs every step of the 16K20F3 lathe-conversion study into one folder (README.md explains each).
 #   studies/library/lathe-16k20f3/run.sh [OUT]            # OUT defaults to lathe-16k20f3-out
-# Environment: PKMOPT = the pkmopt binary (default: pkmopt on the PATH);
+# Environment: PKMOPT = the pkmopt binary (default: pkmopt on the PATH, else the repository's
+#              build/bin/pkmopt);
 #              QUICK=1  = the reduced form CI runs (coarser workspace, small NSGA-II run).
 set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 OUT=${1:-lathe-16k20f3-out}
-PKMOPT=${PKMOPT:-pkmopt}
+PKMOPT=${PKMOPT:-$(command -v pkmopt || echo "$HERE/../../../build/bin/pkmopt")}
 QUICK=${QUICK:-0}
 mkdir -p "$OUT"
 # The conversion study's turning load at the optimal approach angle arccot 2 (problems/cutting_load.hpp):
