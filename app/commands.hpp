@@ -19,5 +19,6 @@ void add_export_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_trajectory_command(CLI::App& app);
 void add_task_poses_command(CLI::App& app);
+void add_draw_command(CLI::App& app);
 
 }  // namespace pkmopt::cli

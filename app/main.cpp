@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   pkmopt::cli::add_compare_command(app);
   pkmopt::cli::add_trajectory_command(app);
   pkmopt::cli::add_task_poses_command(app);
+  pkmopt::cli::add_draw_command(app);
   pkmopt::cli::check_real_options(app);
   try {
     for (int i = 1; i < argc; ++i) {

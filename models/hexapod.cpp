@@ -544,3 +544,26 @@ std::string Hexapod::actuator_coordinates_requirement(const Eigen::VectorXd& q) 
 }
 
 }  // namespace pkmopt
+
+namespace pkmopt {
+
+bool Hexapod::sketch(MachineData& data, const Pose& pose, MachineSketch& out) const {
+  if (!pose.position.allFinite() || !pose.angles.allFinite()) return false;
+  const Mat3<double> R = rotation_zyx<double>(pose.angles);
+  out = MachineSketch{};
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::Vector3d a = design_.base_joints.col(i);
+    const Eigen::Vector3d b = pose.position + R * platform_rel_.col(i);
+    out.base_joints.push_back(a);
+    out.platform_joints.push_back(b);
+    out.lines.push_back({a, b, MachineSketch::Part::kActuator, i});
+    centre += b / 6.0;
+  }
+  out.lines.push_back({centre, pose.position, MachineSketch::Part::kTool, -1});
+  out.tcp = pose.position;
+  out.reachable = reachable(data, pose);
+  return true;
+}
+
+}  // namespace pkmopt

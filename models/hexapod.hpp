@@ -198,6 +198,8 @@ class Hexapod final : public Machine {
   /// base joints plus max_length (the legs standing straight up at full stroke).
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  /// Legs from the base joints a_i to the platform joints at the pose, and the tool.
+  bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }
   const MassModel* mass_model() const override {
     return design_.masses.present ? &design_.masses : nullptr;

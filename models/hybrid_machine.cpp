@@ -339,3 +339,40 @@ bool HybridMachine::twist_jacobian(MachineData& data, const Pose& pose, Eigen::M
 }
 
 }  // namespace pkmopt
+
+namespace pkmopt {
+
+bool HybridMachine::sketch(MachineData& data, const Pose& pose, MachineSketch& out) const {
+  if (!pose.position.allFinite() || !pose.angles.allFinite()) return false;
+  auto& d = static_cast<HybridData&>(data);
+  const HybridSplit s = split(pose);
+  MachineSketch module_sketch;
+  if (!design_.module->sketch(*d.module, s.local, module_sketch)) return false;
+  // Module-local points to the world: p -> R0 p + t0 + A q_s.
+  const Eigen::Vector3d shift = t0_ + A_ * s.serial;
+  auto world = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return R0_ * p + shift; };
+  out = MachineSketch{};
+  // Each axis's travel, carried by the axes before it, from the mount t0.
+  Eigen::Vector3d carried = t0_;
+  for (int i = 0; i < num_serial_; ++i) {
+    const HybridAxis& axis = design_.axes[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d a = A_.col(i);
+    out.lines.push_back(
+        {carried + axis.min * a, carried + axis.max * a, MachineSketch::Part::kGuide, -1});
+    carried += s.serial(i) * a;
+  }
+  for (MachineSketch::Line line : module_sketch.lines) {
+    line.from = world(line.from);
+    line.to = world(line.to);
+    if (line.leg >= 0) line.leg += num_serial_;  // actuators are numbered axes first
+    out.lines.push_back(line);
+  }
+  for (const Eigen::Vector3d& p : module_sketch.base_joints) out.base_joints.push_back(world(p));
+  for (const Eigen::Vector3d& p : module_sketch.platform_joints)
+    out.platform_joints.push_back(world(p));
+  out.tcp = world(module_sketch.tcp);
+  out.reachable = module_sketch.reachable && s.attained;
+  return true;
+}
+
+}  // namespace pkmopt

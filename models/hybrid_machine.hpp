@@ -184,6 +184,9 @@ class HybridMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
+  /// The module's sketch at the split's local pose carried by the axes, each axis's travel a
+  /// guide line from the mount.
+  bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   /// The module's masses (with the axes' in design().axes); null when the module has none.
   const MassModel* mass_model() const override { return design_.module->mass_model(); }
   int natural_frequency_count() const override;

@@ -590,3 +590,47 @@ std::string LegChainMachine::actuator_coordinates_requirement(const Eigen::Vecto
 }
 
 }  // namespace pkmopt
+
+namespace pkmopt {
+
+bool LegChainMachine::sketch(MachineData& data, const Pose& pose, MachineSketch& out) const {
+  if (!pose.position.allFinite() || !pose.angles.allFinite()) return false;
+  auto& d = static_cast<LegChainData&>(data);
+  compute_kinematics(d, pose);
+  if (!d.ik_ok || !d.c.allFinite()) return false;
+  out = MachineSketch{};
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  const int n = num_actuators();
+  for (int i = 0; i < n; ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d c = d.c.col(i);
+    const Eigen::Vector3d b = d.position + d.r.col(i);
+    out.base_joints.push_back(leg.base_point);
+    out.platform_joints.push_back(b);
+    switch (leg.kind) {
+      case LegKind::kUPS:  // the leg itself is actuated: base joint to platform joint
+        out.lines.push_back({leg.base_point, b, MachineSketch::Part::kActuator, i});
+        break;
+      case LegKind::kPUS: {  // the guide over its travel, the carriage at c, the strut
+        const Eigen::Vector3d u = leg.axis.normalized();
+        out.lines.push_back({leg.base_point + leg.q_min * u, leg.base_point + leg.q_max * u,
+                             MachineSketch::Part::kGuide, i});
+        out.lines.push_back({leg.base_point, c, MachineSketch::Part::kActuator, i});
+        out.lines.push_back({c, b, MachineSketch::Part::kLink, i});
+        break;
+      }
+      case LegKind::kRUS:  // the crank from its pivot, the rod
+        out.lines.push_back({leg.base_point, c, MachineSketch::Part::kActuator, i});
+        out.lines.push_back({c, b, MachineSketch::Part::kLink, i});
+        break;
+    }
+    centre += b / static_cast<double>(n);
+  }
+  out.lines.push_back({centre, d.position, MachineSketch::Part::kTool, -1});
+  out.tcp = d.position;
+  out.reachable =
+      reachable_from_kinematics(d, pose) && (!design_.shapes.present() || links_apart(d));
+  return true;
+}
+
+}  // namespace pkmopt

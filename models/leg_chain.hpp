@@ -289,6 +289,9 @@ class LegChainMachine final : public Machine {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  /// Each leg at the pose: a PUS guide over its travel and the carriage, a RUS crank, a UPS
+  /// leg from its base joint, then the link to the platform joint; the tool.
+  bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   bool checks_leg_interference() const override { return design_.shapes.present(); }
   /// The links' clearance at a pose (with each other and with the solids; +inf without a link
   /// shape or where a leg cannot close).

@@ -46,6 +46,7 @@
 #include <string_view>
 #include <vector>
 
+#include "models/machine_sketch.hpp"
 #include "models/mass_model.hpp"
 #include "models/pose.hpp"
 
@@ -249,6 +250,12 @@ class Machine {
                                   PoseMetrics& metrics, Eigen::Matrix3d& /*compliance_tt*/,
                                   Eigen::Matrix<double, 3, Eigen::Dynamic>& /*error_map*/) const {
     analyze(data, pose, wrench, metrics);
+    return false;
+  }
+
+  /// The machine drawn as lines at a pose (models/machine_sketch.hpp). Returns false (out
+  /// unspecified) when the legs cannot assemble at the pose or the model cannot draw itself.
+  virtual bool sketch(MachineData& /*data*/, const Pose& /*pose*/, MachineSketch& /*out*/) const {
     return false;
   }
 };
