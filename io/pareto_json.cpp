@@ -262,6 +262,49 @@ ParetoFront read_pareto_json(const std::string& path) {
   }
   front.task.tilt_deg = r.number(task, "task", "tilt_deg", false);
   front.task.yaw_deg = r.number(task, "task", "yaw_deg", false);
+  if (task.contains("positions_min") || task.contains("positions_max")) {
+    Eigen::Vector3d extent[2];
+    const char* keys[2] = {"positions_min", "positions_max"};
+    for (int e = 0; e < 2; ++e) {
+      const json& v = r.array(task, "task", keys[e]);
+      const std::string where = ParetoReader::join("task", keys[e]);
+      if (v.size() != 3) r.fail(where, "3 numbers", describe(v));
+      for (int k = 0; k < 3; ++k)
+        extent[e](k) =
+            r.number_value(v[static_cast<std::size_t>(k)],
+                           ParetoReader::index(where, static_cast<std::size_t>(k)), false);
+    }
+    if (!(extent[0].array() <= extent[1].array()).all())
+      r.fail("task.positions_max", "a corner above task.positions_min",
+             describe(task["positions_max"]));
+    front.task.positions = std::make_pair(extent[0], extent[1]);
+  }
+  if (root.contains("front_selection")) {
+    const json& f = r.object(root, "", "front_selection");
+    ParetoSelection sel;
+    sel.rule = r.string(f, "front_selection", "rule");
+    sel.evaluations = r.number(f, "front_selection", "evaluations", false);
+    sel.feasible_evaluations = r.number(f, "front_selection", "feasible_evaluations", false);
+    sel.archive_size = r.number(f, "front_selection", "archive_size", false);
+    front.selection = sel;
+  }
+  if (root.contains("convergence")) {
+    const json& c = r.object(root, "", "convergence");
+    ParetoConvergence conv;
+    const json& evals = r.array(c, "convergence", "evaluations");
+    const json& hv = r.array(c, "convergence", "hypervolume");
+    if (evals.size() != hv.size())
+      r.fail("convergence.hypervolume",
+             fmt::format("{} numbers (one per evaluations entry)", evals.size()),
+             fmt::format("{}", hv.size()));
+    for (std::size_t k = 0; k < evals.size(); ++k) {
+      conv.evaluations.push_back(
+          r.number_value(evals[k], ParetoReader::index("convergence.evaluations", k), false));
+      conv.hypervolume.push_back(
+          r.number_value(hv[k], ParetoReader::index("convergence.hypervolume", k), false));
+    }
+    front.convergence = conv;
+  }
 
   if (root.contains("actuator_catalog") && !root["actuator_catalog"].is_null())
     front.actuator_catalog =
@@ -375,6 +418,17 @@ std::string pareto_json(const ParetoFront& front) {
                   {"wrench", front.task.wrench},
                   {"tilt_deg", front.task.tilt_deg},
                   {"yaw_deg", front.task.yaw_deg}};
+  if (const auto& p = front.task.positions) {
+    root["task"]["positions_min"] = {p->first(0), p->first(1), p->first(2)};
+    root["task"]["positions_max"] = {p->second(0), p->second(1), p->second(2)};
+  }
+  if (const auto& sel = front.selection)
+    root["front_selection"] = {{"rule", sel->rule},
+                               {"evaluations", sel->evaluations},
+                               {"feasible_evaluations", sel->feasible_evaluations},
+                               {"archive_size", sel->archive_size}};
+  if (const auto& c = front.convergence)
+    root["convergence"] = {{"evaluations", c->evaluations}, {"hypervolume", c->hypervolume}};
   root["designs"] = nlohmann::ordered_json::array();
   for (const ParetoDesign& d : front.designs) {
     nlohmann::ordered_json design;

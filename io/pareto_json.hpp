@@ -44,6 +44,25 @@ struct ParetoTask {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< m, task frame
   std::array<double, 6> wrench{};                    ///< N, N*m at the TCP, base axes
   double tilt_deg = 0.0, yaw_deg = 0.0;
+  /// The extent of the task positions before a design's home_height lift (m; optional keys
+  /// positions_min, positions_max).
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> positions;
+};
+
+/// How the front was chosen from the run (optional key "front_selection").
+struct ParetoSelection {
+  std::string rule;                 ///< in words
+  double evaluations = 0;           ///< distinct evaluations of the run
+  double feasible_evaluations = 0;  ///< of them feasible
+  double archive_size = 0;          ///< of them non-dominated (before thinning)
+};
+
+/// The hypervolume of the non-dominated feasible designs found after the first
+/// evaluations[k] evaluations (optional key "convergence"; the reference point of summary.json,
+/// in the product of the objective units).
+struct ParetoConvergence {
+  std::vector<double> evaluations;
+  std::vector<double> hypervolume;
 };
 
 /// The catalog actuator chosen for a design (studies with {actuator: cheapest, catalog: FILE}).
@@ -80,6 +99,8 @@ struct ParetoFront {
   std::optional<std::string> knee;  ///< id of the knee design
   /// The catalog actuators were chosen from (pareto.json "actuator_catalog"), if any.
   std::optional<std::string> actuator_catalog;
+  std::optional<ParetoSelection> selection;
+  std::optional<ParetoConvergence> convergence;
 
   /// Index of the design with this id, or -1.
   int design_index(const std::string& id) const;

@@ -40,17 +40,22 @@ std::vector<std::pair<std::filesystem::path, std::string>> pareto_export_files(
       files.emplace_back(out_file, pareto_json(front));
       break;
     case ExportFormat::kHtml:
-      files.emplace_back(out_file, report_html(front, slice ? &*slice : nullptr));
+      files.emplace_back(out_file, report_html(front, slice ? &*slice : nullptr,
+                                               design_drawings(front, results_dir)));
       break;
   }
   if (plots) {
     files.emplace_back(plot_dir / "pareto.svg", pareto_plot_svg(front));
     files.emplace_back(plot_dir / "pareto.png", pareto_plot_png(front));
     if (slice) {
+      SliceOverlay overlay;  // the task's positions in the slice plane
+      if (const auto& p = front.task.positions)
+        overlay.task_rect = std::make_pair(Eigen::Vector2d(p->first.x(), p->first.y()),
+                                           Eigen::Vector2d(p->second.x(), p->second.y()));
       files.emplace_back(plot_dir / "knee_slice.svg",
-                         slice_svg(*slice, SliceMetric::kSingularityMargin));
+                         slice_svg(*slice, SliceMetric::kSingularityMargin, overlay));
       files.emplace_back(plot_dir / "knee_slice.png",
-                         slice_png(*slice, SliceMetric::kSingularityMargin));
+                         slice_png(*slice, SliceMetric::kSingularityMargin, overlay));
     }
   }
   return files;

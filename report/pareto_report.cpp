@@ -15,11 +15,12 @@
 #include "io/machine_file.hpp"
 #include "pkmopt/report_assets.hpp"
 #include "report/display_units.hpp"
+#include "report/pareto_report_detail.hpp"
 #include "report/raster_image.hpp"
 #include "report/workspace_export.hpp"
 
 namespace pkmopt {
-namespace {
+namespace report_detail {
 
 using nlohmann::json;
 using raster::Rgb;
@@ -308,36 +309,9 @@ std::string knee_table(const ParetoFront& front, const ParetoDesign& d) {
   return out;
 }
 
-std::string designs_table(const ParetoFront& front) {
-  std::string out = "<table id=\"designs\">\n<tr><th>id</th>";
-  for (const auto& p : front.parameters) {
-    out += fmt::format("<th>{}</th>",
-                       xml_escape(p.name + unit_suffix(p.unit.empty() ? "" : "[" + p.unit + "]")));
-  }
-  if (!front.home_height_is_parameter()) out += "<th>home_height [m]</th>";
-  for (const auto& o : front.objectives)
-    out += fmt::format("<th>{}</th>", xml_escape(objective_label(o)));
-  for (const auto& c : front.constraints) out += fmt::format("<th>{}</th>", xml_escape(c.name));
-  if (front.actuator_catalog) out += "<th>actuator</th>";
-  out += "<th>feasible</th></tr>\n";
-  for (const ParetoDesign& d : front.designs) {
-    out += fmt::format("<tr data-id=\"{0}\"><td>{0}{1}</td>", xml_escape(d.id),
-                       front.knee && *front.knee == d.id ? " (knee)" : "");
-    for (double v : d.parameters) out += fmt::format("<td class=\"num\">{}</td>", html_number(v));
-    if (!front.home_height_is_parameter()) {
-      out += fmt::format("<td class=\"num\">{}</td>", html_number(d.home_height));
-    }
-    for (double v : d.objectives) out += fmt::format("<td class=\"num\">{}</td>", html_number(v));
-    for (double v : d.constraints) out += fmt::format("<td class=\"num\">{}</td>", html_number(v));
-    if (front.actuator_catalog)
-      out += fmt::format("<td>{}</td>", d.actuator ? xml_escape(d.actuator->name) : "-");
-    out += fmt::format("<td>{}</td></tr>\n", d.feasible ? "yes" : "<span class=\"bad\">no</span>");
-  }
-  out += "</table>\n";
-  return out;
-}
+}  // namespace report_detail
 
-}  // namespace
+using namespace report_detail;
 
 std::string pareto_plot_svg(const ParetoFront& file_front, int x_objective, int y_objective) {
   return scatter_svg(in_display_units(file_front), x_objective, y_objective, true);
@@ -399,114 +373,6 @@ std::optional<WorkspaceSlice> knee_workspace_slice(const ParetoFront& front,
   box = Eigen::AlignedBox3d(box.min() - pad, box.max() + pad);
   const double pixel = std::max(box.sizes()(0), box.sizes()(1)) / std::max(pixels, 8);
   return compute_workspace_slice(*machine, options, box, 'z', z, pixel);
-}
-
-std::string report_html(const ParetoFront& file_front, const WorkspaceSlice* knee_slice) {
-  // Deflections and errors in µm; the embedded data carries the same units as the page.
-  const ParetoFront front = in_display_units(file_front);
-  int feasible = 0;
-  for (const auto& d : front.designs) feasible += d.feasible ? 1 : 0;
-  std::string data = pareto_json(front);
-  // Inside <script>, "</" could end the element: JSON allows "\/" for "/".
-  for (std::size_t at = data.find("</"); at != std::string::npos; at = data.find("</", at + 3)) {
-    data.replace(at, 2, "<\\/");
-  }
-  std::string out = fmt::format(
-      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-      "<title>pkmopt report: {0}</title>\n<style>{1}</style>\n</head>\n<body>\n"
-      "<h1>{0}</h1>\n",
-      xml_escape(front.study), assets::kReportCss);
-  if (!front.description.empty()) out += "<p>" + xml_escape(front.description) + "</p>\n";
-  std::string objective_list;
-  for (const auto& o : front.objectives) {
-    objective_list += (objective_list.empty() ? "" : ", ") + xml_escape(objective_label(o));
-  }
-  out += fmt::format(
-      "<p class=\"meta\">model {} &middot; {} Pareto designs ({} feasible) &middot; objectives: "
-      "{} &middot; written by pkmopt {} from {}</p>\n",
-      xml_escape(front.model), front.designs.size(), feasible, objective_list,
-      xml_escape(front.pkmopt_version), xml_escape(front.file));
-  out +=
-      "<h2>Pareto front</h2>\n<p>Hover a point, a line or a table row to see its design. "
-      "Filled blue: feasible; open grey: infeasible; red: the knee design.";
-  if (front.objectives.size() >= 3) {
-    out += fmt::format(
-        " The scatter shows the first two objectives; the parallel coordinates "
-        "all {}.",
-        front.objectives.size());
-  }
-  out += "</p>\n<div class=\"plots\">\n";
-  out += scatter_svg(front, 0, 1, false);
-  if (front.objectives.size() >= 3) out += parallel_svg(front);
-  out += "</div>\n<div id=\"tip\"></div>\n";
-
-  if (front.knee) {
-    const ParetoDesign& knee =
-        front.designs[static_cast<std::size_t>(front.design_index(*front.knee))];
-    out += fmt::format("<h2>Knee design {}</h2>\n", xml_escape(knee.id));
-    out +=
-        "<p>The knee of the front as chosen by <code>pkmopt run</code> (the design with the "
-        "best balance of the objectives).";
-    if (knee.machine_file) {
-      out += fmt::format(
-          " Machine file: <code>{}</code> (for <code>pkmopt analyze</code> and "
-          "<code>pkmopt workspace</code>).",
-          xml_escape(*knee.machine_file));
-    }
-    out += "</p>\n" + knee_table(front, knee);
-    if (knee_slice) {
-      const double z = front.task.centre(2) + knee.home_height;
-      out += fmt::format(
-          "<h3>Workspace slice of {}</h3>\n<p>Plane z = {} mm in the machine's base frame (the "
-          "task centre's height: task z {} mm + home_height {} mm), constant orientation "
-          "(rx = ry = rz = 0), coloured by singularity_margin (1/cond of the Jacobian, "
-          "0..1, low = dark); grey: not reachable.</p>\n"
-          "<img alt=\"workspace slice of {}\" src=\"data:image/png;base64,{}\">\n",
-          xml_escape(knee.id), short_number(1e3 * z), short_number(1e3 * front.task.centre(2)),
-          short_number(1e3 * knee.home_height), xml_escape(knee.id),
-          base64(slice_png(*knee_slice, SliceMetric::kSingularityMargin)));
-    } else {
-      out +=
-          "<p>No workspace slice: the knee design has no machine file "
-          "(<code>output: {designs: true}</code> in the study writes them).</p>\n";
-    }
-  } else {
-    out += "<h2>Knee design</h2>\n<p>None: the run named no knee design.</p>\n";
-  }
-
-  out += "<h2>All Pareto designs</h2>\n" + designs_table(front);
-  out += "<h2>Study</h2>\n<table>\n";
-  auto row = [&](const std::string& name, const std::string& value) {
-    out += fmt::format("<tr><th>{}</th><td>{}</td></tr>\n", xml_escape(name), value);
-  };
-  for (const auto& p : front.parameters) {
-    row(p.name, fmt::format("free, {} .. {}{}", short_number(p.min), short_number(p.max),
-                            xml_escape(unit_suffix(p.unit))));
-  }
-  for (const auto& [name, value] : front.fixed_parameters) {
-    row(name, "fixed, " + html_number(value));
-  }
-  row("task centre",
-      fmt::format("[{}, {}, {}] m", html_number(front.task.centre(0)),
-                  html_number(front.task.centre(1)), html_number(front.task.centre(2))));
-  row("task wrench", fmt::format("[{}] N, N&middot;m", fmt::join(front.task.wrench, ", ")));
-  row("task tilt, yaw", fmt::format("{}&deg;, {}&deg;", html_number(front.task.tilt_deg),
-                                    html_number(front.task.yaw_deg)));
-  for (const auto& c : front.constraints) {
-    row(c.name,
-        c.kind == "reachable"
-            ? "every task pose reachable"
-            : fmt::format("{} {} {}{}", xml_escape(c.metric), c.kind == "max" ? "&le;" : "&ge;",
-                          html_number(c.bound), xml_escape(unit_suffix(c.unit))));
-  }
-  if (front.actuator_catalog)
-    row("actuators", fmt::format("each design's cheapest entry of catalog {} that carries its legs",
-                                 xml_escape(*front.actuator_catalog)));
-  out += "</table>\n";
-  out += "<script type=\"application/json\" id=\"report-data\">\n" + data + "</script>\n";
-  out += fmt::format("<script>{}</script>\n</body>\n</html>\n", assets::kReportJs);
-  return out;
 }
 
 std::string html_escape(std::string_view text) { return xml_escape(text); }

@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -43,12 +44,31 @@ std::optional<WorkspaceSlice> knee_workspace_slice(const ParetoFront& front,
                                                    const std::string& results_dir,
                                                    int pixels = 160);
 
-/// The self-contained HTML report: no external scripts, fonts, styles or URLs. Holds the Pareto
-/// scatter (first two objectives; with one objective a strip) and, for three or more
-/// objectives, a parallel-coordinates view, both as inline SVG with one element per design;
-/// hovering shows that design's parameters, objectives and constraints; the knee design's table
-/// and its workspace slice (a PNG as a data: URI) when `knee_slice` is given.
-std::string report_html(const ParetoFront& front, const WorkspaceSlice* knee_slice);
+/// Every design with a machine file drawn at the task centre (R = I, lifted by its home_height),
+/// all at one scale with its task box (report/machine_drawing.hpp): id -> inline SVG. Designs
+/// whose file cannot be read or whose legs cannot assemble there are left out. Throws nothing
+/// for a missing file: the report says which designs have no drawing.
+std::map<std::string, std::string> design_drawings(const ParetoFront& front,
+                                                   const std::string& results_dir);
+
+/// The hypervolume of the run's non-dominated feasible designs against the evaluations made
+/// (pareto.json "convergence"), as an inline SVG line plot; empty when the front has none.
+std::string convergence_svg(const ParetoFront& front);
+
+/// The knee in words for the report: what the knee of this front is (the design with the
+/// smallest sum of objectives scaled 0..1 between the front's best and worst values, Das 1999)
+/// and how pronounced it is (its distance below the plane through the scaled extremes).
+std::string knee_text(const ParetoFront& front);
+
+/// The self-contained HTML report: no external scripts, fonts, styles or URLs. In engineering
+/// units (report/display_units.hpp), numbers to 5 significant digits: the Pareto scatter with the
+/// pair of objectives chosen on the page, the parallel coordinates of three or more objectives,
+/// click to pin 2-4 designs and compare them side by side (parameters with bounds flagged,
+/// objectives, constraints, the machine drawn from `drawings`), the knee design with its
+/// workspace slice (task box and colour bar) when `knee_slice` is given, the convergence plot,
+/// the sortable and filterable table of every design, the study's settings.
+std::string report_html(const ParetoFront& front, const WorkspaceSlice* knee_slice,
+                        const std::map<std::string, std::string>& drawings = {});
 
 /// Base64 (RFC 4648, with padding).
 std::string base64(const std::string& bytes);

@@ -68,7 +68,10 @@ SliceLayout make_layout(const WorkspaceSlice& slice, SliceMetric metric) {
   layout.plot_width = slice.width * layout.scale;
   layout.plot_height = slice.height * layout.scale;
   layout.bar_left = layout.left + layout.plot_width + 30;
-  layout.width = layout.bar_left + layout.bar_width + 100;
+  // Room right of the colour bar for its tick labels and, above it, the metric's name.
+  const int name_width =
+      static_cast<int>(slice_metric_name(metric).size()) * raster::kGlyphAdvance + 10;
+  layout.width = layout.bar_left + std::max(layout.bar_width + 100, name_width);
   layout.height = layout.top + layout.plot_height + 60;
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (std::size_t p = 0; p < slice.inside.size(); ++p) {
@@ -241,7 +244,8 @@ std::string point_cloud_csv(const std::vector<WorkspacePoint>& points, bool natu
   return out;
 }
 
-std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric) {
+std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric,
+                      const SliceOverlay& overlay) {
   const SliceLayout L = make_layout(slice, metric);
   std::string out = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{0}\" height=\"{1}\" "
@@ -273,6 +277,18 @@ std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric) {
   out += fmt::format(
       "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#141414\"/>\n",
       L.left, L.top, L.plot_width, L.plot_height);
+  if (overlay.task_rect) {
+    const auto& [lo, hi] = *overlay.task_rect;
+    const double x0 = L.screen_x(slice, lo.x()), x1 = L.screen_x(slice, hi.x());
+    const double y0 = L.screen_y(slice, hi.y()), y1 = L.screen_y(slice, lo.y());
+    out += fmt::format(
+        "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
+        "stroke=\"#e8112d\" stroke-width=\"2\"/><text x=\"{:.1f}\" y=\"{:.1f}\" "
+        "fill=\"#e8112d\">task</text>\n",
+        x0, y0, x1 - x0, y1 - y0, x0 + 3, y0 - 4);
+  }
+  out += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n", L.bar_left, L.top - 6,
+                     slice_metric_name(metric));
   const int bottom = L.top + L.plot_height;
   for (double u : L.ticks_u) {
     const double x = L.screen_x(slice, u);
@@ -321,7 +337,8 @@ std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric) {
   return out;
 }
 
-std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric) {
+std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric,
+                      const SliceOverlay& overlay) {
   const SliceLayout L = make_layout(slice, metric);
   RgbImage image(L.width, L.height, kWhite);
   for (int j = 0; j < slice.height; ++j) {
@@ -333,6 +350,18 @@ std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric) {
   }
   image.frame(L.left - 1, L.top - 1, L.left + L.plot_width + 1, L.top + L.plot_height + 1, kInk);
   image.text(L.left, L.top - 22 - kGlyphHeight / 2, L.title, kInk);
+  image.text(L.bar_left, L.top - 8 - kGlyphHeight, slice_metric_name(metric), kInk);
+  if (overlay.task_rect) {
+    const Rgb red{232, 17, 45};
+    const auto& [lo, hi] = *overlay.task_rect;
+    const int x0 = static_cast<int>(std::lround(L.screen_x(slice, lo.x())));
+    const int x1 = static_cast<int>(std::lround(L.screen_x(slice, hi.x())));
+    const int y0 = static_cast<int>(std::lround(L.screen_y(slice, hi.y())));
+    const int y1 = static_cast<int>(std::lround(L.screen_y(slice, lo.y())));
+    image.frame(x0, y0, x1, y1, red);
+    image.frame(x0 + 1, y0 + 1, x1 - 1, y1 - 1, red);
+    image.text(x0 + 3, y0 - 3 - kGlyphHeight, "task", red);
+  }
   const int bottom = L.top + L.plot_height;
   for (double u : L.ticks_u) {
     const int x = static_cast<int>(std::lround(L.screen_x(slice, u)));

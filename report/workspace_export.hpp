@@ -60,9 +60,17 @@ std::string boundary_stl(const TriangleMesh& mesh);
 /// `natural_frequencies`: add the column natural_frequency_1 (Hz; machines with masses).
 std::string point_cloud_csv(const std::vector<WorkspacePoint>& points,
                             bool natural_frequencies = false);
-std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric);
+/// What a slice picture shows over the workspace: a task region's rectangle in the plane
+/// (in-plane coordinates u, v in m, as WorkspaceSlice::origin), drawn red and labelled "task".
+struct SliceOverlay {
+  std::optional<std::pair<Eigen::Vector2d, Eigen::Vector2d>> task_rect;  ///< (min, max)
+};
+/// The colour bar carries the metric's name above it.
+std::string slice_svg(const WorkspaceSlice& slice, SliceMetric metric,
+                      const SliceOverlay& overlay = {});
 /// 8-bit RGB PNG (libpng).
-std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric);
+std::string slice_png(const WorkspaceSlice& slice, SliceMetric metric,
+                      const SliceOverlay& overlay = {});
 
 /// "constant_orientation" (no tilt, no yaw range), else "all_orientations" (Mode::kAll) or
 /// "some_orientation" (Mode::kSome).

@@ -23,6 +23,7 @@ PACKAGES=(
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
   clang libclang-rt-dev libomp-dev
   ccache
+  chromium python3-websocket
 )
 
 missing=()

@@ -119,6 +119,53 @@ TEST(ReadParetoJson, ChosenActuatorsRoundTrip) {
   }
 }
 
+TEST(ReadParetoJson, TaskExtentSelectionAndConvergenceAreOptionalAndRoundTrip) {
+  nlohmann::json root = load_json(kFixtures / "two/pareto.json");
+  const auto plain = pkmopt::read_pareto_json((kFixtures / "two/pareto.json").string());
+  EXPECT_FALSE(plain.task.positions.has_value());
+  EXPECT_FALSE(plain.selection.has_value());
+  EXPECT_FALSE(plain.convergence.has_value());
+  root["task"]["positions_min"] = {-0.15, -0.1, 0.8};
+  root["task"]["positions_max"] = {0.15, 0.1, 1.0};
+  root["front_selection"] = {{"rule", "the non-dominated set"},
+                             {"evaluations", 120},
+                             {"feasible_evaluations", 80},
+                             {"archive_size", 4}};
+  root["convergence"] = {{"evaluations", {40, 80, 120}}, {"hypervolume", {0.1, 0.25, 0.3}}};
+  const scratch::ScratchDir dir;
+  const auto front = pkmopt::read_pareto_json(dir.write("pareto.json", root.dump(2)));
+  ASSERT_TRUE(front.task.positions.has_value());
+  EXPECT_EQ(front.task.positions->first, Eigen::Vector3d(-0.15, -0.1, 0.8));
+  EXPECT_EQ(front.task.positions->second, Eigen::Vector3d(0.15, 0.1, 1.0));
+  ASSERT_TRUE(front.selection.has_value());
+  EXPECT_EQ(front.selection->rule, "the non-dominated set");
+  EXPECT_EQ(front.selection->evaluations, 120.0);
+  EXPECT_EQ(front.selection->feasible_evaluations, 80.0);
+  EXPECT_EQ(front.selection->archive_size, 4.0);
+  ASSERT_TRUE(front.convergence.has_value());
+  EXPECT_EQ(front.convergence->evaluations, (std::vector<double>{40, 80, 120}));
+  EXPECT_EQ(front.convergence->hypervolume, (std::vector<double>{0.1, 0.25, 0.3}));
+  const nlohmann::json again = nlohmann::json::parse(pkmopt::pareto_json(front));
+  EXPECT_EQ(again["task"]["positions_max"], root["task"]["positions_max"]);
+  EXPECT_EQ(again["front_selection"], root["front_selection"]);
+  EXPECT_EQ(again["convergence"], root["convergence"]);
+  // Checked like the rest.
+  root["convergence"]["hypervolume"] = {0.1, 0.2};
+  EXPECT_NE(read_error(root.dump())
+                .find("convergence.hypervolume: expected 3 numbers (one per "
+                      "evaluations entry), found 2"),
+            std::string::npos);
+  root["convergence"]["hypervolume"] = {0.1, 0.2, 0.3};
+  root["task"]["positions_min"] = {0.2, -0.1, 0.8};
+  EXPECT_NE(read_error(root.dump())
+                .find("task.positions_max: expected a corner above "
+                      "task.positions_min"),
+            std::string::npos);
+  root["task"]["positions_min"] = {-0.15, -0.1};
+  EXPECT_NE(read_error(root.dump()).find("task.positions_min: expected 3 numbers"),
+            std::string::npos);
+}
+
 // Writing a front read from a file gives the file's JSON again: every key, every number bit for
 // bit (null for the missing constraint value of "three").
 TEST(ParetoJson, WritesBackEveryValueOfTheFile) {

@@ -66,9 +66,49 @@ TEST(ParetoPlot, PngAndSvgHaveOnePointPerDesignAndNamedAxes) {
   EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   const std::string svg = pkmopt::pareto_plot_svg(front);
   EXPECT_EQ(count(svg, "<circle class=\"pt"), 4u);
-  EXPECT_NE(svg.find("stiffness_min [N/m] (max)"), std::string::npos);
-  EXPECT_NE(svg.find("machine_size [m^3] (min)"), std::string::npos);
+  EXPECT_NE(svg.find("stiffness_min [N/µm] (max)"), std::string::npos);
+  EXPECT_NE(svg.find("machine_size [l] (min)"), std::string::npos);
   EXPECT_NE(svg.find("knee d0001"), std::string::npos);
+}
+
+pkmopt::ParetoFront two_objective_front(const std::vector<std::pair<double, double>>& points,
+                                        const std::string& knee) {
+  pkmopt::ParetoFront front;
+  front.objectives = {{"f1", "minimize", ""}, {"f2", "minimize", ""}};
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    pkmopt::ParetoDesign d;
+    d.id = "d" + std::to_string(k);
+    d.objectives = {points[k].first, points[k].second};
+    front.designs.push_back(d);
+  }
+  front.knee = knee;
+  return front;
+}
+
+TEST(KneeText, SaysHowPronouncedTheKneeIs) {
+  // A bent front: the knee (0.1, 0.1) lies (1 - 0.2) / sqrt(2) = 0.566 below the line through
+  // the extremes (0, 1) and (1, 0).
+  const std::string bent =
+      pkmopt::knee_text(two_objective_front({{0, 1}, {0.1, 0.1}, {1, 0}}, "d1"));
+  EXPECT_NE(bent.find("d1 lies 0.566 below that plane"), std::string::npos) << bent;
+  EXPECT_EQ(bent.find("no pronounced knee"), std::string::npos) << bent;
+  // A straight front: every point on the line, the knee no better than its neighbours.
+  const std::string flat =
+      pkmopt::knee_text(two_objective_front({{0, 1}, {0.5, 0.5}, {1, 0}}, "d1"));
+  EXPECT_NE(flat.find("d1 lies 0.000 below that plane"), std::string::npos) << flat;
+  EXPECT_NE(flat.find("no pronounced knee"), std::string::npos) << flat;
+}
+
+TEST(ConvergencePlot, OnePolylineThroughEveryPoint) {
+  pkmopt::ParetoFront front = two_objective_front({{0, 1}, {1, 0}}, "d0");
+  EXPECT_EQ(pkmopt::convergence_svg(front), "");
+  front.convergence = pkmopt::ParetoConvergence{{10, 20, 30}, {0.1, 0.4, 0.5}};
+  const std::string svg = pkmopt::convergence_svg(front);
+  EXPECT_EQ(count(svg, "<polyline"), 1u);
+  const auto at = svg.find("<polyline points=\"");
+  ASSERT_NE(at, std::string::npos);
+  const std::string points = svg.substr(at, svg.find('"', at + 18) - at);
+  EXPECT_EQ(count(points, ","), 3u);
 }
 
 TEST(KneeSlice, IsTakenAtTheTaskCentreHeightOfTheKneeMachine) {
@@ -167,10 +207,20 @@ TEST_F(ExportTest, HtmlIsSelfContainedWithOnePointPerDesignAndTheKneeSlice) {
   EXPECT_EQ(html.find("<b> & \"quotes\""), std::string::npos);
   EXPECT_EQ(count(html, "<script"), 2u);
   EXPECT_EQ(html.find("<script src"), std::string::npos);
-  // The embedded data is the front itself.
+  // The embedded data is the front in file units, each quantity with its display unit.
   const auto begin = html.find("id=\"report-data\">") + 17;
   const auto end = html.find("</script>", begin);
-  EXPECT_EQ(nlohmann::json::parse(html.substr(begin, end - begin)), load_json(dir / "pareto.json"));
+  const nlohmann::json data = nlohmann::json::parse(html.substr(begin, end - begin));
+  const nlohmann::json file = load_json(dir / "pareto.json");
+  ASSERT_EQ(data["designs"].size(), file["designs"].size());
+  ASSERT_EQ(data["objectives"].size(), file["objectives"].size());
+  for (std::size_t k = 0; k < file["objectives"].size(); ++k) {
+    const std::string name = file["objectives"][k]["name"];
+    EXPECT_EQ(data["objectives"][k]["name"], name);
+    for (std::size_t d = 0; d < file["designs"].size(); ++d)
+      EXPECT_EQ(data["designs"][d]["objectives"][k], file["designs"][d]["objectives"][name]);
+  }
+  EXPECT_EQ(data["knee"], file["knee"]);
   // Plots for papers next to the report.
   for (const char* file : {"pareto.svg", "pareto.png", "knee_slice.svg", "knee_slice.png"}) {
     EXPECT_TRUE(fs::exists(dir / file)) << file;
@@ -228,6 +278,11 @@ TEST_F(ExportTest, EndToEndRunThenHtmlReport) {
     EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
     EXPECT_TRUE(fs::exists(dir / "knee_slice.png"));
   }
+  // Every design drawn (in the embedded data), the convergence plot, the knee in words.
+  EXPECT_EQ(count(html, "class=\\\"machine\\\""), front["designs"].size());
+  EXPECT_NE(html.find("<svg id=\"convergence\""), std::string::npos);
+  EXPECT_NE(html.find("The knee is the design whose objectives"), std::string::npos);
+  EXPECT_NE(html.find("<select id=\"x-axis\">"), std::string::npos);
   // The CSV export has the same designs as the run's own pareto.csv.
   ASSERT_EQ(run_cli("export " + dir.string() + " --format csv").status, 0);
   const auto exported = pkmopt::read_csv_file((dir / "pareto_export.csv").string());

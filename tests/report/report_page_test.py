@@ -1,0 +1,220 @@
+#!/usr/bin/env python3
+"""The HTML report in headless Chromium (Debian's chromium, driven over the DevTools protocol).
+
+Runs a small hexapod study, exports its report and loads it in Chromium, then checks:
+  * no console error and no uncaught exception, at load and after every step;
+  * the scatter shows every design; choosing other objectives on the axes redraws it with them;
+  * clicking a point pins it, clicking a table row pins another: the comparison shows both, each
+    with its machine drawing; clicking again unpins;
+  * clicking a heading sorts the designs table; the filter hides designs;
+  * the knee table and the knee slice (with the task box) are on the page.
+Writes a screenshot of the comparison of two pinned designs to SCRATCH/pinned.png.
+
+Usage: report_page_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR
+"""
+import json
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+import websocket
+
+CHROMIUM = "/usr/bin/chromium"
+
+
+class Page:
+    """One Chromium tab over the DevTools protocol, collecting errors as they come."""
+
+    def __init__(self, ws_url):
+        self.ws = websocket.create_connection(ws_url, timeout=60)
+        self.next_id = 0
+        self.errors = []
+        self.events = []
+
+    def _handle(self, message):
+        method = message.get("method")
+        params = message.get("params", {})
+        if method == "Runtime.exceptionThrown":
+            d = params["exceptionDetails"]
+            self.errors.append("exception: " + d.get("exception", {}).get("description",
+                                                                          d.get("text", "")))
+        elif method == "Runtime.consoleAPICalled" and params.get("type") in ("error", "assert"):
+            self.errors.append("console.error: " + " ".join(
+                str(a.get("value", a.get("description", ""))) for a in params.get("args", [])))
+        elif method == "Log.entryAdded" and params["entry"].get("level") == "error":
+            self.errors.append("log: " + params["entry"].get("text", ""))
+        elif method:
+            self.events.append(method)
+
+    def call(self, method, **params):
+        self.next_id += 1
+        my_id = self.next_id
+        self.ws.send(json.dumps({"id": my_id, "method": method, "params": params}))
+        while True:
+            message = json.loads(self.ws.recv())
+            if message.get("id") == my_id:
+                if "error" in message:
+                    raise RuntimeError(f"{method}: {message['error']}")
+                return message.get("result", {})
+            self._handle(message)
+
+    def wait_for(self, event, seconds=30):
+        deadline = time.time() + seconds
+        while time.time() < deadline:
+            if event in self.events:
+                return
+            self._handle(json.loads(self.ws.recv()))
+        raise TimeoutError(event)
+
+    def js(self, expression):
+        r = self.call("Runtime.evaluate", expression=expression, returnByValue=True,
+                      awaitPromise=True)
+        if "exceptionDetails" in r:
+            raise RuntimeError(f"{expression}: {r['exceptionDetails']}")
+        return r["result"].get("value")
+
+
+def start_chromium(profile):
+    proc = subprocess.Popen(
+        [CHROMIUM, "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", "--remote-allow-origins=*", "--remote-debugging-port=0",
+         "--window-size=1500,1200", f"--user-data-dir={profile}", "about:blank"],
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    port_file = pathlib.Path(profile) / "DevToolsActivePort"
+    deadline = time.time() + 60
+    while not port_file.exists() or not port_file.read_text().strip():
+        if time.time() > deadline or proc.poll() is not None:
+            proc.kill()
+            raise RuntimeError("chromium did not start (no DevToolsActivePort)")
+        time.sleep(0.1)
+    port = int(port_file.read_text().split()[0])
+    targets = json.load(urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list"))
+    page = next(t for t in targets if t["type"] == "page")
+    return proc, page["webSocketDebuggerUrl"]
+
+
+def click(selector):
+    return (f"(function () {{ const e = document.querySelector({json.dumps(selector)}); "
+            f"if (!e) return false; e.dispatchEvent(new MouseEvent('click', {{bubbles: true}})); "
+            f"return true; }})()")
+
+
+def main():
+    binary, source, scratch = (pathlib.Path(a).resolve() for a in sys.argv[1:4])
+    if scratch.exists():
+        shutil.rmtree(scratch)
+    scratch.mkdir(parents=True)
+    study = (source / "studies/library/hexapod-milling.yaml").read_text()
+    study = re.sub(r"population: \d+, generations: \d+", "population: 40, generations: 20", study)
+    study = re.sub(r"resolution: [0-9.]+", "resolution: 0.1", study)
+    (scratch / "study.yaml").write_text(study)
+    out = scratch / "run"
+    for args in (["run", str(scratch / "study.yaml"), "--out", str(out), "--no-progress"],
+                 ["export", str(out), "--format", "html"]):
+        r = subprocess.run([str(binary)] + args, capture_output=True, text=True)
+        if r.returncode != 0:
+            print(f"FAIL: pkmopt {' '.join(args)} exited {r.returncode}: {r.stderr}")
+            return 1
+    front = json.loads((out / "pareto.json").read_text())
+    designs = [d["id"] for d in front["designs"]]
+    if len(designs) < 3:
+        print(f"FAIL: the study's front has {len(designs)} designs, the test needs 3")
+        return 1
+
+    failures = []
+
+    def check(condition, what):
+        print(("ok   " if condition else "FAIL ") + what)
+        if not condition:
+            failures.append(what)
+
+    profile = tempfile.mkdtemp(prefix="pkmopt-chromium-")
+    proc, ws_url = start_chromium(profile)
+    try:
+        page = Page(ws_url)
+        for domain in ("Runtime.enable", "Log.enable", "Page.enable"):
+            page.call(domain)
+        page.call("Page.navigate", url=(out / "report.html").as_uri())
+        page.wait_for("Page.loadEventFired")
+        check(not page.errors, f"no console error at load {page.errors}")
+        points = page.js("document.querySelectorAll('#scatter circle.pt').length")
+        check(points == len(designs), f"the scatter shows every design ({points} of {len(designs)})")
+        x0 = page.js("document.getElementById('x-label').textContent")
+        check(x0.startswith(front["objectives"][0]["name"]), f"x axis at load: {x0}")
+        # Other objectives on the axes.
+        page.js("(function () { const x = document.getElementById('x-axis'); x.value = '2'; "
+                "x.dispatchEvent(new Event('change')); const y = document.getElementById('y-axis');"
+                " y.value = '3'; y.dispatchEvent(new Event('change')); })()")
+        x1 = page.js("document.getElementById('x-label').textContent")
+        y1 = page.js("document.getElementById('y-label').textContent")
+        check(x1.startswith(front["objectives"][2]["name"]) and
+              y1.startswith(front["objectives"][3]["name"]), f"axes chosen: x {x1}, y {y1}")
+        # Pin a point of the scatter, then a row of the table.
+        check(page.js(click(f"#scatter circle.pt[data-id='{designs[0]}']")), "a point to click")
+        check(page.js(click(f"#designs tr[data-id='{designs[1]}']")), "a row to click")
+        heads = page.js("Array.from(document.querySelectorAll('#pinned table.compare tr:first-child"
+                        " th')).map(function (t) { return t.textContent; })")
+        check(heads is not None and len(heads) == 3 and designs[0] in heads[1] and
+              designs[1] in heads[2], f"two designs compared side by side: {heads}")
+        drawings = page.js("document.querySelectorAll('#pinned svg.machine').length")
+        check(drawings == 2, f"each pinned design drawn ({drawings})")
+        labelled = page.js(f"Array.from(document.querySelectorAll('#scatter text')).some("
+                           f"function (t) {{ return t.textContent.indexOf('1: {designs[0]}') === 0; }})")
+        check(labelled, "the pinned point is labelled on the scatter")
+        # Screenshot of the comparison.
+        box = page.js("(function () { const r = document.getElementById('pinned')"
+                      ".getBoundingClientRect(); return [r.x + scrollX, r.y + scrollY, r.width, "
+                      "r.height]; })()")
+        shot = page.call("Page.captureScreenshot", format="png", captureBeyondViewport=True,
+                         clip={"x": box[0], "y": box[1], "width": max(box[2], 10),
+                               "height": max(box[3], 10), "scale": 1})
+        import base64
+        (scratch / "pinned.png").write_bytes(base64.b64decode(shot["data"]))
+        print(f"screenshot of the comparison: {scratch / 'pinned.png'}")
+        # Unpin the first again.
+        page.js(click(f"#scatter circle.pt[data-id='{designs[0]}']"))
+        n = page.js("document.querySelectorAll('#pinned table.compare tr:first-child th').length")
+        check(n == 2, f"clicking a pinned point unpins it ({n - 1 if n else 0} left)")
+        # Sort by the first column (a parameter) and filter.
+        order = ("Array.from(document.querySelectorAll('#designs tr[data-id]'))"
+                 ".map(function (r) { return r.getAttribute('data-id'); })")
+        name = front["parameters"][0]["name"]
+        ascending = [d["id"] for d in sorted(front["designs"], key=lambda d: d["parameters"][name])]
+        page.js(click("#designs th[data-sort='0']"))
+        check(page.js(order) == ascending, f"sorted by {name}, ascending")
+        page.js(click("#designs th[data-sort='0']"))
+        descending = [d["id"] for d in sorted(front["designs"],
+                                              key=lambda d: -d["parameters"][name])]
+        check(page.js(order) == descending, f"sorted by {name}, descending")
+        # A condition in display units (mm) on the same parameter keeps the designs above it.
+        values = sorted(d["parameters"][name] for d in front["designs"])
+        limit = 1e3 * values[len(values) // 2]
+        page.js("(function () { const f = document.getElementById('filter'); "
+                f"f.value = '{name} >= {limit!r}'; f.dispatchEvent(new Event('input')); }})()")
+        expected = sum(1 for v in values if 1e3 * v >= limit)
+        rows = page.js("document.querySelectorAll('#designs tr[data-id]').length")
+        check(rows == expected, f"the filter {name} >= {limit:.5g} mm leaves {rows} of {expected}")
+        page.js("(function () { const f = document.getElementById('filter'); "
+                f"f.value = '{designs[2]}'; f.dispatchEvent(new Event('input')); }})()")
+        rows = page.js("document.querySelectorAll('#designs tr[data-id]').length")
+        check(rows == 1, f"the filter leaves one design ({rows})")
+        check(page.js("document.querySelectorAll('#knee-table tr').length") > 5, "the knee table")
+        check(page.js("!!document.querySelector('img[alt^=\"workspace slice\"]')"), "the knee slice")
+        check(not page.errors, f"no console error after the steps {page.errors}")
+    finally:
+        proc.kill()
+        proc.wait()
+        shutil.rmtree(profile, ignore_errors=True)
+    print(f"{len(failures)} checks failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
