@@ -104,8 +104,9 @@ std::string singular_poses_csv(const TrajectoryResult& result) {
 std::string trajectory_summary_text(const Machine& machine, const TrajectoryResult& result,
                                     const TrajectorySummary& summary) {
   const int na = machine.num_actuators();
-  const double q_scale = actuator_scale(machine);
-  const char* q_unit = machine.revolute_actuators() ? "deg" : "m";
+  // Engineering units on the terminal: prismatic coordinates in mm, revolute ones in degrees.
+  const double q_scale = machine.revolute_actuators() ? actuator_scale(machine) : 1e3;
+  const char* q_unit = machine.revolute_actuators() ? "deg" : "mm";
   std::string text = fmt::format(
       "trajectory: {} samples, t {} .. {} s, {} reachable, min singularity_margin {:.4g}\n",
       summary.samples, format_number(result.samples.front().t),

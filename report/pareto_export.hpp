@@ -37,12 +37,26 @@ std::optional<ExportFormat> parse_export_format(std::string_view name);
 /// The output file's name when none is given: pareto_export.csv, pareto_export.json, report.html.
 std::string default_export_name(ExportFormat format);
 
+/// How `--format csv --units` labels the columns: not at all (the file's SI units, headers
+/// unit-free as docs/conventions.md has them), a second row of units, or the unit in each
+/// header (`base_radius [mm]`); labelled columns hold engineering units
+/// (report/display_units.hpp: mm, µm, N/µm, l, kN, deg).
+enum class CsvUnits { kNone, kRow, kSuffix };
+
+/// "row" or "suffix"; nullopt otherwise.
+std::optional<CsvUnits> parse_csv_units(std::string_view name);
+
+/// pareto_csv (io/pareto_json.hpp) in engineering units with the units as `units` says (kNone:
+/// pareto_csv itself).
+std::string pareto_csv_with_units(const ParetoFront& front, CsvUnits units);
+
 /// The files of an export of `front` (read from the results folder `results_dir`, where the
 /// knee design's machine file is) as (path, bytes): first `out_file` in `format`, then, when
 /// `plots` or the format is html, the plot files in `plot_dir`. Throws InputError when the knee
 /// design's machine file cannot be read.
 std::vector<std::pair<std::filesystem::path, std::string>> pareto_export_files(
     const ParetoFront& front, const std::string& results_dir, ExportFormat format,
-    const std::filesystem::path& out_file, const std::filesystem::path& plot_dir, bool plots);
+    const std::filesystem::path& out_file, const std::filesystem::path& plot_dir, bool plots,
+    CsvUnits csv_units = CsvUnits::kNone);
 
 }  // namespace pkmopt

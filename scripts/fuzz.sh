@@ -10,7 +10,12 @@ cd "$(dirname "$0")/.."
 seconds="${1:-30}"
 bash scripts/install-deps.sh
 launcher=()
-if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+# ccache, when installed, makes rebuilds fast; CCACHE_BASEDIR makes paths inside the clone
+# relative, so that a clone in another folder (CI's) reuses the cache too.
+if command -v ccache >/dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="$PWD"
+fi
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DPKMOPT_FUZZ=ON -DPKMOPT_SANITIZE=address,undefined -DPKMOPT_FUZZ_SECONDS="$seconds" \
   -DPKMOPT_BUILD_TESTS=OFF -DPKMOPT_BUILD_BENCH=OFF -DPKMOPT_BUILD_PYTHON=OFF \

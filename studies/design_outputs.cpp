@@ -129,7 +129,7 @@ using namespace design_outputs_detail;
 JournalOptions design_journal_options(const DesignStudy& study) {
   const bool aggregate = study.aggregate();
   JournalOptions options;
-  std::string header = "index";
+  std::string header = "index,generation";
   const std::vector<int> free = free_parameter_indices(study);
   for (int i : free) header += "," + study.parameters[static_cast<std::size_t>(i)].name;
   for (const DesignObjective& o : study.objectives())
@@ -151,7 +151,8 @@ JournalOptions design_journal_options(const DesignStudy& study) {
     };
   options.csv_row = [s, free, aggregate](std::size_t index, const JournalEntry& e) {
     const std::vector<DesignObjective>& objectives = s->objectives();
-    std::string row = std::to_string(index);
+    std::string row = std::to_string(index) + ',' +
+                      (e.generation >= 0 ? std::to_string(e.generation) : std::string());
     const std::vector<double> parameters = file_parameters(*s, e.x);
     for (int i : free) row += "," + format_number(parameters[static_cast<std::size_t>(i)]);
     const bool failed = !e.note.empty();

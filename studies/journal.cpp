@@ -334,16 +334,20 @@ void JournaledProblem::append(std::span<const JournalEntry> fresh) const {
 std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::vector<double>> xs,
                                                          int threads) const {
   std::vector<std::vector<double>> result(xs.size());
+  long long generation = 0;
   std::vector<std::size_t> misses;  // positions in xs of the first request of each new design
   std::vector<std::ptrdiff_t> source(xs.size(), -1);  // earlier position in xs with the same x
   {
     std::lock_guard lock(mutex_);
+    generation = batches_++;
     std::unordered_map<std::string, std::size_t> in_batch;
     for (std::size_t k = 0; k < xs.size(); ++k) {
       ++requests_;
       const std::string key = key_of(xs[k]);
       if (const auto it = index_.find(key); it != index_.end()) {
-        result[k] = entries_[it->second].fitness;
+        JournalEntry& known = entries_[it->second];
+        result[k] = known.fitness;
+        if (known.generation < 0) known.generation = generation;  // loaded, asked again
         ++cache_hits_;
       } else if (const auto b = in_batch.find(key); b != in_batch.end()) {
         source[k] = static_cast<std::ptrdiff_t>(b->second);
@@ -363,6 +367,7 @@ std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::ve
       fresh[i].fitness = inner().fitness(x);
     }
     fresh[i].x = x;
+    fresh[i].generation = generation;
   };
   const int thread_count = resolve_thread_count(threads);
   if (thread_count <= 1 || inner().thread_safety() == ThreadSafety::none || misses.size() < 2) {
@@ -474,6 +479,17 @@ void JournaledProblem::finish() const {
   if (progress_line_open_) {
     std::fputc('\n', stderr);
     progress_line_open_ = false;
+  }
+  if (options_.csv_row && csv_fd_ >= 0) {
+    // Every generation is known now: the file again, whole (the same rows as appended, with the
+    // generations of the rows loaded from the journal filled in).
+    std::string csv = options_.csv_header + "\n";
+    for (std::size_t k = 0; k < entries_.size(); ++k)
+      csv += options_.csv_row(k, entries_[k]) + "\n";
+    ::close(csv_fd_);
+    csv_fd_ = -1;
+    write_file_atomically((std::filesystem::path(options_.directory) / "evaluations.csv").string(),
+                          csv);
   }
 }
 

@@ -22,7 +22,9 @@
 // are read. Journals of version 1 (no checksums) are read and rewritten as version 2.
 //
 // DIR/evaluations.csv: its header and rows come from the caller (`csv_header`, `csv_row`); on
-// resume it is rewritten from the journal, then appended to.
+// resume it is rewritten from the journal, then appended to; finish() rewrites it whole once more
+// so that every row carries its JournalEntry::generation (loaded rows get theirs when the resumed
+// run asks for them again).
 //
 // Progress (stderr): on a terminal one line redrawn in place (evaluations done / expected,
 // hypervolume of the feasible non-dominated evaluated points, elapsed, remaining); otherwise a
@@ -57,6 +59,11 @@ struct JournalEntry {
   std::vector<double> x;
   std::vector<double> fitness;
   std::string note;  ///< failure reason; empty when the evaluation succeeded
+  /// The request (a call of fitness or batch_fitness; NSGA-II: 0 the initial population, g the
+  /// offspring of generation g) that first asked for this design in this run, counted from 0;
+  /// -1 for an entry read from the journal that the resumed run has not asked for yet. Not
+  /// stored in journal.txt: a resumed run, making the same requests, finds the same numbers.
+  long long generation = -1;
 };
 
 /// FNV-1a 64-bit hash of a text (stable across runs and machines).
@@ -148,7 +155,8 @@ class JournaledProblem final : public ForwardingProblem {
   long long cache_hits() const;  ///< requests served from the cache
   std::size_t loaded_entries() const { return loaded_; }  ///< entries read from the journal
   long long failed() const;  ///< distinct evaluations with a failure note
-  /// Ends the progress line (on a terminal) and prints a last log line.
+  /// Ends the progress line (on a terminal) and prints a last log line; rewrites
+  /// evaluations.csv with every entry's generation (atomically).
   void finish() const;
 
  private:
@@ -160,11 +168,12 @@ class JournaledProblem final : public ForwardingProblem {
 
   JournalOptions options_;
   int journal_fd_ = -1;
-  int csv_fd_ = -1;
+  mutable int csv_fd_ = -1;  // closed by finish()
   mutable std::mutex mutex_;
   mutable std::vector<JournalEntry> entries_;
   mutable std::unordered_map<std::string, std::size_t> index_;  // bytes of x -> entry
   mutable long long requests_ = 0;
+  mutable long long batches_ = 0;  // calls of fitness and batch_fitness: JournalEntry::generation
   mutable long long cache_hits_ = 0;
   mutable long long failed_ = 0;
   std::size_t loaded_ = 0;

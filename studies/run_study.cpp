@@ -94,14 +94,15 @@ void fill_journal_options(JournalOptions& options, const StudyRunOptions& opt,
 
 // evaluations.csv of a benchmark study: x_j, f_i, constraint rows c_k, feasible.
 void benchmark_csv(JournalOptions& options, const Problem& problem) {
-  std::string header = "index";
+  std::string header = "index,generation";
   for (std::size_t j = 0; j < problem.num_variables(); ++j) header += fmt::format(",x_{}", j + 1);
   for (std::size_t i = 0; i < problem.num_objectives(); ++i) header += fmt::format(",f_{}", i + 1);
   for (std::size_t k = 0; k < problem.num_constraints(); ++k) header += fmt::format(",c_{}", k + 1);
   options.csv_header = header + ",feasible,failure";
   const Problem* p = &problem;
   options.csv_row = [p](std::size_t index, const JournalEntry& e) {
-    std::string row = std::to_string(index);
+    std::string row = std::to_string(index) + ',' +
+                      (e.generation >= 0 ? std::to_string(e.generation) : std::string());
     for (double v : e.x) row += "," + format_number(v);
     bool finite = true;
     for (double v : e.fitness) {

@@ -1,4 +1,4 @@
-// pkmopt export DIR --format csv|json|html [--out FILE] [--plots]
+// pkmopt export DIR --format csv|json|html [--out FILE] [--units row|suffix] [--plots]
 // Reads DIR/pareto.json (written by `pkmopt run`) and writes the Pareto front as CSV, normalised
 // JSON or one self-contained HTML report; --plots (always with html) also writes pareto.svg,
 // pareto.png and, when the knee design has a machine file, knee_slice.svg/.png next to the
@@ -23,6 +23,7 @@ struct ExportCommandOptions {
   std::string results_dir;
   std::string format;
   std::string out;
+  std::string units;
   bool plots = false;
 };
 
@@ -42,6 +43,19 @@ void run_export(const ExportCommandOptions& opt) {
     throw InputError(
         fmt::format("--out: expected a file name, found the folder {}", quote_found(opt.out)));
   }
+  CsvUnits csv_units = CsvUnits::kNone;
+  if (!opt.units.empty()) {
+    const std::optional<CsvUnits> units = parse_csv_units(opt.units);
+    if (!units)
+      throw InputError(
+          fmt::format("--units: expected row or suffix, found {}", quote_found(opt.units)));
+    if (*format != ExportFormat::kCsv)
+      throw InputError(
+          fmt::format("--units: expected --format csv (the {} export has its units "
+                      "in it), found --format {}",
+                      opt.format, opt.format));
+    csv_units = *units;
+  }
   const ParetoFront front = read_pareto_json((dir / "pareto.json").string());
   const fs::path out_file =
       opt.out.empty() ? dir / default_export_name(*format) : fs::path(opt.out);
@@ -49,7 +63,8 @@ void run_export(const ExportCommandOptions& opt) {
 
   // Everything is rendered before the first file is written.
   const bool plots = opt.plots || *format == ExportFormat::kHtml;
-  const auto files = pareto_export_files(front, dir.string(), *format, out_file, plot_dir, plots);
+  const auto files =
+      pareto_export_files(front, dir.string(), *format, out_file, plot_dir, plots, csv_units);
   for (const auto& [path, content] : files) write_file_atomically(path.string(), content);
   fmt::print(
       "export: {} Pareto designs{} -> {}{}\n", front.designs.size(),
@@ -71,6 +86,9 @@ void add_export_command(CLI::App& app) {
   cmd->add_option("--out", opt->out,
                   "Output file (default DIR/pareto_export.csv, DIR/pareto_export.json or "
                   "DIR/report.html)");
+  cmd->add_option("--units", opt->units,
+                  "csv: label the columns in engineering units (mm, µm, N/µm, l, kN): 'row' adds a "
+                  "units row, 'suffix' puts the unit in each header");
   cmd->add_flag("--plots", opt->plots,
                 "Also write pareto.svg, pareto.png and knee_slice.svg/.png next to the output "
                 "file (always done for html)");

@@ -202,12 +202,12 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     }
   }
   fmt::print(
-      "workspace ({}): volume {:.6g} m^3 (estimated error {:.2g} %), convex hull {:.6g} m^3, GCI "
-      "{:.4g}, envelope ratio {}, resolution {} m, {:.3g} s{}\n",
-      workspace_kind(options.orientations), ws.volume, 100.0 * accuracy.relative_error(),
-      ws.convex_hull_volume, ws.maps.global_conditioning_index,
-      ws.envelope_ratio ? fmt::format("{:.4g}", *ws.envelope_ratio) : "n/a", ws.resolution, seconds,
-      opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
+      "workspace ({}): volume {:.5g} l (estimated error {:.2g} %), convex hull {:.5g} l, GCI "
+      "{:.4g}, envelope ratio {}, resolution {:.4g} mm, {:.3g} s{}\n",
+      workspace_kind(options.orientations), 1e3 * ws.volume, 100.0 * accuracy.relative_error(),
+      1e3 * ws.convex_hull_volume, ws.maps.global_conditioning_index,
+      ws.envelope_ratio ? fmt::format("{:.4g}", *ws.envelope_ratio) : "n/a", 1e3 * ws.resolution,
+      seconds, opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
   // The search box of some models is their travel (a tripod's z stroke): touching it is then
   // no error, so it is a warning only.
   if (ws.touches_search_box)

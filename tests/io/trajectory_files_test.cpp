@@ -154,10 +154,10 @@ TEST(TrajectorySummaryText, LinesInMetres) {
       "interference): the machine "
       "cannot follow this path\n";
   for (int i = 1; i <= 5; ++i) {
-    expected += "  q_" + std::to_string(i) + ": 0.75 .. 1 m, max |q_dot| 0.125 m/s\n";
+    expected += "  q_" + std::to_string(i) + ": 750 .. 1000 mm, max |q_dot| 125 mm/s\n";
   }
-  expected += "  q_6: 0.7 .. 1 m, max |q_dot| 0.125 m/s\n";
-  expected += "  max |q_dot - q_dot_fd| 2e-06 m/s (interior samples)\n";
+  expected += "  q_6: 700 .. 1000 mm, max |q_dot| 125 mm/s\n";
+  expected += "  max |q_dot - q_dot_fd| 0.002 mm/s (interior samples)\n";
   expected += "  TCP: max speed 0.5 m/s, max acceleration 19.61 m/s^2 (2 g)\n";
   for (int i = 1; i <= 6; ++i) {
     expected += "  tau_" + std::to_string(i) + ": max |tau| 250 N under the wrench\n";

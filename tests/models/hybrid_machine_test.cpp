@@ -568,7 +568,8 @@ TEST_F(HybridFiles, TrajectoryRatesMatchDifferencesOfTheIk) {
   const std::string key = "max |q_dot - q_dot_fd| ";
   const std::size_t at = run.out.find(key);
   ASSERT_NE(at, std::string::npos) << run.out;
-  EXPECT_LT(std::stod(run.out.substr(at + key.size())), 1e-6) << run.out;
+  EXPECT_LT(std::stod(run.out.substr(at + key.size())), 1e-3) << run.out;  // mm/s
+  EXPECT_NE(run.out.find(" mm/s (interior samples)"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("2001 reachable"), std::string::npos) << run.out;
 }
 

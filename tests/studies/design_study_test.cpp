@@ -402,10 +402,16 @@ TEST_F(DesignStudy, SmallStudyEndToEnd) {
   std::ifstream evaluations(dir / "out" / "evaluations.csv");
   std::getline(evaluations, header);
   EXPECT_EQ(header,
-            "index,base_radius,platform_pair_separation_deg,stiffness_min,machine_size,"
-            "g_leg_force_max_max,g_task_reachable,feasible,failure");
-  long long evaluation_rows = 0;
-  while (std::getline(evaluations, row)) ++evaluation_rows;
+            "index,generation,base_radius,platform_pair_separation_deg,stiffness_min,"
+            "machine_size,g_leg_force_max_max,g_task_reachable,feasible,failure");
+  long long evaluation_rows = 0, last_generation = 0;
+  while (std::getline(evaluations, row)) {
+    ++evaluation_rows;
+    // NSGA-II's generations, in order: 0 the initial population, then one per generation.
+    const long long generation = std::stoll(row.substr(row.find(',') + 1));
+    EXPECT_GE(generation, last_generation) << row;
+    last_generation = generation;
+  }
   EXPECT_EQ(evaluation_rows, summary["evaluations_distinct"].get<long long>());
 
   // A second run into the same folder is refused without --resume or --force.
@@ -442,23 +448,25 @@ TEST_F(DesignStudy, EvaluationRowsRecordFailuresWithoutNumbers) {
   const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   const JournalOptions options = design_journal_options(study);
   EXPECT_EQ(options.csv_header,
-            "index,base_radius,platform_pair_separation_deg,stiffness_min,machine_size,"
-            "g_leg_force_max_max,g_task_reachable,feasible,failure");
+            "index,generation,base_radius,platform_pair_separation_deg,stiffness_min,"
+            "machine_size,g_leg_force_max_max,g_task_reachable,feasible,failure");
   // A successful design: objectives in user sign (stiffness positive), the g values as rows.
   JournalEntry good = options.evaluate({0.6, deg_to_rad(25)});
   good.x = {0.6, deg_to_rad(25)};  // the journal sets x after the evaluation
   EXPECT_TRUE(good.note.empty());
   const DesignEvaluation ev = study.problem->evaluate({0.6, deg_to_rad(25)});
+  good.generation = 7;  // the request that asked for it
   const std::string row = options.csv_row(3, good);
-  EXPECT_EQ(row.substr(0, row.find(',', row.find(',', 2) + 1)),
-            "3,0.6," + format_number(rad_to_deg(deg_to_rad(25))));
+  EXPECT_EQ(row.substr(0, row.find(',', row.find(',', row.find(',', 2) + 1) + 1)),
+            "3,7,0.6," + format_number(rad_to_deg(deg_to_rad(25))));
   EXPECT_NE(row.find("," + format_number(ev.metrics[0]) + ","), std::string::npos) << row;
   // A failed design: empty objective and constraint cells, feasible 0, the quoted reason.
   JournalEntry failed = good;
   for (double& f : failed.fitness) f = kFailurePenalty;
   failed.note = "singular at task pose 2 (x 0.1, y 0, z 0.9 m)";
+  failed.generation = -1;  // read from a journal, not asked for again yet: an empty cell
   EXPECT_EQ(options.csv_row(4, failed),
-            "4,0.6," + format_number(rad_to_deg(deg_to_rad(25))) +
+            "4,,0.6," + format_number(rad_to_deg(deg_to_rad(25))) +
                 ",,,,,0,\"singular at task pose 2 (x 0.1, y 0, z 0.9 m)\"");
 }
 

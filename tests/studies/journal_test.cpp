@@ -134,6 +134,46 @@ TEST_F(StudyJournal, CachesIdenticalDesignsAndRecordsEachOnce) {
   EXPECT_EQ(line_count(dir / "evaluations.csv"), 3u);  // header + 2 evaluations
 }
 
+TEST_F(StudyJournal, GenerationIsTheRequestThatFirstAskedAndResumesToTheSame) {
+  const fs::path dir = fresh_dir("generation");
+  auto options = [&](bool resume) {
+    JournalOptions o = options_for(dir, 11, resume);
+    o.csv_header = "index,generation";
+    o.csv_row = [](std::size_t k, const JournalEntry& e) {
+      return std::to_string(k) + "," + (e.generation >= 0 ? std::to_string(e.generation) : "");
+    };
+    return o;
+  };
+  const std::vector<std::vector<double>> first = {{0.1, 0.2}, {0.3, 0.4}};
+  const std::vector<std::vector<double>> second = {{0.3, 0.4}, {0.5, 0.6}};
+  const CountedPair problem;
+  {
+    JournaledProblem j(problem, options(false));
+    j.batch_fitness(first, 1);   // request 0: two new designs
+    j.batch_fitness(second, 1);  // request 1: one from the cache, one new
+    j.fitness({0.7, 0.8});       // request 2
+    ASSERT_EQ(j.entries().size(), 4u);
+    EXPECT_EQ(j.entries()[0].generation, 0);
+    EXPECT_EQ(j.entries()[1].generation, 0);
+    EXPECT_EQ(j.entries()[2].generation, 1);
+    EXPECT_EQ(j.entries()[3].generation, 2);
+    j.finish();
+  }
+  const std::string uninterrupted = read_text(dir / "evaluations.csv");
+  EXPECT_EQ(uninterrupted, "index,generation\n0,0\n1,0\n2,1\n3,2\n");
+  // Resumed: the loaded entries have no generation until the run asks for them again; the same
+  // requests give the same numbers, and the file at the end is the uninterrupted run's.
+  JournaledProblem again(problem, options(true));
+  EXPECT_EQ(again.entries()[0].generation, -1);
+  EXPECT_EQ(read_text(dir / "evaluations.csv"), "index,generation\n0,\n1,\n2,\n3,\n");
+  again.batch_fitness(first, 1);
+  again.batch_fitness(second, 1);
+  again.fitness({0.7, 0.8});
+  again.finish();
+  EXPECT_EQ(problem.calls.load(), 4);  // nothing evaluated twice
+  EXPECT_EQ(read_text(dir / "evaluations.csv"), uninterrupted);
+}
+
 TEST_F(StudyJournal, ResumeServesRecordedDesignsAndDropsACutLine) {
   const fs::path dir = fresh_dir("resume");
   CountedPair inner;
