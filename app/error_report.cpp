@@ -137,7 +137,7 @@ void report(const char* kind, const std::string& message) noexcept {
 }
 
 // Every real-valued option of every command obeys the input number policy
-// (io/number_policy.hpp): finite, within +-1e15, not subnormal.
+// (io/number_policy.hpp): finite, within +-1e15, not subnormal; no option takes an empty value.
 void check_real_options(CLI::App& app) {
   const CLI::Validator sane(
       [](std::string& text) -> std::string {
@@ -148,8 +148,18 @@ void check_real_options(CLI::App& app) {
         return "expected " + std::string(kSaneNumberText) + ", found " + text;
       },
       "", "sane number");
+  // An option given an empty value ("--threads ''") is not given a value: refused, whatever its
+  // type (CLI11 would read '' as 0 or as an empty text).
+  const CLI::Validator non_empty(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "expected a value, found an empty string" : std::string();
+      },
+      "", "non-empty");
   for (CLI::Option* option : app.get_options()) {
     if (option->get_type_name() == "FLOAT") option->check(sane);
+    if (option->get_type_size_max() > 0 && option->get_expected_max() > 0 &&
+        option->get_name() != "--help" && option->get_name() != "--version")
+      option->check(non_empty);
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
     check_real_options(*sub);

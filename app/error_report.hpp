@@ -20,7 +20,8 @@ namespace pkmopt::cli {
 void report(const char* kind, const std::string& message) noexcept;
 
 /// Adds the input number policy (io/number_policy.hpp: finite, within +-1e15, not subnormal) to
-/// every real-valued (FLOAT) option of the app and its subcommands.
+/// every real-valued (FLOAT) option of the app and its subcommands, and refuses an empty value
+/// ("--threads ''") for every option that takes one.
 void check_real_options(CLI::App& app);
 
 /// The names of the subcommands given ("run", "" for none).

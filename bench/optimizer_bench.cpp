@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "optimizer/epsilon_constraint.hpp"
+#include "optimizer/front_thinning.hpp"
 #include "optimizer/indicators.hpp"
 #include "optimizer/nbi.hpp"
 #include "optimizer/nsga2.hpp"
@@ -95,6 +96,28 @@ void BM_Hypervolume3d1000(benchmark::State& state) {
   state.counters["hypervolume"] = hv;
 }
 BENCHMARK(BM_Hypervolume3d1000)->Unit(benchmark::kMillisecond);
+
+// A run's front from its archive: the non-dominated set of N evaluations of 3 objectives (a
+// sphere's octant, 10 % of them pushed off it and dominated), thinned to 100 points by SPEA2
+// truncation (optimizer/front_thinning.hpp); N = 6800 gives about the 6115-point archive of
+// dtlz2-nsga2's 23,092 evaluations.
+void BM_SelectFrontThinned(benchmark::State& state) {
+  Random rng(2);
+  ObjectiveSet points(static_cast<std::size_t>(state.range(0)), std::vector<double>(3));
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    double norm = 0.0;
+    for (double& v : points[k]) {
+      v = rng.uniform01();
+      norm += v * v;
+    }
+    const double radius = k % 10 == 0 ? 1.2 : 1.0;
+    for (double& v : points[k]) v *= radius / std::sqrt(norm);
+  }
+  std::size_t kept = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(kept = select_front(points, 100).size());
+  state.counters["kept"] = static_cast<double>(kept);
+}
+BENCHMARK(BM_SelectFrontThinned)->Arg(1000)->Arg(6800)->Unit(benchmark::kMillisecond);
 
 void BM_PagmoHypervolume3d1000(benchmark::State& state) {
   Random rng(1);

@@ -162,8 +162,10 @@ std::vector<double> stepped_times(double t_start, double t_end, double dt) {
     throw std::invalid_argument(
         "stepped_times: needs finite t_start < t_end and a finite time step dt > 0");
   }
+  // A last step shorter than a billionth of the step (or of the span) is rounding: dropped.
+  const double tolerance = 1e-9 * std::min(dt, t_end - t_start);
   std::vector<double> times;
-  for (double t = t_start; t < t_end - 1e-9 * dt;
+  for (double t = t_start; t < t_end - tolerance;
        t = t_start + static_cast<double>(times.size()) * dt) {
     times.push_back(t);
   }

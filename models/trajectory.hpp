@@ -150,8 +150,9 @@ class SampledPath final : public TcpPath {
 /// count >= 2 times evenly spaced from t_start to t_end (both included).
 std::vector<double> uniform_times(double t_start, double t_end, int count);
 
-/// t_start, t_start + dt, t_start + 2 dt, ... while below t_end - 1e-9 dt, then t_end: the step
-/// is kept and the last step is shorter when dt does not divide the span. Sample k is
+/// t_start, t_start + dt, t_start + 2 dt, ... while below t_end - 1e-9 min(dt, t_end - t_start),
+/// then t_end: the step is kept and the last step is shorter when dt does not divide the span
+/// (a step longer than the span gives t_start and t_end). Sample k is
 /// t_start + k dt (no accumulated rounding). Throws std::invalid_argument unless t_start and
 /// t_end are finite with t_end > t_start and dt > 0 is finite.
 std::vector<double> stepped_times(double t_start, double t_end, double dt);

@@ -16,6 +16,7 @@
 #include "optimizer/front_thinning.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
+#include "studies/optimizer_fields.hpp"
 
 namespace pkmopt {
 
@@ -67,13 +68,7 @@ struct BenchmarkOutputSection {
 
 template <class Fields>
 void describe_fields(Fields& f, BenchmarkOutputSection& o) {
-  f.field("front_size", o.front_size,
-          {.min = 0,
-           .max = kMaxFrontSize,
-           .zero_is_unset = true,
-           .expected = "an integer in [1, 100000]",
-           .doc = "thin the front to this many points (SPEA2 truncation, the extremes kept); "
-                  "unset: every non-dominated feasible point of the run"});
+  front_size_field(f, o.front_size);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "problems/hexapod_design.hpp"
 #include "problems/machine_design.hpp"
 #include "studies/design_study.hpp"
+#include "studies/optimizer_fields.hpp"
 
 namespace pkmopt::design_study_detail {
 
@@ -205,13 +206,7 @@ template <class Fields>
 void describe_fields(Fields& f, OutputSection& o) {
   f.field("designs", o.designs,
           {.doc = "write designs/<id>.yaml, a machine file per Pareto design"});
-  f.field("front_size", o.front_size,
-          {.min = 0,
-           .max = kMaxFrontSize,
-           .zero_is_unset = true,
-           .expected = "an integer in [1, 100000]",
-           .doc = "thin the front to this many designs (SPEA2 truncation, the extremes kept); "
-                  "unset: every non-dominated feasible design of the run"});
+  front_size_field(f, o.front_size);
 }
 
 /// {actuator: cheapest, catalog: FILE}: the optimiser chooses the entry.

@@ -117,4 +117,17 @@ void describe_fields(Fields& f, NloptSpec& s) {
   describe_start(f, s.start);
 }
 
+/// output.front_size of design and benchmark studies: one description for both readers, their
+/// resolved writers and the docs tables.
+template <class Fields>
+void front_size_field(Fields& f, int& front_size) {
+  f.field("front_size", front_size,
+          {.min = 0,
+           .max = kMaxFrontSize,
+           .zero_is_unset = true,
+           .expected = "an integer in [1, 100000]",
+           .doc = "thin the front to this many designs (SPEA2 truncation, the extremes kept); "
+                  "unset: every non-dominated feasible design of the run"});
+}
+
 }  // namespace pkmopt

@@ -15,6 +15,7 @@
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
 #include "io/actuator_catalog_file.hpp"
+#include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "io/output_file.hpp"
@@ -126,6 +127,13 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
       if (!(std::isfinite(*opt.dt) && *opt.dt > 0.0 && span / *opt.dt < kMaxSamples)) {
         bad_option("--dt",
                    fmt::format("a time step in s > 0 giving at most {} samples", kMaxSamples),
+                   *opt.dt);
+      }
+      if (*opt.dt > span) {
+        bad_option("--dt",
+                   fmt::format("a time step of at most the path's duration ({} s, from "
+                               "--t-start to --t-end)",
+                               format_number(span)),
                    *opt.dt);
       }
       // The step is kept; the last sample is t_end (a shorter last step if dt does not divide).

@@ -365,6 +365,30 @@ TEST_F(ErrorContract, PosesInMillimetresAreWarnedAbout) {
   EXPECT_EQ(r.err, "");
 }
 
+TEST_F(ErrorContract, TrajectoryWithADtOf1e15) {  // exited 1: "at least 2 times needed"
+  expect_refused(
+      "trajectory " + example("hexapod.yaml") + " --helix --helix-centre 0,0,0.9 --dt 1e15",
+      "--dt: expected a time step of at most the path's duration (6.283185307179586 s");
+}
+
+TEST_F(ErrorContract, EmptyOptionValues) {  // were read as 0 or as the default, exit 0
+  const std::string hexapod = example("hexapod.yaml");
+  const std::string poses = write("p.csv", "x,y,z\n0,0,0.9\n");
+  expect_refused("analyze " + hexapod + " --poses " + poses + " --wrench ''",
+                 "--wrench: expected a value, found an empty string");
+  expect_refused("simulate-measurements " + hexapod + " --out " + path("sim") + " --seed ''",
+                 "--seed: expected a value, found an empty string");
+  expect_refused("run " + tiny_study() + " --out " + path("o") + " --threads ''",
+                 "--threads: expected a value, found an empty string");
+  expect_refused("trajectory " + hexapod + " --helix --helix-radius ''",
+                 "--helix-radius: expected a value, found an empty string");
+  expect_refused("workspace " + hexapod + " --resolution ''",
+                 "--resolution: expected a value, found an empty string");
+  expect_refused(
+      "simulate-measurements " + hexapod + " --out " + path("sim") + " --tracker-sigma ''",
+      "--tracker-sigma: expected a value, found an empty string");
+}
+
 TEST_F(ErrorContract, CsvHeaderWithAQuotedNewline) {
   const std::string poses = write("q.csv", "a,\"b\nc\"\n1,2\n");
   expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses, "b\\nc");

@@ -448,6 +448,12 @@ TEST(SteppedTimes, ADividingStepDoesNotRepeatTEnd) {
   EXPECT_EQ(t[4], 2.0);
 }
 
+TEST(SteppedTimes, AStepLongerThanTheSpanGivesBothEnds) {
+  // Once a single time (t_end): the tolerance was a billionth of the step, 1e6 s here.
+  EXPECT_EQ(pkmopt::stepped_times(0.0, 6.25, 1e15), (std::vector<double>{0.0, 6.25}));
+  EXPECT_EQ(pkmopt::stepped_times(2.0, 3.0, 1.0), (std::vector<double>{2.0, 3.0}));
+}
+
 TEST(SteppedTimes, RejectsBadSpansAndSteps) {
   EXPECT_THROW(pkmopt::stepped_times(0.0, 1.0, 0.0), std::invalid_argument);
   EXPECT_THROW(pkmopt::stepped_times(1.0, 1.0, 0.1), std::invalid_argument);

@@ -10,8 +10,11 @@ Runs a small hexapod study, exports its report and loads it in Chromium, then ch
   * the knee table and the knee slice (with the task box) are on the page.
 Writes a screenshot of the comparison of two pinned designs to SCRATCH/pinned.png.
 
-Usage: report_page_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR
+Usage: report_page_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR [--report DIR]
+  --report DIR: check DIR/report.html of an existing run (exported with `pkmopt export DIR
+  --format html`) instead of running the small study.
 """
+import base64
 import json
 import os
 import pathlib
@@ -111,17 +114,21 @@ def main():
     if scratch.exists():
         shutil.rmtree(scratch)
     scratch.mkdir(parents=True)
-    study = (source / "studies/library/hexapod-milling.yaml").read_text()
-    study = re.sub(r"population: \d+, generations: \d+", "population: 40, generations: 20", study)
-    study = re.sub(r"resolution: [0-9.]+", "resolution: 0.1", study)
-    (scratch / "study.yaml").write_text(study)
-    out = scratch / "run"
-    for args in (["run", str(scratch / "study.yaml"), "--out", str(out), "--no-progress"],
-                 ["export", str(out), "--format", "html"]):
-        r = subprocess.run([str(binary)] + args, capture_output=True, text=True)
-        if r.returncode != 0:
-            print(f"FAIL: pkmopt {' '.join(args)} exited {r.returncode}: {r.stderr}")
-            return 1
+    if "--report" in sys.argv[4:]:
+        out = pathlib.Path(sys.argv[sys.argv.index("--report") + 1]).resolve()
+    else:
+        study = (source / "studies/library/hexapod-milling.yaml").read_text()
+        study = re.sub(r"population: \d+, generations: \d+", "population: 40, generations: 20",
+                       study)
+        study = re.sub(r"resolution: [0-9.]+", "resolution: 0.1", study)
+        (scratch / "study.yaml").write_text(study)
+        out = scratch / "run"
+        for args in (["run", str(scratch / "study.yaml"), "--out", str(out), "--no-progress"],
+                     ["export", str(out), "--format", "html"]):
+            r = subprocess.run([str(binary)] + args, capture_output=True, text=True)
+            if r.returncode != 0:
+                print(f"FAIL: pkmopt {' '.join(args)} exited {r.returncode}: {r.stderr}")
+                return 1
     front = json.loads((out / "pareto.json").read_text())
     designs = [d["id"] for d in front["designs"]]
     if len(designs) < 3:
@@ -175,9 +182,13 @@ def main():
         shot = page.call("Page.captureScreenshot", format="png", captureBeyondViewport=True,
                          clip={"x": box[0], "y": box[1], "width": max(box[2], 10),
                                "height": max(box[3], 10), "scale": 1})
-        import base64
         (scratch / "pinned.png").write_bytes(base64.b64decode(shot["data"]))
-        print(f"screenshot of the comparison: {scratch / 'pinned.png'}")
+        # The page from its top to the end of the comparison: the scatter with the pinned labels.
+        page_shot = page.call("Page.captureScreenshot", format="png", captureBeyondViewport=True,
+                              clip={"x": 0, "y": 0, "width": 1500,
+                                    "height": box[1] + max(box[3], 10), "scale": 1})
+        (scratch / "report-pinned.png").write_bytes(base64.b64decode(page_shot["data"]))
+        print(f"screenshots: {scratch / 'pinned.png'}, {scratch / 'report-pinned.png'}")
         # Unpin the first again.
         page.js(click(f"#scatter circle.pt[data-id='{designs[0]}']"))
         n = page.js("document.querySelectorAll('#pinned table.compare tr:first-child th').length")
