@@ -539,6 +539,12 @@ std::vector<std::string> benchmark_names() {
 std::unique_ptr<BenchmarkProblem> make_benchmark(std::string_view name, std::size_t variables,
                                                  std::size_t objectives) {
   const std::string key(name);
+  if (variables > kMaxBenchmarkVariables)
+    throw std::invalid_argument(
+        fmt::format("expected at most {} variables, found {}", kMaxBenchmarkVariables, variables));
+  if (objectives > kMaxBenchmarkObjectives)
+    throw std::invalid_argument(fmt::format("expected at most {} objectives, found {}",
+                                            kMaxBenchmarkObjectives, objectives));
   if (objectives != 0 && !key.starts_with("dtlz"))
     throw std::invalid_argument(fmt::format(
         "'{}' has a fixed number of objectives; 'objectives' applies to DTLZ only", key));

@@ -173,9 +173,15 @@ class Rosenbrock : public BenchmarkProblem {
 /// The benchmark names make_benchmark accepts.
 std::vector<std::string> benchmark_names();
 
+/// The largest benchmark make_benchmark builds (study files, the command line and Python alike):
+/// more would only exhaust memory or time.
+inline constexpr std::size_t kMaxBenchmarkVariables = 10000;
+inline constexpr std::size_t kMaxBenchmarkObjectives = 50;
+
 /// Builds a benchmark by name (lower case, see benchmark_names()). `variables` = 0 and
 /// `objectives` = 0 take the defaults; `objectives` only applies to DTLZ. Throws
-/// std::invalid_argument with the reason for an unknown name or impossible sizes.
+/// std::invalid_argument with the reason for an unknown name or impossible sizes (more than
+/// kMaxBenchmarkVariables variables or kMaxBenchmarkObjectives objectives included).
 std::unique_ptr<BenchmarkProblem> make_benchmark(std::string_view name, std::size_t variables = 0,
                                                  std::size_t objectives = 0);
 

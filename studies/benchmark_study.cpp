@@ -36,14 +36,14 @@ void describe_fields(Fields& f, BenchmarkProblemSection& p) {
            .doc = "the benchmark problem (formulas in problems/benchmarks.hpp)"});
   f.field("variables", p.variables,
           {.min = 1,
-           .max = 10000,
+           .max = static_cast<double>(kMaxBenchmarkVariables),
            .zero_is_unset = true,
            .default_text = "ZDT1–3: 30, ZDT4/6: 10, DTLZ: m + k − 1 (k = 5 DTLZ1, 10 DTLZ2–4, 20 "
                            "DTLZ7), Rosenbrock: 10",
            .doc = "number of variables (fixed-size problems accept only their own)"});
   f.field("objectives", p.objectives,
           {.min = 2,
-           .max = 50,
+           .max = static_cast<double>(kMaxBenchmarkObjectives),
            .zero_is_unset = true,
            .default_text = "3",
            .doc = "number of objectives (DTLZ only)"});

@@ -213,6 +213,9 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
   if (opt.out_file.empty()) {
     std::cout << table;
     std::cout.flush();
+    // The table did not reach standard output (closed, a full disk): no summary after it, the
+    // one error line is main's.
+    if (!std::cout) return;
   }
   if (opt.out_file.empty()) {
     std::cerr << summary;

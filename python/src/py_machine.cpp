@@ -459,11 +459,22 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
 }  // namespace
 
 void bind_machine(py::module_& m) {
-  py::class_<PyMachine>(m, "Machine",
-                        "A machine model read from a machine file (docs/conventions.md): a "
-                        "hexapod, a leg-chain model (delta, linear_delta, hexaglide, tripod_3prs, "
-                        "leg_chain), the 16K20F3 lathe conversion or a hybrid machine. Immutable; "
-                        "its methods may be called from several Python threads.")
+  py::class_<PyMachine> machine_class(
+      m, "Machine",
+      "A machine model read from a machine file (docs/conventions.md): a "
+      "hexapod, a leg-chain model (delta, linear_delta, hexaglide, tripod_3prs, "
+      "leg_chain), the 16K20F3 lathe conversion or a hybrid machine. Immutable; "
+      "its methods may be called from several Python threads.");
+  // Machines come from load_machine and machine_from_dict only: Machine.__new__(Machine) would
+  // make an object without its C++ machine (methods on it crashed the interpreter).
+  machine_class.attr("__new__") = py::staticmethod(py::cpp_function(
+      [](const py::args&, const py::kwargs&) -> py::object {
+        throw py::type_error(
+            "pkmopt.Machine objects are made by pkmopt.load_machine(path) or "
+            "pkmopt.machine_from_dict(dict), not by Machine() or Machine.__new__");
+      },
+      py::name("__new__")));
+  machine_class
       .def_property_readonly(
           "model", [](const PyMachine& self) { return std::string(self.machine->model()); },
           "The `model:` name of the machine file.")

@@ -389,6 +389,15 @@ TEST_F(ErrorContract, EmptyOptionValues) {  // were read as 0 or as the default,
       "--tracker-sigma: expected a value, found an empty string");
 }
 
+TEST_F(ErrorContract, TrajectoryWithStdoutFull) {  // printed its 11-line summary, then the error
+  const CliRun r = run_redirected(
+      "trajectory " + example("hexapod.yaml") + " --helix --helix-centre 0,0,0.9 --samples 11",
+      ">/dev/full");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("pkmopt: error: cannot write to standard output", 0), 0u) << r.err;
+}
+
 TEST_F(ErrorContract, CsvHeaderWithAQuotedNewline) {
   const std::string poses = write("q.csv", "a,\"b\nc\"\n1,2\n");
   expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses, "b\\nc");

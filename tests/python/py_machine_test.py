@@ -323,3 +323,13 @@ def test_workspace_matches_the_cli(tmp_path):
         machine.workspace(tilt_deg=-1)
     with pytest.raises(pkmopt.InputError, match=r"mode: expected 'all' or 'some'"):
         machine.workspace(mode="any")
+
+
+def test_a_machine_not_made_by_load_machine_raises_instead_of_crashing():
+    # Machine.__new__(Machine) once made an object without its C++ machine: analyze() or .model
+    # on it crashed the interpreter (a segmentation fault).
+    for make in (lambda: pkmopt.Machine.__new__(pkmopt.Machine), lambda: pkmopt.Machine()):
+        with pytest.raises(TypeError, match="pkmopt.load_machine"):
+            make()
+    assert pkmopt.load_machine(source("examples/hexapod.yaml")).model == "hexapod"
+

@@ -162,3 +162,14 @@ def test_a_gradient_of_the_wrong_shape_is_refused():
     with pytest.raises(pkmopt.InputError, match=r"problem.gradient: expected an array of shape "
                                                 r"\(3, 4\)"):
         pkmopt.optimize(Transposed(), {"algorithm": "ipopt", "start": [1, 5, 5, 1]})
+
+
+def test_python_keeps_the_command_lines_benchmark_limits():
+    # dtlz2 with 51 objectives was accepted from Python (the CLI refuses more than 50); with
+    # 10**6 it ran on for ever. One limit, in make_benchmark, for both.
+    for spec, message in (({"name": "dtlz2", "objectives": 51}, "at most 50 objectives, found 51"),
+                          ({"name": "dtlz2", "objectives": 10**6}, "at most 50 objectives"),
+                          ({"name": "zdt1", "variables": 10001}, "at most 10000 variables")):
+        with pytest.raises(pkmopt.InputError, match=message):
+            pkmopt.optimize(spec, {"algorithm": "nsga2", "population": 8, "generations": 1})
+
