@@ -115,7 +115,10 @@ MachineDescription describe_machine(const YamlValue& root) {
     root.check_keys({"model", "name", "description", "serial", "parallel", "gravity"});
     const YamlValue serial = root.required("serial");
     serial.check_keys({"code", "axes", "range", "stiffness", "error", "mass"});
-    add_serial(d, read_serial(serial, false));
+    const SerialPart part = read_serial(serial, false);
+    // The numbers by the rules `analyze` reads them with: one reader, one verdict.
+    check_hybrid_numbers(root, part.chain.num_variables());
+    add_serial(d, part);
     const YamlValue parallel = root.required("parallel");
     parallel.check_keys({"file", "home"});
     const YamlValue file = parallel.required("file");

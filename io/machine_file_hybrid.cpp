@@ -244,6 +244,21 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   return design;
 }
 
+void check_hybrid_numbers(const YamlValue& root, int num_variables) {
+  HybridDesign design;
+  design.axes.resize(static_cast<std::size_t>(std::max(num_variables, 0)));
+  {
+    FieldReader reader(root.required("serial"));
+    describe_serial(reader, design);
+  }
+  {
+    FieldReader reader(root.required("parallel"));
+    describe_parallel(reader, design);
+  }
+  if (const auto gravity = root.optional("gravity"))
+    for (const YamlValue& g : gravity->elements(3)) (void)g.as_double();
+}
+
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root) {
   return std::make_unique<HybridMachine>(read_hybrid_design(root));
 }

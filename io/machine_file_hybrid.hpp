@@ -45,6 +45,12 @@ HybridDesign read_hybrid_design(const YamlValue& root);
 std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file);
 /// The machine of a `model: hybrid` map.
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
+
+/// The numbers of a hybrid file — serial range, stiffness, error and mass (one per variable axis
+/// of a chain with `num_variables`), parallel home, gravity — read by the rules of
+/// read_hybrid_design (the same messages). For `pkmopt describe`, which accepts chains
+/// read_hybrid_design refuses (variable rotary axes) but no number it would refuse.
+void check_hybrid_numbers(const YamlValue& root, int num_variables);
 /// The module file a hybrid's `parallel.file` names (relative to `hybrid_file`), parsed; throws
 /// InputError at `file` when it is missing, not a regular file, or a hybrid or serial machine.
 YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybrid_file);

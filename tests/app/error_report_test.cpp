@@ -398,6 +398,26 @@ TEST_F(ErrorContract, TrajectoryWithStdoutFull) {  // printed its 11-line summar
   EXPECT_EQ(r.err.rfind("pkmopt: error: cannot write to standard output", 0), 0u) << r.err;
 }
 
+TEST_F(ErrorContract, DescribeReadsAHybridsNumbersAsAnalyzeDoes) {  // describe exited 0
+  const std::string poses = write("p.csv", "x,y,z\n0,0,0.9\n");
+  fs::copy_file(example("hexapod.yaml"), dir_ / "hexapod.yaml");
+  const std::string hybrid = read_text(example("hybrid_long_axis_hexapod.yaml"));
+  const std::string line = "stiffness: [1.5e8]";
+  ASSERT_NE(hybrid.find(line), std::string::npos);
+  int k = 0;
+  for (const char* bad : {"stiffness: [abc]", "stiffness: [.NaN]", "stiffness: [+.inf]",
+                          "stiffness: [-1e16]", "stiffness: [-5]"}) {
+    std::string text = hybrid;
+    text.replace(text.find(line), line.size(), bad);
+    const std::string file = write("hybrid" + std::to_string(k++) + ".yaml", text);
+    const CliRun analyze = run("analyze " + file + " --poses " + poses);
+    const CliRun describe = run("describe " + file);
+    EXPECT_EQ(analyze.status, 2) << bad << "\n" << analyze.err;
+    EXPECT_EQ(describe.status, 2) << bad << "\n" << describe.err;
+    EXPECT_EQ(describe.err, analyze.err) << bad;
+  }
+}
+
 TEST_F(ErrorContract, CsvHeaderWithAQuotedNewline) {
   const std::string poses = write("q.csv", "a,\"b\nc\"\n1,2\n");
   expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses, "b\\nc");

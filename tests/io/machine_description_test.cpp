@@ -98,8 +98,9 @@ TEST_F(MachineDescriptionTest, GantryOverAParallelHeadCountsBoth) {
   std::filesystem::copy_file(kExamples + "hexapod.yaml", dir_ / "head.yaml");
   const MachineDescription d =
       describe_machine_file(write("g.yaml",
-                                  "model: hybrid\nserial: {code: \"12\", axes: [X, Y]}\n"
-                                  "parallel: {file: head.yaml}\n"));
+                                  "model: hybrid\nserial: {code: \"12\", axes: [X, Y], "
+                                  "range: [[-1, 1], [-0.5, 0.5]]}\n"
+                                  "parallel: {file: head.yaml, home: [0, 0, 0.9]}\n"));
   EXPECT_EQ(d.structure, "P2З6");
   EXPECT_EQ(d.serial_drives, 2);
 }
@@ -114,9 +115,13 @@ TEST_F(MachineDescriptionTest, BadFilesNameTheKey) {
             "m.yaml:3:7: axes: expected distinct axis names, found a list of 3");
   EXPECT_EQ(error_of("model: serial\ncode: \"1236\"\naxes: [X, Y, Z, S]\nspindle: Z\n"),
             "m.yaml:4:10: spindle: expected a rotary axis (motion 4, 5 or 6), found 'Z'");
-  EXPECT_EQ(error_of("model: hybrid\nserial: {code: \"1\"}\nparallel: {file: none.yaml}\n"),
+  EXPECT_EQ(error_of("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n"
+                     "parallel: {file: none.yaml, home: [0, 0, 0.9]}\n"),
             "m.yaml:3:18: parallel.file: expected an existing machine file, found '" +
                 (dir_ / "none.yaml").string() + "' (no such file)");
+  // The serial numbers are read as analyze reads them (a range is required there too).
+  EXPECT_EQ(error_of("model: hybrid\nserial: {code: \"1\"}\nparallel: {file: none.yaml}\n"),
+            "m.yaml:2:9: serial: missing required key 'range'");
 }
 
 TEST_F(MachineDescriptionTest, CliPrintsTheDescriptionAndRejectsBadFiles) {
