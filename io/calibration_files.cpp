@@ -19,6 +19,14 @@
 namespace pkmopt {
 namespace {
 
+// An observability index for report.txt: {:.4g}, or "n/a" where report.json has null (an
+// infinite condition number, a rank-deficient fit).
+std::string observability_text(const nlohmann::json& value) {
+  if (!value.is_number()) return "n/a";
+  const double v = value.get<double>();
+  return std::isfinite(v) ? fmt::format("{:.4g}", v) : "n/a";
+}
+
 std::string resolve_path(const std::string& base_file, const std::string& path) {
   const std::filesystem::path p(path);
   if (p.is_absolute()) return path;
@@ -744,14 +752,12 @@ std::string calibration_report_text(const nlohmann::json& r) {
   const auto& id = r["identification"];
   out += fmt::format(
       "\nIdentification: rank {} of {} free\n"
-      "  unscaled (parameters in m, 1, rad): O1 {:.4g}  O2 (cond) {:.4g}  O3 (sigma_min) {:.4g}  "
-      "O4 {:.4g}\n"
-      "  scaled (parameters in units of their a-priori sigma): O1 {:.4g}  O2 {:.4g}  O3 {:.4g}  "
-      "O4 {:.4g}\n",
-      id["rank"].get<int>(), id["free_parameters"].get<int>(), id["O1"].get<double>(),
-      id["O2"].get<double>(), id["O3"].get<double>(), id["O4"].get<double>(),
-      id["scaled"]["O1"].get<double>(), id["scaled"]["O2"].get<double>(),
-      id["scaled"]["O3"].get<double>(), id["scaled"]["O4"].get<double>());
+      "  unscaled (parameters in m, 1, rad): O1 {}  O2 (cond) {}  O3 (sigma_min) {}  O4 {}\n"
+      "  scaled (parameters in units of their a-priori sigma): O1 {}  O2 {}  O3 {}  O4 {}\n",
+      id["rank"].get<int>(), id["free_parameters"].get<int>(), observability_text(id["O1"]),
+      observability_text(id["O2"]), observability_text(id["O3"]), observability_text(id["O4"]),
+      observability_text(id["scaled"]["O1"]), observability_text(id["scaled"]["O2"]),
+      observability_text(id["scaled"]["O3"]), observability_text(id["scaled"]["O4"]));
   out += "\nParameters (m, deg, or 1 for gains; change = estimate - nominal)\n";
   out += fmt::format("{:<15}{:>5}{:>16}{:>16}{:>14}{:>14}\n", "name", "free", "nominal", "estimate",
                      "change", "sigma");

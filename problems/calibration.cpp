@@ -5,6 +5,7 @@
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <glog/logging.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -19,6 +20,11 @@
 
 namespace pkmopt {
 namespace {
+
+// Ceres' own messages (glog warnings such as "Linear solver failure", written to stderr when the
+// program has not initialised glog) are not for users: what went wrong is in the calibration's
+// status and report. Process-wide, like glog itself.
+void silence_ceres_log() { FLAGS_minloglevel = google::GLOG_FATAL; }
 
 using detail::free_indices_of;
 using detail::IdentificationWithBasis;
@@ -112,6 +118,7 @@ FitOutcome solve_eiv(const Eigen::Vector3d& tcp, CalibrationVector& x,
     if (problem.HasParameterBlock(shift.data())) ordering->AddElementToGroup(shift.data(), 1);
   solver_options.linear_solver_ordering.reset(ordering);
   ceres::Solver::Summary summary;
+  silence_ceres_log();
   ceres::Solve(solver_options, &problem, &summary);
   // The other per-pose functions read the shifts from the measurements.
   for (CalibrationMeasurement& m : measurements)
@@ -212,6 +219,7 @@ double fit_single_pose(const Eigen::Vector3d& tcp, const CalibrationVector& x_in
   solver_options.parameter_tolerance = 1e-14;
   solver_options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
+  silence_ceres_log();
   ceres::Solve(solver_options, &problem, &summary);
   return 2.0 * summary.final_cost;
 }

@@ -418,6 +418,28 @@ TEST_F(ErrorContract, DescribeReadsAHybridsNumbersAsAnalyzeDoes) {  // describe 
   }
 }
 
+TEST_F(ErrorContract, CalibrationWithAReadingOf1000Metres) {
+  // One leg reading of 1e6 mm in the demo: Ceres printed some 200 lines of its own warnings
+  // ("levenberg_marquardt_strategy.cc ... Linear solver failure") before pkmopt's line, and
+  // report.txt showed "O2 inf" where report.json has null.
+  const fs::path demo = fs::path(PKMOPT_SOURCE_DIR) / "studies/library/calibration-demo";
+  fs::copy(demo, dir_ / "demo", fs::copy_options::recursive);
+  std::string csv = read_text(dir_ / "demo" / "measurements.csv");
+  std::size_t at = 0;
+  for (int line = 0; line < 5; ++line) at = csv.find('\n', at) + 1;    // the fifth data row
+  for (int comma = 0; comma < 6; ++comma) at = csv.find(',', at) + 1;  // its q_1
+  csv.replace(at, csv.find(',', at) - at, "1000000");
+  write("demo/measurements.csv", csv);
+  const CliRun r =
+      run("calibrate " + (dir_ / "demo" / "calibration.yaml").string() + " --out " + path("fit"));
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("pkmopt: warning: ", 0), 0u) << r.err;
+  const std::string report = read_text(dir_ / "fit" / "report.txt");
+  EXPECT_EQ(report.find("inf"), std::string::npos) << report;
+  EXPECT_NE(report.find("O2 (cond) n/a"), std::string::npos) << report;
+}
+
 TEST_F(ErrorContract, CsvHeaderWithAQuotedNewline) {
   const std::string poses = write("q.csv", "a,\"b\nc\"\n1,2\n");
   expect_refused("analyze " + example("hexapod.yaml") + " --poses " + poses, "b\\nc");
