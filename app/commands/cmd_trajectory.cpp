@@ -206,7 +206,7 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
     try {
       singular->commit();
     } catch (...) {
-      if (out) std::filesystem::remove(opt.out_file);
+      if (out) out->revert();
       throw;
     }
   }

@@ -3,11 +3,16 @@
 // is an InputError naming the file.
 #include "io/output_file.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "io/input_error.hpp"
 #include "tests/cli_runner.hpp"
@@ -58,6 +63,56 @@ TEST(OutputFile, WithoutCommitNothingIsWrittenOrReplaced) {
   }
   EXPECT_EQ(cli_runner::read_text(path), "old\n");
   EXPECT_EQ(files_in(dir.path()), 1u);
+}
+
+// --out replaced whatever it named: a device node or a symbolic link became a regular file (as
+// root, `--out /dev/null` destroyed the system's /dev/null). Now a link is followed and its target
+// replaced, a character device or FIFO is written into, a folder is refused.
+TEST(OutputFile, OutReplacesWhatItNames) {
+  const scratch::ScratchDir dir;
+  // A symbolic link: the target is replaced atomically, the link stays a link.
+  write_file_atomically((dir / "target.csv").string(), "old\n");
+  fs::create_symlink("target.csv", dir / "link.csv");
+  write_file_atomically((dir / "link.csv").string(), "new\n");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(cli_runner::read_text(dir / "target.csv"), "new\n");
+  // A dangling link: its target is created.
+  fs::create_symlink("later.csv", dir / "dangling.csv");
+  write_file_atomically((dir / "dangling.csv").string(), "created\n");
+  EXPECT_TRUE(fs::is_symlink(dir / "dangling.csv"));
+  EXPECT_EQ(cli_runner::read_text(dir / "later.csv"), "created\n");
+  // A FIFO with a reader: written into, still a FIFO; without a reader: an error, not a hang.
+  const fs::path fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_THROW(write_file_atomically(fifo.string(), "nobody reads\n"), InputError);
+  std::string got;
+  std::thread reader([&] { got = cli_runner::read_text(fifo); });
+  for (int tries = 0;; ++tries) {  // until the reader has opened its end
+    try {
+      write_file_atomically(fifo.string(), "through the pipe\n");
+      break;
+    } catch (const InputError&) {
+      ASSERT_LT(tries, 10000000) << "the reader never opened the FIFO";
+    }
+  }
+  reader.join();
+  EXPECT_EQ(got, "through the pipe\n");
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
+  // A character device (root may make one): written into, not replaced.
+  const fs::path device = dir / "mynull";
+  if (::mknod(device.c_str(), S_IFCHR | 0666, ::makedev(1, 3)) == 0) {
+    write_file_atomically(device.string(), "discarded\n");
+    EXPECT_EQ(fs::status(device).type(), fs::file_type::character);
+  }
+  // A folder is refused, by its type.
+  fs::create_directories(dir / "folder");
+  try {
+    write_file_atomically((dir / "folder").string(), "x\n");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("found a folder"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_directory(dir / "folder"));
 }
 
 TEST(OutputFile, MissingFolderIsAnInputError) {
