@@ -301,6 +301,12 @@ SolveResult solve_with_nlopt(const Problem& problem, const std::vector<double>& 
     ++evaluator.fitness_evaluations_;
     result.objective = result.fitness[0];
     result.constraint_violation = constraint_violation(problem, result.fitness, 0.0, 0.0);
+    // A NaN was a failed evaluation to NLopt (HUGE_VAL); a final point that is one is no answer.
+    if (std::any_of(result.fitness.begin(), result.fitness.end(),
+                    [](double v) { return std::isnan(v); })) {
+      result.status = SolveStatus::evaluation_error;
+      result.message += "; the problem's values at the final point are not numbers (NaN)";
+    }
   } catch (const std::exception& e) {
     result.status = SolveStatus::evaluation_error;
     result.message += std::string("; evaluation at the final point failed: ") + e.what();

@@ -16,7 +16,15 @@ std::string path_from_python(py::handle path) {
   if (!py::isinstance<py::str>(text))
     throw InputError(
         fmt::format("expected a path as text, found {}", py::repr(text).cast<std::string>()));
-  return text.cast<std::string>();
+  try {
+    return text.cast<std::string>();
+  } catch (const py::error_already_set&) {  // not encodable as UTF-8 (a lone surrogate)
+    throw InputError(
+        fmt::format("expected a path as UTF-8 text, found {}", py::repr(text).cast<std::string>()));
+  } catch (const py::cast_error&) {
+    throw InputError(
+        fmt::format("expected a path as UTF-8 text, found {}", py::repr(text).cast<std::string>()));
+  }
 }
 
 double finite_number(py::handle value, const std::string& what) {

@@ -106,14 +106,17 @@ py::dict read_front(py::handle dir_in) {
   const CsvTable table = read_csv_file(csv_path.string());
   py::dict columns;
   for (std::size_t c = 0; c < table.header.size(); ++c) {
-    bool numeric = true;
+    // A column is numeric when it holds a number and nothing but numbers and empty cells; a
+    // column without any number (failure, always empty on a front) is text, not all NaN.
+    bool numeric = false, text = false;
     for (const CsvRow& row : table.rows) {
       const std::string& cell = row.cells[c];
       if (cell.empty()) continue;
       char* end = nullptr;
       std::strtod(cell.c_str(), &end);
-      if (end != cell.c_str() + cell.size()) numeric = false;
+      (end == cell.c_str() + cell.size() ? numeric : text) = true;
     }
+    numeric = numeric && !text;
     if (numeric) {
       py::array_t<double> a(static_cast<py::ssize_t>(table.rows.size()));
       for (std::size_t i = 0; i < table.rows.size(); ++i) {

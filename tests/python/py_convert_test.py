@@ -56,3 +56,10 @@ def test_problem_counts_are_integers():
         pkmopt.optimize(Bad(), {"algorithm": "nsga2"})
     with pytest.raises(pkmopt.InputError, match=r"problem.objectives: expected an integer"):
         pkmopt.optimize({"name": "dtlz2", "objectives": -3}, {"algorithm": "nsga2"})
+
+
+def test_a_path_that_is_not_utf8_raises_input_error():
+    # A lone surrogate raised pybind11's RuntimeError.
+    with pytest.raises(pkmopt.InputError, match="expected a path as UTF-8 text"):
+        pkmopt.load_machine("machine\udc80.yaml")
+

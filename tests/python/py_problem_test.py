@@ -173,3 +173,18 @@ def test_python_keeps_the_command_lines_benchmark_limits():
         with pytest.raises(pkmopt.InputError, match=message):
             pkmopt.optimize(spec, {"algorithm": "nsga2", "population": 8, "generations": 1})
 
+
+def test_a_python_objective_that_returns_nan_is_no_answer():
+    # NaN was passed into the objectives under nlopt with a "converged" status; Ipopt stops with
+    # evaluation_error. A NaN is a failed evaluation (as in NSGA-II), never a result.
+    class Nan:
+        def bounds(self):
+            return ([-1, -1], [1, 1])
+
+        def fitness(self, x):
+            return [float("nan")]
+
+    for optimizer in ({"algorithm": "nlopt:COBYLA"}, {"algorithm": "ipopt", "start": [0, 0]}):
+        result = pkmopt.optimize(Nan(), optimizer)
+        assert result["status"] == "evaluation_error", (optimizer, result["status"])
+

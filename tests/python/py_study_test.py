@@ -94,6 +94,14 @@ def test_read_front_gives_the_front_in_user_units(tmp_path):
         pkmopt.read_front(tmp_path)
 
 
+def test_read_front_gives_text_columns_as_text(tmp_path):
+    # The failure column (always empty on a front) came back as an array of NaN.
+    front = pkmopt.read_front(cli_run(tmp_path))
+    n = len(front["ids"])
+    assert front["columns"]["failure"] == [""] * n
+    assert isinstance(front["columns"]["feasible"], np.ndarray)
+
+
 def test_a_study_file_runs_from_its_path(tmp_path):
     front = pkmopt.run_study(source("studies", "library", "zdt1-nsga2.yaml"), out=tmp_path / "z")
     assert front["run"]["design_study"] is False
