@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 
 #include "io/input_error.hpp"
 
@@ -136,6 +137,21 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   AtomicOutputFile out(path);
   out.stream() << content;
   out.commit();
+}
+
+void write_files_together(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::vector<std::unique_ptr<AtomicOutputFile>> outputs;
+  for (const auto& [path, content] : files) {
+    outputs.push_back(std::make_unique<AtomicOutputFile>(path));
+    outputs.back()->stream() << content;
+  }
+  std::size_t committed = 0;
+  try {
+    for (; committed < outputs.size(); ++committed) outputs[committed]->commit();
+  } catch (...) {
+    for (std::size_t k = 0; k < committed; ++k) outputs[k]->revert();
+    throw;
+  }
 }
 
 }  // namespace pkmopt

@@ -18,6 +18,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pkmopt {
 
@@ -48,5 +50,11 @@ class AtomicOutputFile {
 
 /// Writes a whole file atomically.
 void write_file_atomically(const std::string& path, const std::string& content);
+
+/// The outputs of one command, all or none: every file is written to its temporary first (a
+/// path that cannot be written fails before any file is moved into place), then all are moved
+/// into place; when one of those moves fails, the ones already moved are removed again. Throws
+/// InputError naming the file.
+void write_files_together(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace pkmopt

@@ -59,7 +59,7 @@ void run_compare(const CompareCommandOptions& opt) {
   files.emplace_back(opt.out, comparison_html(comparison));
   if (!opt.png.empty()) files.emplace_back(opt.png, comparison_plot_png(comparison));
   if (!opt.svg.empty()) files.emplace_back(opt.svg, comparison_plot_svg(comparison));
-  for (const auto& [path, content] : files) write_file_atomically(path, content);
+  write_files_together(files);  // all of them or none
 
   std::string runs;
   for (const ComparedRun& run : comparison.runs) {

@@ -65,7 +65,9 @@ void run_export(const ExportCommandOptions& opt) {
   const bool plots = opt.plots || *format == ExportFormat::kHtml;
   const auto files =
       pareto_export_files(front, dir.string(), *format, out_file, plot_dir, plots, csv_units);
-  for (const auto& [path, content] : files) write_file_atomically(path.string(), content);
+  std::vector<std::pair<std::string, std::string>> named;
+  for (const auto& [path, content] : files) named.emplace_back(path.string(), content);
+  write_files_together(named);  // the report and its plots, all of them or none
   fmt::print(
       "export: {} Pareto designs{} -> {}{}\n", front.designs.size(),
       front.knee ? ", knee " + *front.knee : "", out_file.string(),

@@ -197,9 +197,10 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
                                    .orientation_step_deg = opt.orientation_step_deg,
                                    .accuracy = accuracy};
     const std::string summary = workspace_summary_json(request, ws, slice, *metric, seconds);
-    for (const auto& [name, content] : workspace_files(ws, slice, *metric, summary)) {
-      write_file_atomically((out_dir / name).string(), content);
-    }
+    std::vector<std::pair<std::string, std::string>> files;
+    for (const auto& [name, content] : workspace_files(ws, slice, *metric, summary))
+      files.emplace_back((out_dir / name).string(), content);
+    write_files_together(files);  // the mesh, points, slice and summary, all of them or none
   }
   fmt::print(
       "workspace ({}): volume {:.5g} l (estimated error {:.2g} %), convex hull {:.5g} l, GCI "

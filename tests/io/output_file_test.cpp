@@ -115,6 +115,23 @@ TEST(OutputFile, OutReplacesWhatItNames) {
   EXPECT_TRUE(fs::is_directory(dir / "folder"));
 }
 
+// Commands that write several files left the first ones behind when a later one failed
+// (`compare ... --out c.html --svg /proc/version` kept c.html).
+TEST(OutputFile, CommandsThatWriteSeveralFilesAreAllOrNothing) {
+  const scratch::ScratchDir dir;
+  const std::string first = (dir / "c.html").string();
+  fs::create_directories(dir / "folder");
+  for (const std::string& bad : {(dir / "no" / "such" / "x.svg").string(),
+                                 (dir / "folder").string(), std::string("/proc/version")}) {
+    EXPECT_THROW(write_files_together({{first, "<html>"}, {bad, "<svg/>"}}), InputError) << bad;
+    EXPECT_FALSE(fs::exists(first)) << bad;
+  }
+  EXPECT_EQ(files_in(dir.path()), 0u);  // no temporary either
+  write_files_together({{first, "<html>"}, {(dir / "c.svg").string(), "<svg/>"}});
+  EXPECT_EQ(cli_runner::read_text(first), "<html>");
+  EXPECT_EQ(cli_runner::read_text(dir / "c.svg"), "<svg/>");
+}
+
 TEST(OutputFile, MissingFolderIsAnInputError) {
   const scratch::ScratchDir dir;
   const std::string path = (dir / "no" / "such" / "out.csv").string();
