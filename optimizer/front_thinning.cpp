@@ -110,8 +110,9 @@ std::vector<std::size_t> thin_front(const std::vector<std::vector<double>>& poin
 }
 
 std::vector<std::size_t> select_front(const std::vector<std::vector<double>>& objectives,
-                                      std::size_t size) {
+                                      std::size_t size, std::size_t* non_dominated_count) {
   const std::vector<std::size_t> non_dominated = non_dominated_indices(objectives);
+  if (non_dominated_count) *non_dominated_count = non_dominated.size();
   std::vector<std::vector<double>> front;
   front.reserve(non_dominated.size());
   for (std::size_t k : non_dominated) front.push_back(objectives[k]);

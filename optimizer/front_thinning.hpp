@@ -37,8 +37,9 @@ std::vector<std::size_t> thin_front(const std::vector<std::vector<double>>& poin
 /// non-dominated points (optimizer/archive.hpp; of identical objective vectors the first),
 /// thinned to `size` by thin_front when `size` > 0, in ascending order of their objective
 /// vectors (lexicographic; equal vectors cannot both be kept). Points with a NaN objective are
-/// never kept.
+/// never kept. `non_dominated_count` (optional) receives the size of the non-dominated set
+/// before thinning.
 std::vector<std::size_t> select_front(const std::vector<std::vector<double>>& objectives,
-                                      std::size_t size);
+                                      std::size_t size, std::size_t* non_dominated_count = nullptr);
 
 }  // namespace pkmopt

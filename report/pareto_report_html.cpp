@@ -33,9 +33,11 @@ std::string fixed_parameter_unit(const std::string& name) {
   return name.ends_with("_deg") ? "deg" : "m";
 }
 
-json unit_json(const std::string& name, const std::string& unit) {
-  const EngineeringUnit e = engineering_unit(name, unit);
-  return {{"unit", e.unit}, {"scale", e.scale}};
+// A quantity for the page: its name, display unit and scale (the unit from `unit_name`, the
+// metric a constraint bounds, or the quantity itself).
+json quantity_json(const std::string& name, const std::string& unit_name, const std::string& unit) {
+  const EngineeringUnit e = engineering_unit(unit_name, unit);
+  return {{"name", name}, {"unit", e.unit}, {"scale", e.scale}};
 }
 
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -46,33 +48,29 @@ json report_data(const ParetoFront& front, const std::map<std::string, std::stri
   data["study"] = front.study;
   data["knee"] = front.knee ? json(*front.knee) : json(nullptr);
   data["home_free"] = front.home_height_is_parameter();
-  data["home"] = unit_json("home_height", "m");
+  data["home"] = quantity_json("home_height", "home_height", "m");
   data["parameters"] = json::array();
   for (const ParetoParameter& p : front.parameters) {
-    json j = unit_json(p.name, p.unit);
-    j["name"] = p.name;
+    json j = quantity_json(p.name, p.name, p.unit);
     j["min"] = p.min;
     j["max"] = p.max;
     data["parameters"].push_back(j);
   }
   data["fixed"] = json::array();
   for (const auto& [name, value] : front.fixed_parameters) {
-    json j = unit_json(name, fixed_parameter_unit(name));
-    j["name"] = name;
+    json j = quantity_json(name, name, fixed_parameter_unit(name));
     j["value"] = value;
     data["fixed"].push_back(j);
   }
   data["objectives"] = json::array();
   for (const ParetoObjective& o : front.objectives) {
-    json j = unit_json(o.name, o.unit);
-    j["name"] = o.name;
+    json j = quantity_json(o.name, o.name, o.unit);
     j["sense"] = o.sense;
     data["objectives"].push_back(j);
   }
   data["constraints"] = json::array();
   for (const ParetoConstraint& c : front.constraints) {
-    json j = unit_json(c.metric, c.unit);
-    j["name"] = c.name;
+    json j = quantity_json(c.name, c.metric, c.unit);
     j["metric"] = c.metric;
     j["kind"] = c.kind;
     j["bound"] = c.bound;

@@ -159,9 +159,8 @@ ArchivedFront archive_front(const Problem& problem, const std::vector<std::vecto
     }
   ArchivedFront result;
   result.feasible_evaluations = candidates.size();
-  result.archive_size = select_front(objectives, 0).size();
   result.front.num_objectives = m;
-  for (std::size_t k : select_front(objectives, front_size)) {
+  for (std::size_t k : select_front(objectives, front_size, &result.archive_size)) {
     result.front.x.push_back(xs[candidates[k]]);
     result.front.fitness.push_back(fitness[candidates[k]]);
   }

@@ -246,9 +246,9 @@ FrontSelection select_design_front(const DesignStudy& study, const RunOutcome& o
   ObjectiveSet candidates;
   for (const std::vector<double>& f : fitness)
     candidates.emplace_back(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(m));
-  selection.archive_size = select_front(candidates, 0).size();
   std::vector<std::vector<double>> chosen;
-  for (std::size_t k : select_front(candidates, m >= 2 ? study.front_size : 0))
+  for (std::size_t k :
+       select_front(candidates, m >= 2 ? study.front_size : 0, &selection.archive_size))
     chosen.push_back(xs[k]);
   selection.designs = measure_designs(study, chosen, study.write_designs, facts.threads);
   // A failed design never enters the front (a single-objective solver's answer may fail).

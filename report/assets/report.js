@@ -344,5 +344,4 @@
   if (kneeBox && data.knee) kneeBox.innerHTML = '<table>' + detailRows(byId[data.knee]) + '</table>';
   drawScatter();
   drawTable();
-  window.pkmoptReport = {pinned: pinned, togglePin: togglePin};  // for scripted checks
 })();
