@@ -139,7 +139,7 @@ void write_file_atomically(const std::string& path, const std::string& content) 
   out.commit();
 }
 
-void write_files_together(const std::vector<std::pair<std::string, std::string>>& files) {
+void write_files_together(const OutputFiles& files) {
   std::vector<std::unique_ptr<AtomicOutputFile>> outputs;
   for (const auto& [path, content] : files) {
     outputs.push_back(std::make_unique<AtomicOutputFile>(path));

@@ -55,6 +55,7 @@ void write_file_atomically(const std::string& path, const std::string& content);
 /// path that cannot be written fails before any file is moved into place), then all are moved
 /// into place; when one of those moves fails, the ones already moved are removed again. Throws
 /// InputError naming the file.
-void write_files_together(const std::vector<std::pair<std::string, std::string>>& files);
+using OutputFiles = std::vector<std::pair<std::string, std::string>>;  ///< (path, content)
+void write_files_together(const OutputFiles& files);
 
 }  // namespace pkmopt

@@ -170,7 +170,8 @@ ArchivedFront archive_front(const Problem& problem, const std::vector<std::vecto
 void write_run_outputs(const std::string& directory, const std::string& study_name,
                        const Problem& problem, const OptimizerSpec& spec, const RunOutcome& outcome,
                        int threads, const std::vector<double>& reference_point,
-                       const ObjectiveSet& reference_front, const nlohmann::json& extra_summary) {
+                       const ObjectiveSet& reference_front, const nlohmann::json& extra_summary,
+                       const OutputFiles& also) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
   if (error || !std::filesystem::is_directory(directory))
@@ -236,8 +237,10 @@ void write_run_outputs(const std::string& directory, const std::string& study_na
   }
   for (const auto& [key, value] : extra_summary.items()) summary[key] = value;
   const std::filesystem::path dir(directory);
-  write_file_atomically((dir / "pareto.csv").string(), csv.str());
-  write_file_atomically((dir / "summary.json").string(), summary.dump(2) + "\n");
+  OutputFiles files = also;
+  files.emplace_back((dir / "pareto.csv").string(), csv.str());
+  files.emplace_back((dir / "summary.json").string(), summary.dump(2) + "\n");
+  write_files_together(files);
 }
 
 }  // namespace pkmopt

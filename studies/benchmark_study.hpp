@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "io/output_file.hpp"
 #include "io/yaml_reader.hpp"
 #include "problems/benchmarks.hpp"
 #include "studies/optimizer_spec.hpp"
@@ -84,14 +85,15 @@ ArchivedFront archive_front(const Problem& problem, const std::vector<std::vecto
                             const std::vector<std::vector<double>>& fitness,
                             std::size_t front_size);
 
-/// Writes DIR/pareto.csv and DIR/summary.json (creating DIR), each atomically; the keys of
-/// `extra_summary` are added to summary.json.
+/// Writes DIR/pareto.csv and DIR/summary.json (creating DIR) and the files `also` names, all or
+/// none (io/output_file.hpp); the keys of `extra_summary` are added to summary.json.
 /// `reference_point` empty: nadir + 10% of the range of `reference_front` if given, else of
 /// the front found. `reference_front` may be empty (no IGD+ then).
 void write_run_outputs(const std::string& directory, const std::string& study_name,
                        const Problem& problem, const OptimizerSpec& spec, const RunOutcome& outcome,
                        int threads, const std::vector<double>& reference_point,
                        const ObjectiveSet& reference_front,
-                       const nlohmann::json& extra_summary = nlohmann::json::object());
+                       const nlohmann::json& extra_summary = nlohmann::json::object(),
+                       const OutputFiles& also = {});
 
 }  // namespace pkmopt

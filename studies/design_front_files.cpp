@@ -278,11 +278,10 @@ nlohmann::json task_json(const DesignStudy& study) {
 }
 
 // summary.json: the run's facts, the hypervolume in user sign and units, the infeasibility.
-DesignOutputSummary write_summary(const std::string& directory, const DesignStudy& study,
-                                  const RunOutcome& outcome, const DesignRunFacts& facts,
-                                  const FrontSelection& selection, const ObjectiveSet& objectives,
-                                  const std::vector<double>& reference,
-                                  const nlohmann::json& knee) {
+DesignOutputSummary make_summary(std::string& text, const DesignStudy& study,
+                                 const RunOutcome& outcome, const DesignRunFacts& facts,
+                                 const FrontSelection& selection, const ObjectiveSet& objectives,
+                                 const std::vector<double>& reference, const nlohmann::json& knee) {
   const std::size_t m = study.objectives().size();
   const std::vector<MeasuredDesign>& front = selection.designs;
   const std::vector<DesignObjective>& objectives_spec = study.objectives();
@@ -347,14 +346,15 @@ DesignOutputSummary write_summary(const std::string& directory, const DesignStud
   summary["time_seconds"] = outcome.front.seconds;
   summary["wall_seconds"] = facts.wall_seconds;
 
-  write_file_atomically(directory + "/summary.json", summary.dump(2) + "\n");
+  text = summary.dump(2) + "\n";
   return result;
 }
 
 }  // namespace
 
 DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
-                                         const RunOutcome& outcome, const DesignRunFacts& facts) {
+                                         const RunOutcome& outcome, const DesignRunFacts& facts,
+                                         const OutputFiles& also) {
   const FrontSelection selection = select_design_front(study, outcome, facts);
   FrontFiles f{.study = study, .front = selection.designs};
   f.m = study.objectives().size();
@@ -370,14 +370,14 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
 
   std::string csv = pareto_csv_header(f);
   nlohmann::json designs = nlohmann::json::array();
+  OutputFiles files = also;
   if (study.write_designs) std::filesystem::create_directories(directory + "/designs");
   for (std::size_t k = 0; k < f.front.size(); ++k) {
     auto [row, design] = design_row(f, k);
     csv += row;
     designs.push_back(std::move(design));
     if (study.write_designs)
-      write_file_atomically(directory + "/designs/" + design_id(k) + ".yaml",
-                            f.front[k].machine_file);
+      files.emplace_back(directory + "/designs/" + design_id(k) + ".yaml", f.front[k].machine_file);
   }
   const nlohmann::json knee = f.objectives.empty()
                                   ? nlohmann::json(nullptr)
@@ -414,10 +414,13 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
       pareto["convergence"] = convergence_json(study, *facts.journal, reference);
   }
 
+  std::string summary;
   const DesignOutputSummary result =
-      write_summary(directory, study, outcome, facts, selection, f.objectives, reference, knee);
-  write_file_atomically(directory + "/pareto.csv", csv);
-  write_file_atomically(directory + "/pareto.json", pareto.dump(2) + "\n");
+      make_summary(summary, study, outcome, facts, selection, f.objectives, reference, knee);
+  files.emplace_back(directory + "/pareto.csv", std::move(csv));
+  files.emplace_back(directory + "/pareto.json", pareto.dump(2) + "\n");
+  files.emplace_back(directory + "/summary.json", std::move(summary));
+  write_files_together(files);
   return result;
 }
 

@@ -78,6 +78,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/output_file.hpp"
 #include "problems/hexapod_design.hpp"
 #include "problems/machine_design.hpp"
 #include "studies/journal.hpp"
@@ -161,9 +162,11 @@ struct DesignOutputSummary {
   std::string infeasibility;  ///< for an empty front: the most frequent causes, in words
 };
 
-/// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`.
+/// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`, together
+/// with the files `also` names, all or none (io/output_file.hpp, write_files_together).
 DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
-                                         const RunOutcome& outcome, const DesignRunFacts& facts);
+                                         const RunOutcome& outcome, const DesignRunFacts& facts,
+                                         const OutputFiles& also = {});
 
 /// The docs table of a study section described by a field list, from the same list its reader
 /// and the resolved writer use: "machine hexapod", "machine.parameters MODEL" (a leg-chain

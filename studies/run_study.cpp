@@ -80,6 +80,11 @@ PreparedDirectory prepare_output_directory(const StudyRunOptions& opt) {
   return prepared;
 }
 
+// study.resolved.yaml goes into place with the run's results, never without them.
+std::string resolved_path(const StudyRunOptions& opt) {
+  return (fs::path(opt.out) / "study.resolved.yaml").string();
+}
+
 void fill_journal_options(JournalOptions& options, const StudyRunOptions& opt,
                           const std::string& resolved_yaml, const OptimizerSpec& spec) {
   options.directory = opt.out;
@@ -159,8 +164,6 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
     JournalOptions journal_options = design_journal_options(design);
     fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
     JournaledProblem journaled(design.optimization_problem(), journal_options);
-    write_file_atomically((fs::path(opt.out) / "study.resolved.yaml").string(),
-                          design.resolved_yaml);
     const RunOutcome outcome = run_optimizer(journaled, design.optimizer, opt.threads);
     journaled.finish();
     DesignRunFacts facts;
@@ -168,7 +171,8 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
     facts.resumed = resumed;
     facts.journal = &journaled;
     facts.wall_seconds = wall_seconds();
-    const DesignOutputSummary written = write_design_outputs(opt.out, design, outcome, facts);
+    const DesignOutputSummary written = write_design_outputs(
+        opt.out, design, outcome, facts, {{resolved_path(opt), design.resolved_yaml}});
     StudyRunResult result =
         run_result(design.name, design.optimizer, outcome, journaled, resumed, facts.wall_seconds);
     result.design_study = true;
@@ -184,7 +188,6 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   fill_journal_options(journal_options, opt, study.resolved_yaml, study.optimizer);
   benchmark_csv(journal_options, *study.problem);
   JournaledProblem journaled(*study.problem, journal_options);
-  write_file_atomically((fs::path(opt.out) / "study.resolved.yaml").string(), study.resolved_yaml);
   RunOutcome outcome = run_optimizer(journaled, study.optimizer, opt.threads);
   journaled.finish();
   nlohmann::json extra;
@@ -213,7 +216,8 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   extra["evaluations_failed"] = journaled.failed();
   extra["wall_seconds"] = wall_seconds();
   write_run_outputs(opt.out, study.name, *study.problem, study.optimizer, outcome, opt.threads,
-                    study.reference_point, reference_front, extra);
+                    study.reference_point, reference_front, extra,
+                    {{resolved_path(opt), study.resolved_yaml}});
   StudyRunResult result =
       run_result(study.name, study.optimizer, outcome, journaled, resumed, wall_seconds());
   result.problem = study.problem->name();

@@ -184,6 +184,33 @@ TEST_F(RunStudy, SecondRunIsRefusedResumeGivesTheSameFrontForceStartsOver) {
   EXPECT_NE(messages_.back().find("starting a new run"), std::string::npos) << messages_.back();
 }
 
+// A run that fails while writing its results leaves none of them, study.resolved.yaml included,
+// and keeps the journal it resumes from (here summary.json cannot be written: a folder is there).
+TEST_F(RunStudy, FailedRunLeavesNoResolvedStudyAndNoResults) {
+  for (const char* text : {kBenchmarkStudy, kDesignStudy}) {
+    const std::string name = text == kBenchmarkStudy ? "zdt1" : "hexapod";
+    const std::string study = write(name + ".yaml", text);
+    const fs::path out = dir_ / (name + "-failed");
+    run_study_file(study, options(out.filename().string()));
+    const std::string journal = read_text(out / "journal.txt");
+    for (const char* file : {"pareto.csv", "pareto.json", "summary.json", "study.resolved.yaml"})
+      fs::remove(out / file);
+    fs::remove_all(out / "designs");
+    fs::create_directory(out / "summary.json");
+    StudyRunOptions resume = options(out.filename().string());
+    resume.resume = true;
+    const std::string refused = refusal(study, resume);
+    EXPECT_NE(refused.find("summary.json"), std::string::npos) << refused;
+    for (const char* file : {"pareto.csv", "pareto.json", "study.resolved.yaml"})
+      EXPECT_FALSE(fs::exists(out / file)) << name << ": " << file;
+    EXPECT_TRUE(!fs::exists(out / "designs") || fs::is_empty(out / "designs")) << name;
+    EXPECT_EQ(read_text(out / "journal.txt"), journal) << name;
+    fs::remove(out / "summary.json");
+    EXPECT_TRUE(run_study_file(study, resume).resumed) << name;
+    EXPECT_TRUE(fs::exists(out / "study.resolved.yaml")) << name;
+  }
+}
+
 // Two runs into one folder: the second is refused (naming the first's PID) and changes nothing;
 // temporaries left by a killed run are removed when the next run starts.
 TEST_F(RunStudy, ConcurrentRunIsRefusedAndStaleTemporariesAreRemoved) {
