@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "app/commands.hpp"
 #include "io/input_error.hpp"
 #include "io/number_policy.hpp"
 
@@ -26,7 +27,7 @@ std::vector<double> parse_number_list(std::string_view option, const std::string
     while (!item.empty() && item.front() == ' ') item.erase(item.begin());
     while (!item.empty() && item.back() == ' ') item.pop_back();
     char* end = nullptr;
-    const double v = item.empty() ? 0.0 : std::strtod(item.c_str(), &end);
+    const double v = item.empty() ? 0.0 : read_input_number(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size()) {
       fail(fmt::format(" (item {} is not a number)", values.size() + 1));
     }
@@ -53,5 +54,21 @@ std::vector<double> parse_wrench_option(const std::string& text) {
 void bad_option(std::string_view option, std::string_view expected, double found) {
   throw InputError(fmt::format("{}: expected {}, found {}", option, expected, found));
 }
+
+namespace cli {
+
+CLI::Validator length_in_metres() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = read_input_number(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return {};  // CLI11 reports a non-number
+        if (sane_input_length(v)) return {};
+        return "expected " + std::string(kLengthText) + ", found " + text;
+      },
+      "", "length in metres");
+}
+
+}  // namespace cli
 
 }  // namespace pkmopt

@@ -21,4 +21,8 @@ void add_trajectory_command(CLI::App& app);
 void add_task_poses_command(CLI::App& app);
 void add_draw_command(CLI::App& app);
 
+/// The check of an option that is a length in metres: within +-1000 m (io/number_policy.hpp),
+/// "expected a length within +-1000 m, found 1e15".
+CLI::Validator length_in_metres();
+
 }  // namespace pkmopt::cli

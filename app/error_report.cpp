@@ -142,7 +142,7 @@ void check_real_options(CLI::App& app) {
   const CLI::Validator sane(
       [](std::string& text) -> std::string {
         char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
+        const double v = read_input_number(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0') return {};  // CLI11 reports a non-number
         if (sane_input_number(v)) return {};
         return "expected " + std::string(kSaneNumberText) + ", found " + text;

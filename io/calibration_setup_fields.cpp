@@ -121,7 +121,7 @@ void describe_fields(Fields& f, CalibrationFile& c) {
         "screw lead, one for every leg or one per leg; required with `unit: rev`, not allowed "
         "otherwise",
         [&](const YamlValue& v) {
-          c.lead = v.is_sequence() ? v.as_doubles(6) : std::vector<double>{v.as_double()};
+          c.lead = v.is_sequence() ? v.as_lengths(6) : std::vector<double>{v.as_length()};
           for (double lead : c.lead)
             if (!(lead > 0.0)) v.fail("screw leads > 0 (m/rev)", v.describe());
         },
@@ -136,7 +136,7 @@ void describe_fields(Fields& f, CalibrationFile& c) {
         "leg length at reading 0, one for every leg or one per leg; 0: the readings are leg "
         "lengths",
         [&](const YamlValue& v) {
-          c.zero_length = v.is_sequence() ? v.as_doubles(6) : std::vector<double>{v.as_double()};
+          c.zero_length = v.is_sequence() ? v.as_lengths(6) : std::vector<double>{v.as_length()};
         },
         [&] { return one_or_six_text(c.zero_length); });
   });

@@ -44,7 +44,7 @@ double CsvTable::number(const CsvRow& row, int col) const {
   const std::string text = trim(row.cells.at(static_cast<std::size_t>(col)));
   const char* begin = text.c_str();
   char* end = nullptr;
-  const double value = text.empty() ? 0.0 : std::strtod(begin, &end);
+  const double value = text.empty() ? 0.0 : read_input_number(begin, &end);
   if (text.empty() || end != begin + text.size() || !std::isfinite(value)) {
     throw InputError(fmt::format(
         "{}column {} {}: expected a finite number, found {}", location_prefix(file, row.line),

@@ -495,8 +495,7 @@ class FieldReader {
     // The declared rule first (its message), then the input policy's bounds on lengths.
     read_value(*v, member, declared);
     const FieldRule limited = field_detail::with_input_limits(declared);
-    if (limited.min != declared.min || limited.max != declared.max)
-      read_value(*v, member, limited);
+    if (limited.min != declared.min || limited.max != declared.max) read_value(*v, member, limited);
   }
 
   /// A nested map under `key`: its keys checked, then `describe(reader)` reads them.

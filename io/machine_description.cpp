@@ -43,12 +43,7 @@ struct SerialPart {
 
 SerialPart read_serial(const YamlValue& map, bool allow_spindle) {
   SerialPart part;
-  const YamlValue code = map.required("code");
-  try {
-    part.chain = SerialChain::from_code(code.as_string());
-  } catch (const std::invalid_argument& e) {
-    code.fail(e.what());
-  }
+  part.chain = chain_of_code(map.required("code"));
   const int n = part.chain.num_variables();
   if (const auto axes = map.optional("axes")) {
     for (const YamlValue& a : axes->elements(n)) part.axes.push_back(a.as_string());

@@ -22,7 +22,7 @@ Eigen::Matrix<double, 3, 6> read_joint_list(const YamlValue& value) {
   Eigen::Matrix<double, 3, 6> joints;
   const auto rows = value.elements(6);
   for (int i = 0; i < 6; ++i) {
-    const auto xyz = rows[static_cast<std::size_t>(i)].as_doubles(3);
+    const auto xyz = rows[static_cast<std::size_t>(i)].as_lengths(3);
     joints.col(i) << xyz[0], xyz[1], xyz[2];
   }
   return joints;
@@ -31,7 +31,7 @@ Eigen::Matrix<double, 3, 6> read_joint_list(const YamlValue& value) {
 // Semi-regular hexagon {radius, pair_separation_deg}; `platform` selects the platform form.
 Eigen::Matrix<double, 3, 6> read_hexagon(const YamlValue& value, bool platform) {
   value.check_keys({"radius", "pair_separation_deg"});
-  const double radius = value.required("radius").as_positive();
+  const double radius = value.required("radius").as_positive_length();
   const YamlValue sep_value = value.required("pair_separation_deg");
   const double sep = sep_value.as_double();
   if (!(sep >= 0.0 && sep <= 120.0)) {

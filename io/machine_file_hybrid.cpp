@@ -15,6 +15,7 @@
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
 #include "io/machine_file.hpp"
+#include "io/number_policy.hpp"
 
 namespace pkmopt {
 namespace {
@@ -175,11 +176,7 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   const YamlValue serial = root.required("serial");
   check_keys_of(serial, [&](auto& keys) { describe_serial(keys, design); });
   const YamlValue code = serial.required("code");
-  try {
-    design.chain = SerialChain::from_code(code.as_string());
-  } catch (const std::invalid_argument& e) {
-    code.fail(e.what());
-  }
+  design.chain = chain_of_code(code);
   if (design.chain.num_rotations() > 0) {
     code.fail(
         "variable axes that are translations (motions 1, 2, 3; variable rotary axes are not "
@@ -242,6 +239,25 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
     code.fail(e.what());
   }
   return design;
+}
+
+SerialChain chain_of_code(const YamlValue& code) {
+  SerialChain chain;
+  try {
+    chain = SerialChain::from_code(code.as_string());
+  } catch (const std::invalid_argument& e) {
+    code.fail(e.what());
+  }
+  for (const ChainElement& e : chain.elements()) {
+    if (e.variable) continue;
+    const bool translation = e.motion <= 3;
+    if (!sane_input_number(e.value) || (translation && !sane_input_length(e.value)))
+      code.fail(fmt::format("constants that are {} (motion {}: {})",
+                            translation ? kLengthText : kSaneNumberText, e.motion,
+                            translation ? "m" : "deg"),
+                quote_found(chain.code()));
+  }
+  return chain;
 }
 
 void check_hybrid_numbers(const YamlValue& root, int num_variables) {

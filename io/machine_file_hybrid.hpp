@@ -51,6 +51,10 @@ std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
 /// read_hybrid_design (the same messages). For `pkmopt describe`, which accepts chains
 /// read_hybrid_design refuses (variable rotary axes) but no number it would refuse.
 void check_hybrid_numbers(const YamlValue& root, int num_variables);
+/// The chain of a `code` value (SerialChain::from_code), its constants checked by the number
+/// policy (io/number_policy.hpp): a translation within +-1000 m, a rotation (degrees) within
+/// +-1e15 and not below 1e-30 in magnitude; throws InputError at `code`.
+SerialChain chain_of_code(const YamlValue& code);
 /// The module file a hybrid's `parallel.file` names (relative to `hybrid_file`), parsed; throws
 /// InputError at `file` when it is missing, not a regular file, or a hybrid or serial machine.
 YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybrid_file);

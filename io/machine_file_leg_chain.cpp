@@ -248,7 +248,7 @@ HexaglideDesign read_hexaglide_design(const YamlValue& root) {
   if (has_form) {
     const YamlValue p = root.required("platform");
     p.check_keys({"radius", "pair_separation_deg", "rotation_deg"});
-    const double radius = p.required("radius").as_positive();
+    const double radius = p.required("radius").as_positive_length();
     const YamlValue sep_value = p.required("pair_separation_deg");
     const double sep = sep_value.as_double();
     if (!(sep >= 0.0 && sep <= 120.0)) {

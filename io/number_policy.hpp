@@ -12,7 +12,10 @@
 //   if (!sane_input_number(x)) fail(kSaneNumberText, ...);
 #pragma once
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <string_view>
 
 #include "models/pose.hpp"
@@ -28,6 +31,25 @@ inline constexpr double kMaxInputForce = kMaxWrenchComponent;
 /// "a finite number within +-1e15 (0 or at least 1e-30 in magnitude)", for messages.
 inline constexpr std::string_view kSaneNumberText =
     "a finite number within +-1e15 (0 or at least 1e-30 in magnitude)";
+
+/// "a length within +-1000 m", for messages.
+inline constexpr std::string_view kLengthText = "a length within +-1000 m";
+
+/// std::strtod with one rule for numbers too small for a double: text such as 1e-400, which
+/// strtod reads as 0, reads as the smallest subnormal of its sign, so the policy refuses it as it
+/// refuses 1e-31 (a number written non-zero is never read as 0).
+inline double read_input_number(const char* text, char** end) {
+  errno = 0;
+  const double v = std::strtod(text, end);
+  if (errno == ERANGE && std::abs(v) < std::numeric_limits<double>::min())
+    return std::copysign(std::numeric_limits<double>::denorm_min(), v);
+  return v;
+}
+
+/// True for a length or position in metres the policy accepts.
+inline bool sane_input_length(double x) {
+  return std::isfinite(x) && std::abs(x) <= kMaxInputLength;
+}
 
 /// True for a number the policy accepts (see the header comment).
 inline bool sane_input_number(double x) {

@@ -7,6 +7,7 @@
 
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/number_policy.hpp"
 
 namespace pkmopt {
 
@@ -37,8 +38,17 @@ PoseColumns find_pose_columns(const CsvTable& table, PoseOrientation orientation
 Pose pose_of_row(const CsvTable& table, const CsvRow& row, const PoseColumns& c,
                  double position_scale, Eigen::Vector3d* angles_deg) {
   Pose pose;
-  pose.position = {table.number(row, c.x) * position_scale, table.number(row, c.y) * position_scale,
-                   table.number(row, c.z) * position_scale};
+  const int xyz[3] = {c.x, c.y, c.z};
+  for (int k = 0; k < 3; ++k) {
+    pose.position(k) = table.number(row, xyz[k]) * position_scale;
+    if (!sane_input_length(pose.position(k)))
+      throw InputError(fmt::format(
+          "{}column {} {}: expected {}, found {}", location_prefix(table.file, row.line),
+          xyz[k] + 1, quote_found(table.header[static_cast<std::size_t>(xyz[k])]),
+          position_scale == 1.0 ? kLengthText
+                                : fmt::format("a position within +-{:g} m", kMaxInputLength),
+          quote_found(row.cells[static_cast<std::size_t>(xyz[k])])));
+  }
   if (c.quaternion()) {
     const Eigen::Quaterniond q(table.number(row, c.qw), table.number(row, c.qx),
                                table.number(row, c.qy), table.number(row, c.qz));

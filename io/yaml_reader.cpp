@@ -24,7 +24,7 @@ bool parse_double(const std::string& text, double& value) {
   if (text.empty()) return false;
   const char* begin = text.c_str();
   char* end = nullptr;
-  value = std::strtod(begin, &end);
+  value = read_input_number(begin, &end);
   // "inf" and "nan" parse here and are rejected by the callers' finiteness checks.
   return end != begin && *end == '\0';
 }
@@ -237,6 +237,18 @@ double YamlValue::as_non_negative() const {
   return v;
 }
 
+double YamlValue::as_length() const {
+  const double v = as_double();
+  if (!sane_input_length(v)) fail(kLengthText, describe());
+  return v;
+}
+
+double YamlValue::as_positive_length() const {
+  const double v = as_positive();
+  if (!sane_input_length(v)) fail("a length in (0, 1000] m", describe());
+  return v;
+}
+
 long long YamlValue::as_int() const {
   if (!node_.IsScalar()) fail("an integer", describe());
   const std::string& text = node_.Scalar();
@@ -264,6 +276,12 @@ std::string YamlValue::as_string() const {
 std::vector<double> YamlValue::as_doubles(int count) const {
   std::vector<double> out;
   for (const auto& e : elements(count)) out.push_back(e.as_double());
+  return out;
+}
+
+std::vector<double> YamlValue::as_lengths(int count) const {
+  std::vector<double> out;
+  for (const auto& e : elements(count)) out.push_back(e.as_length());
   return out;
 }
 

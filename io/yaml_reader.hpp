@@ -61,14 +61,17 @@ class YamlValue {
   /// Elements of a sequence (throws unless a sequence; `count` >= 0 checks the length).
   std::vector<YamlValue> elements(int count = -1) const;
 
-  double as_double() const;        ///< finite number
-  double as_positive() const;      ///< finite number > 0 ("expected a number > 0")
-  double as_non_negative() const;  ///< finite number >= 0 ("expected a number >= 0")
+  double as_double() const;           ///< finite number
+  double as_positive() const;         ///< finite number > 0 ("expected a number > 0")
+  double as_non_negative() const;     ///< finite number >= 0 ("expected a number >= 0")
+  double as_length() const;           ///< a length in metres within +-1000 m
+  double as_positive_length() const;  ///< a length in metres in (0, 1000]
   long long as_int() const;
   bool as_bool() const;
   std::string as_string() const;
   /// A sequence of finite numbers (`count` >= 0 checks the length).
   std::vector<double> as_doubles(int count = -1) const;
+  std::vector<double> as_lengths(int count = -1) const;  ///< each one as_length()
 
   /// Throws InputError "file:line:col: path: expected <expected>, found <found>".
   [[noreturn]] void fail(std::string_view expected, std::string_view found) const;

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -92,8 +93,11 @@ SerialChain SerialChain::from_code(const std::string& code) {
       while (i < code.size() && code[i] != ' ' && code[i] != ',') ++i;
       const std::string text = code.substr(start, i - start);
       char* end = nullptr;
+      errno = 0;
       const double value = std::strtod(text.c_str(), &end);
-      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) {
+      // ERANGE: too large or too small for a double (1e-400 is not read as 0).
+      if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value) ||
+          errno == ERANGE) {
         throw std::invalid_argument(fmt::format(
             "coordinate code '{}': expected a finite number after ':' at position {}, found "
             "'{}'",

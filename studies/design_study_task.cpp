@@ -34,7 +34,7 @@ void read_installation_space(const YamlValue& value, InstallationSpace& space) {
     value.fail("exactly one of 'box' and 'cylinder'", value.describe());
   if (auto box = value.optional("box")) {
     box->check_keys({"min", "max"});
-    const auto lo = box->required("min").as_doubles(3), hi = box->required("max").as_doubles(3);
+    const auto lo = box->required("min").as_lengths(3), hi = box->required("max").as_lengths(3);
     space.kind = InstallationSpace::Kind::kBox;
     space.min = {lo[0], lo[1], lo[2]};
     space.max = {hi[0], hi[1], hi[2]};
@@ -46,13 +46,13 @@ void read_installation_space(const YamlValue& value, InstallationSpace& space) {
     const YamlValue c = value.required("cylinder");
     c.check_keys({"radius", "z_min", "z_max", "centre"});
     space.kind = InstallationSpace::Kind::kCylinder;
-    space.radius = c.required("radius").as_positive();
-    space.z_min = c.required("z_min").as_double();
-    space.z_max = c.required("z_max").as_double();
+    space.radius = c.required("radius").as_positive_length();
+    space.z_min = c.required("z_min").as_length();
+    space.z_max = c.required("z_max").as_length();
     if (!(space.z_max > space.z_min))
       c.required("z_max").fail("a number > z_min (m)", c.required("z_max").describe());
     if (auto centre = c.optional("centre")) {
-      const auto xy = centre->as_doubles(2);
+      const auto xy = centre->as_lengths(2);
       space.centre = {xy[0], xy[1]};
     }
   }

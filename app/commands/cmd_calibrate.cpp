@@ -14,6 +14,7 @@
 #include "io/calibration_output.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/number_policy.hpp"
 #include "io/output_file.hpp"
 #include "io/pose_csv.hpp"
 #include "problems/calibration_candidates.hpp"
@@ -172,7 +173,7 @@ void run_poses(const PosesOptions& opt) {
     for (const CsvRow& row : table.table.rows) lines.push_back(row.line);
     candidates = reachable_candidates(hexapod, table.poses, lines);
   } else {
-    const auto z = parse_number_list("--z-range", opt.z_range, 2);
+    const auto z = parse_number_list("--z-range", opt.z_range, 2, kMaxInputLength);
     if (opt.steps < 2 || opt.steps > 7) {
       throw InputError(fmt::format("--steps: expected an integer in 2..7, found {}", opt.steps));
     }
@@ -242,17 +243,21 @@ void add_simulate_measurements_command(CLI::App& app) {
   cmd->add_option("--outliers", opt->outliers, "Poses with a gross 1 mm error (default 3)");
   cmd->add_option("--model", opt->model, "42 or 48 (48 adds gain errors; default 48)");
   cmd->add_option("--unit", opt->unit, "Reading unit written: mm or m (default mm)");
-  cmd->add_option("--zero-length", opt->zero_length, "Leg length at reading 0 (m, default 0.7)");
+  cmd->add_option("--zero-length", opt->zero_length, "Leg length at reading 0 (m, default 0.7)")
+      ->check(length_in_metres());
   cmd->add_option("--holdout-every", opt->holdout_every,
                   "Every n-th row is held out for validation (default 4)");
   cmd->add_option("--joint-error", opt->joint_error,
-                  "Sigma of joint and offset errors (m, default 1e-3)");
-  cmd->add_option("--tracker-sigma", opt->tracker_sigma, "Tracker sigma (m, default 15e-6)");
+                  "Sigma of joint and offset errors (m, default 1e-3)")
+      ->check(length_in_metres());
+  cmd->add_option("--tracker-sigma", opt->tracker_sigma, "Tracker sigma (m, default 15e-6)")
+      ->check(length_in_metres());
   cmd->add_option("--tracker-sigma-per-metre", opt->tracker_sigma_per_metre,
                   "Plus this times the distance (default 6e-6)");
   cmd->add_option("--orientation-sigma-deg", opt->orientation_sigma_deg,
                   "Orientation sigma (deg, default 0.003)");
-  cmd->add_option("--actuator-sigma", opt->actuator_sigma, "Reading sigma (m, default 1e-6)");
+  cmd->add_option("--actuator-sigma", opt->actuator_sigma, "Reading sigma (m, default 1e-6)")
+      ->check(length_in_metres());
   cmd->callback([opt] { run_simulate(*opt); });
 }
 
@@ -265,16 +270,20 @@ void add_calibration_poses_command(CLI::App& app) {
   cmd->add_option("--count", opt->count, "Number of poses to choose")->required();
   cmd->add_option("--candidates", opt->candidates, "Candidate poses (CSV x,y,z[,rx,ry,rz])");
   cmd->add_flag("--grid", opt->grid, "Candidates on a grid (--xy-range, --z-range, ...)");
-  cmd->add_option("--xy-range", opt->xy_range, "Grid |x|, |y| <= (m, default 0.15)");
+  cmd->add_option("--xy-range", opt->xy_range, "Grid |x|, |y| <= (m, default 0.15)")
+      ->check(length_in_metres());
   cmd->add_option("--z-range", opt->z_range, "Grid z range zmin,zmax (m, default 0.75,0.95)");
   cmd->add_option("--angle-range", opt->angle_range_deg, "Grid |rx|,|ry|,|rz| <= (deg, 12)");
   cmd->add_option("--steps", opt->steps, "Grid levels per axis (2..7, default 3)");
   cmd->add_option("--model", opt->model, "42 or 48 (default 48)");
-  cmd->add_option("--zero-length", opt->zero_length, "Leg length at reading 0 (m, default 0.7)");
-  cmd->add_option("--sigma-position", opt->sigma_position, "Tracker sigma (m, default 2e-5)");
+  cmd->add_option("--zero-length", opt->zero_length, "Leg length at reading 0 (m, default 0.7)")
+      ->check(length_in_metres());
+  cmd->add_option("--sigma-position", opt->sigma_position, "Tracker sigma (m, default 2e-5)")
+      ->check(length_in_metres());
   cmd->add_option("--sigma-orientation-deg", opt->sigma_orientation_deg,
                   "Orientation sigma (deg, default 0.003)");
-  cmd->add_option("--sigma-actuator", opt->sigma_actuator, "Reading sigma (m, default 1e-6)");
+  cmd->add_option("--sigma-actuator", opt->sigma_actuator, "Reading sigma (m, default 1e-6)")
+      ->check(length_in_metres());
   cmd->add_option("--out", opt->out, "Output CSV (default: standard output)");
   cmd->callback([opt] { run_poses(*opt); });
 }

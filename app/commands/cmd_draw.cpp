@@ -14,6 +14,7 @@
 #include "app/commands.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
+#include "io/number_policy.hpp"
 #include "io/output_file.hpp"
 #include "report/machine_drawing.hpp"
 
@@ -32,7 +33,7 @@ void run_draw(const DrawOptions& opt) {
   if (!opt.pose.empty()) {
     const auto v = parse_number_list("--pose", opt.pose, 6);
     for (int k = 0; k < 3; ++k)
-      if (!(std::abs(v[static_cast<std::size_t>(k)]) <= 1e3))
+      if (!sane_input_length(v[static_cast<std::size_t>(k)]))
         throw InputError(
             fmt::format("--pose: expected positions within +-1000 m, found '{}'", opt.pose));
     pose = Pose{{v[0], v[1], v[2]}, deg_to_rad(Eigen::Vector3d(v[3], v[4], v[5]))};

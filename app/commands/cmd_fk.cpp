@@ -10,6 +10,7 @@
 #include "io/fk_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
+#include "io/number_policy.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -24,7 +25,9 @@ struct FkCommandOptions {
 void run_fk(const FkCommandOptions& opt) {
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
   const int na = machine->num_actuators();
-  const auto q_values = parse_number_list("--q", opt.q, static_cast<std::size_t>(na));
+  // Linear actuators' coordinates are lengths (+-1000 m); revolute ones are angles in degrees.
+  const auto q_values = parse_number_list("--q", opt.q, static_cast<std::size_t>(na),
+                                          machine->revolute_actuators() ? 1e15 : kMaxInputLength);
   Eigen::VectorXd q(na);
   const double q_scale = machine->revolute_actuators() ? kDegToRad : 1.0;
   for (int i = 0; i < na; ++i) q(i) = q_values[static_cast<std::size_t>(i)] * q_scale;
@@ -35,6 +38,11 @@ void run_fk(const FkCommandOptions& opt) {
   std::optional<Pose> guess;
   if (!opt.guess.empty()) {
     const auto g = parse_number_list("--guess", opt.guess, 6);
+    for (int k = 0; k < 3; ++k)
+      if (!sane_input_length(g[static_cast<std::size_t>(k)]))
+        throw InputError(
+            fmt::format("--guess: expected positions x,y,z within +-{:g} m, found '{}'",
+                        kMaxInputLength, opt.guess));
     guess = Pose{{g[0], g[1], g[2]}, deg_to_rad(Eigen::Vector3d(g[3], g[4], g[5]))};
   }
   if (opt.max_iterations < 1) {

@@ -97,7 +97,8 @@ void add_task_poses_command(CLI::App& app) {
   cmd->add_option("--design", opt->design_file,
                   "A design of a run, DIR/designs/dNNNN.yaml: its home_height (from "
                   "DIR/pareto.json) lifts the poses");
-  cmd->add_option("--home-height", opt->home_height, "Lift the poses by this along base z (m)");
+  cmd->add_option("--home-height", opt->home_height, "Lift the poses by this along base z (m)")
+      ->check(length_in_metres());
   cmd->add_option("--out", opt->out_file, "Output CSV (default: standard output)");
   cmd->callback([opt] { run_task_poses(*opt); });
 }

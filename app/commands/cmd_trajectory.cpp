@@ -18,6 +18,7 @@
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
+#include "io/number_policy.hpp"
 #include "io/output_file.hpp"
 #include "io/trajectory_files.hpp"
 #include "models/trajectory.hpp"
@@ -49,21 +50,23 @@ struct TrajectoryCommandOptions {
   std::string drive;
 };
 
-Eigen::Vector3d vector3_option(std::string_view option, const std::string& text) {
-  const auto v = parse_number_list(option, text, 3);
+Eigen::Vector3d vector3_option(std::string_view option, const std::string& text,
+                               double max_magnitude = 1e15) {
+  const auto v = parse_number_list(option, text, 3, max_magnitude);
   return {v[0], v[1], v[2]};
 }
 
 HelixParameters read_helix(const TrajectoryCommandOptions& opt) {
   HelixParameters h;
-  if (!opt.helix_centre.empty()) h.centre = vector3_option("--helix-centre", opt.helix_centre);
+  if (!opt.helix_centre.empty())
+    h.centre = vector3_option("--helix-centre", opt.helix_centre, kMaxInputLength);
   if (!opt.helix_radius.empty()) {
-    const auto r = parse_number_list("--helix-radius", opt.helix_radius, 2);
+    const auto r = parse_number_list("--helix-radius", opt.helix_radius, 2, kMaxInputLength);
     h.radius_start = r[0];
     h.radius_growth = r[1];
   }
   if (!opt.helix_height.empty()) {
-    const auto z = parse_number_list("--helix-height", opt.helix_height, 2);
+    const auto z = parse_number_list("--helix-height", opt.helix_height, 2, kMaxInputLength);
     h.height_start = z[0];
     h.height_growth = z[1];
   }
@@ -142,6 +145,16 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
       times = uniform_times(h.t_start, h.t_end, count);
     }
     path = std::make_unique<HelixPath>(h);
+    // Each option is a length within +-1000 m; the helix they make must stay there too.
+    for (const double t : times)
+      if (const Eigen::Vector3d p = path->at(t).pose.position;
+          !(p.cwiseAbs().maxCoeff() <= kMaxInputLength))
+        throw InputError(
+            fmt::format("--helix-*: expected a helix within +-{:g} m, found the TCP at ({}, {}, "
+                        "{}) m at t = {} "
+                        "s (--helix-centre, --helix-radius, --helix-height, --t-start, --t-end)",
+                        kMaxInputLength, format_number(p.x()), format_number(p.y()),
+                        format_number(p.z()), format_number(t)));
   } else {
     auto sampled = std::make_unique<SampledPath>(read_path_csv(opt.path_file));
     times = sampled->times();

@@ -249,7 +249,8 @@ void add_workspace_command(CLI::App& app) {
                   "Largest spacing of the sampled orientations (deg); default 5");
   cmd->add_option("--resolution", opt->resolution,
                   "Grid spacing (m); default: the coarsest grid (halving from 1/16 of the search "
-                  "box) whose volume meets --tolerance");
+                  "box) whose volume meets --tolerance")
+      ->check(length_in_metres());
   cmd->add_option("--tolerance", opt->tolerance,
                   "Relative accuracy of the volume when --resolution is not given (the estimated "
                   "error is the difference to the grid at twice the spacing); default 0.005");
@@ -261,13 +262,15 @@ void add_workspace_command(CLI::App& app) {
                   "Wrench at the TCP for max_leg_force: fx,fy,fz,mx,my,mz (N, N*m); default 0");
   cmd->add_option("--slice-axis", opt->slice_axis, "Slice plane normal: x, y or z; default z");
   cmd->add_option("--slice-at", opt->slice_at,
-                  "Slice plane coordinate (m); default the middle of the workspace");
+                  "Slice plane coordinate (m); default the middle of the workspace")
+      ->check(length_in_metres());
   cmd->add_option("--slice-metric", opt->slice_metric,
                   "Slice colour: singularity_margin, stiffness_min, max_leg_force, tcp_error_max, "
                   "tcp_deflection or stiffness_min_loaded (both under --wrench), "
                   "natural_frequency_1 (machine files with masses); default singularity_margin");
   cmd->add_option("--slice-pixel", opt->slice_pixel,
-                  "Slice pixel size (m); default 1/300 of the larger slice side");
+                  "Slice pixel size (m); default 1/300 of the larger slice side")
+      ->check(length_in_metres());
   cmd->add_option("--out", opt->out_dir,
                   "Folder for summary.json, boundary.ply/.stl, points.csv, slice_*.svg/.png "
                   "(default: print the summary line only)");

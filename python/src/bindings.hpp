@@ -29,8 +29,16 @@ YamlValue yaml_from_python(py::handle value, const std::string& name);
 /// A file system path from a str or os.PathLike.
 std::string path_from_python(py::handle path);
 
-/// A finite number from Python (InputError "what: expected a finite number, found ...").
+/// A number from Python within the input number policy (io/number_policy.hpp): finite, within
+/// +-1e15, 0 or at least 1e-30 in magnitude (InputError "what: expected ..., found ...").
 double finite_number(py::handle value, const std::string& what);
+
+/// A length or position in metres from Python: finite_number and within +-1000 m.
+double length_number(py::handle value, const std::string& what);
+
+/// Throws InputError "what: expected ..., found ..." unless `x` obeys the number policy and, for
+/// a length, is within +-1000 m.
+void check_policy_number(double x, bool length, const std::string& what);
 
 /// An (N, columns) float array of N rows (each at least `columns` long).
 pybind11::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/input_error.hpp"
+#include "io/number_policy.hpp"
 #include "python/src/bindings.hpp"
 #include "studies/run_study.hpp"
 
@@ -35,10 +36,26 @@ double finite_number(py::handle value, const std::string& what) {
     throw InputError(fmt::format("{}: expected a finite number, found {}", what,
                                  py::repr(value).cast<std::string>()));
   }
-  if (!std::isfinite(number))
-    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
-                                 py::repr(value).cast<std::string>()));
+  check_policy_number(number, false, what);
   return number;
+}
+
+double length_number(py::handle value, const std::string& what) {
+  const double number = finite_number(value, what);
+  check_policy_number(number, true, what);
+  return number;
+}
+
+void check_policy_number(double x, bool length, const std::string& what) {
+  if (!std::isfinite(x))
+    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
+                                 py::repr(py::float_(x)).cast<std::string>()));
+  if (!sane_input_number(x))
+    throw InputError(fmt::format("{}: expected {}, found {}", what, kSaneNumberText,
+                                 py::repr(py::float_(x)).cast<std::string>()));
+  if (length && !sane_input_length(x))
+    throw InputError(fmt::format("{}: expected {}, found {}", what, kLengthText,
+                                 py::repr(py::float_(x)).cast<std::string>()));
 }
 
 int threads_from_python(const py::object& threads) {

@@ -17,6 +17,7 @@
 #include "io/input_error.hpp"
 #include "io/machine_description.hpp"
 #include "io/machine_file.hpp"
+#include "io/number_policy.hpp"
 #include "models/leg_interference.hpp"
 #include "models/machine.hpp"
 #include "models/pose_analysis.hpp"
@@ -63,9 +64,7 @@ Pose pose_from_python(py::handle value, const std::string& what) {
   Eigen::Vector3d deg = Eigen::Vector3d::Zero();
   Pose pose;
   for (py::ssize_t k = 0; k < a.shape(0); ++k) {
-    if (!std::isfinite(a.at(k)))
-      throw InputError(fmt::format("{}[{}]: expected a finite number, found {}", what, k,
-                                   py::repr(py::float_(a.at(k))).cast<std::string>()));
+    check_policy_number(a.at(k), k < 3, fmt::format("{}[{}]", what, k));
     if (k < 3)
       pose.position(k) = a.at(k);
     else
@@ -93,7 +92,14 @@ Wrench wrench_from_python(const py::object& value) {
                     "found {}",
                     py::repr(value).cast<std::string>()));
   const py::sequence s = value.cast<py::sequence>();
-  for (int i = 0; i < 6; ++i) w(i) = finite_number(s[i], fmt::format("wrench[{}]", i));
+  for (int i = 0; i < 6; ++i) {
+    w(i) = finite_number(s[i], fmt::format("wrench[{}]", i));
+    if (!(std::abs(w(i)) <= kMaxInputForce))
+      throw InputError(
+          fmt::format("wrench[{}]: expected a force or moment within +-{:g} N or N*m, "
+                      "found {}",
+                      i, kMaxInputForce, format_number(w(i))));
+  }
   return w;
 }
 
@@ -158,9 +164,8 @@ py::dict analyze(const PyMachine& self, py::handle poses_in, const py::object& w
   const std::size_t width = static_cast<std::size_t>(poses.shape(1));
   const double* in = poses.data();
   for (std::size_t i = 0; i < n * width; ++i)
-    if (!std::isfinite(in[i]))
-      throw InputError(fmt::format("poses[{}, {}]: expected a finite number, found {}", i / width,
-                                   i % width, py::repr(py::float_(in[i])).cast<std::string>()));
+    if (!sane_input_number(in[i]) || (i % width < 3 && !sane_input_length(in[i])))
+      check_policy_number(in[i], i % width < 3, fmt::format("poses[{}, {}]", i / width, i % width));
 
   // The outputs, named as the columns of `pkmopt analyze` (q_j and tau_j as (N, n) arrays,
   // C_ab as an (N, 6, 6) array, the mode shapes as (N, modes, axes + 6)).
@@ -288,7 +293,10 @@ py::dict fk(const PyMachine& self, py::handle q_in, const py::object& guess_in,
   Eigen::VectorXd q(na);
   const double q_scale = machine.revolute_actuators() ? kDegToRad : 1.0;
   for (int i = 0; i < na; ++i)
-    q(i) = finite_number(py::float_(qa.at(i)), fmt::format("q[{}]", i)) * q_scale;
+    q(i) = (machine.revolute_actuators()
+                ? finite_number(py::float_(qa.at(i)), fmt::format("q[{}]", i))
+                : length_number(py::float_(qa.at(i)), fmt::format("q[{}]", i))) *
+           q_scale;
   if (const std::string expected = machine.actuator_coordinates_requirement(q); !expected.empty())
     throw InputError(
         fmt::format("q: expected {}, found {}", expected, py::repr(q_in).cast<std::string>()));
@@ -366,7 +374,7 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
   }
   std::optional<double> resolution;
   if (!resolution_in.is_none()) {
-    resolution = finite_number(resolution_in, "resolution");
+    resolution = length_number(resolution_in, "resolution");
     if (!(*resolution > 0.0)) bad("resolution", "a grid spacing in metres > 0", *resolution);
   }
   if (!(std::isfinite(tolerance) && tolerance >= 1e-4 && tolerance <= 0.5))

@@ -150,8 +150,11 @@ TEST_F(ErrorContract, TrajectoryWithHugeHelixNumbers) {
   expect_refused("trajectory " + machine + " --helix --helix-frequency 1e308", "--helix-frequency");
   expect_refused("trajectory " + machine + " --helix --t-start -1e308", "--t-start");
   expect_refused("trajectory " + machine + " --helix --samples 1e308", "--samples");
-  // Large but allowed numbers give big finite values and no NaN.
-  const CliRun r = run("trajectory " + machine + " --helix --samples 21 --helix-frequency 1e14");
+  // Large but allowed numbers give big finite values and no NaN (a helix that keeps its radius
+  // and height: a growing one leaves +-1000 m at this frequency and is refused).
+  const CliRun r = run("trajectory " + machine +
+                       " --helix --samples 21 --helix-frequency 1e14 --helix-radius 0.01,0 "
+                       "--helix-height 0.01,0");
   EXPECT_TRUE(r.status == 0 || r.status == 3) << r.err;
   EXPECT_EQ(r.out.find("nan"), std::string::npos);
 }
@@ -396,6 +399,60 @@ TEST_F(ErrorContract, TrajectoryWithStdoutFull) {  // printed its 11-line summar
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_EQ(r.err.rfind("pkmopt: error: cannot write to standard output", 0), 0u) << r.err;
+}
+
+// Were accepted and gave inf in tau, q and more (or, for 1e-400, were read silently as 0).
+TEST_F(ErrorContract, LengthsBeyondAKilometreAndNumbersThatUnderflow) {
+  const std::string hexapod = example("hexapod.yaml");
+  expect_refused("analyze " + hexapod + " --poses " + write("p.csv", "x,y,z\n1e15,0,0.9\n"),
+                 "p.csv:2: column 1 'x': expected a length within +-1000 m, found '1e15'");
+  expect_refused("analyze " + hexapod + " --poses " + write("p.csv", "x,y,z\n0,1001,0.9\n"),
+                 "column 2 'y': expected a length within +-1000 m, found '1001'");
+  std::string machine = read_text(hexapod);
+  machine.replace(machine.find("radius: 0.60"), 12, "radius: 1e15");
+  expect_refused(
+      "analyze " + write("big.yaml", machine) + " --poses " + write("p.csv", "x,y,z\n0,0,0.9\n"),
+      "base.radius: expected a length in (0, 1000] m, found '1e15'");
+  expect_refused("trajectory " + hexapod + " --path " +
+                     write("path.csv", "t,x,y,z\n0,0,0,0.9\n1,4294967296,0,0.9\n"),
+                 "path.csv:3: column 2 'x': expected a length within +-1000 m");
+  expect_refused("trajectory " + hexapod + " --helix --helix-radius 0,1e8",
+                 "--helix-radius: expected 2 comma-separated finite numbers, found '0,1e8' (item 2 "
+                 "is outside +-1000)");
+  // Each option within bounds, the helix they make far beyond them.
+  expect_refused("trajectory " + hexapod + " --helix --helix-radius 0,1000 --t-end 1e6",
+                 "--helix-*: expected a helix within +-1000 m");
+  expect_refused("workspace " + hexapod + " --resolution 2000",
+                 "--resolution: expected a length within +-1000 m, found 2000");
+  expect_refused("fk " + hexapod + " --q 1e4,1,1,1,1,1", "--q: expected 6 comma-separated");
+  // A coordinate code's constant is a length too.
+  const std::string hybrid = read_text(example("hybrid_long_axis_hexapod.yaml"));
+  const std::size_t code = hybrid.find("code: ");
+  ASSERT_NE(code, std::string::npos);
+  const std::size_t end = hybrid.find('\n', code);
+  fs::copy_file(hexapod, dir_ / "hexapod.yaml");
+  const std::string far =
+      write("far.yaml", hybrid.substr(0, code) + "code: \"3:1e15 1\"" + hybrid.substr(end));
+  expect_refused("describe " + far, "constants that are a length within +-1000 m (motion 3: m)");
+  // Underflow: 1e-400 (read as 0 by C) is refused as 1e-31 is, in a CSV, a YAML file, an option.
+  for (const char* tiny : {"1e-400", "-1e-400", "1e-31"}) {
+    expect_refused("analyze " + hexapod + " --poses " +
+                       write("p.csv", std::string("x,y,z\n") + tiny + ",0,0.9\n"),
+                   std::string("expected a finite number within +-1e15 (0 or at least 1e-30 in "
+                               "magnitude), found '") +
+                       tiny + "'");
+    machine = read_text(hexapod);
+    machine.replace(machine.find("E: 2.1e11"), 9, std::string("E: ") + tiny);
+    expect_refused("describe " + write("tiny.yaml", machine),
+                   "legs.E: expected a finite number within +-1e15 (0 or at least 1e-30");
+    expect_refused("analyze " + hexapod + " --poses " + write("p.csv", "x,y,z\n0,0,0.9\n") +
+                       " --wrench 0,0," + tiny + ",0,0,0",
+                   "(item 3 is outside +-1e+09 or below 1e-30 in magnitude)");
+  }
+  // A written zero is 0.
+  const CliRun zero =
+      run("analyze " + hexapod + " --poses " + write("z.csv", "x,y,z\n0e-400,0.0,0.9\n"));
+  EXPECT_EQ(zero.status, 0) << zero.err;
 }
 
 TEST_F(ErrorContract, DescribeReadsAHybridsNumbersAsAnalyzeDoes) {  // describe exited 0

@@ -333,3 +333,22 @@ def test_a_machine_not_made_by_load_machine_raises_instead_of_crashing():
             make()
     assert pkmopt.load_machine(source("examples/hexapod.yaml")).model == "hexapod"
 
+
+
+def test_lengths_beyond_a_kilometre_and_numbers_that_underflow_raise_input_error(hexapod):
+    # analyze at x = 1e308 once gave inf in tau, q and more; the CLI's number policy holds here too.
+    for bad, message in ((1e308, r"a finite number within \+-1e15"), (1e4, r"a length within \+-1000 m"),
+                         (1e-310, r".*at least 1e-30 in magnitude")):
+        with pytest.raises(pkmopt.InputError, match=r"poses\[0, 0\]: expected " + message):
+            hexapod.analyze(np.array([[bad, 0, 0.9, 0, 0, 0]]))
+    with pytest.raises(pkmopt.InputError, match=r"poses\[0, 5\]: expected .*within \+-1e15"):
+        hexapod.analyze(np.array([[0, 0, 0.9, 0, 0, 1e20]]))
+    with pytest.raises(pkmopt.InputError, match=r"pose\[2\]: expected a length within \+-1000 m"):
+        hexapod.ik([0, 0, 2e3])
+    with pytest.raises(pkmopt.InputError, match=r"q\[0\]: expected a length within \+-1000 m"):
+        hexapod.fk([1e4, 1, 1, 1, 1, 1])
+    with pytest.raises(pkmopt.InputError, match=r"wrench\[0\]: expected a force or moment"):
+        hexapod.analyze(np.zeros((1, 3)), wrench=[1e12, 0, 0, 0, 0, 0])
+    with pytest.raises(pkmopt.InputError, match=r"resolution: expected a length within"):
+        hexapod.workspace(resolution=2e3)
+    assert hexapod.analyze(np.array([[0, 0, 0.9, 0, 0, 0]]))["reachable"][0]
