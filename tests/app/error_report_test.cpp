@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -453,6 +455,90 @@ TEST_F(ErrorContract, LengthsBeyondAKilometreAndNumbersThatUnderflow) {
   const CliRun zero =
       run("analyze " + hexapod + " --poses " + write("z.csv", "x,y,z\n0e-400,0.0,0.9\n"));
   EXPECT_EQ(zero.status, 0) << zero.err;
+}
+
+// The columns docs/conventions.md lists as possibly inf ("Singular poses"), as patterns: `tau_i`
+// matches tau_1..tau_n, `J_r_c` J_1_1.., `C_ij` C_11..C_66.
+std::vector<std::regex> documented_inf_columns() {
+  const std::string docs = read_text(fs::path(PKMOPT_SOURCE_DIR) / "docs/conventions.md");
+  const std::size_t begin = docs.find("<!-- inf-columns");
+  const std::size_t end = docs.find("<!-- /inf-columns -->");
+  EXPECT_NE(begin, std::string::npos);
+  EXPECT_NE(end, std::string::npos);
+  std::vector<std::regex> patterns;
+  std::istringstream table(docs.substr(begin, end - begin));
+  for (std::string line; std::getline(table, line);) {
+    if (line.rfind("| `", 0) != 0) continue;
+    std::string name = line.substr(3, line.find('`', 3) - 3);
+    name = std::regex_replace(name, std::regex("_(i|r|c)(?=_|$)"), "_[0-9]+");
+    name = std::regex_replace(name, std::regex("_ij$"), "_[1-6][1-6]");
+    patterns.emplace_back(name);
+  }
+  return patterns;
+}
+
+// Every cell of a CSV output that is not a finite number must be an inf in a documented column;
+// returns the inf columns found.
+std::vector<std::string> check_inf_cells(const std::string& csv_text,
+                                         const std::vector<std::regex>& allowed,
+                                         const std::string& what) {
+  std::istringstream in(csv_text);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  for (std::istringstream h(line); std::getline(h, line, ',');) header.push_back(line);
+  std::vector<std::string> found;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::size_t col = 0;
+    for (std::string cell; std::getline(row, cell, ','); ++col) {
+      EXPECT_FALSE(cell.empty() || cell.find("nan") != std::string::npos)
+          << what << ": " << header.at(col) << " = '" << cell << "'";
+      if (cell.find("inf") == std::string::npos) continue;
+      const bool documented = std::any_of(allowed.begin(), allowed.end(), [&](const std::regex& p) {
+        return std::regex_match(header.at(col), p);
+      });
+      EXPECT_TRUE(documented) << what << ": " << header.at(col) << " is inf, not documented";
+      if (std::find(found.begin(), found.end(), header.at(col)) == found.end())
+        found.push_back(header.at(col));
+    }
+  }
+  return found;
+}
+
+// analyze --compliance wrote inf in tcp_rotation_deflection_deg and all 36 C_ij, trajectory inf in
+// tau_dyn_i, at the sample hexapod's singular pose: now every column that can be inf is listed in
+// docs/conventions.md, and every command's every column is checked against that list there.
+TEST_F(ErrorContract, InfOnlyInTheDocumentedColumnsAtASingularPose) {
+  const std::vector<std::regex> allowed = documented_inf_columns();
+  ASSERT_GE(allowed.size(), 8u);
+  const std::string masses = example("hexapod_masses.yaml");
+  const std::string wrench = " --wrench 100,-200,-1000,5,-5,10";
+  const std::string poses = write("s.csv", "x,y,z,rx,ry,rz\n0,0,0.9,0,0,90\n0,0,0.9,0,0,0\n");
+  for (const std::string& machine : {example("hexapod.yaml"), masses}) {
+    const CliRun r = run("analyze " + machine + " --poses " + poses + " --compliance --out " +
+                         path("a.csv") + wrench + (machine == masses ? " --mode-shapes" : ""));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<std::string> inf =
+        check_inf_cells(read_text(dir_ / "a.csv"), allowed, "analyze " + machine);
+    for (const char* expected : {"tau_1", "tcp_error_max", "tcp_deflection",
+                                 "tcp_rotation_deflection_deg", "C_11", "C_66"})
+      EXPECT_NE(std::find(inf.begin(), inf.end(), expected), inf.end()) << expected;
+  }
+  const std::string path_csv =
+      write("p.csv", "t,x,y,z,rx,ry,rz\n0,0,0,0.9,0,0,89\n0.5,0,0,0.9,0,0,90\n1,0,0,0.9,0,0,91\n");
+  const CliRun t = run("trajectory " + masses + " --path " + path_csv + " --jacobian --out " +
+                       path("t.csv") + wrench);
+  ASSERT_TRUE(t.status == 0 || t.status == 3) << t.err;
+  const std::vector<std::string> inf =
+      check_inf_cells(read_text(dir_ / "t.csv"), allowed, "trajectory");
+  for (const char* expected : {"tau_1", "tau_dyn_1"})
+    EXPECT_NE(std::find(inf.begin(), inf.end(), expected), inf.end()) << expected;
+  const CliRun w = run("workspace " + masses + " --orientation 0,0,90 --resolution 0.02 --out " +
+                       path("w") + wrench);
+  ASSERT_TRUE(w.status == 0 || w.status == 3) << w.err;
+  check_inf_cells(read_text(dir_ / "w" / "points.csv"), allowed, "workspace");
+  EXPECT_EQ(read_text(dir_ / "w" / "summary.json").find("inf"), std::string::npos);
 }
 
 TEST_F(ErrorContract, DescribeReadsAHybridsNumbersAsAnalyzeDoes) {  // describe exited 0

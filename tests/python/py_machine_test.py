@@ -352,3 +352,24 @@ def test_lengths_beyond_a_kilometre_and_numbers_that_underflow_raise_input_error
     with pytest.raises(pkmopt.InputError, match=r"resolution: expected a length within"):
         hexapod.workspace(resolution=2e3)
     assert hexapod.analyze(np.array([[0, 0, 0.9, 0, 0, 0]]))["reachable"][0]
+
+
+def test_inf_only_in_the_documented_arrays_at_a_singular_pose():
+    # docs/conventions.md ("Singular poses") lists the outputs that can be inf: tau, tcp_error_max,
+    # tcp_deflection, tcp_rotation_deflection_deg and the compliance; nothing is ever NaN.
+    machine = pkmopt.load_machine(source("examples/hexapod_masses.yaml"))
+    result = machine.analyze(np.array([[0, 0, 0.9, 0, 0, 90], [0, 0, 0.9, 0, 0, 0]]),
+                             wrench=[100, -200, -1000, 5, -5, 10], compliance=True,
+                             mode_shapes=True)
+    documented = {"tau", "tcp_error_max", "tcp_deflection", "tcp_rotation_deflection_deg",
+                  "compliance"}
+    infinite = set()
+    for name, values in result.items():
+        values = np.asarray(values)
+        if values.dtype.kind != "f":
+            continue
+        assert not np.isnan(values).any(), name
+        if np.isinf(values).any():
+            infinite.add(name)
+        assert np.isfinite(values[1]).all(), name  # the level pose is not singular
+    assert infinite == documented
