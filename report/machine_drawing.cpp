@@ -112,7 +112,8 @@ std::string machine_svg(const MachineSketch& sketch, const MachineDrawingOptions
   int x0 = 0;
   for (std::size_t k = 0; k < kViews.size(); ++k) {
     const View& v = kViews[k];
-    const auto [w, h] = sizes[k];
+    const int w = sizes[k].first;  // not a structured binding: lambdas below capture h
+    const int h = sizes[k].second;
     const int y0 = title_height + label_height;
     auto X = [&](const Eigen::Vector3d& p) { return x0 + (p(v.right) - box.min()(v.right)) * px; };
     auto Y = [&](const Eigen::Vector3d& p) { return y0 + h - (p(v.up) - box.min()(v.up)) * px; };

@@ -22,6 +22,17 @@
 #include "models/leg_chain.hpp"
 #include "tests/models/frame_fe.hpp"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define PKMOPT_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PKMOPT_TEST_ASAN 1
+#endif
+#endif
+#if defined(PKMOPT_TEST_ASAN)
+#include <sanitizer/allocator_interface.h>
+#endif
+
 namespace pkmopt {
 namespace {
 
@@ -501,20 +512,33 @@ TEST(LegChainVjm, ClosedFormEliminationIsTheGeneralOne) {
   }
 }
 
-#if defined(__GLIBC__)
+#if defined(__GLIBC__) || defined(PKMOPT_TEST_ASAN)
 }  // namespace
 }  // namespace pkmopt
 
 // Counts the heap allocations (malloc: operator new and Eigen's allocations) while enabled.
-extern "C" void* __libc_malloc(std::size_t size);
+// Under AddressSanitizer, which owns malloc and free, through its allocation hook; otherwise by
+// replacing glibc's malloc (replacing it under ASan would pair glibc's malloc with ASan's free).
 namespace {
 bool g_count_allocations = false;
 long g_allocations = 0;
 }  // namespace
+#if defined(PKMOPT_TEST_ASAN)
+namespace {
+void count_allocation(const volatile void*, std::size_t) {
+  if (g_count_allocations) ++g_allocations;
+}
+void ignore_free(const volatile void*) {}
+const int g_hooks_installed =
+    __sanitizer_install_malloc_and_free_hooks(count_allocation, ignore_free);
+}  // namespace
+#else
+extern "C" void* __libc_malloc(std::size_t size);
 extern "C" void* malloc(std::size_t size) {
   if (g_count_allocations) ++g_allocations;
   return __libc_malloc(size);
 }
+#endif
 
 namespace pkmopt {
 namespace {
@@ -532,6 +556,9 @@ TEST(LegChainVjm, AnalyzeAllocatesNothingPerPose) {
     const bool tripod = m.design().mobility == PlatformMobility::kPlanarLegs;
     const Pose first = tripod ? pose_deg(0, 0, 1.2, 10, 5) : Pose{{0, 0, -1.0}, Vector3d::Zero()};
     m.analyze(*data, first, w, metrics);
+#if defined(PKMOPT_TEST_ASAN)
+    ASSERT_NE(g_hooks_installed, 0);
+#endif
     g_allocations = 0;
     g_count_allocations = true;
     for (int k = 0; k < 20; ++k) {
