@@ -17,6 +17,15 @@ a fresh folder and checks the error contract:
   * no output (stdout, every file written) holds a NaN: a CSV cell, a YAML scalar, a JSON value
     or a number token of a text output equal to nan/-nan/NaN/.nan (JSON null and `inf` are fine).
 
+The Python module is a command of its own here ("python"): a run writes a script that calls one
+function (load_machine and the Machine methods analyze, ik, fk, jacobian, workspace;
+machine_from_dict, optimize on a benchmark or on a Python problem whose fitness returns hostile
+values or raises now and then, run_study, read_front, calibrate) with arguments of which some are
+replaced by hostile Python values (NaN, 1e308, 5e-324, huge ints, strings with lone surrogates,
+bytes, arrays of the wrong shape, dtype or layout, ...) and its input files damaged as above. Its
+contract: no crash of the interpreter and no hang; only pkmopt.InputError or TypeError raised, with
+a one-line message; no NaN in what it returns; nothing left behind by an InputError.
+
 Usage:
   /usr/bin/python3 scripts/mutation_campaign.py [--runs 1000] [--seed 1] [--jobs NCORES]
       [--timeout 20] [--binary build/bin/pkmopt] [--out /tmp/pkmopt-campaign] [--only K]
@@ -74,11 +83,14 @@ CAMPAIGN_VERSION = "1"
 
 COMMANDS = [
     "describe", "analyze", "fk", "workspace", "trajectory", "calibration-poses",
-    "simulate-measurements", "calibrate", "validate", "run", "export", "compare",
+    "simulate-measurements", "calibrate", "validate", "run", "export", "compare", "draw",
+    "task-poses", "python",
 ]
 
-RUN_JOURNAL_FILES = {"journal.txt", "evaluations.csv", "run.lock", "study.resolved.yaml",
-                     "journal.damaged.txt"}
+# What a failed `run` may leave in its --out folder: the journal it resumes from (its results,
+# study.resolved.yaml included, go into place together or not at all).
+RUN_JOURNAL_FILES = {"journal.txt", "evaluations.csv", "run.lock", "journal.damaged.txt"}
+PYTHON = "/usr/bin/python3"
 
 # ----------------------------------------------------------------------------------------------
 # Hostile values
@@ -977,6 +989,8 @@ class Case:
         self.items.append(["pos", value])
 
     def argv(self):
+        if self.cmd == "python":
+            return ["case.py"]
         out = [self.cmd]
         for it in self.items:
             if it[0] == "pos":
@@ -1269,6 +1283,218 @@ def gen_run(case, rng, ctx):
         case.meta["resume"] = how
 
 
+def gen_draw(case, rng, ctx):
+    m = rng.choice(ctx.machines_for["analyze"])
+    case.pos(add_machine(case, ctx, m))
+    case.spec = {"--pose": "list6", "--out": "out_file"}
+    if rng.random() < 0.6:
+        p = pt(m)
+        angles = [round(rng.uniform(-5, 5), 2) for _ in range(3)] if rng.random() < 0.5 else \
+            [0, 0, 0]
+        case.opt("--pose", ",".join(fmt(round(v, 6)) for v in list(p) + angles))
+    if rng.random() < 0.5:
+        case.opt("--out", "machine.svg")
+    case.meta["pos_kinds"] = ["in_file"]
+
+
+def gen_task_poses(case, rng, ctx):
+    st = rng.choice([s for s in ctx.studies if s["design"]])
+    case.pos(add_study(case, ctx, st))
+    case.spec = {"--home-height": "float", "--out": "out_file", "--design": "in_file"}
+    if st["result"] and st["knee_file"] and rng.random() < 0.4:
+        case.trees.append(("res", st["result"]))
+        case.add_file("res/pareto.json", read_text(Path(st["result"]) / "pareto.json"), "json")
+        case.opt("--design", "res/" + st["knee_file"])
+    elif rng.random() < 0.4:
+        case.opt("--home-height", fmt(round(rng.uniform(0, 1.2), 3)))
+    if rng.random() < 0.5:
+        case.opt("--out", "poses.csv")
+    case.meta["pos_kinds"] = ["in_file"]
+
+
+# ---- The Python module -----------------------------------------------------------------------
+# A python case is a script, case.py, that calls one function of the module with arguments
+# (valid ones, some replaced by hostile Python values) and prints one JSON line: "ok" with the
+# NaN found in what it returned, "raised" for pkmopt.InputError or TypeError (the module's
+# contract), "foreign" for any other exception.
+
+PY_HOSTILE = [
+    "float('nan')", "float('inf')", "-float('inf')", "1e308", "-1e308", "5e-324", "1e-310",
+    "1e16", "-1e16", "10**30", "-10**30", "2**63", "2**64", "-1", "0", "1", "True", "None",
+    "'abc'", "''", "'\\udcff'", "b'x'", "[]", "{}", "()", "object()", "1j", "[float('nan')]",
+    "np.zeros((0, 6))", "np.zeros((3,))", "np.full((2, 6), np.nan)", "np.full((2, 6), np.inf)",
+    "np.zeros((2, 6), dtype=complex)", "np.array([['a'] * 6])", "np.zeros((4, 12))[:, ::2]",
+    "np.zeros((2, 6), dtype=np.float32)", "np.zeros((2, 6), dtype=np.int64)",
+    "np.zeros((1, 6, 1))", "np.zeros(10**6)", "lambda *a: 1", "[[1e15] * 6]",
+    "np.array([0, 0, 0.9, 0, 0, 90.0])", "np.array([[0, 0, 1e4, 0, 0, 0.0]])",
+    "{'a': float('nan')}", "[1, 2, 3, 4, 5, 6, 7]", "'0,0,0.9,0,0,0'",
+]
+
+PY_TEMPLATE = """import json, math, os, sys
+import numpy as np
+import pkmopt
+
+
+def nan_paths(x, path, out, depth=0):
+    if len(out) > 5 or depth > 6:
+        return out
+    if isinstance(x, float):
+        if math.isnan(x):
+            out.append(path)
+    elif isinstance(x, np.ndarray):
+        if x.dtype.kind in 'fc' and np.isnan(x).any():
+            out.append(path)
+    elif isinstance(x, dict):
+        for k, v in x.items():
+            nan_paths(v, f'{{path}}[{{k!r}}]', out, depth + 1)
+    elif isinstance(x, (list, tuple)):
+        for i, v in enumerate(x[:10000]):
+            nan_paths(v, f'{{path}}[{{i}}]', out, depth + 1)
+    return out
+
+
+try:
+{setup}
+except BaseException as e:  # the harness's own arguments (numpy) failed: not pkmopt's
+    print(json.dumps({{'status': 'setup', 'type': type(e).__name__, 'message': str(e)[:200]}}))
+    sys.exit(0)
+try:
+{call}
+    print(json.dumps({{'status': 'ok', 'nan': nan_paths(result, 'result', [])}}))
+except (pkmopt.InputError, TypeError) as e:
+    print(json.dumps({{'status': 'raised', 'type': type(e).__name__,
+                      'lines': str(e).strip().count(chr(10)) + 1, 'message': str(e)[:300]}}))
+except BaseException as e:
+    print(json.dumps({{'status': 'foreign', 'type': type(e).__module__ + '.' + type(e).__name__,
+                      'message': str(e)[:300]}}))
+"""
+
+
+def py_args(rng, args):
+    """args: [(name, valid expression)]; some replaced by hostile ones. Returns (text, notes)."""
+    notes = []
+    out = []
+    hostile = set()
+    if rng.random() < 0.85:
+        for _ in range(rng.choice([1, 1, 2])):
+            hostile.add(rng.randrange(len(args)))
+    for i, (name, expr) in enumerate(args):
+        if i in hostile:
+            new = rng.choice(PY_HOSTILE)
+            notes.append(f"{name or 'arg ' + str(i)}: {expr[:40]} -> {new}")
+            expr = new
+        out.append(f"{name}={expr}" if name else expr)
+    return ", ".join(out), notes
+
+
+def gen_python(case, rng, ctx):
+    case.meta["python"] = True
+    scenario = rng.choice(["machine", "machine", "machine", "optimize", "problem", "run_study",
+                           "read_front", "calibrate", "machine_from_dict"])
+    setup = ["import yaml"]
+    if scenario == "machine":
+        m = rng.choice(ctx.machines_for["analyze"])
+        rel = add_machine(case, ctx, m)
+        p = [round(v, 6) for v in pt(m)]
+        pose = f"[{p[0]}, {p[1]}, {p[2]}, 0, 0, 0]"
+        setup.append(f"machine = pkmopt.load_machine({rel!r})")
+        what = rng.choice(["analyze", "analyze", "ik", "fk", "jacobian", "workspace", "load"])
+        if what == "analyze":
+            rows = m["poses_csv"].strip().split("\n")[1:]
+            poses = "np.array([" + ", ".join("[" + r + "]" for r in rows) + "], dtype=float)"
+            args = [("", poses), ("wrench", "[100, -50, -300, 5, -4, 3]"), ("threads", "1"),
+                    ("compliance", rng.choice(["False", "True"]))]
+            if m["masses"]:
+                args.append(("mode_shapes", rng.choice(["False", "True"])))
+            text, notes = py_args(rng, args)
+            call = f"result = machine.analyze({text})"
+        elif what == "ik":
+            text, notes = py_args(rng, [("", pose)])
+            call = f"result = machine.ik({text})"
+        elif what == "jacobian":
+            text, notes = py_args(rng, [("", pose)])
+            call = f"result = machine.jacobian({text})"
+        elif what == "fk":
+            q = "[" + ", ".join(fmt(v) for v in m.get("q", [])) + "]"
+            text, notes = py_args(rng, [("", q), ("guess", rng.choice(["None", pose])),
+                                        ("max_iterations", "100")])
+            call = f"result = machine.fk({text})"
+        elif what == "workspace":
+            text, notes = py_args(rng, [("resolution", fmt(m["resolution"] * 2)),
+                                        ("threads", "1")])
+            call = f"result = machine.workspace({text})"
+        else:
+            notes, call = [], "result = machine.model"
+        case.mutations.extend(notes)
+        case.meta["py_call"] = what
+    elif scenario in ("optimize", "problem"):
+        problem = rng.choice(["'zdt1'", "{'name': 'dtlz2', 'variables': 6, 'objectives': 3}",
+                              "'hs71'", "'rosenbrock'", "'bnh'"])
+        algorithm = rng.choice(["nsga2", "nsga2", "nlopt:LN_COBYLA", "ipopt",
+                                "epsilon_constraint", "nbi"])
+        opt = {"nsga2": "{'algorithm': 'nsga2', 'population': 8, 'generations': 3, 'seed': 1}",
+               "ipopt": "{'algorithm': 'ipopt', 'max_iterations': 20}",
+               "nlopt:LN_COBYLA": "{'algorithm': 'nlopt:LN_COBYLA', 'max_evaluations': 50}",
+               "epsilon_constraint": "{'algorithm': 'epsilon_constraint', 'points': 3}",
+               "nbi": "{'algorithm': 'nbi', 'points': 3}"}[algorithm]
+        if scenario == "problem":
+            # A Python problem whose fitness returns hostile values now and then.
+            bad = rng.choice(PY_HOSTILE + ["raise_it"])
+            setup.append(
+                "class P:\n"
+                "    bounds = ([0.0, 0.0], [1.0, 1.0])\n"
+                "    n_obj = 2\n"
+                "    calls = 0\n"
+                "    def fitness(self, x):\n"
+                "        P.calls += 1\n"
+                f"        if P.calls % {rng.choice([1, 3, 7])} == 0:\n"
+                + ("            raise RuntimeError('user fitness failed')\n" if bad == "raise_it"
+                   else f"            return {bad}\n") +
+                "        return [x[0], 1 - x[0] + x[1] ** 2]\n"
+                "    def gradient(self, x):\n"
+                "        return [[1.0, 0.0], [-1.0, 2 * x[1]]]")
+            problem = "P()"
+            case.mutations.append(f"fitness returns {bad} now and then")
+        text, notes = py_args(rng, [("", problem), ("", opt), ("threads", "1")])
+        case.mutations.extend(notes)
+        call = f"result = pkmopt.optimize({text})"
+    elif scenario == "run_study":
+        st = rng.choice([s for s in ctx.studies if s["runnable"]])
+        rel = add_study(case, ctx, st)
+        text, notes = py_args(rng, [("", repr(rel)), ("out", "'res'"), ("threads", "1")])
+        case.mutations.extend(notes)
+        call = f"result = pkmopt.run_study({text})"
+        case.meta["py_out_dir"] = "res"
+    elif scenario == "read_front":
+        r = rng.choice(ctx.results)
+        case.trees.append(("res", r["dir"]))
+        case.add_file("res/pareto.json", read_text(Path(r["dir"]) / "pareto.json"), "json")
+        case.add_file("res/pareto.csv", read_text(Path(r["dir"]) / "pareto.csv"), "csv")
+        text, notes = py_args(rng, [("", "'res'")])
+        case.mutations.extend(notes)
+        call = f"result = pkmopt.read_front({text})"
+    elif scenario == "calibrate":
+        c = rng.choice(ctx.calibration_sets)
+        case.add_file("calibration.yaml", c["calibration"], "yaml:calibration")
+        case.add_file(c["machine_rel"], c["machine"], "yaml:machine")
+        case.add_file(c["measurements_rel"], c["measurements"], "csv")
+        text, notes = py_args(rng, [("", "'calibration.yaml'"),
+                                    ("out", rng.choice(["None", "'cal'"]))])
+        case.mutations.extend(notes)
+        call = f"result = pkmopt.calibrate({text})"
+    else:
+        m = rng.choice(ctx.machines_for["describe"])
+        rel = add_machine(case, ctx, m)
+        setup.append(f"d = yaml.safe_load(open({rel!r}, encoding='utf-8'))")
+        text, notes = py_args(rng, [("", "d")])
+        case.mutations.extend(notes)
+        call = f"result = pkmopt.machine_from_dict({text})"
+    case.add_file("case.py", PY_TEMPLATE.format(
+        setup="\n".join("    " + ln for blk in setup for ln in blk.split("\n")),
+        call="\n".join("    " + ln for ln in call.split("\n"))))
+    case.meta["pos_kinds"] = []
+
+
 def gen_export(case, rng, ctx):
     r = rng.choice(ctx.results)
     case.trees.append(("res", r["dir"]))
@@ -1313,7 +1539,8 @@ GENERATORS = {
     "workspace": gen_workspace, "trajectory": gen_trajectory,
     "calibration-poses": gen_calibration_poses, "simulate-measurements": gen_simulate,
     "calibrate": gen_calibrate, "validate": gen_validate, "run": gen_run,
-    "export": gen_export, "compare": gen_compare,
+    "export": gen_export, "compare": gen_compare, "draw": gen_draw,
+    "task-poses": gen_task_poses, "python": gen_python,
 }
 
 
@@ -1554,6 +1781,28 @@ def mutate_options(case, rng, ctx):
 
 
 def mutate_case(case, rng, ctx):
+    if case.cmd == "python":
+        case.mutated = bool(case.mutations)
+        files = sorted(k for k in case.kinds if k != "case.py")
+        if not files or rng.random() < 0.5:
+            return
+        case.mutated = True
+        rel = rng.choice(files)
+        kind = case.kinds[rel]
+        text = case.files[rel][1]
+        if kind.startswith("yaml"):
+            group = kind.split(":", 1)[1] if ":" in kind else ""
+            new, desc = yaml_mutation(text, rng, ctx.doc_keys.get(group, ()),
+                                      rng.random() < 0.35)
+        elif kind == "csv":
+            new, desc = csv_mutation(text, rng, rng.random() < 0.35)
+        elif kind == "json":
+            new, desc = json_mutation(text, rng, rng.random() < 0.35)
+        else:
+            new, desc = text_mutation(text, rng)
+        case.files[rel] = ("file", new)
+        case.mutations.append(f"{rel}: {desc}")
+        return
     r = rng.random()
     if r < 0.04:
         return  # unmutated baseline run
@@ -1975,6 +2224,46 @@ def check_run(case, rc, stdout, stderr, before, after, feeders, timeout):
     return findings
 
 
+def check_python_run(case, rc, stdout, stderr, before, after, timeout):
+    """The Python module's contract: no crash or hang, only pkmopt.InputError or TypeError
+    raised (with a one-line message), no NaN returned, nothing left behind by an InputError."""
+    findings = []
+    if rc is None:
+        return [("hang", f"no exit within {timeout} s")]
+    if rc < 0:
+        try:
+            sig = signal.Signals(-rc).name
+        except ValueError:
+            sig = str(-rc)
+        return [("crash", f"the interpreter was killed by signal {sig}")]
+    lines = [ln for ln in stdout.split(b"\n") if ln.startswith(b"{")]
+    if rc != 0 or not lines:
+        return [("crash", f"the interpreter exited {rc}: {stderr[-300:]!r}")]
+    try:
+        res = json.loads(lines[-1])
+    except ValueError:
+        return [("harness_error", f"unreadable result line {lines[-1][:200]!r}")]
+    case.meta["py_status"] = res.get("status")
+    if res["status"] == "foreign":
+        findings.append(("python_foreign_exception",
+                         f"{res['type']}: {res.get('message', '')[:200]}"))
+    elif res["status"] == "raised":
+        if res.get("lines", 1) != 1:
+            findings.append(("python_multiline_message", res.get("message", "")[:200]))
+        if res["type"] == "InputError":
+            out_dir = case.meta.get("py_out_dir")
+            new_files = [rel for rel, info in after.items() if not stat.S_ISDIR(info[0]) and
+                         rel not in before and not rel.startswith("__pycache__") and
+                         not (out_dir and os.path.dirname(rel) == out_dir and
+                              os.path.basename(rel) in RUN_JOURNAL_FILES)]
+            if new_files:
+                findings.append(("exit2_leftover", "new files after InputError: " +
+                                 ", ".join(sorted(new_files)[:10])))
+    elif res["status"] == "ok" and res.get("nan"):
+        findings.append(("nan_output", "; ".join(res["nan"][:6])))
+    return findings
+
+
 def execute(case, binary, scratch, timeout, env, keep_root):
     root = scratch / f"{case.k:06d}"
     if root.exists():
@@ -1991,9 +2280,17 @@ def execute(case, binary, scratch, timeout, env, keep_root):
             fifos.append((work / rel, b"", True))
     before = snapshot(work)
     argv = case.argv()
-    rc, so, se, secs, feeders = run_binary(binary, argv, work, timeout, root, env, fifos)
-    after = snapshot(work)
-    findings = check_run(case, rc, so, se, before, after, feeders, timeout)
+    if case.cmd == "python":
+        py_env = dict(env)
+        py_env["PYTHONPATH"] = str(Path(binary).resolve().parent.parent / "python")
+        py_env["PYTHONDONTWRITEBYTECODE"] = "1"
+        rc, so, se, secs, feeders = run_binary(PYTHON, argv, work, timeout, root, py_env, fifos)
+        after = snapshot(work)
+        findings = check_python_run(case, rc, so, se, before, after, timeout)
+    else:
+        rc, so, se, secs, feeders = run_binary(binary, argv, work, timeout, root, env, fifos)
+        after = snapshot(work)
+        findings = check_run(case, rc, so, se, before, after, feeders, timeout)
     result = {"k": case.k, "cmd": case.cmd, "rc": rc, "secs": round(secs, 4),
               "mutated": case.mutated, "mutations": case.mutations,
               "findings": [list(f) for f in findings], "argv": argv,
@@ -2258,7 +2555,8 @@ def prepare(binary, out, env, log):
             ctx.seed_notes.append(f"validate {name}: exit {rc}: {se.strip()}")
             continue
         st = {"name": name, "text": text, "catalog": cat, "runnable": False, "result": None,
-              "status": None}
+              "status": None, "design": bool(re.search(r"(?m)^machine:", text)),
+              "knee_file": None}
         t0 = time.monotonic()
         rc, so, se = prep_run(binary, ["run", "study.yaml", "--out", "res", "--threads", "1",
                                        "--no-progress"], d, env)
@@ -2273,6 +2571,7 @@ def prepare(binary, out, env, log):
                 front = json.loads(pj.read_text())
                 knee = next((x.get("machine_file") for x in front.get("designs", [])
                              if x.get("id") == front.get("knee")), None)
+                st["knee_file"] = knee
                 r = {"name": name, "dir": str(d / "res"), "knee_file": knee,
                      "objectives": [o["name"] for o in front.get("objectives", [])]}
                 rc2, _, se2 = prep_run(binary, ["export", "res", "--format", "html", "--out",
@@ -2311,6 +2610,8 @@ CATEGORY_LABELS = [
     ("exit2_leftover", "exit 2 leaving new files"),
     ("exit3_no_warning", "exit 3 without a warning line"),
     ("baseline_failed", "unmutated seed input failing"),
+    ("python_foreign_exception", "Python: an exception other than InputError or TypeError"),
+    ("python_multiline_message", "Python: a message of more than one line"),
 ]
 
 
