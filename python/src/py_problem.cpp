@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -228,12 +229,19 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
   d["problem"] = problem.name();
   d["status"] = outcome.status;
   d["message"] = front.message;
-  d["x"] = rows_to_array(front.x, problem.num_variables());
-  d["fitness"] = rows_to_array(front.fitness, problem.fitness_size());
-  std::vector<std::vector<double>> objectives;
-  for (const auto& f : front.fitness)
+  // A point whose values are not numbers (a failed evaluation) is no answer: left out here, and
+  // None in 'single' (nothing returned holds NaN).
+  std::vector<std::vector<double>> xs, fitness, objectives;
+  for (std::size_t k = 0; k < front.fitness.size(); ++k) {
+    const auto& f = front.fitness[k];
+    if (std::any_of(f.begin(), f.end(), [](double v) { return std::isnan(v); })) continue;
+    xs.push_back(front.x[k]);
+    fitness.push_back(f);
     objectives.emplace_back(f.begin(),
                             f.begin() + static_cast<std::ptrdiff_t>(problem.num_objectives()));
+  }
+  d["x"] = rows_to_array(xs, problem.num_variables());
+  d["fitness"] = rows_to_array(fitness, problem.fitness_size());
   d["objectives"] = rows_to_array(objectives, problem.num_objectives());
   d["evaluations"] = front.fitness_evaluations;
   d["gradient_evaluations"] = front.gradient_evaluations;
@@ -241,10 +249,13 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
   if (outcome.single) {
     const SolveResult& s = *outcome.single;
     py::dict single;
+    auto number = [](double v) { return std::isnan(v) ? py::object(py::none()) : py::float_(v); };
+    py::list single_fitness;
+    for (double v : s.fitness) single_fitness.append(number(v));
     single["x"] = s.x;
-    single["fitness"] = s.fitness;
-    single["objective"] = s.objective;
-    single["constraint_violation"] = s.constraint_violation;
+    single["fitness"] = single_fitness;
+    single["objective"] = number(s.objective);
+    single["constraint_violation"] = number(s.constraint_violation);
     single["iterations"] = s.iterations;
     single["usable"] = s.usable();
     single["message"] = s.message;
@@ -274,8 +285,9 @@ optimizer: the `optimizer:` section of a study file as a dict, e.g. {'algorithm'
 threads: OpenMP threads for built-in problems (Python problems are evaluated serially).
 
 Returns {'x' (N, n), 'fitness' (N, m + p + q), 'objectives' (N, m): the feasible
-non-dominated designs found, sorted; 'status', 'message', 'evaluations', ...}; the same seed
-gives the same front.)");
+non-dominated designs found, sorted (a point whose values are NaN, a failed evaluation, is
+never among them; in 'single' such values are None); 'status', 'message', 'evaluations', ...};
+the same seed gives the same front.)");
 }
 
 }  // namespace pkmopt::python

@@ -188,3 +188,40 @@ def test_a_python_objective_that_returns_nan_is_no_answer():
         result = pkmopt.optimize(Nan(), optimizer)
         assert result["status"] == "evaluation_error", (optimizer, result["status"])
 
+
+
+def _holds_nan(value):
+    if isinstance(value, dict):
+        return any(_holds_nan(v) for v in value.values())
+    if isinstance(value, (list, tuple)):
+        return any(_holds_nan(v) for v in value)
+    if isinstance(value, np.ndarray) and value.dtype.kind == "f":
+        return bool(np.isnan(value).any())
+    return isinstance(value, float) and math.isnan(value)
+
+
+def test_an_objective_that_fails_now_and_then_returns_no_nan():
+    # A fitness that returns NaN on every third call: under NLopt the solve went on (NaN is
+    # HUGE_VAL to it) and ended on a NaN final point, returned as the answer with NaN in 'x',
+    # 'fitness' and 'single'. Such a point is now no answer, and nothing returned holds NaN.
+    class Sometimes:
+        calls = 0
+
+        def bounds(self):
+            return ([0.0, 0.0], [1.0, 1.0])
+
+        def fitness(self, x):
+            Sometimes.calls += 1
+            return [float("nan")] if Sometimes.calls % 3 == 0 else [x[0] + x[1] ** 2]
+
+        def gradient(self, x):
+            return [[1.0, 2 * x[1]]]
+
+    for optimizer in ({"algorithm": "nlopt:LN_COBYLA"}, {"algorithm": "nlopt:LD_SLSQP"},
+                      {"algorithm": "ipopt", "start": [0.5, 0.5]}):
+        Sometimes.calls = 0
+        result = pkmopt.optimize(Sometimes(), optimizer)
+        assert not _holds_nan(result), (optimizer, result)
+        if result["status"] == "evaluation_error":
+            assert result["single"]["objective"] is None or \
+                math.isfinite(result["single"]["objective"]), optimizer
