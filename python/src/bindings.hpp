@@ -26,6 +26,10 @@ void bind_problems(py::module_& m);
 /// `name` where a file would name the file, and the key path ("legs.min_length").
 YamlValue yaml_from_python(py::handle value, const std::string& name);
 
+/// repr(value) for a message: on one line (whitespace runs become one space), at most 120
+/// characters ("..." marks a cut).
+std::string python_repr(py::handle value);
+
 /// A file system path from a str or os.PathLike.
 std::string path_from_python(py::handle path);
 

@@ -15,17 +15,36 @@ namespace pkmopt::python {
 std::string path_from_python(py::handle path) {
   const py::object text = py::module_::import("os").attr("fspath")(path);
   if (!py::isinstance<py::str>(text))
-    throw InputError(
-        fmt::format("expected a path as text, found {}", py::repr(text).cast<std::string>()));
+    throw InputError(fmt::format("expected a path as text, found {}", python_repr(text)));
   try {
     return text.cast<std::string>();
   } catch (const py::error_already_set&) {  // not encodable as UTF-8 (a lone surrogate)
-    throw InputError(
-        fmt::format("expected a path as UTF-8 text, found {}", py::repr(text).cast<std::string>()));
+    throw InputError(fmt::format("expected a path as UTF-8 text, found {}", python_repr(text)));
   } catch (const py::cast_error&) {
-    throw InputError(
-        fmt::format("expected a path as UTF-8 text, found {}", py::repr(text).cast<std::string>()));
+    throw InputError(fmt::format("expected a path as UTF-8 text, found {}", python_repr(text)));
   }
+}
+
+std::string python_repr(py::handle value) {
+  std::string text;
+  try {
+    text = py::repr(value).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    text = "<an object without a printable repr>";
+  }
+  std::string line;
+  for (const char c : text) {
+    const bool space = c == ' ' || c == '\n' || c == '\r' || c == '\t';
+    if (space && (line.empty() || line.back() == ' ')) continue;
+    line += space ? ' ' : c;
+  }
+  constexpr std::size_t kMax = 120;
+  if (line.size() > kMax) {
+    std::size_t cut = kMax;
+    while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80) --cut;  // UTF-8
+    line = line.substr(0, cut) + "...";
+  }
+  return line;
 }
 
 double finite_number(py::handle value, const std::string& what) {
@@ -33,8 +52,8 @@ double finite_number(py::handle value, const std::string& what) {
   try {
     number = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
   } catch (const py::error_already_set&) {
-    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
-                                 py::repr(value).cast<std::string>()));
+    throw InputError(
+        fmt::format("{}: expected a finite number, found {}", what, python_repr(value)));
   }
   check_policy_number(number, false, what);
   return number;
@@ -48,14 +67,14 @@ double length_number(py::handle value, const std::string& what) {
 
 void check_policy_number(double x, bool length, const std::string& what) {
   if (!std::isfinite(x))
-    throw InputError(fmt::format("{}: expected a finite number, found {}", what,
-                                 py::repr(py::float_(x)).cast<std::string>()));
+    throw InputError(
+        fmt::format("{}: expected a finite number, found {}", what, python_repr(py::float_(x))));
   if (!sane_input_number(x))
     throw InputError(fmt::format("{}: expected {}, found {}", what, kSaneNumberText,
-                                 py::repr(py::float_(x)).cast<std::string>()));
+                                 python_repr(py::float_(x))));
   if (length && !sane_input_length(x))
-    throw InputError(fmt::format("{}: expected {}, found {}", what, kLengthText,
-                                 py::repr(py::float_(x)).cast<std::string>()));
+    throw InputError(
+        fmt::format("{}: expected {}, found {}", what, kLengthText, python_repr(py::float_(x))));
 }
 
 int threads_from_python(const py::object& threads) {
@@ -71,7 +90,7 @@ int threads_from_python(const py::object& threads) {
   }
   if (!integer || overflow || n < 1 || n > kMaxThreads)
     throw InputError(fmt::format("threads: expected an integer 1..{} or None, found {}",
-                                 kMaxThreads, py::repr(threads).cast<std::string>()));
+                                 kMaxThreads, python_repr(threads)));
   return static_cast<int>(n);
 }
 

@@ -60,7 +60,7 @@ Pose pose_from_python(py::handle value, const std::string& what) {
   if (!a || a.ndim() != 1 || (a.shape(0) != 3 && a.shape(0) != 6))
     throw InputError(fmt::format(
         "{}: expected 3 numbers x, y, z (m) or 6 numbers x, y, z (m), rx, ry, rz (deg), found {}",
-        what, py::repr(value).cast<std::string>()));
+        what, python_repr(value)));
   Eigen::Vector3d deg = Eigen::Vector3d::Zero();
   Pose pose;
   for (py::ssize_t k = 0; k < a.shape(0); ++k) {
@@ -90,7 +90,7 @@ Wrench wrench_from_python(const py::object& value) {
     throw InputError(
         fmt::format("wrench: expected 6 numbers fx, fy, fz (N), mx, my, mz (N*m), "
                     "found {}",
-                    py::repr(value).cast<std::string>()));
+                    python_repr(value)));
   const py::sequence s = value.cast<py::sequence>();
   for (int i = 0; i < 6; ++i) {
     w(i) = finite_number(s[i], fmt::format("wrench[{}]", i));
@@ -139,7 +139,7 @@ py::array_t<T> output_array(const py::object& out, const char* key,
         "out['{}']: expected a writeable C-contiguous {} array of shape {} (the arrays of an "
         "earlier analyze with as many poses and the same options), found {}",
         key, std::is_same_v<T, bool> ? "bool" : "float64", expected,
-        py::repr(py::getattr(value, "shape", py::none())).cast<std::string>()));
+        python_repr(py::getattr(value, "shape", py::none()))));
   return value.cast<py::array_t<T>>();
 }
 
@@ -288,8 +288,7 @@ py::dict fk(const PyMachine& self, py::handle q_in, const py::object& guess_in,
   const DoubleArray qa = DoubleArray::ensure(q_in);
   if (!qa || qa.ndim() != 1 || qa.shape(0) != na)
     throw InputError(fmt::format("q: expected {} actuator coordinates ({}), found {}", na,
-                                 machine.revolute_actuators() ? "deg" : "m",
-                                 py::repr(q_in).cast<std::string>()));
+                                 machine.revolute_actuators() ? "deg" : "m", python_repr(q_in)));
   Eigen::VectorXd q(na);
   const double q_scale = machine.revolute_actuators() ? kDegToRad : 1.0;
   for (int i = 0; i < na; ++i)
@@ -298,8 +297,7 @@ py::dict fk(const PyMachine& self, py::handle q_in, const py::object& guess_in,
                 : length_number(py::float_(qa.at(i)), fmt::format("q[{}]", i))) *
            q_scale;
   if (const std::string expected = machine.actuator_coordinates_requirement(q); !expected.empty())
-    throw InputError(
-        fmt::format("q: expected {}, found {}", expected, py::repr(q_in).cast<std::string>()));
+    throw InputError(fmt::format("q: expected {}, found {}", expected, python_repr(q_in)));
   std::optional<Pose> guess;
   if (!guess_in.is_none()) guess = pose_from_python(guess_in, "guess");
   if (max_iterations < 1)
@@ -346,7 +344,7 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
     if (!py::isinstance<py::sequence>(orientation) || py::isinstance<py::str>(orientation) ||
         py::len(orientation) != 3)
       throw InputError(fmt::format("orientation: expected 3 angles rx, ry, rz (deg), found {}",
-                                   py::repr(orientation).cast<std::string>()));
+                                   python_repr(orientation)));
     const py::sequence s = orientation.cast<py::sequence>();
     for (int k = 0; k < 3; ++k)
       options.orientations.nominal_angles(k) =

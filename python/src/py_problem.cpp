@@ -29,8 +29,8 @@ std::size_t count_value(const py::object& value, const std::string& what) {
                           ? PyLong_AsLongLongAndOverflow(value.ptr(), &overflow)
                           : -1;
   if (overflow != 0 || n < 0 || n > 1'000'000)
-    throw InputError(fmt::format("{}: expected an integer 0..1000000, found {}", what,
-                                 py::repr(value).cast<std::string>()));
+    throw InputError(
+        fmt::format("{}: expected an integer 0..1000000, found {}", what, python_repr(value)));
   return static_cast<std::size_t>(n);
 }
 
@@ -169,7 +169,7 @@ class PythonProblem final : public Problem {
     if (!a || a.size() != static_cast<py::ssize_t>(m))
       throw InputError(fmt::format(
           "problem.{}: expected {} numbers ([objectives | equalities | inequalities]), found {}",
-          what, m, py::repr(value).cast<std::string>()));
+          what, m, python_repr(value)));
     return std::vector<double>(a.data(), a.data() + m);
   }
 

@@ -13,7 +13,7 @@ namespace {
 std::string float_text(double value) {
   if (std::isnan(value)) return ".nan";
   if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
-  return py::repr(py::float_(value)).cast<std::string>();
+  return python_repr(py::float_(value));
 }
 
 YAML::Node to_node(py::handle value, const std::string& where, int depth) {
@@ -31,8 +31,8 @@ YAML::Node to_node(py::handle value, const std::string& where, int depth) {
     YAML::Node map(YAML::NodeType::Map);
     for (const auto& [key, item] : value.cast<py::dict>()) {
       if (!py::isinstance<py::str>(key))
-        throw InputError(fmt::format("{}: expected text keys, found the key {}", where,
-                                     py::repr(key).cast<std::string>()));
+        throw InputError(
+            fmt::format("{}: expected text keys, found the key {}", where, python_repr(key)));
       const std::string name = key.cast<std::string>();
       map[name] = to_node(item, where.empty() ? name : where + "." + name, depth + 1);
     }

@@ -63,3 +63,16 @@ def test_a_path_that_is_not_utf8_raises_input_error():
     with pytest.raises(pkmopt.InputError, match="expected a path as UTF-8 text"):
         pkmopt.load_machine("machine\udc80.yaml")
 
+
+
+def test_a_message_is_one_line_whatever_was_passed():
+    # The repr of a numpy array spans lines; a message quoting it was several lines long.
+    machine = pkmopt.load_machine(source("examples/hexapod.yaml"))
+    for call in (lambda: machine.ik(np.zeros((2, 6), dtype=complex)),
+                 lambda: machine.analyze(np.zeros((1, 6)), threads=np.zeros((4, 12))[:, ::2]),
+                 lambda: machine.fk(np.zeros((50, 50)))):
+        with pytest.raises((pkmopt.InputError, TypeError)) as error:
+            call()
+        message = str(error.value)
+        assert "\n" not in message, message
+        assert len(message) < 400, message
