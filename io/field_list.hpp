@@ -603,7 +603,7 @@ class FieldReader {
     }
   }
 
-  const YamlValue& section_;
+  const YamlValue section_;  // a copy: a reader made of a temporary (required(...)) outlives it
   std::vector<std::string> keys_;
 };
 
