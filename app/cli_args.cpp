@@ -57,16 +57,21 @@ void bad_option(std::string_view option, std::string_view expected, double found
 
 namespace cli {
 
-CLI::Validator length_in_metres() {
+CLI::Validator number_check(bool (*accept)(double), std::string_view expected,
+                            const std::string& name) {
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [accept, expected](std::string& text) -> std::string {
         char* end = nullptr;
         const double v = read_input_number(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0') return {};  // CLI11 reports a non-number
-        if (sane_input_length(v)) return {};
-        return "expected " + std::string(kLengthText) + ", found " + text;
+        if (accept(v)) return {};
+        return "expected " + std::string(expected) + ", found " + text;
       },
-      "", "length in metres");
+      "", name);
+}
+
+CLI::Validator length_in_metres() {
+  return number_check(sane_input_length, kLengthText, "length in metres");
 }
 
 }  // namespace cli

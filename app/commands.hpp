@@ -3,6 +3,8 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <string>
+#include <string_view>
 
 namespace pkmopt::cli {
 
@@ -20,6 +22,11 @@ void add_compare_command(CLI::App& app);
 void add_trajectory_command(CLI::App& app);
 void add_task_poses_command(CLI::App& app);
 void add_draw_command(CLI::App& app);
+
+/// The check of a number option: `accept(value)` or "expected EXPECTED, found TEXT" (a value
+/// that is not a number is left to CLI11's own message).
+CLI::Validator number_check(bool (*accept)(double), std::string_view expected,
+                            const std::string& name);
 
 /// The check of an option that is a length in metres: within +-1000 m (io/number_policy.hpp),
 /// "expected a length within +-1000 m, found 1e15".

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "app/commands.hpp"
 #include "io/input_error.hpp"
 #include "io/number_policy.hpp"
 
@@ -139,15 +140,7 @@ void report(const char* kind, const std::string& message) noexcept {
 // Every real-valued option of every command obeys the input number policy
 // (io/number_policy.hpp): finite, within +-1e15, not subnormal; no option takes an empty value.
 void check_real_options(CLI::App& app) {
-  const CLI::Validator sane(
-      [](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double v = read_input_number(text.c_str(), &end);
-        if (end == text.c_str() || *end != '\0') return {};  // CLI11 reports a non-number
-        if (sane_input_number(v)) return {};
-        return "expected " + std::string(kSaneNumberText) + ", found " + text;
-      },
-      "", "sane number");
+  const CLI::Validator sane = cli::number_check(sane_input_number, kSaneNumberText, "sane number");
   // An option given an empty value ("--threads ''") is not given a value: refused, whatever its
   // type (CLI11 would read '' as 0 or as an empty text).
   const CLI::Validator non_empty(
