@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string_view>
 
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
@@ -113,8 +114,42 @@ class ParetoReader {
   std::string file_;
 };
 
+// The number policy's underflow rule (docs/conventions.md): a number written non-zero that is too
+// small for a double (1e-400, which the JSON parser reads as 0) is refused, as in every other
+// input. JSON numbers stand outside strings only.
+void check_json_underflow(const std::string& text, const std::string& file) {
+  int line = 1;
+  std::size_t line_start = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      line_start = i + 1;
+    } else if (c == '"') {
+      for (++i; i < text.size() && text[i] != '"'; ++i)
+        if (text[i] == '\\') ++i;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      std::size_t end = i + 1;
+      while (end < text.size() &&
+             std::string_view("0123456789.eE+-").find(text[end]) != std::string_view::npos)
+        ++end;
+      const std::string token = text.substr(i, end - i);
+      char* stop = nullptr;
+      const double v = read_input_number(token.c_str(), &stop);
+      if (stop == token.c_str() + token.size() && v != 0.0 &&
+          std::abs(v) < std::numeric_limits<double>::min())
+        throw InputError(
+            fmt::format("{}expected {}, found '{}'",
+                        location_prefix(file, line, static_cast<int>(i - line_start) + 1),
+                        kSaneNumberText, token));
+      i = end - 1;
+    }
+  }
+}
+
 json parse_json_text(const std::string& text, const std::string& file) {
   require_utf8(text, file);
+  check_json_underflow(text, file);
   try {
     return json::parse(text);
   } catch (const json::out_of_range& e) {

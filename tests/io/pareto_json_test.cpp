@@ -224,6 +224,18 @@ TEST(ParetoCsv, ColumnsAndValuesOfTheFixtures) {
 
 // Bad files: the message names the key, what was expected and what was found; syntax errors
 // give the line and column.
+// The number policy's underflow rule: 1e-400, which the JSON parser reads as 0, is refused as it is
+// in the other inputs (it was read silently as 0); a written zero in any form is 0; strings are
+// not numbers.
+TEST(ReadParetoJson, ANumberThatUnderflowsIsRefused) {
+  EXPECT_EQ(read_error("{\n  \"study\": \"1e-400\",\n  \"x\": [0, 1e-400]\n}\n"),
+            ":3:12: expected a finite number within +-1e15 (0 or at least 1e-30 in magnitude), "
+            "found '1e-400'");
+  EXPECT_EQ(read_error("{\"x\": -2.5e-330}").rfind(":1:7: expected a finite number", 0), 0u);
+  const std::string zeros = read_error("{\"study\": \"a 1e-400 b\", \"x\": [0e-400, 0.0, -0]}");
+  EXPECT_EQ(zeros.find("1e-400"), std::string::npos) << zeros;
+}
+
 TEST(ReadParetoJson, ErrorsNameTheKey) {
   const std::string two = read_text(kFixtures / "two/pareto.json");
   nlohmann::json root = nlohmann::json::parse(two);
