@@ -30,6 +30,10 @@ YamlValue yaml_from_python(py::handle value, const std::string& name);
 /// characters ("..." marks a cut).
 std::string python_repr(py::handle value);
 
+/// A str as UTF-8 text (InputError "what: expected UTF-8 text, found ..." for a str that is not
+/// encodable, such as one holding a lone surrogate; pybind11 would raise RuntimeError).
+std::string text_from_python(py::handle value, const std::string& what);
+
 /// A file system path from a str or os.PathLike.
 std::string path_from_python(py::handle path);
 

@@ -25,6 +25,16 @@ std::string path_from_python(py::handle path) {
   }
 }
 
+std::string text_from_python(py::handle value, const std::string& what) {
+  try {
+    return value.cast<std::string>();
+  } catch (const py::error_already_set&) {  // not encodable as UTF-8 (a lone surrogate)
+    throw InputError(fmt::format("{}: expected UTF-8 text, found {}", what, python_repr(value)));
+  } catch (const py::cast_error&) {
+    throw InputError(fmt::format("{}: expected UTF-8 text, found {}", what, python_repr(value)));
+  }
+}
+
 std::string python_repr(py::handle value) {
   std::string text;
   try {

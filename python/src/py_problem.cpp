@@ -74,7 +74,7 @@ class PythonProblem final : public Problem {
     batch_ = py::hasattr(obj_, "batch_fitness");
     gradient_ = py::hasattr(obj_, "gradient");
     name_ = py::hasattr(obj_, "name")
-                ? py::str(obj_.attr("name")).cast<std::string>()
+                ? text_from_python(py::str(obj_.attr("name")), "problem.name")
                 : py::str(py::type::of(obj_).attr("__name__")).cast<std::string>();
   }
 
@@ -187,7 +187,7 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
   const PythonProblem* python_problem = nullptr;
   if (py::isinstance<py::str>(problem_in)) {
     try {
-      owned = make_benchmark(problem_in.cast<std::string>());
+      owned = make_benchmark(text_from_python(problem_in, "problem"));
     } catch (const std::invalid_argument& e) {
       throw InputError(fmt::format("problem: {}", e.what()));
     }
@@ -197,7 +197,7 @@ py::dict optimize(const py::object& problem_in, const py::object& optimizer,
       throw InputError("problem: expected {name, variables, objectives} of a built-in problem");
     if (!py::isinstance<py::str>(d["name"]))
       throw InputError("problem.name: expected the name of a built-in problem (zdt1, dtlz2, ...)");
-    const std::string name = d["name"].cast<std::string>();
+    const std::string name = text_from_python(d["name"], "problem.name");
     const std::size_t variables =
         d.contains("variables") ? count_value(d["variables"], "problem.variables") : 0;
     const std::size_t objectives =

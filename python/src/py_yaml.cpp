@@ -21,7 +21,8 @@ YAML::Node to_node(py::handle value, const std::string& where, int depth) {
     throw InputError(fmt::format("{}: expected data nested at most 64 levels deep", where));
   if (value.is_none()) return YAML::Node(YAML::NodeType::Null);
   if (py::isinstance<py::bool_>(value)) return YAML::Node(value.cast<bool>() ? "true" : "false");
-  if (py::isinstance<py::str>(value)) return YAML::Node(value.cast<std::string>());
+  if (py::isinstance<py::str>(value))
+    return YAML::Node(text_from_python(value, where.empty() ? "value" : where));
   if (py::isinstance<py::int_>(value)) return YAML::Node(py::str(value).cast<std::string>());
   if (py::isinstance<py::float_>(value)) return YAML::Node(float_text(value.cast<double>()));
   // numpy scalars and arrays: their Python values (item / tolist).
@@ -33,7 +34,7 @@ YAML::Node to_node(py::handle value, const std::string& where, int depth) {
       if (!py::isinstance<py::str>(key))
         throw InputError(
             fmt::format("{}: expected text keys, found the key {}", where, python_repr(key)));
-      const std::string name = key.cast<std::string>();
+      const std::string name = text_from_python(key, where.empty() ? "key" : where + " key");
       map[name] = to_node(item, where.empty() ? name : where + "." + name, depth + 1);
     }
     return map;

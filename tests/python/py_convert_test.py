@@ -76,3 +76,15 @@ def test_a_message_is_one_line_whatever_was_passed():
         message = str(error.value)
         assert "\n" not in message, message
         assert len(message) < 400, message
+
+
+def test_text_with_a_lone_surrogate_raises_input_error():
+    # pkmopt.optimize("\udcff", ...) raised pybind11's RuntimeError ("Unable to cast Python
+    # instance to C++ type"); every str the module reads is UTF-8 text or an InputError.
+    calls = (lambda: pkmopt.optimize("\udcff", {"algorithm": "nsga2"}),
+             lambda: pkmopt.optimize({"name": "\udcff"}, {"algorithm": "nsga2"}),
+             lambda: pkmopt.machine_from_dict({"model": "\udcff"}),
+             lambda: pkmopt.machine_from_dict({"\udcff": 1}))
+    for call in calls:
+        with pytest.raises(pkmopt.InputError, match="expected UTF-8 text"):
+            call()
