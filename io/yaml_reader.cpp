@@ -270,6 +270,17 @@ bool YamlValue::as_bool() const {
 
 std::string YamlValue::as_string() const {
   if (!node_.IsScalar()) fail("a string", describe());
+  // The file is UTF-8 (checked when read), but yaml-cpp decodes the escapes \N and \_ of a
+  // double-quoted scalar to single bytes (0x85, 0xA0) that are not: refused here, so that no
+  // output (JSON above all) receives them.
+  try {
+    require_utf8(node_.Scalar(), "");
+  } catch (const InputError&) {
+    fail(
+        "UTF-8 text (the escapes \\N and \\_ are not read as UTF-8: write the character "
+        "itself)",
+        "a string that is not UTF-8");
+  }
   return node_.Scalar();
 }
 

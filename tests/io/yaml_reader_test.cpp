@@ -135,3 +135,25 @@ TEST(YamlReader, FilesAndMalformedText) {
 
 }  // namespace
 }  // namespace pkmopt
+
+namespace pkmopt {
+namespace {
+
+// A study description "\N\L\P" made `task-poses` exit 1 (nlohmann::json refused the byte 0x85 that
+// yaml-cpp decodes \N to): a string that is not UTF-8 after decoding is refused where it is read.
+TEST(YamlReader, EscapesThatDecodeToBytesThatAreNotUtf8) {
+  for (const char* escaped : {"\"\\N\"", "\"a\\_b\""}) {
+    const std::string message =
+        error_of(std::string("description: ") + escaped + "\n",
+                 [](const YamlValue& v) { (void)v.required("description").as_string(); });
+    EXPECT_NE(message.find("m.yaml:1:14: description: expected UTF-8 text"), std::string::npos)
+        << message;
+  }
+  // \L and \P decode to U+2028 and U+2029, valid UTF-8.
+  EXPECT_EQ(error_of("description: \"\\L\\P\"\n",
+                     [](const YamlValue& v) { (void)v.required("description").as_string(); }),
+            "no error");
+}
+
+}  // namespace
+}  // namespace pkmopt
