@@ -52,6 +52,10 @@ void check_policy_number(double x, bool length, const std::string& what);
 pybind11::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows,
                                         std::size_t columns);
 
+/// `a` as a numpy masked array (numpy.ma) whose mask marks the NaN entries: a value a file holds
+/// as missing (JSON null, an empty CSV cell) is masked, so nothing visible in it is NaN.
+py::object masked_where_missing(const py::array_t<double>& a);
+
 /// OpenMP threads from Python: None (0: all cores) or an integer 1..512 (InputError otherwise).
 int threads_from_python(const py::object& threads);
 

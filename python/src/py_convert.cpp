@@ -114,4 +114,9 @@ py::array_t<double> rows_to_array(const std::vector<std::vector<double>>& rows,
   return a;
 }
 
+py::object masked_where_missing(const py::array_t<double>& a) {
+  const py::module_ np = py::module_::import("numpy");
+  return np.attr("ma").attr("masked_array")(a, py::arg("mask") = np.attr("isnan")(a));
+}
+
 }  // namespace pkmopt::python

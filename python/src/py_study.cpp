@@ -102,7 +102,8 @@ py::dict read_front(py::handle dir_in) {
     throw InputError(
         fmt::format("{}: expected pareto.csv (a finished run), found none", dir.string()));
   py::dict out;
-  // Every column of pareto.csv: numbers as float arrays (empty cells: nan), text as lists.
+  // Every column of pareto.csv: numbers as masked float arrays (empty cells masked), text as
+  // lists.
   const CsvTable table = read_csv_file(csv_path.string());
   py::dict columns;
   for (std::size_t c = 0; c < table.header.size(); ++c) {
@@ -125,7 +126,7 @@ py::dict read_front(py::handle dir_in) {
                                                         ? std::numeric_limits<double>::quiet_NaN()
                                                         : std::strtod(cell.c_str(), nullptr);
       }
-      columns[py::str(table.header[c])] = a;
+      columns[py::str(table.header[c])] = masked_where_missing(a);
     } else {
       py::list l;
       for (const CsvRow& row : table.rows) l.append(row.cells[c]);
@@ -172,10 +173,10 @@ py::dict read_front(py::handle dir_in) {
   out["parameter_info"] = parameter_info;
   out["objective_info"] = objective_info;
   out["constraint_info"] = constraint_info;
-  out["parameters"] = rows_to_array(parameters, front.parameters.size());
-  out["home_height"] = home;
-  out["objectives"] = rows_to_array(objectives, front.objectives.size());
-  out["constraints"] = rows_to_array(constraints, front.constraints.size());
+  out["parameters"] = masked_where_missing(rows_to_array(parameters, front.parameters.size()));
+  out["home_height"] = masked_where_missing(home);
+  out["objectives"] = masked_where_missing(rows_to_array(objectives, front.objectives.size()));
+  out["constraints"] = masked_where_missing(rows_to_array(constraints, front.constraints.size()));
   out["feasible"] = feasible;
   out["machine_files"] = machine_files;
   out["knee"] = front.knee ? py::cast(*front.knee) : py::object(py::none());

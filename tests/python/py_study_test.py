@@ -102,6 +102,39 @@ def test_read_front_gives_text_columns_as_text(tmp_path):
     assert isinstance(front["columns"]["feasible"], np.ndarray)
 
 
+def test_read_front_masks_what_the_files_hold_as_null_and_returns_no_nan(tmp_path):
+    # pareto.json holds null for a value that is not finite (an unbounded constrained metric at
+    # a singular pose, a damaged file) and pareto.csv an empty cell; read_front gave NaN there.
+    out = cli_run(tmp_path)
+    doc = json.loads((out / "pareto.json").read_text())
+    first = doc["designs"][0]
+    first["objectives"]["machine_size"] = None
+    constraint = doc["constraints"][0]["name"]
+    first["constraints"][constraint] = None
+    (out / "pareto.json").write_text(json.dumps(doc))
+    lines = (out / "pareto.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    cells = lines[1].split(",")
+    cells[header.index("stiffness_min")] = ""
+    lines[1] = ",".join(cells)
+    (out / "pareto.csv").write_text("\n".join(lines) + "\n")
+
+    front = pkmopt.read_front(out)
+    n = len(front["ids"])
+    arrays = [front["objectives"], front["constraints"], front["parameters"],
+              front["home_height"], front["columns"]["stiffness_min"]]
+    for a in arrays:
+        assert np.ma.isMaskedArray(a)
+        assert not np.any(np.isnan(a.compressed()))
+    assert front["objectives"].mask[0, 1] and front["objectives"].mask.sum() == 1
+    assert front["constraints"].mask[0, 0] and front["constraints"].mask.sum() == 1
+    assert not np.any(front["parameters"].mask)
+    assert front["columns"]["stiffness_min"].mask.tolist() == [True] + [False] * (n - 1)
+    # Statistics leave the missing value out, as numpy.ma does.
+    assert front["objectives"][:, 1].count() == n - 1
+    assert np.isfinite(front["objectives"][:, 1].min())
+
+
 def test_a_study_file_runs_from_its_path(tmp_path):
     front = pkmopt.run_study(source("studies", "library", "zdt1-nsga2.yaml"), out=tmp_path / "z")
     assert front["run"]["design_study"] is False
