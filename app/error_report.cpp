@@ -129,7 +129,14 @@ std::string parse_error_text(CLI::App& app, const CLI::ParseError& error, int ar
 // "pkmopt: <kind>: <message>" on stderr, on one line. C stdio, which reports a failed write
 // (stderr a full disk, a closed descriptor) by its return value instead of an exception: the
 // exit status is then still the one the message belongs to.
+namespace {
+bool g_silent = false;
+}  // namespace
+
+void silence_reports() noexcept { g_silent = true; }
+
 void report(const char* kind, const std::string& message) noexcept {
+  if (g_silent) return;
   std::string line = message;
   for (char& c : line)
     if (c == '\n' || c == '\r') c = ' ';

@@ -1,7 +1,8 @@
 // pkmopt: the command line. See README.md for every command, file format and column.
 //
 // Exit status: 0 success, 2 bad input (files, options, values) or an output that could not be
-// written, 3 a result written but probably wrong, 1 an internal fault. Every error is one line
+// written, 3 a result written but probably wrong, 4 a distributed run stopped by a failed worker,
+// 1 an internal fault. Every error is one line
 // "pkmopt: error: ..." on stderr.
 
 #include <CLI/CLI.hpp>
@@ -15,12 +16,19 @@
 #include "app/error_report.hpp"
 #include "io/input_error.hpp"
 #include "pkmopt/version.hpp"
+#include "studies/distribute.hpp"
 
 using pkmopt::cli::flush_stdout;
 using pkmopt::cli::output_error;
 using pkmopt::cli::report;
 
 int main(int argc, char** argv) {
+  // Under mpirun only rank 0 speaks; `run` shares its work with the other ranks
+  // (docs/distributed.md), every other command runs on rank 0 alone.
+  if (pkmopt::mpi_launch_from_environment().rank > 0) {
+    if (argc < 2 || std::string(argv[1]) != "run") return 0;
+    pkmopt::cli::silence_reports();
+  }
   CLI::App app{"pkmopt: multi-objective design optimisation of parallel kinematic machine tools"};
   app.set_version_flag("--version", std::string("pkmopt ") + pkmopt::kVersion);
   app.require_subcommand(1);

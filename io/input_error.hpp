@@ -19,6 +19,9 @@ inline constexpr int kExitInternalError = 1;
 /// A command that finished and wrote its output, but whose result is probably wrong (a
 /// calibration that did not converge or rejected most poses): exit status 3.
 inline constexpr int kExitProbablyWrong = 3;
+/// A distributed run stopped because a worker process failed (an MPI rank that died or did not
+/// answer in time): the journal is intact and `--resume` continues. Exit status 4.
+inline constexpr int kExitWorkerFault = 4;
 
 /// Thrown by a command after its output is written when the result is probably wrong; the CLI
 /// prints "pkmopt: warning: <message>" and exits with kExitProbablyWrong.

@@ -16,6 +16,7 @@ PACKAGES=(
   nlohmann-json3-dev
   libfmt-dev
   libspdlog-dev
+  libopenmpi-dev openmpi-bin
   libgtest-dev libgmock-dev
   libbenchmark-dev
   libpagmo-dev

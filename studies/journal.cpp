@@ -370,7 +370,23 @@ std::vector<std::vector<double>> JournaledProblem::serve(std::span<const std::ve
     fresh[i].generation = generation;
   };
   const int thread_count = resolve_thread_count(threads);
-  if (thread_count <= 1 || inner().thread_safety() == ThreadSafety::none || misses.size() < 2) {
+  if (options_.evaluate_batch) {
+    if (!misses.empty()) {
+      std::vector<std::vector<double>> todo;
+      todo.reserve(misses.size());
+      for (std::size_t i : misses) todo.push_back(xs[i]);
+      std::lock_guard lock(batch_mutex_);
+      fresh = options_.evaluate_batch(todo);
+      if (fresh.size() != misses.size())
+        throw std::logic_error(fmt::format("evaluate_batch returned {} entries for {} designs",
+                                           fresh.size(), misses.size()));
+      for (std::size_t i = 0; i < misses.size(); ++i) {
+        fresh[i].x = xs[misses[i]];
+        fresh[i].generation = generation;
+      }
+    }
+  } else if (thread_count <= 1 || inner().thread_safety() == ThreadSafety::none ||
+             misses.size() < 2) {
     for (std::size_t i = 0; i < misses.size(); ++i) evaluate_one(i);
   } else {
     std::exception_ptr first_error;

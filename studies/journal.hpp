@@ -119,6 +119,10 @@ struct JournalOptions {
   std::function<std::string(std::size_t index, const JournalEntry&)> csv_row;
   /// Evaluates one design with its failure note; default: inner.fitness(x) with an empty note.
   std::function<JournalEntry(const std::vector<double>& x)> evaluate;
+  /// Evaluates the designs of a batch that are not in the journal, result[k] for xs[k] (fitness
+  /// and note), e.g. on other MPI ranks (studies/distribute.hpp); default: `evaluate` on this
+  /// process's threads. Called with one batch at a time (never concurrently).
+  std::function<std::vector<JournalEntry>(std::span<const std::vector<double>> xs)> evaluate_batch;
   /// Progress: expected number of fitness requests (0: unknown), whether to show it.
   long long expected_requests = 0;
   bool show_progress = false;
@@ -170,6 +174,7 @@ class JournaledProblem final : public ForwardingProblem {
   int journal_fd_ = -1;
   mutable int csv_fd_ = -1;  // closed by finish()
   mutable std::mutex mutex_;
+  mutable std::mutex batch_mutex_;  // one evaluate_batch call at a time
   mutable std::vector<JournalEntry> entries_;
   mutable std::unordered_map<std::string, std::size_t> index_;  // bytes of x -> entry
   mutable long long requests_ = 0;

@@ -137,6 +137,47 @@ StudyRunResult run_result(const std::string& name, const OptimizerSpec& spec,
   return result;
 }
 
+// What a rank needs to evaluate the study's designs; the closure keeps the study alive.
+StudyEvaluator evaluator_of(std::shared_ptr<const void> owner, const Problem& problem,
+                            const JournalOptions& journal, const std::string& resolved_yaml) {
+  StudyEvaluator ev;
+  ev.study_hash = study_hash(resolved_yaml);
+  ev.num_variables = problem.num_variables();
+  ev.fitness_size = problem.fitness_size();
+  ev.thread_safe = problem.thread_safety() == ThreadSafety::basic;
+  ev.evaluate = [owner = std::move(owner), evaluate = journal.evaluate,
+                 p = &problem](const std::vector<double>& x) {
+    if (evaluate) return evaluate(x);
+    JournalEntry entry;
+    entry.fitness = p->fitness(x);
+    return entry;
+  };
+  return ev;
+}
+
+StudyEvaluator load_evaluator(const YamlValue& root) {
+  if (root.is_map() && root.has("machine")) {
+    auto design = std::make_shared<DesignStudy>(load_design_study(root));
+    const JournalOptions journal = design_journal_options(*design);
+    return evaluator_of(design, design->optimization_problem(), journal, design->resolved_yaml);
+  }
+  auto study = std::make_shared<BenchmarkStudy>(load_benchmark_study(root));
+  return evaluator_of(study, *study->problem, JournalOptions{}, study->resolved_yaml);
+}
+
+// Rank 0 of an MPI run with workers: hands the journal's new designs to them.
+std::unique_ptr<MpiDispatcher> dispatch_to_workers(const StudyRunOptions& opt,
+                                                   const Problem& problem, JournalOptions& journal,
+                                                   const std::string& resolved_yaml) {
+  if (opt.mpi == nullptr || opt.mpi->size() <= 1) return nullptr;
+  auto dispatcher = std::make_unique<MpiDispatcher>(
+      evaluator_of(nullptr, problem, journal, resolved_yaml), opt.worker_timeout_seconds);
+  journal.evaluate_batch = [d = dispatcher.get()](std::span<const std::vector<double>> xs) {
+    return d->evaluate(xs);
+  };
+  return dispatcher;
+}
+
 }  // namespace
 
 StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptions& options) {
@@ -157,12 +198,20 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
                     kMaxStudyThreads, opt.threads));
   if (opt.resume && opt.force)
     throw InputError("--resume and --force: expected one of them, found both");
+  if (opt.mpi != nullptr && opt.mpi->rank() > 0) {
+    serve_as_worker([&root] { return load_evaluator(root); }, opt.threads);
+    StudyRunResult worker;
+    worker.worker = true;
+    return worker;
+  }
   if (root.is_map() && root.has("machine")) {
     const DesignStudy design = load_design_study(root);
     const PreparedDirectory prepared = prepare_output_directory(opt);
     const bool resumed = prepared.resumed;
     JournalOptions journal_options = design_journal_options(design);
     fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
+    const std::unique_ptr<MpiDispatcher> workers = dispatch_to_workers(
+        opt, design.optimization_problem(), journal_options, design.resolved_yaml);
     JournaledProblem journaled(design.optimization_problem(), journal_options);
     const RunOutcome outcome = run_optimizer(journaled, design.optimizer, opt.threads);
     journaled.finish();
@@ -179,6 +228,7 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
     result.designs = written.designs;
     result.status = written.status;
     result.infeasibility = written.infeasibility;
+    result.mpi_workers = workers ? workers->workers() : 0;
     return result;
   }
   const BenchmarkStudy study = load_benchmark_study(root);
@@ -187,6 +237,8 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   JournalOptions journal_options;
   fill_journal_options(journal_options, opt, study.resolved_yaml, study.optimizer);
   benchmark_csv(journal_options, *study.problem);
+  const std::unique_ptr<MpiDispatcher> workers =
+      dispatch_to_workers(opt, *study.problem, journal_options, study.resolved_yaml);
   JournaledProblem journaled(*study.problem, journal_options);
   RunOutcome outcome = run_optimizer(journaled, study.optimizer, opt.threads);
   journaled.finish();
@@ -221,6 +273,7 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   StudyRunResult result =
       run_result(study.name, study.optimizer, outcome, journaled, resumed, wall_seconds());
   result.problem = study.problem->name();
+  result.mpi_workers = workers ? workers->workers() : 0;
   return result;
 }
 

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "io/yaml_reader.hpp"
+#include "studies/distribute.hpp"
 #include "studies/journal.hpp"
 
 namespace pkmopt {
@@ -38,6 +39,11 @@ struct StudyRunOptions {
   /// Called after every batch of evaluations with the counts so far (studies/journal.hpp); may
   /// throw to stop the run, which then resumes from its journal.
   std::function<void(const JournalProgress&)> progress;
+  /// Under mpirun (studies/distribute.hpp): rank 0 runs the study and hands the designs to the
+  /// other ranks, which evaluate them on `threads` threads each and write nothing.
+  const MpiSession* mpi = nullptr;
+  /// How long a worker may stay silent while it holds designs before the run stops (s).
+  double worker_timeout_seconds = 600.0;
 };
 
 /// What a finished run says about itself (the files in `out` hold the results).
@@ -58,6 +64,8 @@ struct StudyRunResult {
   double optimizer_seconds = 0.0;
   double wall_seconds = 0.0;
   bool resumed = false;
+  bool worker = false;  ///< this process was an MPI worker: it evaluated designs, wrote nothing
+  int mpi_workers = 0;  ///< MPI ranks that evaluated designs (0: evaluated on this process)
 };
 
 /// Runs a study file into options.out (see the header comment). Throws InputError.

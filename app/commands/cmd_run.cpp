@@ -1,13 +1,17 @@
 // pkmopt run STUDY.yaml --out DIR [--threads N] [--resume | --force] [--no-progress]
+//                             [--worker-timeout S]
 //
-// The run itself is studies/run_study.hpp (result folder, journal, resume, result files).
+// The run itself is studies/run_study.hpp (result folder, journal, resume, result files); under
+// mpirun, rank 0 runs it and the other ranks evaluate designs (studies/distribute.hpp).
 #include <fmt/format.h>
 
 #include <iostream>
 #include <memory>
 
 #include "app/commands.hpp"
+#include "app/error_report.hpp"
 #include "io/input_error.hpp"
+#include "studies/distribute.hpp"
 #include "studies/run_study.hpp"
 
 namespace pkmopt::cli {
@@ -17,12 +21,40 @@ struct RunCommandOptions {
   std::string study_file;
   StudyRunOptions run;
   bool no_progress = false;
+  bool threads_given = false;
 };
+
+void report_result(const StudyRunResult& r);
 
 void run_study(const RunCommandOptions& opt) {
   StudyRunOptions options = opt.run;
   options.show_progress = !opt.no_progress;
-  const StudyRunResult r = run_study_file(opt.study_file, options);
+  if (!(options.worker_timeout_seconds > 0.0))
+    throw InputError(
+        fmt::format("run: --worker-timeout: expected a positive number of seconds, "
+                    "found {}",
+                    options.worker_timeout_seconds));
+  if (!mpi_launch_from_environment().launched) {
+    report_result(run_study_file(opt.study_file, options));
+    return;
+  }
+  // Started by mpirun: one thread per rank unless --threads says otherwise (N ranks on a node
+  // would otherwise each start a thread per core).
+  const MpiSession session;
+  options.mpi = &session;
+  if (!opt.threads_given && session.size() > 1) options.threads = 1;
+  StudyRunResult r;
+  try {
+    r = run_study_file(opt.study_file, options);
+  } catch (const WorkerFault& e) {
+    std::cout.flush();
+    report("error", e.what());
+    session.abort(kExitWorkerFault);  // a silent worker would never reach MPI_Finalize
+  }
+  if (!r.worker) report_result(r);
+}
+
+void report_result(const StudyRunResult& r) {
   if (r.design_study)
     std::cout << fmt::format(
         "{}: {}: {} design(s), {} evaluations ({} from the cache, {} failed), {:.3f} s, status "
@@ -63,12 +95,21 @@ void add_run_command(CLI::App& app) {
   cmd->add_option("--out", opt->run.out,
                   "Results folder (pareto.csv, summary.json, journal.txt...)")
       ->required();
-  cmd->add_option("--threads", opt->run.threads, "Threads for parallel evaluation (0: all cores)");
+  cmd->add_option(
+      "--threads", opt->run.threads,
+      "Threads for parallel evaluation (0: all cores; under mpirun: per rank, default 1)");
   cmd->add_flag("--resume", opt->run.resume,
                 "Continue the run in --out from its journal (same study file required)");
   cmd->add_flag("--force", opt->run.force, "Replace a previous run in --out");
   cmd->add_flag("--no-progress", opt->no_progress, "No progress bar or log lines on stderr");
-  cmd->callback([opt] { run_study(*opt); });
+  cmd->add_option("--worker-timeout", opt->run.worker_timeout_seconds,
+                  "Under mpirun: seconds a worker rank may hold designs without answering before "
+                  "the run stops (exit 4, journal intact)")
+      ->capture_default_str();
+  cmd->callback([opt, cmd] {
+    opt->threads_given = cmd->count("--threads") > 0;
+    run_study(*opt);
+  });
 }
 
 }  // namespace pkmopt::cli

@@ -1,0 +1,266 @@
+#!/usr/bin/env python3
+"""studies/distribute.cpp: `mpirun -np N pkmopt run` against the run on one process.
+
+  * the same study gives byte-identical pareto.csv, pareto.json, evaluations.csv and journal.txt
+    for the run without MPI on 1 and 2 threads and for mpirun -np 1, 3 and 4 (a design study and
+    a benchmark study);
+  * a run whose mpirun is killed (SIGKILL) resumes under MPI with another N and then without MPI,
+    re-evaluating nothing the journal holds, and ends with the uninterrupted run's files;
+  * a worker killed mid-run (SIGKILL) stops the run with a line naming it and what it held, the
+    journal intact (the resumed run reads it without a damaged line and ends with the same files);
+  * a worker that does not answer within --worker-timeout (stopped with SIGSTOP) stops the run
+    with exit status 4 and a line naming its rank, PID and designs; the run resumes;
+  * a bad study file under mpirun gives one `pkmopt: error:` line and exit status 2.
+
+Usage: mpi_runs_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR
+mpirun runs with --oversubscribe (more ranks than cores) and --allow-run-as-root.
+"""
+import json
+import os
+import pathlib
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+BINARY, SOURCE, SCRATCH = (pathlib.Path(a).resolve() for a in sys.argv[1:4])
+MPIRUN = ["mpirun", "--oversubscribe", "--allow-run-as-root"]
+FILES = ["pareto.csv", "evaluations.csv", "journal.txt"]
+
+# A small hexapod design study (as JSON, which is YAML).
+DESIGN = {
+    "study": "mpi-quick",
+    "machine": {
+        "model": "hexapod",
+        "parameters": {
+            "base_radius": {"min": 0.45, "max": 0.75},
+            "platform_radius": {"min": 0.18, "max": 0.30},
+            "base_pair_separation_deg": 20,
+            "platform_pair_separation_deg": {"min": 10, "max": 40},
+            "min_length": {"min": 0.55, "max": 0.90},
+            "stroke": {"min": 0.35, "max": 0.70},
+            "home_height": 0.0,
+        },
+        "legs": {"E": 2.1e11, "area": 3.0e-4, "actuator_stiffness": 2.0e8},
+        "joints": {"base_max_angle_deg": 45, "platform_max_angle_deg": 45},
+        "tool": {"tcp": [0, 0, -0.10]},
+    },
+    "task": {
+        "region": {"shape": "box", "centre": [0, 0, 0.90], "size": [0.30, 0.30, 0.20],
+                   "points": [2, 2, 2]},
+        "wrench": [300, 300, -3000, 0, 0, 0],
+    },
+    "objectives": [{"maximize": "stiffness_min"}, {"minimize": "machine_size"}],
+    "constraints": ["task_reachable", {"metric": "leg_force_max", "max": 10500}],
+    "optimizer": {"algorithm": "nsga2", "population": 24, "generations": 8, "seed": 5},
+}
+
+
+def benchmark(generations):
+    return {"study": "mpi-zdt1", "problem": {"benchmark": "zdt1", "variables": 30},
+            "optimizer": {"algorithm": "nsga2", "population": 100, "generations": generations,
+                          "seed": 11}}
+
+
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print(f"FAIL: {what}", flush=True)
+
+
+def write_study(name, study):
+    path = SCRATCH / f"{name}.yaml"
+    path.write_text(json.dumps(study))
+    return path
+
+
+def run(args, ranks=None, timeout=600, **kw):
+    cmd = ([*MPIRUN, "-np", str(ranks)] if ranks else []) + [str(BINARY), *map(str, args)]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, cwd=SCRATCH, **kw)
+
+
+def same_files(a, b, names):
+    return [n for n in names if (a / n).read_bytes() != (b / n).read_bytes()]
+
+
+def pkmopt_lines(stderr):
+    return [l for l in stderr.splitlines() if l.startswith("pkmopt:")]
+
+
+def wait_for_lines(path, count, proc, limit=120):
+    start = time.monotonic()
+    while time.monotonic() - start < limit and proc.poll() is None:
+        if path.exists() and path.read_bytes().count(b"\n") >= count:
+            return True
+        time.sleep(0.02)
+    return False
+
+
+def wait_until_gone(lock):
+    # A rank 0 orphaned by a killed mpirun ends on its own; the run lock names its PID.
+    for _ in range(600):
+        try:
+            pid = int(lock.read_text().split()[0])
+            os.kill(pid, 0)
+        except (OSError, ValueError, IndexError):
+            return
+        time.sleep(0.05)
+
+
+def test_same_files_for_any_rank_count():
+    for name, study, names in [("design", DESIGN, FILES + ["pareto.json"]),
+                               ("bench", benchmark(40), FILES)]:
+        path = write_study(name, study)
+        ref = SCRATCH / f"{name}-t1"
+        r = run(["run", path, "--out", ref, "--threads", "1", "--no-progress"])
+        check(r.returncode == 0, f"{name}: serial run exit {r.returncode}: {r.stderr}")
+        variants = [(None, ["--threads", "2"]), (1, []), (3, []), (4, []), (3, ["--threads", "2"])]
+        for ranks, extra in variants:
+            out = SCRATCH / f"{name}-np{ranks}-{'-'.join(extra) or 'default'}"
+            r = run(["run", path, "--out", out, "--no-progress", *extra], ranks=ranks)
+            label = f"{name}: -np {ranks} {' '.join(extra)}"
+            check(r.returncode == 0, f"{label}: exit {r.returncode}: {r.stderr}")
+            if r.returncode == 0:
+                differ = same_files(ref, out, names)
+                check(not differ, f"{label}: differs from the serial run in {differ}")
+                check(r.stdout.count("\n") == 1, f"{label}: expected one summary line (rank 0 "
+                      f"only), found {r.stdout!r}")
+
+
+def test_killed_mpirun_resumes_with_other_ranks_and_without_mpi():
+    path = write_study("long", benchmark(250))
+    ref = SCRATCH / "long-ref"
+    check(run(["run", path, "--out", ref, "--threads", "1", "--no-progress"]).returncode == 0,
+          "long: reference run failed")
+    total = (ref / "journal.txt").read_bytes().count(b"\n") - 1
+    out = SCRATCH / "long-killed"
+    for ranks, lines in [(3, total // 4), (2, total // 2)]:
+        # SIGKILL to mpirun and every rank at once, as a batch system does at its time limit (a
+        # rank whose mpirun alone is killed runs on to the end of the study).
+        proc = subprocess.Popen([*MPIRUN, "-np", str(ranks), str(BINARY), "run", str(path),
+                                 "--out", str(out), "--no-progress"]
+                                + (["--resume"] if (out / "journal.txt").exists() else []),
+                                cwd=SCRATCH, stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL, start_new_session=True)
+        reached = wait_for_lines(out / "journal.txt", lines, proc)
+        # The ranks are in process groups of their own, in mpirun's session.
+        subprocess.run(["pkill", "-KILL", "-s", str(proc.pid)], check=False)
+        proc.wait()
+        check(reached, f"long: the journal never reached {lines} lines under -np {ranks}")
+        wait_until_gone(out / "run.lock")
+    held = (out / "journal.txt").read_bytes()
+    complete = held.count(b"\n") - 1  # a cut last line does not count
+    check(0 < complete < total, f"long: killed twice, the journal holds {complete} of {total}")
+    r = run(["run", path, "--out", out, "--resume", "--threads", "1", "--no-progress"])
+    check(r.returncode == 0, f"long: resume without MPI exit {r.returncode}: {r.stderr}")
+    if r.returncode == 0:
+        summary = json.loads((out / "summary.json").read_text())
+        check(summary["evaluations_loaded_from_journal"] == complete,
+              f"long: loaded {summary['evaluations_loaded_from_journal']}, journal held "
+              f"{complete}")
+        check(summary["evaluations_new"] == total - complete,
+              f"long: evaluated {summary['evaluations_new']} again, expected {total - complete}")
+        differ = same_files(ref, out, FILES)
+        check(not differ, f"long: resumed run differs from the uninterrupted one in {differ}")
+
+
+def test_killed_worker_is_named_and_the_journal_resumes():
+    path = write_study("long", benchmark(250))
+    out = SCRATCH / "worker-killed"
+    proc = subprocess.Popen([*MPIRUN, "-np", "3", str(BINARY), "run", str(path), "--out",
+                             str(out), "--no-progress"], cwd=SCRATCH,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    check(wait_for_lines(out / "journal.txt", 3000, proc), "worker: the run never got going")
+    ranks = subprocess.run(["ps", "--ppid", str(proc.pid), "-o", "pid="], capture_output=True,
+                           text=True).stdout.split()
+    check(len(ranks) == 3, f"worker: expected 3 ranks under mpirun, found {ranks}")
+    if len(ranks) == 3:
+        os.kill(int(sorted(map(int, ranks))[1]), signal.SIGKILL)  # a worker (rank 0 starts first)
+    _, err = proc.communicate(timeout=120)
+    check(proc.returncode != 0, "worker: a run that lost a worker exited 0")
+    lines = pkmopt_lines(err)
+    check(len(lines) == 1 and "stopped by mpirun" in lines[0] and "rank " in lines[0]
+          and "--resume" in lines[0], f"worker: expected one line naming the rank, found {lines}")
+    wait_until_gone(out / "run.lock")
+    r = run(["run", path, "--out", out, "--resume", "--no-progress"], ranks=2)
+    check(r.returncode == 0, f"worker: resume exit {r.returncode}: {r.stderr}")
+    check("damaged" not in r.stderr, f"worker: the journal was damaged: {r.stderr}")
+    ref = SCRATCH / "long-ref"
+    if r.returncode == 0 and ref.exists():
+        differ = same_files(ref, out, FILES)
+        check(not differ, f"worker: resumed run differs in {differ}")
+
+
+def test_silent_worker_stops_the_run_with_status_4():
+    # A worker stopped with SIGSTOP holds its designs and never answers: a hung evaluation.
+    path = write_study("long", benchmark(250))
+    out = SCRATCH / "timeout"
+    proc = subprocess.Popen([*MPIRUN, "-np", "3", str(BINARY), "run", str(path), "--out",
+                             str(out), "--no-progress", "--worker-timeout", "2"], cwd=SCRATCH,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    check(wait_for_lines(out / "journal.txt", 3000, proc), "timeout: the run never got going")
+    ranks = sorted(map(int, subprocess.run(["ps", "--ppid", str(proc.pid), "-o", "pid="],
+                                           capture_output=True, text=True).stdout.split()))
+    stopped = ranks[2] if len(ranks) == 3 else None
+    if stopped:
+        os.kill(stopped, signal.SIGSTOP)
+    try:
+        _, err = proc.communicate(timeout=120)
+    finally:
+        subprocess.run(["pkill", "-KILL", "-s", str(proc.pid)], check=False)
+    lines = pkmopt_lines(err)
+    check(proc.returncode == 4, f"timeout: expected exit 4, found {proc.returncode}: {err}")
+    check(len(lines) == 1 and f"(pid {stopped} on " in lines[0]
+          and re.search(r"MPI rank \d+ \(pid \d+ on .*\) did not answer within "
+                        r"--worker-timeout 2 s; it held batch \d+ design", lines[0])
+          and "--resume" in lines[0],
+          f"timeout: expected one line naming the stopped rank and its designs, found {lines}")
+    check(not (out / "pareto.csv").exists(), "timeout: a stopped run wrote pareto.csv")
+    wait_until_gone(out / "run.lock")
+    r = run(["run", path, "--out", out, "--resume", "--no-progress"], ranks=3)
+    check(r.returncode == 0, f"timeout: resume exit {r.returncode}: {r.stderr}")
+    check("damaged" not in r.stderr, f"timeout: the journal was damaged: {r.stderr}")
+    ref = SCRATCH / "long-ref"
+    if r.returncode == 0 and ref.exists():
+        differ = same_files(ref, out, FILES)
+        check(not differ, f"timeout: resumed run differs in {differ}")
+
+
+def test_bad_study_gives_one_line():
+    path = SCRATCH / "bad.yaml"
+    path.write_text("study: bad\nmachine: 3\n")
+    r = run(["run", path, "--out", SCRATCH / "bad-out", "--no-progress"], ranks=3)
+    lines = pkmopt_lines(r.stderr)
+    check(r.returncode == 2, f"bad: expected exit 2, found {r.returncode}")
+    check(len(lines) == 1 and lines[0].startswith("pkmopt: error: ") and "bad.yaml:2" in lines[0],
+          f"bad: expected one error line from rank 0, found {lines}")
+    check(not (SCRATCH / "bad-out").exists(), "bad: a refused study left its --out folder")
+
+
+def main():
+    if shutil.which("mpirun") is None:
+        print("mpirun not found (scripts/install-deps.sh installs openmpi-bin)")
+        return 1
+    shutil.rmtree(SCRATCH, ignore_errors=True)
+    SCRATCH.mkdir(parents=True)
+    tests = [test_same_files_for_any_rank_count,
+             test_killed_mpirun_resumes_with_other_ranks_and_without_mpi,
+             test_killed_worker_is_named_and_the_journal_resumes,
+             test_silent_worker_stops_the_run_with_status_4,
+             test_bad_study_gives_one_line]
+    for test in tests:
+        start = time.monotonic()
+        test()
+        print(f"{test.__name__}: {time.monotonic() - start:.1f} s", flush=True)
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
