@@ -168,6 +168,8 @@ class JournaledProblem final : public ForwardingProblem {
                                          int threads) const;
   void append(std::span<const JournalEntry> fresh) const;
   void report_progress(bool force) const;
+  void note_feasible(const JournalEntry& entry) const;
+  void merge_front() const;
   void recover(const std::string& journal_path, JournalContents& contents) const;
 
   JournalOptions options_;
@@ -187,6 +189,7 @@ class JournaledProblem final : public ForwardingProblem {
   mutable std::chrono::steady_clock::time_point last_report_;
   mutable bool progress_line_open_ = false;
   mutable std::vector<std::vector<double>> feasible_front_;  // user-independent internal sign
+  mutable std::vector<std::vector<double>> pending_front_;   // feasible, not merged in yet
 };
 
 }  // namespace pkmopt

@@ -12,12 +12,14 @@
 #include <bit>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "io/input_error.hpp"
 #include "tests/scratch_dir.hpp"
@@ -107,6 +109,42 @@ TEST_F(StudyJournal, LinesAreBitExact) {
   const std::string v1 = std::string(whole.substr(0, whole.rfind('\t')));
   EXPECT_EQ(parse_journal_line(v1, 4, 3, back, false), "");
   EXPECT_EQ(back.note, "singular at pose 3 ");
+}
+
+// The journal writes its numbers as printf's "%a" does (the format journal.txt has always had);
+// it uses std::to_chars for speed. Checked here against printf itself: normal, subnormal,
+// signed zeros, extremes, infinities and NaN, and 200,000 random bit patterns.
+TEST_F(StudyJournal, NumbersAreWrittenAsPrintfHexadecimal) {
+  std::vector<double> values = {0.0,
+                                -0.0,
+                                1.0,
+                                -1.5,
+                                0.1,
+                                5e-324,
+                                -5e-324,
+                                2.2250738585072009e-308,
+                                std::numeric_limits<double>::min(),
+                                std::numeric_limits<double>::max(),
+                                -std::numeric_limits<double>::max(),
+                                std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::quiet_NaN()};
+  std::uint64_t state = 0x9e3779b97f4a7c15ULL;
+  for (int k = 0; k < 200000; ++k) {
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    values.push_back(std::bit_cast<double>(state));
+  }
+  for (double v : values) {
+    JournalEntry entry;
+    entry.x = {v};
+    const std::string line = journal_line(entry);
+    char expected[64];
+    std::snprintf(expected, sizeof expected, "%a", v);
+    ASSERT_EQ(line.substr(0, line.find('\t')), expected)
+        << "bits " << std::hex << std::bit_cast<std::uint64_t>(v);
+  }
 }
 
 TEST_F(StudyJournal, StudyHashIsFnv1a) {
