@@ -23,10 +23,11 @@ using pkmopt::cli::output_error;
 using pkmopt::cli::report;
 
 int main(int argc, char** argv) {
-  // Under mpirun only rank 0 speaks; `run` shares its work with the other ranks
-  // (docs/distributed.md), every other command runs on rank 0 alone.
+  // Under mpirun only rank 0 speaks; `run`, `workspace` and `analyze` share their work with the
+  // other ranks (docs/distributed.md), every other command runs on rank 0 alone.
   if (pkmopt::mpi_launch_from_environment().rank > 0) {
-    if (argc < 2 || std::string(argv[1]) != "run") return 0;
+    const std::string command = argc < 2 ? std::string() : std::string(argv[1]);
+    if (command != "run" && command != "workspace" && command != "analyze") return 0;
     pkmopt::cli::silence_reports();
   }
   CLI::App app{"pkmopt: multi-objective design optimisation of parallel kinematic machine tools"};

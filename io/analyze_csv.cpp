@@ -1,7 +1,5 @@
 #include "io/analyze_csv.hpp"
 
-#include <sstream>
-
 #include "models/leg_interference.hpp"
 
 namespace pkmopt {
@@ -67,41 +65,61 @@ void analyze_values(const Machine& machine, const PoseMetrics& m, const PoseMode
       for (int b = 0; b < 6; ++b) *out++ = compliance->compliance(a, b) + 0.0;
 }
 
-std::string analyze_csv(const Machine& machine, const PoseTable& poses,
-                        const std::vector<PoseMetrics>& metrics, const AnalyzeCsvOptions& options) {
-  const CsvTable& table = poses.table;
-  const std::vector<int> passthrough = poses.other_columns();
+std::string analyze_csv_header(const Machine& machine, const PoseTable& poses,
+                               const AnalyzeCsvOptions& options) {
   const std::vector<std::string> names =
       analyze_value_columns(machine, options.modes != nullptr, options.compliance != nullptr);
-  const bool interference = machine.checks_leg_interference();
-  std::ostringstream out;
-  out << "x,y,z,rx,ry,rz";
+  std::string out = "x,y,z,rx,ry,rz";
   for (const std::string& name : names) {
-    out << ',' << name;
-    if (name == "leg_clearance") out << ",clearance_pair";
+    out += ',' + name;
+    if (name == "leg_clearance") out += ",clearance_pair";
   }
-  for (int c : passthrough) out << ',' << csv_field(table.header[static_cast<std::size_t>(c)]);
-  out << '\n';
+  for (int c : poses.other_columns())
+    out += ',' + csv_field(poses.table.header[static_cast<std::size_t>(c)]);
+  return out + '\n';
+}
+
+namespace {
+
+std::string row_text(const Machine& machine, const PoseTable& poses, std::size_t row,
+                     const PoseMetrics& m, const PoseModes* modes, const PoseCompliance* compliance,
+                     const std::vector<std::string>& names) {
+  const bool interference = machine.checks_leg_interference();
   std::vector<double> values(names.size());
-  for (std::size_t i = 0; i < metrics.size(); ++i) {
-    const PoseMetrics& m = metrics[i];
-    analyze_values(machine, m, options.modes ? &(*options.modes)[i] : nullptr,
-                   options.compliance ? &(*options.compliance)[i] : nullptr, values.data());
-    std::string line;
-    line.reserve(512);
-    for (int k = 0; k < 3; ++k) line += format_number(poses.poses[i].position(k)) + ',';
-    for (int k = 0; k < 3; ++k) line += format_number(poses.angles_deg[i](k)) + ',';
-    line += m.reachable ? '1' : '0';
-    for (std::size_t c = 1; c < names.size(); ++c) {
-      line += ',' + format_number(values[c]);
-      if (interference && names[c] == "leg_clearance")
-        line += ',' + clearance_pair_text(m.clearance_first, m.clearance_second);
-    }
-    for (int c : passthrough)
-      line += ',' + csv_field(table.rows[i].cells[static_cast<std::size_t>(c)]);
-    out << line << '\n';
+  analyze_values(machine, m, modes, compliance, values.data());
+  std::string line;
+  line.reserve(512);
+  for (int k = 0; k < 3; ++k) line += format_number(poses.poses[row].position(k)) + ',';
+  for (int k = 0; k < 3; ++k) line += format_number(poses.angles_deg[row](k)) + ',';
+  line += m.reachable ? '1' : '0';
+  for (std::size_t c = 1; c < names.size(); ++c) {
+    line += ',' + format_number(values[c]);
+    if (interference && names[c] == "leg_clearance")
+      line += ',' + clearance_pair_text(m.clearance_first, m.clearance_second);
   }
-  return out.str();
+  for (int c : poses.other_columns())
+    line += ',' + csv_field(poses.table.rows[row].cells[static_cast<std::size_t>(c)]);
+  return line + '\n';
+}
+
+}  // namespace
+
+std::string analyze_csv_row(const Machine& machine, const PoseTable& poses, std::size_t row,
+                            const PoseMetrics& metrics, const PoseModes* modes,
+                            const PoseCompliance* compliance) {
+  return row_text(machine, poses, row, metrics, modes, compliance,
+                  analyze_value_columns(machine, modes != nullptr, compliance != nullptr));
+}
+
+std::string analyze_csv(const Machine& machine, const PoseTable& poses,
+                        const std::vector<PoseMetrics>& metrics, const AnalyzeCsvOptions& options) {
+  std::string out = analyze_csv_header(machine, poses, options);
+  const std::vector<std::string> names =
+      analyze_value_columns(machine, options.modes != nullptr, options.compliance != nullptr);
+  for (std::size_t i = 0; i < metrics.size(); ++i)
+    out += row_text(machine, poses, i, metrics[i], options.modes ? &(*options.modes)[i] : nullptr,
+                    options.compliance ? &(*options.compliance)[i] : nullptr, names);
+  return out;
 }
 
 }  // namespace pkmopt

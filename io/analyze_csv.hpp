@@ -23,6 +23,7 @@
 //   write_file_atomically("out.csv", analyze_csv(machine, poses, metrics));
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -55,5 +56,15 @@ void analyze_values(const Machine& machine, const PoseMetrics& metrics, const Po
 std::string analyze_csv(const Machine& machine, const PoseTable& poses,
                         const std::vector<PoseMetrics>& metrics,
                         const AnalyzeCsvOptions& options = {});
+
+/// The header line of analyze_csv (with its newline).
+std::string analyze_csv_header(const Machine& machine, const PoseTable& poses,
+                               const AnalyzeCsvOptions& options = {});
+
+/// The row of pose `row` of `poses` (with its newline) from its metrics and, when the options ask
+/// for them, its modes and compliance (`modes` / `compliance` may then not be null).
+std::string analyze_csv_row(const Machine& machine, const PoseTable& poses, std::size_t row,
+                            const PoseMetrics& metrics, const PoseModes* modes,
+                            const PoseCompliance* compliance);
 
 }  // namespace pkmopt

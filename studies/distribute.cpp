@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <thread>
 
 #include "io/input_error.hpp"
@@ -60,13 +61,17 @@ MpiLaunch mpi_launch_from_environment() {
 
 bool built_with_mpi() { return false; }
 
-MpiSession::MpiSession() {
+MpiSession::MpiSession(bool) {
   throw InputError(
       "run: started by mpirun, but this pkmopt was built without MPI (install libopenmpi-dev and "
       "rebuild with -DPKMOPT_WITH_MPI=ON), so every rank would run the whole study");
 }
 MpiSession::~MpiSession() = default;
 void MpiSession::abort(int status) const { std::_Exit(status); }
+
+std::vector<std::vector<char>> MpiShare::all_gather(std::span<const char> mine) const {
+  return {std::vector<char>(mine.begin(), mine.end())};
+}
 
 struct MpiDispatcher::State {};
 MpiDispatcher::MpiDispatcher(const StudyEvaluator&, double) {
@@ -364,7 +369,7 @@ void stop_workers(int size) {
 
 bool built_with_mpi() { return true; }
 
-MpiSession::MpiSession() {
+MpiSession::MpiSession(bool with_workers) : with_workers_(with_workers) {
   int initialized = 0;
   MPI_Initialized(&initialized);
   if (!initialized) {
@@ -378,7 +383,7 @@ MpiSession::MpiSession() {
 MpiSession::~MpiSession() {
   // Rank 0 that ended before it handed out any work (bad input, a folder it may not write):
   // the workers wait for a word from it.
-  if (rank_ == 0 && !g_workers_stopped) stop_workers(size_);
+  if (rank_ == 0 && with_workers_ && !g_workers_stopped) stop_workers(size_);
   int finalized = 0;
   MPI_Finalized(&finalized);
   if (!finalized) PMPI_Finalize();
@@ -391,6 +396,28 @@ void MpiSession::abort(int status) const {
   std::fflush(stdout);
   std::fflush(stderr);
   std::_Exit(status);
+}
+
+std::vector<std::vector<char>> MpiShare::all_gather(std::span<const char> mine) const {
+  if (mine.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::runtime_error("MPI share: a part of more than 2 GB");
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(static_cast<std::size_t>(size_)), offsets(counts.size());
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  long long total = 0;
+  for (std::size_t p = 0; p < counts.size(); ++p) {
+    offsets[p] = static_cast<int>(total);
+    total += counts[p];
+    if (total > std::numeric_limits<int>::max())
+      throw std::runtime_error("MPI share: more than 2 GB in all");
+  }
+  std::vector<char> all(static_cast<std::size_t>(total));
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
+                 MPI_COMM_WORLD);
+  std::vector<std::vector<char>> parts(counts.size());
+  for (std::size_t p = 0; p < counts.size(); ++p)
+    parts[p].assign(all.begin() + offsets[p], all.begin() + offsets[p] + counts[p]);
+  return parts;
 }
 
 struct MpiDispatcher::State {

@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "models/process_share.hpp"
 #include "studies/journal.hpp"
 
 namespace pkmopt {
@@ -73,10 +74,11 @@ class WorkerFault : public std::runtime_error {
 };
 
 /// MPI_Init_thread (MPI_THREAD_FUNNELED) on construction, MPI_Finalize on destruction. Throws
-/// InputError when pkmopt was built without MPI.
+/// InputError when pkmopt was built without MPI. `with_workers`: ranks 1..N-1 serve rank 0
+/// (serve_as_worker), and rank 0 tells them to stop when it ends before it dispatched anything.
 class MpiSession {
  public:
-  MpiSession();
+  explicit MpiSession(bool with_workers = false);
   ~MpiSession();
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
@@ -85,6 +87,21 @@ class MpiSession {
   /// Ends this rank at once with `status`, without MPI_Finalize (which would wait for a worker
   /// that hangs); mpirun then stops every other rank and exits with `status`.
   [[noreturn]] void abort(int status) const;
+
+ private:
+  int rank_ = 0;
+  int size_ = 1;
+  bool with_workers_ = false;
+};
+
+/// Every rank of MPI_COMM_WORLD as a part of a ProcessShare (models/process_share.hpp): the
+/// ranks run `pkmopt workspace` or `pkmopt analyze` in lockstep, each computing its share.
+class MpiShare final : public ProcessShare {
+ public:
+  explicit MpiShare(const MpiSession& session) : rank_(session.rank()), size_(session.size()) {}
+  int parts() const override { return size_; }
+  int part() const override { return rank_; }
+  std::vector<std::vector<char>> all_gather(std::span<const char> mine) const override;
 
  private:
   int rank_ = 0;

@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <memory>
 
@@ -15,6 +17,7 @@
 #include "io/output_file.hpp"
 #include "io/pose_csv.hpp"
 #include "models/pose_analysis.hpp"
+#include "studies/distribute.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -30,23 +33,77 @@ struct AnalyzeOptions {
 
 // Every pose unreachable is almost always a wrong pose file (millimetres for metres, another
 // machine's frame): said on stderr; the output is still written (exit 0).
-void warn_if_nothing_reachable(const PoseTable& poses, const std::vector<PoseMetrics>& metrics,
+void warn_if_nothing_reachable(const PoseTable& poses, bool any_reachable,
                                const std::string& poses_file) {
-  if (metrics.empty()) return;
-  for (const PoseMetrics& m : metrics)
-    if (m.reachable) return;
+  if (poses.poses.empty() || any_reachable) return;
   double farthest = 0.0;
   for (const Pose& p : poses.poses) farthest = std::max(farthest, p.position.cwiseAbs().maxCoeff());
   fmt::print(stderr,
              "pkmopt: warning: analyze: none of the {} poses of '{}' is reachable (every row has "
              "reachable = 0){}\n",
-             metrics.size(), poses_file,
+             poses.poses.size(), poses_file,
              farthest > 10.0
                  ? fmt::format("; a coordinate reaches {:.4g} m: pose positions are in metres, "
                                "not millimetres",
                                farthest)
                  : std::string("; check that the positions are in metres in the base frame and "
                                "the angles in degrees"));
+}
+
+void write_analyze_output(const AnalyzeOptions& opt, const std::string& csv) {
+  if (opt.out_file.empty()) {
+    std::cout << csv;
+    std::cout.flush();
+  } else {
+    write_file_atomically(opt.out_file, csv);
+  }
+}
+
+// Under mpirun: every rank analyzes the poses it owns (pose i: rank i % N) and formats their
+// rows; rank 0 gathers them in pose order and writes the file the run on one process writes.
+void analyze_shared(const AnalyzeOptions& opt, const Machine& machine, const PoseTable& poses,
+                    const Wrench& wrench, const ProcessShare& share) {
+  std::vector<std::size_t> mine;
+  std::vector<Pose> my_poses;
+  for (std::size_t i = 0; i < poses.poses.size(); ++i)
+    if (owns(&share, i)) {
+      mine.push_back(i);
+      my_poses.push_back(poses.poses[i]);
+    }
+  std::vector<PoseCompliance> matrices;
+  const std::vector<PoseMetrics> metrics =
+      analyze_poses(machine, my_poses, wrench, opt.compliance ? &matrices : nullptr);
+  std::vector<PoseModes> modes;
+  if (opt.modes) modes = mode_shapes_of_poses(machine, my_poses);
+  std::vector<char> packed;  // per pose: reachable (1 byte), row length (8 bytes), row
+  for (std::size_t k = 0; k < mine.size(); ++k) {
+    const std::string row =
+        analyze_csv_row(machine, poses, mine[k], metrics[k], opt.modes ? &modes[k] : nullptr,
+                        opt.compliance ? &matrices[k] : nullptr);
+    packed.push_back(metrics[k].reachable ? 1 : 0);
+    const std::uint64_t length = row.size();
+    const auto* l = reinterpret_cast<const char*>(&length);
+    packed.insert(packed.end(), l, l + sizeof length);
+    packed.insert(packed.end(), row.begin(), row.end());
+  }
+  const std::vector<std::vector<char>> parts = share.all_gather(packed);
+  if (share.part() > 0) return;
+  const AnalyzeCsvOptions columns{.compliance = opt.compliance ? &matrices : nullptr,
+                                  .modes = opt.modes ? &modes : nullptr};
+  std::string csv = analyze_csv_header(machine, poses, columns);
+  std::vector<std::size_t> at(parts.size(), 0);
+  bool any_reachable = false;
+  for (std::size_t i = 0; i < poses.poses.size(); ++i) {
+    const std::vector<char>& part = parts[i % parts.size()];
+    std::size_t& p = at[i % parts.size()];
+    any_reachable = any_reachable || part.at(p) != 0;
+    std::uint64_t length = 0;
+    std::memcpy(&length, part.data() + p + 1, sizeof length);
+    csv.append(part.data() + p + 1 + sizeof length, length);
+    p += 1 + sizeof length + length;
+  }
+  write_analyze_output(opt, csv);
+  warn_if_nothing_reachable(poses, any_reachable, opt.poses_file);
 }
 
 void run_analyze(const AnalyzeOptions& opt) {
@@ -64,6 +121,14 @@ void run_analyze(const AnalyzeOptions& opt) {
     for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
   }
   const PoseTable poses = read_pose_csv(opt.poses_file);
+  if (mpi_launch_from_environment().launched) {
+    const MpiSession session;
+    const MpiShare share(session);
+    if (session.size() > 1) {
+      analyze_shared(opt, *machine, poses, wrench, share);
+      return;
+    }
+  }
   std::vector<PoseCompliance> matrices;
   const std::vector<PoseMetrics> metrics =
       analyze_poses(*machine, poses.poses, wrench, opt.compliance ? &matrices : nullptr);
@@ -72,13 +137,11 @@ void run_analyze(const AnalyzeOptions& opt) {
   const std::string csv = analyze_csv(
       *machine, poses, metrics,
       {.compliance = opt.compliance ? &matrices : nullptr, .modes = opt.modes ? &modes : nullptr});
-  if (opt.out_file.empty()) {
-    std::cout << csv;
-    std::cout.flush();
-  } else {
-    write_file_atomically(opt.out_file, csv);
-  }
-  warn_if_nothing_reachable(poses, metrics, opt.poses_file);
+  write_analyze_output(opt, csv);
+  warn_if_nothing_reachable(
+      poses,
+      std::any_of(metrics.begin(), metrics.end(), [](const PoseMetrics& m) { return m.reachable; }),
+      opt.poses_file);
 }
 
 }  // namespace

@@ -40,7 +40,7 @@ void run_study(const RunCommandOptions& opt) {
   }
   // Started by mpirun: one thread per rank unless --threads says otherwise (N ranks on a node
   // would otherwise each start a thread per core).
-  const MpiSession session;
+  const MpiSession session(/*with_workers=*/true);
   options.mpi = &session;
   if (!opt.threads_given && session.size() > 1) options.threads = 1;
   StudyRunResult r;

@@ -23,6 +23,7 @@
 #include "models/workspace/volume_accuracy.hpp"
 #include "models/workspace/workspace.hpp"
 #include "report/workspace_export.hpp"
+#include "studies/distribute.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -137,6 +138,15 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
                                  machine->model()));
   }
 
+  // Under mpirun every rank computes its share of the grid and has the whole result; rank 0
+  // writes it (docs/distributed.md).
+  std::optional<MpiSession> session;
+  std::optional<MpiShare> share;
+  if (mpi_launch_from_environment().launched) {
+    session.emplace();
+    share.emplace(*session);
+    options.share = &*share;
+  }
   WorkspaceResult ws;
   VolumeAccuracy accuracy;
   try {
@@ -178,6 +188,7 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   }
   const WorkspaceSlice slice = compute_workspace_slice(
       *machine, options, plane.box, plane.normal_axis, plane.offset, plane.pixel);
+  if (session && session->rank() > 0) return;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

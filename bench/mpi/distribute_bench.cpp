@@ -75,7 +75,7 @@ BENCHMARK(BM_MpiFixedCost)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)
 }  // namespace
 
 int main(int argc, char** argv) {
-  const MpiSession session;
+  const MpiSession session(/*with_workers=*/true);
   if (session.size() < 2) {
     std::fprintf(stderr, "pkmopt_bench_mpi: run it under mpirun with 2 or more ranks\n");
     return 2;

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 #include <unordered_map>
 
 #include "models/hexapod.hpp"
@@ -198,26 +199,33 @@ Classification classify_grid(const Machine& machine, const std::vector<Eigen::Ve
   grid = make_grid(box, options.resolution, options.max_grid_nodes);
   const std::int64_t nx = grid.nx, ny = grid.ny, nz = grid.nz;
   cls.inside.assign(static_cast<std::size_t>(grid.size()), 0);
-  bool touches_rim = false;
   // The padded rim is outside the search box and stays outside, which closes the mesh; the
-  // box's own faces are checked so that a cut-off region is reported.
-#pragma omp parallel reduction(|| : touches_rim)
+  // box's own faces are checked so that a cut-off region is reported. Layer k of the grid is
+  // computed by the process that owns it (all of them without a share).
+#pragma omp parallel
   {
     PointEvaluator evaluator(machine, angles, options);
 #pragma omp for schedule(dynamic, 1) collapse(2)
     for (std::int64_t k = 1; k < nz - 1; ++k) {
       for (std::int64_t j = 1; j < ny - 1; ++j) {
+        if (!owns(options.share, static_cast<std::size_t>(k))) continue;
         for (std::int64_t i = 1; i < nx - 1; ++i) {
           const bool in = evaluator.inside(grid.position(i, j, k));
           cls.inside[static_cast<std::size_t>(grid.index(i, j, k))] = in ? 1 : 0;
-          if (in && (i == 1 || j == 1 || k == 1 || i == nx - 2 || j == ny - 2 || k == nz - 2)) {
-            touches_rim = true;
-          }
         }
       }
     }
   }
-  cls.touches_rim = touches_rim;
+  share_groups(options.share, cls.inside.data(), static_cast<std::size_t>(nz),
+               static_cast<std::size_t>(nx * ny));
+  for (std::int64_t k = 1; k < nz - 1 && !cls.touches_rim; ++k)
+    for (std::int64_t j = 1; j < ny - 1 && !cls.touches_rim; ++j)
+      for (std::int64_t i = 1; i < nx - 1; ++i)
+        if ((i == 1 || j == 1 || k == 1 || i == nx - 2 || j == ny - 2 || k == nz - 2) &&
+            cls.at(i, j, k)) {
+          cls.touches_rim = true;
+          break;
+        }
   return cls;
 }
 
@@ -260,6 +268,7 @@ TriangleMesh extract_surface(const Machine& machine, const std::vector<Eigen::Ve
     PointEvaluator evaluator(machine, angles, options);
 #pragma omp for schedule(dynamic, 64)
     for (std::int64_t c = 0; c < crossings; ++c) {
+      if (!owns(options.share, static_cast<std::size_t>(c))) continue;
       const std::int64_t key = crossing_keys[static_cast<std::size_t>(c)];
       const std::int64_t node = key / 7;
       const Eigen::Vector3i o = direction_offset(static_cast<int>(key % 7));
@@ -275,6 +284,10 @@ TriangleMesh extract_surface(const Machine& machine, const std::vector<Eigen::Ve
       mesh.vertices[static_cast<std::size_t>(c)] = 0.5 * (in + out);
     }
   }
+  static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double));
+  static_assert(std::is_trivially_copyable_v<WorkspacePointMetrics>);
+  share_groups(options.share, mesh.vertices.data(), static_cast<std::size_t>(crossings),
+               sizeof(Eigen::Vector3d));
 
   // 3. Marching tetrahedra over the 6 Freudenthal tetrahedra of every cell with mixed corners.
   auto vertex_of = [&](std::int64_t node_a, const Eigen::Vector3i& ca, const Eigen::Vector3i& cb) {
@@ -507,10 +520,12 @@ WorkspaceResult compute_workspace(const Machine& machine, const WorkspaceOptions
       PointEvaluator evaluator(machine, angles, options);
 #pragma omp for schedule(dynamic, 256)
       for (std::int64_t p = 0; p < n; ++p) {
+        if (!owns(options.share, static_cast<std::size_t>(p))) continue;
         evaluator.metrics(grid.position(inside_nodes[static_cast<std::size_t>(p)]),
                           metrics[static_cast<std::size_t>(p)]);
       }
     }
+    share_groups(options.share, metrics.data(), metrics.size(), sizeof(WorkspacePointMetrics));
     WorkspaceMaps& maps = result.maps;
     maps.points = n;
     if (n > 0) {
@@ -643,6 +658,7 @@ WorkspaceSlice compute_workspace_slice(const Machine& machine, const WorkspaceOp
     PointEvaluator evaluator(machine, angles, options);
 #pragma omp for schedule(dynamic, 64)
     for (std::int64_t p = 0; p < count; ++p) {
+      if (!owns(options.share, static_cast<std::size_t>(p))) continue;
       Eigen::Vector3d position;
       position(axis_n) = offset;
       position(axis_u) = slice.origin(0) + static_cast<double>(p % slice.width) * pixel;
@@ -653,6 +669,9 @@ WorkspaceSlice compute_workspace_slice(const Machine& machine, const WorkspaceOp
       }
     }
   }
+  share_groups(options.share, slice.inside.data(), slice.inside.size(), 1);
+  share_groups(options.share, slice.metrics.data(), slice.metrics.size(),
+               sizeof(WorkspacePointMetrics));
   return slice;
 }
 

@@ -60,6 +60,7 @@
 
 #include "models/machine.hpp"
 #include "models/pose.hpp"
+#include "models/process_share.hpp"
 
 namespace pkmopt {
 
@@ -95,6 +96,10 @@ struct WorkspaceOptions {
   std::optional<Eigen::AlignedBox3d> search_box;
   /// Refuse grids with more nodes than this (memory: about 2 bytes per node).
   std::int64_t max_grid_nodes = 200'000'000;
+  /// Processes (MPI ranks) that compute this workspace together, each a share of the grid
+  /// layers, boundary crossings, inside nodes and slice pixels (models/process_share.hpp); every
+  /// process gets the whole result. nullptr: this process computes everything.
+  const ProcessShare* share = nullptr;
 };
 
 /// "" when the options are valid, else a message "WorkspaceOptions::x = v. Violated constraint:

@@ -10,6 +10,9 @@
     journal intact (the resumed run reads it without a damaged line and ends with the same files);
   * a worker that does not answer within --worker-timeout (stopped with SIGSTOP) stops the run
     with exit status 4 and a line naming its rank, PID and designs; the run resumes;
+  * `pkmopt analyze` (compliance and mode-shape columns, a quoted pass-through column, to a file
+    and to stdout) and `pkmopt workspace` (fixed resolution; tilt cone with the volume tolerance)
+    under mpirun write the files the run on one process writes;
   * a bad study file under mpirun gives one `pkmopt: error:` line and exit status 2.
 
 Usage: mpi_runs_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR
@@ -232,6 +235,56 @@ def test_silent_worker_stops_the_run_with_status_4():
         check(not differ, f"timeout: resumed run differs in {differ}")
 
 
+def test_analyze_and_workspace_write_the_files_of_one_process():
+    # 500 poses with a pass-through text column, compliance columns and mode shapes.
+    poses = SCRATCH / "poses.csv"
+    rows = ["x,y,z,rx,ry,rz,label"]
+    for i in range(500):
+        rows.append(f"{0.2 * ((i * 37) % 100 / 100 - 0.5):.4f},{0.2 * ((i * 53) % 100 / 100 - 0.5):.4f},"
+                    f"{0.7 + 0.4 * ((i * 71) % 100) / 100:.4f},{(i % 7) - 3},{(i % 5) - 2},"
+                    f"{(i % 11) - 5},\"pose {i}, \"\"quoted\"\"\"")
+    poses.write_text("\n".join(rows) + "\n")
+    machine = SOURCE / "examples" / "hexapod_masses.yaml"
+    for extra in [["--compliance"], ["--mode-shapes"]]:
+        outs = []
+        for ranks in [None, 3]:
+            out = SCRATCH / f"analyze-{ranks}{extra[0]}.csv"
+            r = run(["analyze", machine, "--poses", poses, "--out", out, *extra], ranks=ranks)
+            check(r.returncode == 0, f"analyze -np {ranks} {extra}: exit {r.returncode}: {r.stderr}")
+            outs.append(out)
+        if all(o.exists() for o in outs):
+            check(outs[0].read_bytes() == outs[1].read_bytes(),
+                  f"analyze {extra}: -np 3 differs from one process")
+    r1 = run(["analyze", machine, "--poses", poses])
+    r4 = run(["analyze", machine, "--poses", poses], ranks=4)
+    check(r1.stdout == r4.stdout and r4.stdout.count("\n") == 501,
+          "analyze to stdout: -np 4 differs from one process (or printed more than once)")
+    for args in [["--resolution", "0.04"], ["--tilt", "10", "--slice-metric", "max_leg_force"]]:
+        dirs = []
+        for ranks in [None, 3]:
+            out = SCRATCH / f"ws-{ranks}-{args[0]}"
+            r = run(["workspace", SOURCE / "examples" / "hexapod.yaml", "--out", out, *args],
+                    ranks=ranks)
+            check(r.returncode == 0, f"workspace -np {ranks} {args}: exit {r.returncode}: "
+                  f"{r.stderr}")
+            check(r.stdout.count("\n") == 1, f"workspace -np {ranks}: expected one summary "
+                  f"line, found {r.stdout!r}")
+            dirs.append(out)
+        if all(d.exists() for d in dirs):
+            names = sorted(p.name for p in dirs[0].iterdir())
+            check(names == sorted(p.name for p in dirs[1].iterdir()),
+                  f"workspace {args}: other files under -np 3")
+            for name in names:
+                a, b = (d / name for d in dirs)
+                if name == "summary.json":  # the same but for the time it took
+                    ja, jb = json.loads(a.read_text()), json.loads(b.read_text())
+                    ja.pop("seconds", None), jb.pop("seconds", None)
+                    check(ja == jb, f"workspace {args}: summary.json differs under -np 3")
+                else:
+                    check(a.read_bytes() == b.read_bytes(),
+                          f"workspace {args}: {name} differs under -np 3")
+
+
 def test_bad_study_gives_one_line():
     path = SCRATCH / "bad.yaml"
     path.write_text("study: bad\nmachine: 3\n")
@@ -253,6 +306,7 @@ def main():
              test_killed_mpirun_resumes_with_other_ranks_and_without_mpi,
              test_killed_worker_is_named_and_the_journal_resumes,
              test_silent_worker_stops_the_run_with_status_4,
+             test_analyze_and_workspace_write_the_files_of_one_process,
              test_bad_study_gives_one_line]
     for test in tests:
         start = time.monotonic()
