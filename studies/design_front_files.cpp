@@ -296,6 +296,7 @@ DesignOutputSummary make_summary(std::string& text, const DesignStudy& study,
   summary["message"] = outcome.front.message;
   summary["seed"] = study.optimizer.seed;
   summary["threads"] = resolve_thread_count(facts.threads);
+  summary["mpi_ranks"] = facts.mpi_ranks;
   summary["resumed"] = facts.resumed;
   summary["evaluations"] = outcome.front.fitness_evaluations;
   summary["gradient_evaluations"] = outcome.front.gradient_evaluations;

@@ -150,6 +150,7 @@ JournalOptions design_journal_options(const DesignStudy& study);
 /// Extra facts for summary.json.
 struct DesignRunFacts {
   int threads = 0;
+  int mpi_ranks = 1;  ///< processes of the run: 1, or N under mpirun -np N
   double wall_seconds = 0.0;
   bool resumed = false;
   const JournaledProblem* journal = nullptr;  ///< evaluation counts (may be null)

@@ -217,6 +217,7 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
     journaled.finish();
     DesignRunFacts facts;
     facts.threads = opt.threads;
+    facts.mpi_ranks = workers ? workers->workers() + 1 : 1;
     facts.resumed = resumed;
     facts.journal = &journaled;
     facts.wall_seconds = wall_seconds();
@@ -261,6 +262,7 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   const ObjectiveSet reference_front =
       study.problem->num_objectives() >= 2 ? study.problem->reference_front(1000) : ObjectiveSet{};
   extra["resumed"] = resumed;
+  extra["mpi_ranks"] = workers ? workers->workers() + 1 : 1;
   extra["evaluations_from_cache"] = journaled.cache_hits();
   extra["evaluations_distinct"] = journaled.entries().size();
   extra["evaluations_loaded_from_journal"] = journaled.loaded_entries();

@@ -133,6 +133,9 @@ def test_same_files_for_any_rank_count():
                 check(not differ, f"{label}: differs from the serial run in {differ}")
                 check(r.stdout.count("\n") == 1, f"{label}: expected one summary line (rank 0 "
                       f"only), found {r.stdout!r}")
+                ranks_said = json.loads((out / "summary.json").read_text())["mpi_ranks"]
+                check(ranks_said == (ranks or 1),
+                      f"{label}: summary.json says mpi_ranks {ranks_said}")
 
 
 def test_killed_mpirun_resumes_with_other_ranks_and_without_mpi():
