@@ -28,37 +28,15 @@ import subprocess
 import sys
 import time
 
+import yaml
+
 BINARY, SOURCE, SCRATCH = (pathlib.Path(a).resolve() for a in sys.argv[1:4])
 MPIRUN = ["mpirun", "--oversubscribe", "--allow-run-as-root"]
 FILES = ["pareto.csv", "evaluations.csv", "journal.txt"]
 
-# A small hexapod design study (as JSON, which is YAML).
-DESIGN = {
-    "study": "mpi-quick",
-    "machine": {
-        "model": "hexapod",
-        "parameters": {
-            "base_radius": {"min": 0.45, "max": 0.75},
-            "platform_radius": {"min": 0.18, "max": 0.30},
-            "base_pair_separation_deg": 20,
-            "platform_pair_separation_deg": {"min": 10, "max": 40},
-            "min_length": {"min": 0.55, "max": 0.90},
-            "stroke": {"min": 0.35, "max": 0.70},
-            "home_height": 0.0,
-        },
-        "legs": {"E": 2.1e11, "area": 3.0e-4, "actuator_stiffness": 2.0e8},
-        "joints": {"base_max_angle_deg": 45, "platform_max_angle_deg": 45},
-        "tool": {"tcp": [0, 0, -0.10]},
-    },
-    "task": {
-        "region": {"shape": "box", "centre": [0, 0, 0.90], "size": [0.30, 0.30, 0.20],
-                   "points": [2, 2, 2]},
-        "wrench": [300, 300, -3000, 0, 0, 0],
-    },
-    "objectives": [{"maximize": "stiffness_min"}, {"minimize": "machine_size"}],
-    "constraints": ["task_reachable", {"metric": "leg_force_max", "max": 10500}],
-    "optimizer": {"algorithm": "nsga2", "population": 24, "generations": 8, "seed": 5},
-}
+# The shipped hexapod-quick study with a smaller budget (written as JSON, which is YAML).
+DESIGN = yaml.safe_load((SOURCE / "studies" / "library" / "hexapod-quick.yaml").read_text())
+DESIGN["optimizer"].update(population=24, generations=8, seed=5)
 
 
 def benchmark(generations):
@@ -175,67 +153,66 @@ def test_killed_mpirun_resumes_with_other_ranks_and_without_mpi():
         check(not differ, f"long: resumed run differs from the uninterrupted one in {differ}")
 
 
-def test_killed_worker_is_named_and_the_journal_resumes():
+def start_long_run(out, extra=()):
+    """mpirun -np 3 on the long ZDT1 study, in a session of its own; returns (process, the three
+    rank PIDs in the order they started: rank 0 first), once the run has got going."""
     path = write_study("long", benchmark(250))
-    out = SCRATCH / "worker-killed"
     proc = subprocess.Popen([*MPIRUN, "-np", "3", str(BINARY), "run", str(path), "--out",
-                             str(out), "--no-progress"], cwd=SCRATCH,
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    check(wait_for_lines(out / "journal.txt", 3000, proc), "worker: the run never got going")
-    ranks = subprocess.run(["ps", "--ppid", str(proc.pid), "-o", "pid="], capture_output=True,
-                           text=True).stdout.split()
-    check(len(ranks) == 3, f"worker: expected 3 ranks under mpirun, found {ranks}")
-    if len(ranks) == 3:
-        os.kill(int(sorted(map(int, ranks))[1]), signal.SIGKILL)  # a worker (rank 0 starts first)
-    _, err = proc.communicate(timeout=120)
-    check(proc.returncode != 0, "worker: a run that lost a worker exited 0")
-    lines = pkmopt_lines(err)
-    check(len(lines) == 1 and "stopped by mpirun" in lines[0] and "rank " in lines[0]
-          and "--resume" in lines[0], f"worker: expected one line naming the rank, found {lines}")
-    wait_until_gone(out / "run.lock")
-    r = run(["run", path, "--out", out, "--resume", "--no-progress"], ranks=2)
-    check(r.returncode == 0, f"worker: resume exit {r.returncode}: {r.stderr}")
-    check("damaged" not in r.stderr, f"worker: the journal was damaged: {r.stderr}")
-    ref = SCRATCH / "long-ref"
-    if r.returncode == 0 and ref.exists():
-        differ = same_files(ref, out, FILES)
-        check(not differ, f"worker: resumed run differs in {differ}")
-
-
-def test_silent_worker_stops_the_run_with_status_4():
-    # A worker stopped with SIGSTOP holds its designs and never answers: a hung evaluation.
-    path = write_study("long", benchmark(250))
-    out = SCRATCH / "timeout"
-    proc = subprocess.Popen([*MPIRUN, "-np", "3", str(BINARY), "run", str(path), "--out",
-                             str(out), "--no-progress", "--worker-timeout", "2"], cwd=SCRATCH,
+                             str(out), "--no-progress", *extra], cwd=SCRATCH,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                             start_new_session=True)
-    check(wait_for_lines(out / "journal.txt", 3000, proc), "timeout: the run never got going")
+    check(wait_for_lines(out / "journal.txt", 3000, proc), f"{out.name}: the run never got going")
     ranks = sorted(map(int, subprocess.run(["ps", "--ppid", str(proc.pid), "-o", "pid="],
                                            capture_output=True, text=True).stdout.split()))
-    stopped = ranks[2] if len(ranks) == 3 else None
-    if stopped:
-        os.kill(stopped, signal.SIGSTOP)
+    check(len(ranks) == 3, f"{out.name}: expected 3 ranks under mpirun, found {ranks}")
+    return path, proc, ranks
+
+
+def finish_and_resume(path, proc, out, ranks):
+    """Waits for the stopped run, then resumes it under -np `ranks`: the journal must be whole
+    and the resumed run end with the uninterrupted run's files. Returns the stopped run's
+    pkmopt lines."""
     try:
         _, err = proc.communicate(timeout=120)
     finally:
         subprocess.run(["pkill", "-KILL", "-s", str(proc.pid)], check=False)
-    lines = pkmopt_lines(err)
-    check(proc.returncode == 4, f"timeout: expected exit 4, found {proc.returncode}: {err}")
+    check(not (out / "pareto.csv").exists(), f"{out.name}: a stopped run wrote pareto.csv")
+    wait_until_gone(out / "run.lock")
+    r = run(["run", path, "--out", out, "--resume", "--no-progress"], ranks=ranks)
+    check(r.returncode == 0, f"{out.name}: resume exit {r.returncode}: {r.stderr}")
+    check("damaged" not in r.stderr, f"{out.name}: the journal was damaged: {r.stderr}")
+    ref = SCRATCH / "long-ref"
+    if r.returncode == 0 and ref.exists():
+        differ = same_files(ref, out, FILES)
+        check(not differ, f"{out.name}: resumed run differs in {differ}")
+    return pkmopt_lines(err)
+
+
+def test_killed_worker_is_named_and_the_journal_resumes():
+    out = SCRATCH / "worker-killed"
+    path, proc, ranks = start_long_run(out)
+    if len(ranks) == 3:
+        os.kill(ranks[1], signal.SIGKILL)  # a worker
+    lines = finish_and_resume(path, proc, out, 2)
+    check(proc.returncode != 0, "worker: a run that lost a worker exited 0")
+    check(len(lines) == 1 and "stopped by mpirun" in lines[0] and f"(pid {ranks[1]})" in lines[0]
+          and "--resume" in lines[0], f"worker: expected one line naming the rank, found {lines}")
+
+
+def test_silent_worker_stops_the_run_with_status_4():
+    # A worker stopped with SIGSTOP holds its designs and never answers: a hung evaluation.
+    out = SCRATCH / "timeout"
+    path, proc, ranks = start_long_run(out, ["--worker-timeout", "2"])
+    stopped = ranks[2] if len(ranks) == 3 else None
+    if stopped:
+        os.kill(stopped, signal.SIGSTOP)
+    lines = finish_and_resume(path, proc, out, 3)
+    check(proc.returncode == 4, f"timeout: expected exit 4, found {proc.returncode}: {lines}")
     check(len(lines) == 1 and f"(pid {stopped} on " in lines[0]
           and re.search(r"MPI rank \d+ \(pid \d+ on .*\) did not answer within "
                         r"--worker-timeout 2 s; it held batch \d+ design", lines[0])
           and "--resume" in lines[0],
           f"timeout: expected one line naming the stopped rank and its designs, found {lines}")
-    check(not (out / "pareto.csv").exists(), "timeout: a stopped run wrote pareto.csv")
-    wait_until_gone(out / "run.lock")
-    r = run(["run", path, "--out", out, "--resume", "--no-progress"], ranks=3)
-    check(r.returncode == 0, f"timeout: resume exit {r.returncode}: {r.stderr}")
-    check("damaged" not in r.stderr, f"timeout: the journal was damaged: {r.stderr}")
-    ref = SCRATCH / "long-ref"
-    if r.returncode == 0 and ref.exists():
-        differ = same_files(ref, out, FILES)
-        check(not differ, f"timeout: resumed run differs in {differ}")
 
 
 def test_analyze_and_workspace_write_the_files_of_one_process():
