@@ -1603,7 +1603,8 @@ def hostile_in_path(case, rng, src_rel, want_dir=False):
     if how == "missing":
         return "missing" + (".yaml" if not want_dir else ""), how
     if how == "fifo":
-        feed = case.files.get(src_rel, ("file", ""))[1] if src_rel in case.files else "x: 1\n"
+        entry = case.files.get(src_rel, ("file", "x: 1\n"))
+        feed = entry[1] if len(entry) > 1 else ""  # a folder or a removed file feeds nothing
         case.files["fifo_in"] = ("fifo", feed if isinstance(feed, str) else "")
         return "fifo_in", how
     if how == "fifo_empty":
