@@ -177,7 +177,7 @@ std::vector<char> receive_bytes(const MPI_Status& probed) {
 
 // Waits for a message from `source` (or any) with `tag` (or any): polls, yielding the core to
 // other processes for the first 2 ms, then sleeping a little longer each time nothing came (up
-// to 1 ms), so that an idle rank leaves its core to the busy ones. Returns false when
+// to 250 us), so that an idle rank leaves its core to the busy ones. Returns false when
 // `deadline_reached()` says stop first.
 template <typename Deadline>
 bool wait_for_message(int source, int tag, MPI_Status& status, Deadline deadline_reached) {
@@ -193,7 +193,7 @@ bool wait_for_message(int source, int tag, MPI_Status& status, Deadline deadline
       continue;
     }
     std::this_thread::sleep_for(pause);
-    pause = std::min(pause * 2, std::chrono::microseconds(1000));
+    pause = std::min(pause * 2, std::chrono::microseconds(250));
   }
 }
 
