@@ -21,7 +21,7 @@ PACKAGES=(
   libbenchmark-dev
   libpagmo-dev
   libpng-dev
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib python3-yaml
   clang libclang-rt-dev libomp-dev
   ccache
   chromium python3-websocket
