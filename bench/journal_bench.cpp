@@ -33,6 +33,13 @@ std::vector<std::vector<double>> random_batch(std::mt19937_64& rng, std::size_t 
   return xs;
 }
 
+// Microseconds per design of a batch of kBatch designs, from the time per iteration.
+benchmark::Counter us_per_evaluation() {
+  return benchmark::Counter(
+      static_cast<double>(kBatch) * 1e-6,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 // The evaluations.csv row of a benchmark study (as `pkmopt run` writes it).
 std::string csv_row(std::size_t index, const JournalEntry& e) {
   std::string row = std::to_string(index) + ',' + std::to_string(e.generation);
@@ -60,9 +67,7 @@ void BM_JournalPerEvaluation(benchmark::State& state) {
       state.ResumeTiming();
       benchmark::DoNotOptimize(journaled.batch_fitness(xs, 1));
     }
-    state.counters["us_per_evaluation"] = benchmark::Counter(
-        static_cast<double>(kBatch) * 1e-6,
-        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["us_per_evaluation"] = us_per_evaluation();
     state.counters["journal_entries"] = static_cast<double>(journaled.entries().size());
   }
   fs::remove_all(dir);
@@ -79,9 +84,7 @@ void BM_Zdt1Evaluation(benchmark::State& state) {
     state.ResumeTiming();
     benchmark::DoNotOptimize(problem.batch_fitness(xs, 1));
   }
-  state.counters["us_per_evaluation"] = benchmark::Counter(
-      static_cast<double>(kBatch) * 1e-6,
-      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["us_per_evaluation"] = us_per_evaluation();
 }
 BENCHMARK(BM_Zdt1Evaluation)->Unit(benchmark::kMicrosecond)->Iterations(250);
 

@@ -1,8 +1,6 @@
 #include "studies/distribute.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +13,7 @@
 #include <thread>
 
 #include "io/input_error.hpp"
+#include "studies/stop_report.hpp"
 
 #ifdef PKMOPT_HAVE_MPI
 #include <mpi.h>
@@ -59,12 +58,10 @@ MpiLaunch mpi_launch_from_environment() {
 
 #ifndef PKMOPT_HAVE_MPI
 
-bool built_with_mpi() { return false; }
-
 MpiSession::MpiSession(bool) {
   throw InputError(
-      "run: started by mpirun, but this pkmopt was built without MPI (install libopenmpi-dev and "
-      "rebuild with -DPKMOPT_WITH_MPI=ON), so every rank would run the whole study");
+      "started by mpirun, but this pkmopt was built without MPI (install libopenmpi-dev and "
+      "rebuild with -DPKMOPT_WITH_MPI=ON), so every rank would do the whole work");
 }
 MpiSession::~MpiSession() = default;
 void MpiSession::abort(int status) const { std::_Exit(status); }
@@ -82,7 +79,6 @@ std::vector<JournalEntry> MpiDispatcher::evaluate(std::span<const std::vector<do
   return {};
 }
 int MpiDispatcher::workers() const { return 0; }
-long long MpiDispatcher::designs_sent() const { return 0; }
 void serve_as_worker(const std::function<StudyEvaluator()>&, int) {}
 
 #else
@@ -197,138 +193,7 @@ bool wait_for_message(int source, int tag, MPI_Status& status, Deadline deadline
   }
 }
 
-// ---- What rank 0 says when mpirun stops it (SIGTERM: a rank died, or the job was cancelled) -----
-
-constexpr std::size_t kLabel = 480;
-struct WorkerSlot {
-  pid_t pid = 0;
-  bool same_host = false;
-  volatile sig_atomic_t label_length = 0;  // 0: holds nothing
-  char label[kLabel] = {};
-};
-WorkerSlot* g_slots = nullptr;   // ranks 0..size-1 (slot 0 unused)
 bool g_workers_stopped = false;  // rank 0 told every worker to stop
-int g_slot_count = 0;
-struct sigaction g_previous_term = {};
-
-// The handler's message, composed in one buffer and written with one write(2): mpirun forwards a
-// rank's stderr while it tears the job down, and a second write may not reach the terminal.
-char g_message[8192];
-std::size_t g_message_length = 0;
-
-void add_text(const char* text, std::size_t n) {
-  n = std::min(n, sizeof g_message - 1 - g_message_length);
-  std::memcpy(g_message + g_message_length, text, n);
-  g_message_length += n;
-}
-void add_text(const char* text) { add_text(text, std::strlen(text)); }
-
-void add_int(long long v) {
-  char digits[24];
-  int n = 0;
-  if (v < 0) {
-    add_text("-");
-    v = -v;
-  }
-  do {
-    digits[n++] = static_cast<char>('0' + v % 10);
-    v /= 10;
-  } while (v > 0 && n < 23);
-  for (int i = n - 1; i >= 0; --i) add_text(&digits[i], 1);
-}
-
-void add_slot(int rank, const WorkerSlot& slot) {
-  add_text("rank ");
-  add_int(rank);
-  add_text(" (pid ");
-  add_int(slot.pid);
-  add_text(") held ");
-  const int length = slot.label_length;
-  if (length > 0 && length < static_cast<int>(kLabel))
-    add_text(slot.label, static_cast<std::size_t>(length));
-  else
-    add_text("no design");
-}
-
-// A process of this host that ended before mpirun's SIGTERM reached rank 0: gone (mpirun reaps a
-// rank that dies at once, then stops the others), or a zombie whose exit status (the last field
-// of /proc/PID/stat, as waitpid reports it) is not "killed by SIGTERM". Async-signal-safe (kill,
-// open, read, close).
-bool process_died(pid_t pid) {
-  if (pid <= 0) return false;
-  char path[64] = "/proc/";
-  std::size_t at = 6;
-  char digits[24];
-  int n = 0;
-  for (long long v = pid; v > 0 && n < 23; v /= 10) digits[n++] = static_cast<char>('0' + v % 10);
-  while (n > 0) path[at++] = digits[--n];
-  std::memcpy(path + at, "/stat", 6);
-  if (::kill(pid, 0) != 0 && errno == ESRCH) return true;  // ended and reaped by mpirun already
-  const int fd = ::open(path, O_RDONLY);
-  if (fd < 0) return false;
-  char stat[1024];
-  const ssize_t got = ::read(fd, stat, sizeof stat - 1);
-  ::close(fd);
-  if (got <= 0) return false;
-  ssize_t close_paren = -1;  // "pid (comm) S ...": the state follows the last ')'
-  for (ssize_t i = got - 1; i > 0 && close_paren < 0; --i)
-    if (stat[i] == ')') close_paren = i;
-  if (close_paren < 0 || close_paren + 2 >= got) return false;
-  const char state = stat[close_paren + 2];
-  if (state != 'Z' && state != 'X') return false;
-  ssize_t end = got;
-  while (end > 0 && (stat[end - 1] == '\n' || stat[end - 1] == ' ')) --end;
-  ssize_t begin = end;
-  while (begin > 0 && stat[begin - 1] >= '0' && stat[begin - 1] <= '9') --begin;
-  if (begin == end) return true;
-  long long status = 0;
-  for (ssize_t i = begin; i < end; ++i) status = status * 10 + (stat[i] - '0');
-  return (status & 0x7f) != SIGTERM;
-}
-
-extern "C" void on_terminate(int) {
-  // Async-signal-safe: open, read, close, write and _exit only.
-  g_message_length = 0;
-  add_text(
-      "pkmopt: error: run: stopped by mpirun (SIGTERM: a rank died or the job was "
-      "cancelled); ");
-  bool dead_found = false;
-  for (int r = 1; r < g_slot_count; ++r) {
-    const WorkerSlot& slot = g_slots[r];
-    if (!slot.same_host || !process_died(slot.pid)) continue;
-    add_text(dead_found ? "; ended first: " : "ended first: ");
-    add_slot(r, slot);
-    dead_found = true;
-  }
-  bool listed = false;
-  for (int r = 1; r < g_slot_count; ++r) {
-    const WorkerSlot& slot = g_slots[r];
-    if (slot.label_length == 0 || (slot.same_host && process_died(slot.pid))) continue;
-    add_text(listed || dead_found ? "; still running: " : "still running: ");
-    add_slot(r, slot);
-    listed = true;
-  }
-  if (!dead_found && !listed) add_text("no design was in flight");
-  add_text(
-      "; the journal holds every evaluation of the batches before: continue with "
-      "--resume\n");
-  const char* text = g_message;
-  std::size_t left = g_message_length;
-  while (left > 0) {
-    const ssize_t w = ::write(STDERR_FILENO, text, left);
-    if (w <= 0) break;
-    text += w;
-    left -= static_cast<std::size_t>(w);
-  }
-  ::_exit(kExitWorkerFault);
-}
-
-void set_label(WorkerSlot& slot, const std::string& text) {
-  slot.label_length = 0;
-  const std::size_t n = std::min(text.size(), kLabel - 1);
-  std::memcpy(slot.label, text.data(), n);
-  slot.label_length = static_cast<sig_atomic_t>(n);
-}
 
 std::string design_text(const std::vector<double>& x) {
   std::string s = "[";
@@ -366,8 +231,6 @@ void stop_workers(int size) {
 }
 
 }  // namespace
-
-bool built_with_mpi() { return true; }
 
 MpiSession::MpiSession(bool with_workers) : with_workers_(with_workers) {
   int initialized = 0;
@@ -427,7 +290,6 @@ struct MpiDispatcher::State {
   std::vector<WorkerSlot> slots;  // by rank, for the SIGTERM handler
   long long next_task = 0;
   long long batches = 0;
-  long long sent = 0;
 };
 
 MpiDispatcher::MpiDispatcher(const StudyEvaluator& local, double timeout_seconds)
@@ -488,26 +350,16 @@ MpiDispatcher::MpiDispatcher(const StudyEvaluator& local, double timeout_seconds
     s.size = 1;  // stopped already
     throw InputError(first_error);
   }
-  g_slots = s.slots.data();
-  g_slot_count = s.size;
-  struct sigaction action = {};
-  action.sa_handler = on_terminate;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGTERM, &action, &g_previous_term);
+  report_stop_on_sigterm(s.slots);
 }
 
 MpiDispatcher::~MpiDispatcher() {
   State& s = *state_;
-  if (g_slots == s.slots.data()) {
-    sigaction(SIGTERM, &g_previous_term, nullptr);
-    g_slots = nullptr;
-    g_slot_count = 0;
-  }
+  stop_reporting_on_sigterm(s.slots);
   if (s.size > 1) stop_workers(s.size);
 }
 
 int MpiDispatcher::workers() const { return state_->size - 1; }
-long long MpiDispatcher::designs_sent() const { return state_->sent; }
 
 std::vector<JournalEntry> MpiDispatcher::evaluate(std::span<const std::vector<double>> xs) {
   State& s = *state_;
@@ -558,7 +410,6 @@ std::vector<JournalEntry> MpiDispatcher::evaluate(std::span<const std::vector<do
           Flight& sent = queue.back();
           MPI_Isend(sent.bytes.data(), static_cast<int>(sent.bytes.size()), MPI_BYTE, r, kTaskTag,
                     MPI_COMM_WORLD, &sent.request);
-          s.sent += static_cast<long long>(count);
           next += count;
           ++in_flight;
           label(r);
@@ -586,7 +437,7 @@ std::vector<JournalEntry> MpiDispatcher::evaluate(std::span<const std::vector<do
           "continue with --resume (with a longer --worker-timeout if the evaluation is merely "
           "slow)",
           late, slot.pid, s.hellos[static_cast<std::size_t>(late)].host, s.timeout,
-          std::string(slot.label, static_cast<std::size_t>(slot.label_length))));
+          label_of(slot)));
     }
     const int r = status.MPI_SOURCE;
     const std::vector<char> bytes = receive_bytes(status);

@@ -53,9 +53,6 @@ struct MpiLaunch {
 };
 MpiLaunch mpi_launch_from_environment();
 
-/// True when this pkmopt was built with MPI (CMake option PKMOPT_WITH_MPI and Open MPI found).
-bool built_with_mpi();
-
 /// What a rank needs to evaluate the designs of a study (every rank loads it from the same file).
 struct StudyEvaluator {
   std::uint64_t study_hash = 0;
@@ -127,7 +124,6 @@ class MpiDispatcher {
   std::vector<JournalEntry> evaluate(std::span<const std::vector<double>> xs);
 
   int workers() const;
-  long long designs_sent() const;
 
  private:
   struct State;
