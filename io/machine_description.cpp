@@ -3,37 +3,17 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <map>
 #include <set>
 #include <stdexcept>
-#include <utility>
 
 #include "io/machine_file.hpp"
 #include "io/machine_file_hybrid.hpp"
+#include "io/model_registry.hpp"
 #include "io/yaml_reader.hpp"
 #include "models/serial_chain.hpp"
 
 namespace pkmopt {
 namespace {
-
-// Platform mobility of the parallel models: {translations, rotations}.
-std::pair<int, int> parallel_mobility(const YamlValue& model_value, const std::string& model) {
-  static const std::map<std::string, std::pair<int, int>> kMobility = {
-      {"hexapod", {3, 3}},      {"hexaglide", {3, 3}},   {"delta", {3, 0}},
-      {"linear_delta", {3, 0}}, {"tripod_3prs", {1, 2}}, {"lathe_16k20f3", {3, 1}}};
-  const auto it = kMobility.find(model);
-  if (it == kMobility.end()) model_value.fail("a known model", "'" + model + "'");
-  return it->second;
-}
-
-// Platform mobility of `model: leg_chain` files from their `mobility:` key (already validated).
-std::pair<int, int> leg_chain_mobility(const YamlValue& root) {
-  const std::string mobility = root.required("mobility").as_string();
-  if (mobility == "translational") return {3, 0};
-  if (mobility == "schoenflies") return {3, 1};
-  if (mobility == "planar_legs") return {1, 2};
-  return {3, 3};
-}
 
 struct SerialPart {
   SerialChain chain;
@@ -92,49 +72,47 @@ void add_serial(MachineDescription& d, const SerialPart& part) {
 
 }  // namespace
 
+int describe_serial_axes(const YamlValue& map, bool allow_spindle, MachineDescription& d) {
+  const SerialPart part = read_serial(map, allow_spindle);
+  add_serial(d, part);
+  return part.chain.num_variables();
+}
+
 MachineDescription describe_machine_file(const std::string& path) {
   return describe_machine(YamlValue::load_file(path));
 }
 
 MachineDescription describe_machine(const YamlValue& root) {
-  const std::string& path = root.file();
   root.expect_map();
   const YamlValue model_value = root.required("model");
   MachineDescription d;
   d.model = model_value.as_string();
   if (const auto name = root.optional("name")) d.name = name->as_string();
-  if (d.model == "serial") {
-    root.check_keys({"model", "name", "description", "code", "axes", "spindle"});
-    add_serial(d, read_serial(root, true));
-  } else if (d.model == "hybrid") {
-    root.check_keys({"model", "name", "description", "serial", "parallel", "gravity"});
-    const YamlValue serial = root.required("serial");
-    serial.check_keys({"code", "axes", "range", "stiffness", "error", "mass"});
-    const SerialPart part = read_serial(serial, false);
-    // The numbers by the rules `analyze` reads them with: one reader, one verdict.
-    check_hybrid_numbers(root, part.chain.num_variables());
-    add_serial(d, part);
-    const YamlValue parallel = root.required("parallel");
-    parallel.check_keys({"file", "home"});
-    const YamlValue file = parallel.required("file");
-    const YamlValue module_root = read_hybrid_module_file(file, path);
-    const MachineDescription inner = describe_machine(module_root);
-    d.translations += inner.translations;
-    d.rotations += inner.rotations;
-    d.parallel_drives = inner.parallel_drives;
-    d.details.push_back(fmt::format("parallel: {} ({})", inner.model, module_root.file()));
+  const ModelEntry* entry = find_model(d.model);
+  if (entry != nullptr && entry->describe) {
+    entry->describe(root, d);
   } else {
+    // A parallel machine: its platform's degrees of freedom and its actuators.
     const std::unique_ptr<Machine> machine = load_machine(root);
-    const auto [translations, rotations] =
-        d.model == "leg_chain" ? leg_chain_mobility(root) : parallel_mobility(model_value, d.model);
-    d.translations = translations;
-    d.rotations = rotations;
+    const PlatformDofs dofs = machine_model(model_value).platform_dofs(root);
+    d.translations = dofs.translations;
+    d.rotations = dofs.rotations;
     d.parallel_drives = machine->num_actuators();
     d.details.push_back(fmt::format("actuators: {} {}", machine->num_actuators(),
                                     machine->revolute_actuators() ? "revolute" : "prismatic"));
   }
   d.structure = structure_class(d.serial_drives, d.parallel_drives);
   return d;
+}
+
+ModelEntry serial_model_entry() {
+  ModelEntry entry;
+  entry.name = "serial";
+  entry.describe = [](const YamlValue& root, MachineDescription& d) {
+    root.check_keys({"model", "name", "description", "code", "axes", "spindle"});
+    describe_serial_axes(root, true, d);
+  };
+  return entry;
 }
 
 std::string format_description(const MachineDescription& d) {

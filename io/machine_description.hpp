@@ -46,6 +46,11 @@ MachineDescription describe_machine_file(const std::string& path);
 /// root.file()).
 MachineDescription describe_machine(const YamlValue& root);
 
+/// Reads the serial axes of `map` ({code, axes} and, with `allow_spindle`, spindle) into the
+/// description: drives, degrees of freedom and the details lines. Returns the number of
+/// variable axes. Throws InputError.
+int describe_serial_axes(const YamlValue& map, bool allow_spindle, MachineDescription& description);
+
 /// The text `pkmopt describe` prints.
 std::string format_description(const MachineDescription& description);
 

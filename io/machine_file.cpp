@@ -10,10 +10,8 @@
 #include "io/field_list.hpp"
 #include "io/hexapod_fields.hpp"
 #include "io/leg_shape_fields.hpp"
-#include "io/machine_file_hybrid.hpp"
-#include "io/machine_file_lathe.hpp"
-#include "io/machine_file_leg_chain.hpp"
 #include "io/mass_fields.hpp"
+#include "io/model_registry.hpp"
 
 namespace pkmopt {
 namespace {
@@ -153,15 +151,18 @@ std::string hexapod_machine_fields_markdown() {
 
 std::unique_ptr<Machine> load_machine(const YamlValue& root) {
   root.expect_map();
-  const YamlValue model_value = root.required("model");
-  const std::string model = model_value.as_string();
-  if (model == "hexapod") return std::make_unique<Hexapod>(read_hexapod_design(root));
-  if (auto machine = load_leg_chain_machine(root, model)) return machine;
-  if (auto machine = load_lathe_machine(root, model)) return machine;
-  if (model == "hybrid") return load_hybrid_machine(root);
-  model_value.fail(
-      fmt::format("a known model (hexapod, {}, lathe_16k20f3, hybrid)", leg_chain_model_names()),
-      quote_found(model));
+  return machine_model(root.required("model")).load(root);
+}
+
+ModelEntry hexapod_model_entry() {
+  ModelEntry entry;
+  entry.name = "hexapod";
+  entry.load = [](const YamlValue& root) {
+    return std::make_unique<Hexapod>(read_hexapod_design(root));
+  };
+  entry.fields_markdown = hexapod_machine_fields_markdown;
+  entry.platform_dofs = [](const YamlValue&) { return PlatformDofs{3, 3}; };
+  return entry;
 }
 
 std::unique_ptr<Machine> load_machine_file(const std::string& path) {

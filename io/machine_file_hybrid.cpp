@@ -14,7 +14,9 @@
 
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
+#include "io/machine_description.hpp"
 #include "io/machine_file.hpp"
+#include "io/model_registry.hpp"
 #include "io/number_policy.hpp"
 
 namespace pkmopt {
@@ -164,7 +166,9 @@ YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybr
   YamlValue module_root = YamlValue::load_file(module.string());
   module_root.expect_map();
   const std::string module_model = module_root.required("model").as_string();
-  if (module_model == "hybrid" || module_model == "serial")
+  // Parallel machines are the models with a platform (ModelEntry::platform_dofs).
+  const ModelEntry* entry = find_model(module_model);
+  if (entry != nullptr && !entry->platform_dofs)
     file.fail("a parallel machine file", "'" + module.string() + "' (model: " + module_model + ")");
   return module_root;
 }
@@ -311,6 +315,38 @@ std::string hybrid_machine_fields_markdown() {
   HybridDesign design;
   describe_fields(docs, design);
   return docs.markdown();
+}
+
+namespace {
+
+// `pkmopt describe`: the serial axes, then the parallel module's degrees of freedom and drives.
+void describe_hybrid(const YamlValue& root, MachineDescription& d) {
+  root.check_keys({"model", "name", "description", "serial", "parallel", "gravity"});
+  const YamlValue serial = root.required("serial");
+  serial.check_keys({"code", "axes", "range", "stiffness", "error", "mass"});
+  const int axes = describe_serial_axes(serial, false, d);
+  // The numbers by the rules `analyze` reads them with: one reader, one verdict.
+  check_hybrid_numbers(root, axes);
+  const YamlValue parallel = root.required("parallel");
+  parallel.check_keys({"file", "home"});
+  const YamlValue file = parallel.required("file");
+  const YamlValue module_root = read_hybrid_module_file(file, root.file());
+  const MachineDescription inner = describe_machine(module_root);
+  d.translations += inner.translations;
+  d.rotations += inner.rotations;
+  d.parallel_drives = inner.parallel_drives;
+  d.details.push_back(fmt::format("parallel: {} ({})", inner.model, module_root.file()));
+}
+
+}  // namespace
+
+ModelEntry hybrid_model_entry() {
+  ModelEntry entry;
+  entry.name = "hybrid";
+  entry.load = load_hybrid_machine;
+  entry.fields_markdown = hybrid_machine_fields_markdown;
+  entry.describe = describe_hybrid;
+  return entry;
 }
 
 }  // namespace pkmopt

@@ -6,6 +6,7 @@
 #include "io/compliance_fields.hpp"
 #include "io/field_list.hpp"
 #include "io/mass_fields.hpp"
+#include "io/model_registry.hpp"
 
 namespace pkmopt {
 namespace {
@@ -119,12 +120,18 @@ Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root) {
   return d;
 }
 
-std::unique_ptr<Machine> load_lathe_machine(const YamlValue& root, const std::string& model) {
-  if (model != "lathe_16k20f3") return nullptr;
-  return make_lathe_16k20f3(read_lathe_16k20f3_design(root));
-}
-
 std::string lathe_machine_fields_markdown() { return fields_markdown(Lathe16k20f3Design{}); }
+
+ModelEntry lathe_model_entry() {
+  ModelEntry entry;
+  entry.name = "lathe_16k20f3";
+  entry.load = [](const YamlValue& root) {
+    return make_lathe_16k20f3(read_lathe_16k20f3_design(root));
+  };
+  entry.fields_markdown = lathe_machine_fields_markdown;
+  entry.platform_dofs = [](const YamlValue&) { return PlatformDofs{3, 1}; };
+  return entry;
+}
 
 // The writer (io/machine_file_writer.cpp) takes the same list.
 template void describe_fields(FieldWriter&, Lathe16k20f3Design&);

@@ -53,9 +53,6 @@ namespace pkmopt {
 /// The design of a `model: lathe_16k20f3` file. Throws InputError.
 Lathe16k20f3Design read_lathe_16k20f3_design(const YamlValue& root);
 
-/// The machine of a lathe model file; nullptr when `model` is not "lathe_16k20f3".
-std::unique_ptr<Machine> load_lathe_machine(const YamlValue& root, const std::string& model);
-
 /// The docs table of the lathe machine file's keys, from the field list its reader and writer use.
 std::string lathe_machine_fields_markdown();
 

@@ -15,6 +15,7 @@
 #include "io/input_error.hpp"
 #include "io/leg_chain_fields.hpp"
 #include "io/mass_fields.hpp"
+#include "io/model_registry.hpp"
 #include "models/hexapod.hpp"
 
 namespace pkmopt {
@@ -276,27 +277,59 @@ Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
   return d;
 }
 
-std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std::string& model) {
-  if (model == "delta") return make_delta(read_delta_design(root));
-  if (model == "linear_delta") return make_linear_delta(read_linear_delta_design(root));
-  if (model == "hexaglide") return make_hexaglide(read_hexaglide_design(root));
-  if (model == "tripod_3prs") return make_tripod_3prs(read_tripod_3prs_design(root));
-  if (model == "leg_chain") return make_leg_chain_machine(read_leg_chain_design(root));
-  return nullptr;
-}
-
-const char* leg_chain_model_names() {
-  return "delta, linear_delta, hexaglide, tripod_3prs, leg_chain";
-}
-
 std::string leg_chain_machine_fields_markdown(std::string_view model) {
-  if (model == "delta") return markdown_of(reader_start<DeltaDesign>());
-  if (model == "linear_delta") return markdown_of(reader_start<LinearDeltaDesign>());
-  if (model == "hexaglide") return markdown_of(reader_start<HexaglideDesign>());
-  if (model == "tripod_3prs") return markdown_of(reader_start<Tripod3PrsDesign>());
-  if (model == "leg_chain") return leg_chain_fields::generic_fields_markdown();
+  for (const ModelEntry& entry : leg_chain_model_entries())
+    if (entry.name == model) return entry.fields_markdown();
   throw std::invalid_argument("leg_chain_machine_fields_markdown: unknown model '" +
                               std::string(model) + "'");
+}
+
+namespace {
+
+// An entry whose machine is `make(read(root))` and whose docs table comes from the design's
+// field list.
+template <class Design>
+ModelEntry leg_chain_entry(const char* name, Design (*read)(const YamlValue&),
+                           std::unique_ptr<Machine> (*make)(const Design&), PlatformDofs dofs) {
+  ModelEntry entry;
+  entry.name = name;
+  entry.load = [read, make](const YamlValue& root) -> std::unique_ptr<Machine> {
+    return make(read(root));
+  };
+  entry.fields_markdown = [] { return markdown_of(reader_start<Design>()); };
+  entry.platform_dofs = [dofs](const YamlValue&) { return dofs; };
+  return entry;
+}
+
+// The platform mobility of a `model: leg_chain` file from its `mobility:` key (validated by
+// the reader before).
+PlatformDofs generic_leg_chain_dofs(const YamlValue& root) {
+  const std::string mobility = root.required("mobility").as_string();
+  if (mobility == "translational") return {3, 0};
+  if (mobility == "schoenflies") return {3, 1};
+  if (mobility == "planar_legs") return {1, 2};
+  return {3, 3};
+}
+
+}  // namespace
+
+std::vector<ModelEntry> leg_chain_model_entries() {
+  std::vector<ModelEntry> entries;
+  entries.push_back(leg_chain_entry("delta", read_delta_design, make_delta, {3, 0}));
+  entries.push_back(
+      leg_chain_entry("linear_delta", read_linear_delta_design, make_linear_delta, {3, 0}));
+  entries.push_back(leg_chain_entry("hexaglide", read_hexaglide_design, make_hexaglide, {3, 3}));
+  entries.push_back(
+      leg_chain_entry("tripod_3prs", read_tripod_3prs_design, make_tripod_3prs, {1, 2}));
+  ModelEntry generic;
+  generic.name = "leg_chain";
+  generic.load = [](const YamlValue& root) -> std::unique_ptr<Machine> {
+    return make_leg_chain_machine(read_leg_chain_design(root));
+  };
+  generic.fields_markdown = leg_chain_fields::generic_fields_markdown;
+  generic.platform_dofs = generic_leg_chain_dofs;
+  entries.push_back(std::move(generic));
+  return entries;
 }
 
 // The writers (io/machine_file_writer.cpp) take the same lists.

@@ -22,9 +22,9 @@
 //   #   rods: {E: 7.0e10, area: 5.0e-5, parallelogram_width: 0.1}
 //   #   crank_section: {E: 7.0e10, G: 2.6e10, outer_diameter: 0.05, inner_diameter: 0.04}
 //
-// Example:
+// The models register in io/model_registry.hpp (leg_chain_model_entries). Example:
 //   YamlValue root = YamlValue::load_file("examples/delta.yaml");
-//   std::unique_ptr<Machine> m = load_leg_chain_machine(root, "delta");  // nullptr: not ours
+//   DeltaDesign design = read_delta_design(root);
 #pragma once
 
 #include <memory>
@@ -44,13 +44,6 @@ Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root);
 /// The generic form `model: leg_chain` (mobility, rotation_axis, tool, legs list; see
 /// docs/machines.md).
 LegChainDesign read_leg_chain_design(const YamlValue& root);
-
-/// The machine of a leg-chain model file (`model` is the value of `model:`); nullptr when the
-/// model is not a leg-chain model. Throws InputError.
-std::unique_ptr<Machine> load_leg_chain_machine(const YamlValue& root, const std::string& model);
-
-/// The leg-chain model names this reader knows, for messages ("delta, linear_delta, ...").
-const char* leg_chain_model_names();
 
 /// The docs table of a model's machine-file keys (`model`: delta, linear_delta, hexaglide,
 /// tripod_3prs or leg_chain, whose table has the legs' keys as `legs[].KEY`), from the field

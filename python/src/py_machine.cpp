@@ -17,6 +17,7 @@
 #include "io/input_error.hpp"
 #include "io/machine_description.hpp"
 #include "io/machine_file.hpp"
+#include "io/model_registry.hpp"
 #include "io/number_policy.hpp"
 #include "models/leg_interference.hpp"
 #include "models/machine.hpp"
@@ -465,12 +466,11 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
 }  // namespace
 
 void bind_machine(py::module_& m) {
-  py::class_<PyMachine> machine_class(
-      m, "Machine",
-      "A machine model read from a machine file (docs/conventions.md): a "
-      "hexapod, a leg-chain model (delta, linear_delta, hexaglide, tripod_3prs, "
-      "leg_chain), the 16K20F3 lathe conversion or a hybrid machine. Immutable; "
-      "its methods may be called from several Python threads.");
+  const std::string machine_doc =
+      "A machine model read from a machine file (docs/conventions.md; models: " +
+      machine_model_names() +
+      "). Immutable; its methods may be called from several Python threads.";
+  py::class_<PyMachine> machine_class(m, "Machine", machine_doc.c_str());
   // Machines come from load_machine and machine_from_dict only: Machine.__new__(Machine) would
   // make an object without its C++ machine (methods on it crashed the interpreter).
   machine_class.attr("__new__") = py::staticmethod(py::cpp_function(

@@ -45,7 +45,7 @@ std::string hexapod_error_of(const std::string& text) {
 
 std::string leg_chain_error_of(const std::string& text) {
   try {
-    (void)load_leg_chain_machine(yaml_of(text), yaml_of(text).required("model").as_string());
+    (void)load_machine(yaml_of(text));
   } catch (const InputError& e) {
     return e.what();
   }
@@ -111,7 +111,7 @@ TEST(BodyFields, DeltaLinkShapesRoundTrip) {
   EXPECT_EQ(r.shapes.bodies.tool.to, d.shapes.bodies.tool.to);
   EXPECT_EQ(r.shapes.bodies.base.polygon, d.shapes.bodies.base.polygon);
   EXPECT_EQ(delta_machine_file(r), text);
-  const auto machine = load_leg_chain_machine(yaml_of(text), "delta");
+  const auto machine = load_machine(yaml_of(text));
   EXPECT_TRUE(machine->checks_leg_interference());
   // A linear delta has no cranks: crank_diameter is not one of its keys.
   EXPECT_NE(

@@ -17,6 +17,7 @@
 
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
+#include "io/machine_file.hpp"
 #include "io/machine_file_writer.hpp"
 #include "io/yaml_reader.hpp"
 
@@ -36,7 +37,7 @@ YamlValue yaml(const std::string& text) { return YamlValue::load_string(text, "m
 
 std::string error_of(const std::string& text) {
   try {
-    (void)load_leg_chain_machine(yaml(text), yaml(text).required("model").as_string());
+    (void)load_machine(yaml(text));
   } catch (const InputError& e) {
     return e.what();
   }

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/machine_file.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
 #include "io/yaml_reader.hpp"
@@ -277,7 +278,7 @@ TEST(MachineFileWriter, FamilyDesignsLoadBackToTheSameMachine) {
     const auto& [family, p] = cases[c];
     const std::string text = family_machine_file(family.design(p));
     const YamlValue root = YamlValue::load_string(text, family.model + ".yaml");
-    const std::unique_ptr<Machine> loaded = load_leg_chain_machine(root, family.model);
+    const std::unique_ptr<Machine> loaded = load_machine(root);
     ASSERT_NE(loaded, nullptr) << text;
     const std::unique_ptr<Machine> built = family.build(p);
     EXPECT_EQ(loaded->model(), family.model);
