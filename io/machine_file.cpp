@@ -9,6 +9,7 @@
 #include "io/csv.hpp"
 #include "io/field_list.hpp"
 #include "io/hexapod_fields.hpp"
+#include "io/hexapod_study_machine.hpp"
 #include "io/leg_shape_fields.hpp"
 #include "io/mass_fields.hpp"
 #include "io/model_registry.hpp"
@@ -162,6 +163,8 @@ ModelEntry hexapod_model_entry() {
   };
   entry.fields_markdown = hexapod_machine_fields_markdown;
   entry.platform_dofs = [](const YamlValue&) { return PlatformDofs{3, 3}; };
+  entry.study_machine = read_hexapod_study_machine;
+  entry.study_fields_markdown = hexapod_study_machine_markdown;
   return entry;
 }
 

@@ -15,6 +15,7 @@
 #include "io/input_error.hpp"
 #include "io/leg_chain_fields.hpp"
 #include "io/mass_fields.hpp"
+#include "io/machine_file_writer.hpp"
 #include "io/model_registry.hpp"
 #include "models/hexapod.hpp"
 
@@ -286,12 +287,20 @@ std::string leg_chain_machine_fields_markdown(std::string_view model) {
 
 namespace {
 
-// An entry whose machine is `make(read(root))` and whose docs table comes from the design's
-// field list.
+// An entry whose machine is `make(read(root))`, whose docs table comes from the design's field
+// list and whose design family is `family` around a template the reader reads.
 template <class Design>
 ModelEntry leg_chain_entry(const char* name, Design (*read)(const YamlValue&),
-                           std::unique_ptr<Machine> (*make)(const Design&), PlatformDofs dofs) {
+                           std::unique_ptr<Machine> (*make)(const Design&), PlatformDofs dofs,
+                           DesignFamily (*family)(const Design&)) {
   ModelEntry entry;
+  entry.design_family = [read, family](const YamlValue* machine) {
+    DesignFamily f = family(machine ? read(*machine) : Design{});
+    f.machine_file = [design = f.design](const std::vector<double>& p) {
+      return family_machine_file(design(p));
+    };
+    return f;
+  };
   entry.name = name;
   entry.load = [read, make](const YamlValue& root) -> std::unique_ptr<Machine> {
     return make(read(root));
@@ -315,12 +324,14 @@ PlatformDofs generic_leg_chain_dofs(const YamlValue& root) {
 
 std::vector<ModelEntry> leg_chain_model_entries() {
   std::vector<ModelEntry> entries;
-  entries.push_back(leg_chain_entry("delta", read_delta_design, make_delta, {3, 0}));
   entries.push_back(
-      leg_chain_entry("linear_delta", read_linear_delta_design, make_linear_delta, {3, 0}));
-  entries.push_back(leg_chain_entry("hexaglide", read_hexaglide_design, make_hexaglide, {3, 3}));
-  entries.push_back(
-      leg_chain_entry("tripod_3prs", read_tripod_3prs_design, make_tripod_3prs, {1, 2}));
+      leg_chain_entry("delta", read_delta_design, make_delta, {3, 0}, delta_family));
+  entries.push_back(leg_chain_entry("linear_delta", read_linear_delta_design, make_linear_delta,
+                                    {3, 0}, linear_delta_family));
+  entries.push_back(leg_chain_entry("hexaglide", read_hexaglide_design, make_hexaglide, {3, 3},
+                                    hexaglide_family));
+  entries.push_back(leg_chain_entry("tripod_3prs", read_tripod_3prs_design, make_tripod_3prs,
+                                    {1, 2}, tripod_3prs_family));
   ModelEntry generic;
   generic.name = "leg_chain";
   generic.load = [](const YamlValue& root) -> std::unique_ptr<Machine> {

@@ -11,6 +11,7 @@
 //                   `pkmopt describe`
 //   describe        a description of its own (serial axes, hybrids); empty: the default one,
 //                   platform_dofs and the actuators of the loaded machine
+//   design_family or study_machine   how it takes part in design studies (io/study_machine.hpp)
 // Commands, the study engine, the Python package and the docs tables find models here; a
 // model's own files (its machine, its field list, its design family) hold everything else
 // about it, and no other file names it.
@@ -37,10 +38,12 @@
 
 #include "io/yaml_reader.hpp"
 #include "models/machine.hpp"
+#include "problems/machine_design.hpp"
 
 namespace pkmopt {
 
 struct MachineDescription;  // io/machine_description.hpp
+class StudyMachine;         // io/study_machine.hpp
 
 /// The degrees of freedom of a machine's platform (or tool) relative to its base.
 struct PlatformDofs {
@@ -55,6 +58,14 @@ struct ModelEntry {
   std::function<std::string()> fields_markdown;
   std::function<PlatformDofs(const YamlValue& root)> platform_dofs;
   std::function<void(const YamlValue& root, MachineDescription& description)> describe;
+
+  // Design studies (io/study_machine.hpp), one of:
+  /// the model's design family around a template machine section (null: the defaults); the
+  /// family's machine_file writes its designs;
+  std::function<DesignFamily(const YamlValue* machine)> design_family;
+  /// a reader of its own for a study's `machine:` section, with its docs table.
+  std::function<std::unique_ptr<StudyMachine>(const YamlValue& machine)> study_machine;
+  std::function<std::string()> study_fields_markdown;
 };
 
 /// The model named `name`; nullptr when none is registered.

@@ -69,8 +69,6 @@ HexapodDesignSpec::HexapodDesignSpec() {
   const std::array<double, kNumDesignParameters> values = {
       0.60, 0.25, deg_to_rad(20), deg_to_rad(20), 0.70, 0.45, 0.0};
   for (int i = 0; i < kNumDesignParameters; ++i) parameters[i] = {values[i], values[i]};
-  task.workspace.resolution = 0.05;
-  task.workspace.bisection_steps = 4;
 }
 
 HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::move(spec)) {
@@ -245,9 +243,35 @@ std::array<double, kNumDesignParameters> HexapodDesignProblem::parameters_of(
   return p;
 }
 
+std::vector<double> HexapodDesignProblem::design_parameters(const std::vector<double>& x) const {
+  const std::array<double, kNumDesignParameters> p = parameters_of(x);
+  return {p.begin(), p.end()};
+}
+
+double HexapodDesignProblem::home_height(const std::vector<double>& parameters) const {
+  return parameters.at(kHomeHeight);
+}
+
+DesignRecord HexapodDesignProblem::measure(const std::vector<double>& x) const {
+  DesignEvaluation ev = evaluate(x);
+  DesignRecord record;
+  record.parameters.assign(ev.parameters.begin(), ev.parameters.end());
+  record.home_height = ev.parameters[kHomeHeight];
+  record.metrics = ev.metrics;
+  record.aggregate = aggregate_fitness(ev);
+  record.actuator = ev.actuator;
+  record.failure = std::move(ev.failure);
+  return record;
+}
+
 HexapodDesign HexapodDesignProblem::design_of(
     const std::array<double, kNumDesignParameters>& p) const {
-  HexapodDesign d = spec_.machine_template;
+  return hexapod_design_of(spec_.machine_template, p);
+}
+
+HexapodDesign hexapod_design_of(const HexapodDesign& machine_template,
+                                const std::array<double, kNumDesignParameters>& p) {
+  HexapodDesign d = machine_template;
   d.base_joints = semi_regular_joints<double>(p[kBaseRadius], p[kBasePairSeparation], false);
   d.platform_joints =
       semi_regular_joints<double>(p[kPlatformRadius], p[kPlatformPairSeparation], true);

@@ -108,6 +108,7 @@
 #include "models/workspace/workspace.hpp"
 #include "optimizer/problem.hpp"
 #include "problems/actuator_catalog.hpp"
+#include "problems/design_problem.hpp"
 #include "problems/machine_design.hpp"
 
 namespace pkmopt {
@@ -127,8 +128,6 @@ enum DesignParameterIndex : int {
 std::string_view design_parameter_name(int index);
 /// True for the parameters given in degrees in files (the pair separations).
 bool design_parameter_in_degrees(int index);
-
-enum class DesignFormulation { aggregate, smooth };
 
 /// Everything that defines a hexapod design problem.
 struct HexapodDesignSpec {
@@ -176,7 +175,12 @@ struct DesignEvaluation {
   bool ok() const { return failure.empty(); }
 };
 
-class HexapodDesignProblem final : public Problem {
+/// The machine of a parameter vector (internal units): the template with the parameters' joints
+/// and leg lengths.
+HexapodDesign hexapod_design_of(const HexapodDesign& machine_template,
+                                const std::array<double, kNumDesignParameters>& parameters);
+
+class HexapodDesignProblem final : public DesignProblem {
  public:
   /// Checks the spec; throws std::invalid_argument naming the field (empty task, no objective,
   /// lower > upper, a metric that has no smooth formulation in smooth mode...).
@@ -193,8 +197,22 @@ class HexapodDesignProblem final : public Problem {
   ThreadSafety thread_safety() const override { return ThreadSafety::basic; }
 
   const HexapodDesignSpec& spec() const { return spec_; }
+
+  // DesignProblem (problems/design_problem.hpp).
+  const DesignTask& task() const override { return spec_.task; }
+  const std::vector<DesignObjective>& objectives() const override { return spec_.objectives; }
+  const std::vector<DesignConstraint>& constraints() const override { return spec_.constraints; }
+  bool require_reachable() const override { return spec_.require_reachable; }
+  bool aggregate() const override { return spec_.formulation == DesignFormulation::aggregate; }
   /// Indices of the free parameters, in variable order.
-  const std::vector<int>& free_parameters() const { return free_; }
+  const std::vector<int>& free_parameters() const override { return free_; }
+  std::vector<double> design_parameters(const std::vector<double>& x) const override;
+  double home_height(const std::vector<double>& parameters) const override;
+  DesignRecord measure(const std::vector<double>& x) const override;
+  const ActuatorCatalog* actuator_catalog() const override {
+    return spec_.actuator_catalog ? &*spec_.actuator_catalog : nullptr;
+  }
+
   /// Number of epigraph variables (smooth formulation), after the free parameters (one per
   /// minimize leg_force_max / maximize stiffness_min objective, in objective order).
   std::size_t num_epigraph() const { return epigraph_objectives_.size(); }

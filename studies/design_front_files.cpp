@@ -127,7 +127,7 @@ nlohmann::json actuator_json(const FrontFiles& f, const MeasuredDesign& d) {
                       {"max_speed", e.max_speed},
                       {"cost", d.metrics[static_cast<int>(DesignMetric::actuator_cost)]},
                       {"leg_force_max", json_number(force)}};
-  if (f.study.problem && f.study.problem->spec().task.acceleration_max > 0.0) {
+  if (f.study.task().acceleration_max > 0.0) {
     // Sized for the rapid moves too: the accelerated force against the peak rating.
     const double peak = e.peak_force.value_or(e.max_force);
     const double dynamic = d.metrics[static_cast<int>(DesignMetric::actuator_force_dynamic_max)];
@@ -363,8 +363,7 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
   for (const StudyParameter& p : study.parameters)
     if (p.name == "home_height") f.home_free = p.free();
   f.g_names = constraint_names(study);
-  if (study.problem && study.problem->spec().actuator_catalog)
-    f.catalog = &*study.problem->spec().actuator_catalog;
+  f.catalog = study.problem->actuator_catalog();
   for (const MeasuredDesign& d : f.front)
     f.objectives.emplace_back(d.aggregate.begin(),
                               d.aggregate.begin() + static_cast<std::ptrdiff_t>(f.m));

@@ -14,15 +14,12 @@
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
-#include "io/machine_file_lathe.hpp"
-#include "io/machine_file_leg_chain.hpp"
 #include "io/machine_file_writer.hpp"
 #include "io/output_file.hpp"
 #include "io/task_wrench_file.hpp"
 #include "optimizer/front_thinning.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
-#include "problems/lathe_design.hpp"
 #include "studies/design_outputs_detail.hpp"
 #include "studies/design_study.hpp"
 
@@ -76,22 +73,14 @@ std::vector<std::string> constraint_names(const DesignStudy& study) {
 
 // Indices (into study.parameters) of the variables, in variable order.
 std::vector<int> free_parameter_indices(const DesignStudy& study) {
-  return study.problem ? study.problem->free_parameters()
-                       : study.machine_problem->free_parameters();
+  return study.problem->free_parameters();
 }
 
 // Every parameter of a variable vector in file units (study.parameters order).
 std::vector<double> file_parameters(const DesignStudy& study, const std::vector<double>& x) {
-  std::vector<double> values;
-  if (study.problem) {
-    const std::array<double, kNumDesignParameters> p = study.problem->parameters_of(x);
-    for (int i = 0; i < kNumDesignParameters; ++i)
-      values.push_back(design_parameter_in_degrees(i) ? rad_to_deg(p[i]) : p[i]);
-  } else {
-    const std::vector<double> p = study.machine_problem->parameters_of(x);
-    const DesignFamily& family = study.machine_problem->family();
-    for (std::size_t i = 0; i < p.size(); ++i) values.push_back(family.parameters[i].to_file(p[i]));
-  }
+  std::vector<double> values = study.problem->design_parameters(x);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (study.parameters[i].unit == "deg") values[i] = rad_to_deg(values[i]);
   return values;
 }
 
@@ -100,25 +89,13 @@ MeasuredDesign measure_design(const DesignStudy& study, const std::vector<double
   MeasuredDesign d;
   d.x = x;
   d.parameters = file_parameters(study, x);
-  if (study.problem) {
-    const DesignEvaluation ev = study.problem->evaluate(x);
-    d.home_height = ev.parameters[kHomeHeight];
-    d.metrics = ev.metrics;
-    d.aggregate = study.problem->aggregate_fitness(ev);
-    d.failure = ev.failure;
-    d.actuator = ev.actuator;
-    if (machine_file && ev.ok())
-      d.machine_file = hexapod_design_to_yaml(study.problem->design_of(ev.parameters));
-  } else {
-    const MachineDesignProblem& problem = *study.machine_problem;
-    const MachineDesignEvaluation ev = problem.evaluate(x);
-    d.home_height = problem.home_height_of(ev.parameters);
-    d.metrics = ev.metrics;
-    d.aggregate = problem.aggregate_fitness(ev);
-    d.failure = ev.failure;
-    if (machine_file && ev.ok())
-      d.machine_file = family_machine_file(problem.family().design(ev.parameters));
-  }
+  DesignRecord record = study.problem->measure(x);
+  d.home_height = record.home_height;
+  d.metrics = record.metrics;
+  d.aggregate = std::move(record.aggregate);
+  d.failure = std::move(record.failure);
+  d.actuator = record.actuator;
+  if (machine_file && d.failure.empty()) d.machine_file = study.machine->machine_file(record.parameters);
   return d;
 }
 

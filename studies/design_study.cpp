@@ -14,15 +14,11 @@
 #include "io/actuator_catalog_file.hpp"
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/machine_file_lathe.hpp"
-#include "io/machine_file_leg_chain.hpp"
-#include "io/machine_file_writer.hpp"
+#include "io/hexapod_study_machine.hpp"
 #include "io/output_file.hpp"
 #include "io/task_wrench_file.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
-#include "problems/lathe_design.hpp"
 #include "studies/design_study_sections.hpp"
 
 namespace pkmopt {
@@ -66,35 +62,18 @@ DesignStudy load_design_study(const YamlValue& root) {
                                  nlohmann::json(study.name).dump(), kVersion);
   yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
   yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
-  const YamlValue machine = root.required("machine");
-  machine.expect_map();
-  const YamlValue model = machine.required("model");
-  study.model = model.as_string();
-  // The hexapod has its own problem (with a smooth formulation); the leg-chain models share the
-  // generic one. Goals and task are read into whichever spec is used.
-  HexapodDesignSpec spec;
-  MachineDesignSpec machine_spec;
-  const bool hexapod = study.model == "hexapod";
-  if (hexapod) {
-    spec.name = study.name;
-    read_machine(machine, spec, study, yaml);
-  } else if (leg_chain_family(study.model, nullptr)) {
-    machine_spec.name = study.name;
-    read_leg_chain_machine(machine, study.model, machine_spec, study, yaml);
-  } else {
-    // Models with a design family (the machine-file models may be more: leg_chain_model_names).
-    model.fail(
-        "one of hexapod, delta, linear_delta, hexaglide, tripod_3prs, lathe_16k20f3 (the models "
-        "with a design family)",
-        model.describe());
-  }
-  DesignTask& task = hexapod ? spec.task : machine_spec.task;
-  std::vector<DesignObjective>& goals = hexapod ? spec.objectives : machine_spec.objectives;
-  std::vector<DesignConstraint>& limits = hexapod ? spec.constraints : machine_spec.constraints;
+  const YamlValue machine_section = root.required("machine");
+  std::unique_ptr<StudyMachine> machine = read_study_machine(machine_section);
+  study.model = machine->model;
+  yaml += machine->resolved_yaml;
+  DesignGoals goals;
+  goals.name = study.name;
+  DesignTask& task = goals.task;
+  std::vector<DesignObjective>& objectives_list = goals.objectives;
+  std::vector<DesignConstraint>& limits = goals.constraints;
   const YamlValue task_section = root.required("task");
   read_task(task_section, task, study, yaml);
-  if (!hexapod && machine_spec.family.translational &&
-      (study.task_tilt_deg > 0.0 || study.task_yaw_deg > 0.0))
+  if (machine->translational && (study.task_tilt_deg > 0.0 || study.task_yaw_deg > 0.0))
     task_section.required("orientations")
         .fail(fmt::format("tilt_deg: 0 and yaw_deg: 0 (the {} platform keeps its orientation)",
                           study.model),
@@ -114,9 +93,10 @@ DesignStudy load_design_study(const YamlValue& root) {
     if (o.keys().size() != 1) o.fail("one of minimize: METRIC or maximize: METRIC", o.describe());
     const bool maximize = entry.maximize >= 0;
     const YamlValue metric_value = o.required(maximize ? "maximize" : "minimize");
-    goals.push_back({static_cast<DesignMetric>(maximize ? entry.maximize : entry.minimize),
-                     maximize ? Sense::maximize : Sense::minimize});
-    if (is_actuator_metric(goals.back().metric) && !actuator_metric_use)
+    objectives_list.push_back(
+        {static_cast<DesignMetric>(maximize ? entry.maximize : entry.minimize),
+         maximize ? Sense::maximize : Sense::minimize});
+    if (is_actuator_metric(objectives_list.back().metric) && !actuator_metric_use)
       actuator_metric_use = metric_value;
     yaml += "  - " + fields_flow_map(entry) + "\n";
   }
@@ -133,13 +113,7 @@ DesignStudy load_design_study(const YamlValue& root) {
         continue;
       }
       if (c.has("actuator")) {
-        if (!hexapod)
-          c.required("actuator")
-              .fail(fmt::format("{{metric: NAME, max|min: VALUE}} (actuator catalog constraints "
-                                "size hexapod legs; a {} study bounds leg_force_max instead)",
-                                study.model),
-                    "an actuator constraint");
-        constraint_yaml += read_actuator_constraint(c, path, spec, study);
+        constraint_yaml += machine->read_actuator_constraint(c, path, task, limits);
         continue;
       }
       ConstraintEntry entry;
@@ -155,43 +129,38 @@ DesignStudy load_design_study(const YamlValue& root) {
       constraint_yaml += "  - " + fields_flow_map(entry) + "\n";
     }
   }
-  if (actuator_metric_use && !spec.actuator_catalog)
+  if (actuator_metric_use && machine->actuator_catalog() == nullptr)
     actuator_metric_use->fail(
         fmt::format("a metric of this {} study (actuator_cost and actuator_overload need a "
-                    "constraint {{actuator: cheapest, catalog: FILE}} on a hexapod study)",
+                    "constraint {{actuator: cheapest, catalog: FILE}})",
                     study.model),
         actuator_metric_use->describe());
-  spec.require_reachable = machine_spec.require_reachable = require_reachable;
+  goals.require_reachable = require_reachable;
   if (require_reachable) constraint_yaml = "  - task_reachable\n" + constraint_yaml;
   yaml += constraint_yaml.empty() ? "constraints: []\n" : "constraints:\n" + constraint_yaml;
   const YamlValue optimizer = root.required("optimizer");
   optimizer.expect_map();
   const YamlValue algorithm_value = optimizer.required("algorithm");
   const std::string algorithm = algorithm_value.as_string();
-  spec.formulation =
+  goals.formulation =
       algorithm == "nsga2" ? DesignFormulation::aggregate : DesignFormulation::smooth;
-  if (!hexapod && algorithm != "nsga2" && !derivative_free_nlopt(algorithm))
-    algorithm_value.fail(
-        fmt::format("nsga2 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, nlopt:BOBYQA, ... for "
-                    "one objective): a {} design study measures worst cases over the task and "
-                    "has no gradients",
-                    study.model),
-        "'" + algorithm + "'");
+  if (!machine->smooth_formulation()) {
+    if (algorithm != "nsga2" && !derivative_free_nlopt(algorithm))
+      algorithm_value.fail(
+          fmt::format("nsga2 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, nlopt:BOBYQA, ... "
+                      "for one objective): a {} design study measures worst cases over the task "
+                      "and has no gradients",
+                      study.model),
+          "'" + algorithm + "'");
+    goals.formulation = DesignFormulation::aggregate;
+  }
   try {
-    if (hexapod)
-      study.problem = std::make_unique<HexapodDesignProblem>(std::move(spec));
-    else
-      study.machine_problem = std::make_unique<MachineDesignProblem>(std::move(machine_spec));
+    study.problem = machine->make_problem(std::move(goals));
   } catch (const std::invalid_argument& error) {
     root.fail(error.what());
   }
-  if (hexapod) {
-    for (int i = 0; i < kNumDesignParameters; ++i) {
-      const auto [lo, hi] = study.parameter_ranges[static_cast<std::size_t>(i)];
-      study.parameters.push_back({std::string(design_parameter_name(i)),
-                                  design_parameter_in_degrees(i) ? "deg" : "m", lo, hi});
-    }
-  }
+  study.parameters = machine->parameters;
+  study.machine = std::move(machine);
   study.optimizer = read_optimizer_section(optimizer, study.optimization_problem());
   OutputSection output;
   if (auto section = root.optional("output")) read_fields(*section, output);
@@ -203,26 +172,6 @@ DesignStudy load_design_study(const YamlValue& root) {
   return study;
 }
 
-const Problem& DesignStudy::optimization_problem() const {
-  if (problem) return *problem;
-  return *machine_problem;
-}
-const std::vector<DesignObjective>& DesignStudy::objectives() const {
-  return problem ? problem->spec().objectives : machine_problem->spec().objectives;
-}
-const std::vector<DesignConstraint>& DesignStudy::constraints() const {
-  return problem ? problem->spec().constraints : machine_problem->spec().constraints;
-}
-bool DesignStudy::require_reachable() const {
-  return problem ? problem->spec().require_reachable : machine_problem->spec().require_reachable;
-}
-const DesignTask& DesignStudy::task() const {
-  return problem ? problem->spec().task : machine_problem->spec().task;
-}
-bool DesignStudy::aggregate() const {
-  return !problem || problem->spec().formulation == DesignFormulation::aggregate;
-}
-
 std::string design_study_fields_markdown(std::string_view section) {
   if (section == "task.orientations") return fields_markdown(TaskOrientationsSection{});
   if (section == "task.workspace") return fields_markdown(TaskWorkspaceSection{});
@@ -232,9 +181,9 @@ std::string design_study_fields_markdown(std::string_view section) {
   if (section == "objectives[]") return fields_markdown(ObjectiveEntry{});
   if (section == "constraints[]") return fields_markdown(ConstraintEntry{});
   if (section == "constraints[] actuator") return fields_markdown(ActuatorConstraintEntry{});
-  if (section == "machine hexapod") return hexapod_study_machine_markdown();
   if (section.starts_with("machine.parameters "))
-    return family_parameters_markdown(std::string(section.substr(19)));
+    return study_machine_fields_markdown(section.substr(19));
+  if (section.starts_with("machine ")) return study_machine_fields_markdown(section.substr(8));
   throw std::invalid_argument("design_study_fields_markdown: unknown section '" +
                               std::string(section) + "'");
 }

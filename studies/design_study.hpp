@@ -38,11 +38,11 @@
 // nsga2 uses the aggregate (derivative-free) formulation; every other algorithm the smooth one
 // (see problems/hexapod_design.hpp).
 //
-// The leg-chain models (delta, linear_delta, hexaglide, tripod_3prs, lathe_16k20f3) load into a
-// MachineDesignProblem
-// (problems/machine_design.hpp): `parameters:` takes the family's parameters (number = fixed,
-// {min, max} = free), and every other key of the model's machine file
-// (io/machine_file_leg_chain.hpp) may follow except the keys the parameters set:
+// The machine section is read by the model it names (io/study_machine.hpp, io/model_registry.hpp);
+// the hexapod's is above (io/hexapod_study_machine.hpp). A model with a design family
+// (problems/machine_design.hpp) loads into a MachineDesignProblem: `parameters:` takes the
+// family's parameters (number = fixed, {min, max} = free), and every other key of the model's
+// machine file may follow except the keys the parameters set:
 //   machine:
 //     model: linear_delta
 //     parameters: {guide_radius: {min: 0.3, max: 0.6}, rod: {min: 0.5, max: 1.0}, stroke: 0.6,
@@ -50,9 +50,9 @@
 //     rods: {E: 7.0e10, area: 3.0e-5}
 //     carriage_stiffness: 2.0e7
 //     joints: {carriage_max_angle_deg: 40, platform_max_angle_deg: 40}
-// They take nsga2 or a derivative-free nlopt algorithm (aggregate formulation only); actuator
-// catalog constraints are hexapod-only; translational platforms (delta, linear_delta) need a
-// task without tilt or yaw.
+// They take nsga2 or a derivative-free nlopt algorithm (aggregate formulation only) unless the
+// model has a smooth formulation; actuator catalog constraints need a model that chooses
+// actuators; translational platforms need a task without tilt or yaw.
 //
 // Outputs in DIR (docs/design-studies.md lists every column and unit): study.resolved.yaml
 // (this schema with every default filled in; it loads to the same problem), journal.txt and
@@ -79,35 +79,26 @@
 #include <vector>
 
 #include "io/output_file.hpp"
-#include "problems/hexapod_design.hpp"
-#include "problems/machine_design.hpp"
+#include "io/study_machine.hpp"
+#include "problems/design_problem.hpp"
 #include "studies/journal.hpp"
 #include "studies/optimizer_spec.hpp"
 
 namespace pkmopt {
 
-/// One design parameter of a study in file units (m; degrees for *_deg).
-struct StudyParameter {
-  std::string name;
-  std::string unit;  ///< "m" or "deg"
-  double min = 0.0;
-  double max = 0.0;  ///< == min when the parameter is fixed
-  bool free() const { return min < max; }
-};
-
 struct DesignStudy {
   std::string name;
   std::string description;
-  /// The machine model: "hexapod" (problem) or a leg-chain model (machine_problem).
-  std::string model = "hexapod";
-  std::unique_ptr<HexapodDesignProblem> problem;          ///< model hexapod, else null
-  std::unique_ptr<MachineDesignProblem> machine_problem;  ///< leg-chain models, else null
+  /// The machine model (`machine.model`, io/model_registry.hpp).
+  std::string model;
+  /// The model's part of the study: its parameters, capabilities and machine files.
+  std::shared_ptr<const StudyMachine> machine;
+  /// The design problem the optimizer runs.
+  std::unique_ptr<DesignProblem> problem;
   OptimizerSpec optimizer;
   bool write_designs = true;
   /// output.front_size: the front is thinned to this many designs; 0: not thinned.
   std::size_t front_size = 0;
-  /// Each parameter's [min, max] in file units (m, degrees for *_deg); min == max when fixed.
-  std::array<std::pair<double, double>, kNumDesignParameters> parameter_ranges{};
   std::array<double, 3> task_centre{};  ///< m, before the home_height lift
   double task_tilt_deg = 0.0;
   double task_yaw_deg = 0.0;
@@ -120,14 +111,14 @@ struct DesignStudy {
   /// Every parameter of the model in problem order (the free ones are the variables, in order).
   std::vector<StudyParameter> parameters;
 
-  /// The problem the optimizer runs (whichever of problem / machine_problem is set).
-  const Problem& optimization_problem() const;
-  const std::vector<DesignObjective>& objectives() const;
-  const std::vector<DesignConstraint>& constraints() const;
-  bool require_reachable() const;
-  const DesignTask& task() const;
+  /// The problem the optimizer runs.
+  const Problem& optimization_problem() const { return *problem; }
+  const std::vector<DesignObjective>& objectives() const { return problem->objectives(); }
+  const std::vector<DesignConstraint>& constraints() const { return problem->constraints(); }
+  bool require_reachable() const { return problem->require_reachable(); }
+  const DesignTask& task() const { return problem->task(); }
   /// True for the aggregate (derivative-free) formulation.
-  bool aggregate() const;
+  bool aggregate() const { return problem->aggregate(); }
 };
 
 /// True when the file's root map has a `machine:` key (throws InputError for a bad file).

@@ -8,7 +8,6 @@
 
 #include "io/field_list.hpp"
 #include "io/yaml_reader.hpp"
-#include "problems/hexapod_design.hpp"
 #include "problems/machine_design.hpp"
 #include "studies/design_study.hpp"
 #include "studies/optimizer_fields.hpp"
@@ -50,14 +49,6 @@ struct CylinderRegionSection {
   int layers = 1;
 };
 
-/// The hexapod `machine:` section: the design parameters' ranges (file units: m and degrees;
-/// min == max for a fixed parameter) and the template design's stiffness, joints, tool and
-/// actuator error.
-struct HexapodStudyMachine {
-  std::array<std::pair<double, double>, kNumDesignParameters> ranges{};
-  HexapodDesign design;
-};
-
 /// One entry of `objectives:` (exactly one of the two keys; -1: not given).
 struct ObjectiveEntry {
   int minimize = -1;
@@ -69,12 +60,6 @@ struct ConstraintEntry {
   int metric = -1;
   std::optional<double> max;
   std::optional<double> min;
-};
-
-/// One `{actuator, catalog}` entry of `constraints:` (hexapod studies).
-struct ActuatorConstraintEntry {
-  std::string actuator;
-  std::string catalog;
 };
 
 /// "one of stiffness_min, singularity_margin, ...": every metric name, for messages.
@@ -126,24 +111,6 @@ void describe_fields(Fields& f, ConstraintEntry& c) {
   f.field("max", c.max, {.doc = "upper bound g = metric − max ≤ 0 (give max or min)"});
   f.field("min", c.min, {.doc = "lower bound g = min − metric ≤ 0"});
 }
-
-template <class Fields>
-void describe_fields(Fields& f, ActuatorConstraintEntry& a) {
-  f.field(
-      "actuator", a.actuator,
-      {.required = true,
-       .expected = "an entry name of the catalog, or cheapest",
-       .doc = "the legs are this catalog entry, or cheapest: the optimiser chooses per design"});
-  f.field("catalog", a.catalog,
-          {.required = true,
-           .expected = "a path",
-           .doc = "actuator catalog file, relative to the study file"});
-}
-
-/// The docs table of the hexapod machine section (defaults: the sample hexapod).
-std::string hexapod_study_machine_markdown();
-/// The docs table of a leg-chain family's `machine.parameters` (defaults: the model's design).
-std::string family_parameters_markdown(const std::string& model);
 
 /// output: which extra result files a run writes.
 struct OutputSection {
@@ -209,23 +176,7 @@ void describe_fields(Fields& f, OutputSection& o) {
   front_size_field(f, o.front_size);
 }
 
-/// {actuator: cheapest, catalog: FILE}: the optimiser chooses the entry.
-inline constexpr const char* kCheapestActuator = "cheapest";
-
-/// The hexapod `machine:` section (parameters, legs, joints, tool, actuator_error); appends its
-/// resolved YAML to `yaml`.
-void read_machine(const YamlValue& machine, HexapodDesignSpec& spec, DesignStudy& study,
-                  std::string& yaml);
-/// The design family of a leg-chain model, its template read from `machine` (or the defaults).
-std::optional<DesignFamily> leg_chain_family(const std::string& model, const YamlValue* machine);
-/// The `machine:` section of a leg-chain model; appends its resolved YAML to `yaml`.
-void read_leg_chain_machine(const YamlValue& machine, const std::string& model,
-                            MachineDesignSpec& spec, DesignStudy& study, std::string& yaml);
-
 /// The `task:` section; appends its resolved YAML to `yaml`.
 void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study, std::string& yaml);
-/// {actuator: NAME | cheapest, catalog: FILE}; returns the resolved YAML line.
-std::string read_actuator_constraint(const YamlValue& c, const std::string& study_path,
-                                     HexapodDesignSpec& spec, DesignStudy& study);
 
 }  // namespace pkmopt::design_study_detail

@@ -13,14 +13,11 @@
 #include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
-#include "io/machine_file_lathe.hpp"
-#include "io/machine_file_leg_chain.hpp"
 #include "io/machine_file_writer.hpp"
 #include "io/output_file.hpp"
 #include "io/task_wrench_file.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
-#include "problems/lathe_design.hpp"
 #include "studies/design_study_sections.hpp"
 
 namespace pkmopt::design_study_detail {
@@ -180,92 +177,5 @@ FieldChoice<int> metric_choice(int& member) {
   return choice;
 }
 
-// {actuator: NAME, catalog: FILE}: the legs are that catalog entry. Adds leg_force_max <= its
-// force rating and caps the stroke parameter at its stroke.
-// {actuator: cheapest, catalog: FILE}: the optimiser chooses, for every design, the cheapest
-// entry that carries the legs (HexapodDesignSpec::actuator_catalog). Adds actuator_overload <= 0
-// and caps the stroke parameter at the longest entry's stroke.
-// Returns the resolved YAML line (catalog path made absolute so that study.resolved.yaml loads
-// from anywhere).
-std::string read_actuator_constraint(const YamlValue& c, const std::string& study_path,
-                                     HexapodDesignSpec& spec, DesignStudy& study) {
-  ActuatorConstraintEntry entry_keys;
-  read_fields(c, entry_keys);
-  const YamlValue catalog_value = c.required("catalog");
-  std::filesystem::path catalog_path = entry_keys.catalog;
-  if (catalog_path.is_relative())
-    catalog_path = std::filesystem::path(study_path).parent_path() / catalog_path;
-  if (!std::filesystem::exists(catalog_path))
-    catalog_value.fail("an actuator catalog file",
-                       "'" + catalog_path.string() + "' (no such file)");
-  catalog_path = std::filesystem::absolute(catalog_path).lexically_normal();
-  const ActuatorCatalog catalog = load_actuator_catalog(catalog_path.string());
-  const YamlValue name_value = c.required("actuator");
-  const std::string name = entry_keys.actuator;
-  int stroke = -1;
-  for (int i = 0; i < kNumDesignParameters; ++i) {
-    if (design_parameter_name(i) == "stroke") stroke = i;
-  }
-  auto& [lo, hi] = study.parameter_ranges[static_cast<std::size_t>(stroke)];
-  if (name == kCheapestActuator) {
-    if (find_actuator(catalog, name) != nullptr)
-      name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for the "
-                                  "cheapest entry)",
-                                  kCheapestActuator),
-                      fmt::format("catalog '{}' with such an entry", catalog.name));
-    if (spec.actuator_catalog)
-      name_value.fail("one {actuator: cheapest, catalog: FILE} constraint per study",
-                      "a second one");
-    try {
-      actuator_costs(catalog);
-    } catch (const std::invalid_argument& error) {
-      catalog_value.fail("a catalog whose entries all have a cost or all have none", error.what());
-    }
-    double longest = 0.0;
-    for (const ActuatorEntry& e : catalog.entries) longest = std::max(longest, e.stroke);
-    if (lo > longest)
-      name_value.fail(fmt::format("a catalog with an entry of stroke at least "
-                                  "machine.parameters.stroke ({} m)",
-                                  format_number(lo)),
-                      fmt::format("catalog '{}' whose longest stroke is {} m", catalog.name,
-                                  format_number(longest)));
-    hi = std::min(hi, longest);
-    spec.parameters[static_cast<std::size_t>(stroke)].upper =
-        std::min(spec.parameters[static_cast<std::size_t>(stroke)].upper, longest);
-    spec.actuator_catalog = catalog;
-    spec.constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
-    return fmt::format(
-        "  - {{actuator: {}, catalog: {}}}  # actuator_overload <= 0, stroke <= {} m\n",
-        kCheapestActuator, nlohmann::json(catalog_path.string()).dump(), format_number(hi));
-  }
-  const ActuatorEntry* entry = find_actuator(catalog, name);
-  if (entry == nullptr) {
-    std::string names;
-    for (const ActuatorEntry& e : catalog.entries) names += (names.empty() ? "" : ", ") + e.name;
-    name_value.fail(fmt::format("an entry of catalog '{}' ({})", catalog.name, names),
-                    "'" + name + "'");
-  }
-  spec.constraints.push_back({DesignMetric::leg_force_max, Relation::less_equal, entry->max_force});
-  const double peak = entry->peak_force.value_or(entry->max_force);
-  const bool rapid = spec.task.acceleration_max > 0.0;  // the rapid moves go against the peak
-  if (rapid)
-    spec.constraints.push_back(
-        {DesignMetric::actuator_force_dynamic_max, Relation::less_equal, peak});
-  if (lo > entry->stroke) {
-    name_value.fail(fmt::format("an actuator with a stroke of at least machine.parameters.stroke "
-                                "({} m)",
-                                lo),
-                    fmt::format("'{}' with {} m", name, entry->stroke));
-  }
-  hi = std::min(hi, entry->stroke);
-  spec.parameters[static_cast<std::size_t>(stroke)].upper =
-      std::min(spec.parameters[static_cast<std::size_t>(stroke)].upper, entry->stroke);
-  return fmt::format(
-      "  - {{actuator: {}, catalog: {}}}  # leg_force_max <= {} N, {}stroke <= {} m\n",
-      nlohmann::json(name).dump(), nlohmann::json(catalog_path.string()).dump(),
-      format_number(entry->max_force),
-      rapid ? "actuator_force_dynamic_max <= " + format_number(peak) + " N, " : "",
-      format_number(entry->stroke));
-}
 
 }  // namespace pkmopt::design_study_detail

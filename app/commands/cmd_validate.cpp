@@ -57,8 +57,8 @@ std::string objectives_text(const DesignStudy& study) {
                         c.relation == Relation::less_equal ? "<=" : ">=", c.bound,
                         unit.empty() ? "" : " ", unit);
   }
-  if (study.problem && study.problem->spec().actuator_catalog) {
-    const ActuatorCatalog& catalog = *study.problem->spec().actuator_catalog;
+  if (const ActuatorCatalog* chosen = study.problem->actuator_catalog()) {
+    const ActuatorCatalog& catalog = *chosen;
     text += fmt::format(
         "\n  actuators: each design's cheapest entry of catalog '{}' ({} entries, {}) that "
         "carries its legs",

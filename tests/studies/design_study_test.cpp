@@ -25,6 +25,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The range of a free parameter as the optimizer sees it: its bounds (internal units), checked
+// against the study's file-unit range.
+std::pair<double, double> free_range(const pkmopt::DesignStudy& study, const std::string& name) {
+  const std::vector<int>& free = study.problem->free_parameters();
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    const pkmopt::StudyParameter& p = study.parameters[static_cast<std::size_t>(free[k])];
+    if (p.name != name) continue;
+    const double lower = study.problem->bounds().lower[k];
+    const double upper = study.problem->bounds().upper[k];
+    EXPECT_EQ(p.unit, "m");
+    EXPECT_EQ(p.min, lower);
+    EXPECT_EQ(p.max, upper);
+    return {lower, upper};
+  }
+  ADD_FAILURE() << name << " is not a free parameter";
+  return {0.0, 0.0};
+}
+
 const char* const kStudy =
     "study: tiny\n"
     "machine:\n"
@@ -82,15 +100,15 @@ TEST_F(DesignStudy, LoadsTheProblemItDescribes) {
   const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   EXPECT_EQ(study.name, "tiny");
   EXPECT_TRUE(is_design_study_file((dir / "study.yaml").string()));
-  const HexapodDesignProblem& problem = *study.problem;
+  const DesignProblem& problem = *study.problem;
   ASSERT_EQ(problem.free_parameters().size(), 2u);
   EXPECT_EQ(problem.bounds().lower[1], deg_to_rad(10));  // degrees in the file, rad inside
   EXPECT_EQ(problem.num_objectives(), 2u);
   EXPECT_EQ(problem.num_inequality(), 2u);
   // 4 points x (1 + 7) orientations: the rim of a 10 deg cone sampled every 10 deg holds
   // max(4, ceil(2 pi sin(10 deg) / 10 deg)) = 7 azimuths.
-  EXPECT_EQ(problem.spec().task.poses.size(), 4u * 8u);
-  EXPECT_EQ(problem.spec().formulation, DesignFormulation::aggregate);
+  EXPECT_EQ(problem.task().poses.size(), 4u * 8u);
+  EXPECT_TRUE(problem.aggregate());
   EXPECT_EQ(study.optimizer.seed, 5u);
 }
 
@@ -103,20 +121,17 @@ TEST_F(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
                   "    base_radius: {min: 0.5, max: 0.7}\n    stroke: {min: 0.30, max: 0.45}\n");
   const fs::path dir = write_study("actuator", text);
   const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
-  const HexapodDesignSpec& spec = study.problem->spec();
-  ASSERT_EQ(spec.constraints.size(), 1u);
-  EXPECT_EQ(spec.constraints[0].metric, DesignMetric::leg_force_max);
-  EXPECT_EQ(spec.constraints[0].bound, 17000.0);  // CMS71L/350: 17 kN
-  int stroke = -1;
-  for (int i = 0; i < kNumDesignParameters; ++i)
-    if (design_parameter_name(i) == "stroke") stroke = i;
-  EXPECT_EQ(spec.parameters[static_cast<std::size_t>(stroke)].lower, 0.30);
-  EXPECT_EQ(spec.parameters[static_cast<std::size_t>(stroke)].upper, 0.35);  // capped
+  ASSERT_EQ(study.constraints().size(), 1u);
+  EXPECT_EQ(study.constraints()[0].metric, DesignMetric::leg_force_max);
+  EXPECT_EQ(study.constraints()[0].bound, 17000.0);  // CMS71L/350: 17 kN
+  const auto [stroke_lower, stroke_upper] = free_range(study, "stroke");
+  EXPECT_EQ(stroke_lower, 0.30);
+  EXPECT_EQ(stroke_upper, 0.35);  // capped
   // The resolved study (absolute catalog path) loads to the same problem.
   const fs::path again = write_study("actuator_resolved", study.resolved_yaml);
   const pkmopt::DesignStudy reloaded = load_design_study((again / "study.yaml").string());
   EXPECT_EQ(reloaded.resolved_yaml, study.resolved_yaml);
-  EXPECT_EQ(reloaded.problem->spec().constraints[0].bound, 17000.0);
+  EXPECT_EQ(reloaded.constraints()[0].bound, 17000.0);
 
   // A catalog relative to the study file, an unknown entry, a too-short actuator.
   const std::string relative = replaced(text, catalog, "cat.yaml");
@@ -155,13 +170,12 @@ TEST_F(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   text = replaced(text, "wrench: [0, 0, -3000, 0, 0, 0]", "wrench: [2000, 0, -20000, 0, 0, 0]");
   const fs::path dir = write_study("cheapest", text);
   const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
-  const HexapodDesignSpec& spec = study.problem->spec();
-  ASSERT_TRUE(spec.actuator_catalog.has_value());
-  EXPECT_EQ(spec.actuator_catalog->entries.size(), 7u);
-  ASSERT_EQ(spec.constraints.size(), 1u);
-  EXPECT_EQ(spec.constraints[0].metric, DesignMetric::actuator_overload);
-  EXPECT_EQ(spec.constraints[0].bound, 0.0);
-  EXPECT_EQ(spec.parameters[kStroke].upper, 0.35);  // capped at the longest entry
+  ASSERT_NE(study.problem->actuator_catalog(), nullptr);
+  EXPECT_EQ(study.problem->actuator_catalog()->entries.size(), 7u);
+  ASSERT_EQ(study.constraints().size(), 1u);
+  EXPECT_EQ(study.constraints()[0].metric, DesignMetric::actuator_overload);
+  EXPECT_EQ(study.constraints()[0].bound, 0.0);
+  EXPECT_EQ(free_range(study, "stroke").second, 0.35);  // capped at the longest entry
   const fs::path again = write_study("cheapest_resolved", study.resolved_yaml);
   EXPECT_EQ(load_design_study((again / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
 
@@ -184,7 +198,7 @@ TEST_F(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
       "actuator_cost,g_actuator_overload_max,g_task_reachable,actuator,feasible,failure");
   const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
   EXPECT_EQ(pareto["actuator_catalog"]["name"], "sew-cms");
-  const ActuatorCatalog& catalog = *spec.actuator_catalog;
+  const ActuatorCatalog& catalog = *study.problem->actuator_catalog();
   const std::vector<double> ranks = actuator_costs(catalog);
   ASSERT_GT(pareto["designs"].size(), 0u);
   std::set<std::string> names;
@@ -301,14 +315,14 @@ TEST_F(DesignStudy, WrenchFromTheMillingModel) {
   // Full slot: F_t = a_p a_e f_z z k_c / (pi D), k_c = 1700 (2 f_z / pi)^-0.25; times 2.
   const double k_c = 1700.0 * std::pow(2.0 * 0.15 / M_PI, -0.25);
   const double F_t = 3.0 * 63.0 * 0.15 * 5 * k_c / (M_PI * 63.0);
-  const Wrench& w = study.problem->spec().task.wrench;
+  const Wrench& w = study.task().wrench;
   EXPECT_NEAR(w(0), -2.0 * F_t, 1e-9 * F_t);
   EXPECT_NEAR(w(1), 2.0 * 0.3 * F_t, 1e-9 * F_t);
   EXPECT_NEAR(w(5), -2.0 * F_t * 0.0315, 1e-9 * F_t);
   EXPECT_NE(study.resolved_yaml.find("# wrench from the cutting model: milling:"),
             std::string::npos);
   const fs::path again = write_study("milling_resolved", study.resolved_yaml);
-  EXPECT_EQ(load_design_study((again / "study.yaml").string()).problem->spec().task.wrench, w);
+  EXPECT_EQ(load_design_study((again / "study.yaml").string()).task().wrench, w);
 }
 
 TEST_F(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
@@ -426,17 +440,17 @@ TEST_F(DesignStudy, ResolvedStudyLoadsToTheSameProblem) {
   write("resolved/resolved.yaml", study.resolved_yaml);
   const pkmopt::DesignStudy again = load_design_study((dir / "resolved.yaml").string());
   EXPECT_EQ(again.resolved_yaml, study.resolved_yaml);  // a fixed point: nothing left to fill in
-  const HexapodDesignProblem& a = *study.problem;
-  const HexapodDesignProblem& b = *again.problem;
+  const DesignProblem& a = *study.problem;
+  const DesignProblem& b = *again.problem;
   EXPECT_EQ(a.bounds().lower, b.bounds().lower);
   EXPECT_EQ(a.bounds().upper, b.bounds().upper);
   EXPECT_EQ(a.free_parameters(), b.free_parameters());
-  ASSERT_EQ(a.spec().task.poses.size(), b.spec().task.poses.size());
-  for (std::size_t k = 0; k < a.spec().task.poses.size(); ++k) {
-    EXPECT_EQ(a.spec().task.poses[k].position, b.spec().task.poses[k].position);
-    EXPECT_EQ(a.spec().task.poses[k].angles, b.spec().task.poses[k].angles);
+  ASSERT_EQ(a.task().poses.size(), b.task().poses.size());
+  for (std::size_t k = 0; k < a.task().poses.size(); ++k) {
+    EXPECT_EQ(a.task().poses[k].position, b.task().poses[k].position);
+    EXPECT_EQ(a.task().poses[k].angles, b.task().poses[k].angles);
   }
-  EXPECT_EQ(a.spec().task.wrench, b.spec().task.wrench);
+  EXPECT_EQ(a.task().wrench, b.task().wrench);
   EXPECT_EQ(again.optimizer.nsga2()->population, 12u);
   EXPECT_EQ(again.optimizer.nsga2()->crossover_eta, study.optimizer.nsga2()->crossover_eta);
   const std::vector<double> x = {0.6, deg_to_rad(25)};
@@ -454,7 +468,7 @@ TEST_F(DesignStudy, EvaluationRowsRecordFailuresWithoutNumbers) {
   JournalEntry good = options.evaluate({0.6, deg_to_rad(25)});
   good.x = {0.6, deg_to_rad(25)};  // the journal sets x after the evaluation
   EXPECT_TRUE(good.note.empty());
-  const DesignEvaluation ev = study.problem->evaluate({0.6, deg_to_rad(25)});
+  const DesignRecord ev = study.problem->measure({0.6, deg_to_rad(25)});
   good.generation = 7;  // the request that asked for it
   const std::string row = options.csv_row(3, good);
   EXPECT_EQ(row.substr(0, row.find(',', row.find(',', row.find(',', 2) + 1) + 1)),
@@ -507,17 +521,16 @@ TEST_F(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) 
   const fs::path dir = write_study("lc_load", kLinearDeltaStudy);
   const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
   EXPECT_EQ(study.model, "linear_delta");
-  EXPECT_EQ(study.problem, nullptr);
-  ASSERT_NE(study.machine_problem, nullptr);
-  const MachineDesignProblem& problem = *study.machine_problem;
+  ASSERT_NE(study.problem, nullptr);
+  const DesignProblem& problem = *study.problem;
   EXPECT_EQ(problem.free_parameters(), (std::vector<int>{2, 3, 5}));  // rod, stroke, home_height
-  EXPECT_EQ(problem.spec().task.poses.size(), 8u);
+  EXPECT_EQ(problem.task().poses.size(), 8u);
   EXPECT_EQ(study.parameters[4].name, "inclination_deg");
   EXPECT_EQ(study.parameters[4].unit, "deg");
   EXPECT_EQ(study.parameters[4].min, 10.0);
   // The template keys reach the machine: the written design file carries them.
   const std::string file =
-      family_machine_file(problem.family().design(problem.parameters_of({0.7, 0.6, 0.0})));
+      study.machine->machine_file(problem.design_parameters({0.7, 0.6, 0.0}));
   EXPECT_NE(file.find("rods: {E: 210000000000, area: 0.00015}"), std::string::npos) << file;
   EXPECT_NE(file.find("carriage_stiffness: 200000000"), std::string::npos) << file;
   EXPECT_NE(file.find("tcp: [0, 0, -0.05]"), std::string::npos) << file;
@@ -526,7 +539,7 @@ TEST_F(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) 
   const fs::path again = write_study("lc_load_resolved", study.resolved_yaml);
   const pkmopt::DesignStudy reloaded = load_design_study((again / "study.yaml").string());
   EXPECT_EQ(reloaded.resolved_yaml, study.resolved_yaml);
-  EXPECT_EQ(reloaded.machine_problem->fitness({0.7, 0.6, 0.05}), problem.fitness({0.7, 0.6, 0.05}));
+  EXPECT_EQ(reloaded.problem->fitness({0.7, 0.6, 0.05}), problem.fitness({0.7, 0.6, 0.05}));
 }
 
 TEST_F(LegChainDesignStudy, SchemaErrors) {
@@ -557,6 +570,17 @@ TEST_F(LegChainDesignStudy, SchemaErrors) {
                                                       "algorithm: ipopt"));
   EXPECT_NE(e5.find("optimizer.algorithm: expected nsga2"), std::string::npos) << e5;
   EXPECT_NE(e5.find("found 'ipopt'"), std::string::npos) << e5;
+  // Only a model that chooses actuators takes a catalog constraint.
+  const std::string catalog =
+      std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
+  const std::string e8 = load_error(
+      "lc_e8", replaced(kLinearDeltaStudy, "  - task_reachable\n",
+                        "  - task_reachable\n  - {actuator: cheapest, catalog: " + catalog + "}\n"));
+  EXPECT_NE(e8.find("constraints[1].actuator: expected {metric: NAME, max|min: VALUE} (a "
+                    "linear_delta study chooses no actuators from a catalog; it bounds "
+                    "leg_force_max instead), found an actuator constraint"),
+            std::string::npos)
+      << e8;
   // A translational platform cannot tilt.
   const std::string e6 = load_error(
       "lc_e6",
@@ -631,7 +655,7 @@ TEST_F(LegChainDesignStudy, SmallStudyEndToEndThroughTheCli) {
     const std::vector<double> x = {d["parameters"]["rod"].get<double>(),
                                    d["parameters"]["stroke"].get<double>(),
                                    d["home_height"].get<double>()};
-    const MachineDesignEvaluation ev = loaded.machine_problem->evaluate(x);
+    const DesignRecord ev = loaded.problem->measure(x);
     EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::stiffness_min)],
               d["objectives"]["stiffness_min"].get<double>());
     EXPECT_NEAR(*machine->envelope_volume(), d["objectives"]["machine_size"].get<double>(), 1e-12);
@@ -690,10 +714,10 @@ TEST_F(LegChainDesignStudy, TripodStudyRunsReducedThroughTheCli) {
     auto data = machine->make_data();
     PoseMetrics m;
     double worst = std::numeric_limits<double>::infinity();
-    for (const Pose& task_pose : loaded.machine_problem->spec().task.poses) {
+    for (const Pose& task_pose : loaded.task().poses) {
       Pose pose = task_pose;
       pose.position.z() += lift;
-      machine->analyze(*data, pose, loaded.machine_problem->spec().task.wrench, m);
+      machine->analyze(*data, pose, loaded.task().wrench, m);
       EXPECT_TRUE(m.reachable);
       worst = std::min(worst, m.stiffness_min);
     }
