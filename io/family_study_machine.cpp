@@ -94,8 +94,7 @@ std::unique_ptr<StudyMachine> read_family_study_machine(const ModelEntry& entry,
           "no '{}' in the machine section of a {} design study: its parameters set it (give "
           "them under machine.parameters)",
           key, model));
-  const YAML::Node default_file =
-      YAML::Load(defaults.machine_file(defaults.default_parameters()));
+  const YAML::Node default_file = YAML::Load(defaults.machine_file(defaults.default_parameters()));
   YAML::Node merged(YAML::NodeType::Map);
   for (const auto& entry_node : machine.node())
     if (entry_node.first.as<std::string>() != "parameters")
@@ -122,9 +121,8 @@ std::unique_ptr<StudyMachine> read_family_study_machine(const ModelEntry& entry,
                             family.parameters[i].to_internal(study->parameters[i].max)};
   }
   FieldWriter writer;
-  writer.section("parameters", {}, [&](auto& g) {
-    describe_family_parameters(g, family, study->parameters);
-  });
+  writer.section("parameters", {},
+                 [&](auto& g) { describe_family_parameters(g, family, study->parameters); });
   std::string yaml = "machine:\n  model: " + model + "\n" + writer.block(2);
   // The template's own keys: the machine file of the defaults without the parameter keys.
   std::istringstream lines(family.machine_file(family.default_parameters()));

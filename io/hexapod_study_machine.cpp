@@ -50,7 +50,6 @@ FieldRule hexapod_parameter_rule(int i) {
   return rule;
 }
 
-
 // The hexapod's section: the design parameters' ranges (file units: m and degrees; min == max
 // for a fixed parameter) and the template design's stiffness, joints, tool and actuator error.
 struct HexapodStudySection {
@@ -166,7 +165,6 @@ std::unique_ptr<StudyMachine> read_hexapod_study_machine(const YamlValue& machin
   return study;
 }
 
-
 // {actuator: NAME, catalog: FILE}: the legs are that catalog entry. Adds leg_force_max <= its
 // force rating and caps the stroke parameter at its stroke.
 // {actuator: cheapest, catalog: FILE}: the optimiser chooses, for every design, the cheapest
@@ -238,8 +236,7 @@ std::string HexapodStudyMachine::read_actuator_constraint(
   const double peak = entry->peak_force.value_or(entry->max_force);
   const bool rapid = task.acceleration_max > 0.0;  // the rapid moves go against the peak
   if (rapid)
-    constraints.push_back(
-        {DesignMetric::actuator_force_dynamic_max, Relation::less_equal, peak});
+    constraints.push_back({DesignMetric::actuator_force_dynamic_max, Relation::less_equal, peak});
   if (lo > entry->stroke) {
     name_value.fail(fmt::format("an actuator with a stroke of at least machine.parameters.stroke "
                                 "({} m)",

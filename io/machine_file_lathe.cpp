@@ -5,8 +5,8 @@
 #include "io/body_fields.hpp"
 #include "io/compliance_fields.hpp"
 #include "io/field_list.hpp"
-#include "io/mass_fields.hpp"
 #include "io/machine_file_writer.hpp"
+#include "io/mass_fields.hpp"
 #include "io/model_registry.hpp"
 #include "problems/lathe_design.hpp"
 
@@ -133,12 +133,9 @@ ModelEntry lathe_model_entry() {
   entry.fields_markdown = lathe_machine_fields_markdown;
   entry.platform_dofs = [](const YamlValue&) { return PlatformDofs{3, 1}; };
   entry.design_family = [](const YamlValue* machine) {
-    DesignFamily f =
-        lathe_16k20f3_family(machine ? read_lathe_16k20f3_design(*machine) : Lathe16k20f3Design{});
-    f.machine_file = [design = f.design](const std::vector<double>& p) {
-      return family_machine_file(design(p));
-    };
-    return f;
+    return lathe_16k20f3_family(
+        machine ? read_lathe_16k20f3_design(*machine) : Lathe16k20f3Design{},
+        lathe_16k20f3_machine_file);
   };
   return entry;
 }

@@ -14,8 +14,8 @@
 #include "io/field_list.hpp"
 #include "io/input_error.hpp"
 #include "io/leg_chain_fields.hpp"
-#include "io/mass_fields.hpp"
 #include "io/machine_file_writer.hpp"
+#include "io/mass_fields.hpp"
 #include "io/model_registry.hpp"
 #include "models/hexapod.hpp"
 
@@ -292,14 +292,11 @@ namespace {
 template <class Design>
 ModelEntry leg_chain_entry(const char* name, Design (*read)(const YamlValue&),
                            std::unique_ptr<Machine> (*make)(const Design&), PlatformDofs dofs,
-                           DesignFamily (*family)(const Design&)) {
+                           DesignFamily (*family)(const Design&, DesignWriter<Design>),
+                           std::string (*write)(const Design&)) {
   ModelEntry entry;
-  entry.design_family = [read, family](const YamlValue* machine) {
-    DesignFamily f = family(machine ? read(*machine) : Design{});
-    f.machine_file = [design = f.design](const std::vector<double>& p) {
-      return family_machine_file(design(p));
-    };
-    return f;
+  entry.design_family = [read, family, write](const YamlValue* machine) {
+    return family(machine ? read(*machine) : Design{}, write);
   };
   entry.name = name;
   entry.load = [read, make](const YamlValue& root) -> std::unique_ptr<Machine> {
@@ -324,14 +321,14 @@ PlatformDofs generic_leg_chain_dofs(const YamlValue& root) {
 
 std::vector<ModelEntry> leg_chain_model_entries() {
   std::vector<ModelEntry> entries;
-  entries.push_back(
-      leg_chain_entry("delta", read_delta_design, make_delta, {3, 0}, delta_family));
+  entries.push_back(leg_chain_entry("delta", read_delta_design, make_delta, {3, 0}, delta_family,
+                                    delta_machine_file));
   entries.push_back(leg_chain_entry("linear_delta", read_linear_delta_design, make_linear_delta,
-                                    {3, 0}, linear_delta_family));
+                                    {3, 0}, linear_delta_family, linear_delta_machine_file));
   entries.push_back(leg_chain_entry("hexaglide", read_hexaglide_design, make_hexaglide, {3, 3},
-                                    hexaglide_family));
+                                    hexaglide_family, hexaglide_machine_file));
   entries.push_back(leg_chain_entry("tripod_3prs", read_tripod_3prs_design, make_tripod_3prs,
-                                    {1, 2}, tripod_3prs_family));
+                                    {1, 2}, tripod_3prs_family, tripod_3prs_machine_file));
   ModelEntry generic;
   generic.name = "leg_chain";
   generic.load = [](const YamlValue& root) -> std::unique_ptr<Machine> {

@@ -57,17 +57,4 @@ std::string leg_chain_machine_file(const LegChainDesign& d) {
   return text + "actuator_error: " + format_number(d.actuator_error) + "\n";
 }
 
-std::string family_machine_file(const FamilyDesign& design) {
-  return std::visit(
-      [](const auto& d) -> std::string {
-        using T = std::decay_t<decltype(d)>;
-        if constexpr (std::is_same_v<T, DeltaDesign>) return delta_machine_file(d);
-        if constexpr (std::is_same_v<T, LinearDeltaDesign>) return linear_delta_machine_file(d);
-        if constexpr (std::is_same_v<T, HexaglideDesign>) return hexaglide_machine_file(d);
-        if constexpr (std::is_same_v<T, Tripod3PrsDesign>) return tripod_3prs_machine_file(d);
-        if constexpr (std::is_same_v<T, Lathe16k20f3Design>) return lathe_16k20f3_machine_file(d);
-      },
-      design);
-}
-
 }  // namespace pkmopt

@@ -7,15 +7,15 @@
 // (`describe_fields` in io/machine_file_leg_chain.hpp and io/machine_file_lathe.hpp).
 //
 // Example:
-//   const DesignFamily family = delta_family(DeltaDesign{});
-//   write_file_atomically("d.yaml", family_machine_file(family.design(parameters)));
+//   write_file_atomically("d.yaml", delta_machine_file(DeltaDesign{}));
+//   const DesignFamily family = delta_family(DeltaDesign{}, delta_machine_file);
+//   write_file_atomically("e.yaml", family.machine_file(parameters));
 #pragma once
 
 #include <string>
 
 #include "models/lathe_conversion.hpp"
 #include "models/leg_chain.hpp"
-#include "problems/machine_design.hpp"
 
 namespace pkmopt {
 
@@ -28,8 +28,5 @@ std::string lathe_16k20f3_machine_file(const Lathe16k20f3Design& design);
 /// The generic `model: leg_chain` file of a design, its legs as flow maps (RUS legs: the actuator
 /// error as actuator_error_deg).
 std::string leg_chain_machine_file(const LegChainDesign& design);
-
-/// The machine file of a family design (whichever model it holds).
-std::string family_machine_file(const FamilyDesign& design);
 
 }  // namespace pkmopt

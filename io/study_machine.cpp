@@ -34,8 +34,7 @@ std::unique_ptr<StudyMachine> read_study_machine(const YamlValue& machine) {
     std::string names;
     for (const ModelEntry* e : registered_models())
       if (has_design_family(*e)) names += (names.empty() ? "" : ", ") + e->name;
-    model.fail(fmt::format("one of {} (the models with a design family)", names),
-               model.describe());
+    model.fail(fmt::format("one of {} (the models with a design family)", names), model.describe());
   }
   if (entry->study_machine) return entry->study_machine(machine);
   return read_family_study_machine(*entry, machine);

@@ -5,7 +5,8 @@
 #include <cmath>
 
 namespace pkmopt {
-DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& t) {
+DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& t,
+                                  DesignWriter<Lathe16k20f3Design> writer) {
   DesignFamily family;
   family.model = "lathe_16k20f3";
   family.parameters = {
@@ -22,7 +23,10 @@ DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& t) {
     return d;
   };
   family.build = [design](const std::vector<double>& p) { return make_lathe_16k20f3(design(p)); };
-  family.design = [design](const std::vector<double>& p) { return FamilyDesign(design(p)); };
+  if (writer)
+    family.machine_file = [design, writer](const std::vector<double>& p) {
+      return writer(design(p));
+    };
   family.machine_size = [](const Machine&, const std::vector<double>& p) {
     return p.at(0) * p.at(0) * p.at(0);
   };

@@ -31,6 +31,7 @@ namespace pkmopt {
 
 /// The family around a template design (its strut_length, guide_y and leg_base_y are the
 /// parameter defaults).
-DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& design_template);
+DesignFamily lathe_16k20f3_family(const Lathe16k20f3Design& design_template,
+                                  DesignWriter<Lathe16k20f3Design> machine_file = {});
 
 }  // namespace pkmopt

@@ -54,17 +54,20 @@ double lift(const std::vector<double>& p, std::size_t home_index) { return p.at(
 
 namespace {
 
-// build = make(design(p)), design = design(p), machine_size = the envelope.
-template <typename FromParameters, typename Make>
-void wire_family(DesignFamily& family, FromParameters design, Make make) {
+// build = make(design(p)), machine_file = writer(design(p)), machine_size = the envelope.
+template <typename FromParameters, typename Make, typename Writer>
+void wire_family(DesignFamily& family, FromParameters design, Make make, Writer writer) {
   family.build = [design, make](const std::vector<double>& p) { return make(design(p)); };
-  family.design = [design](const std::vector<double>& p) { return FamilyDesign(design(p)); };
+  if (writer)
+    family.machine_file = [design, writer](const std::vector<double>& p) {
+      return writer(design(p));
+    };
   family.machine_size = envelope_machine_size;
 }
 
 }  // namespace
 
-DesignFamily delta_family(const DeltaDesign& t) {
+DesignFamily delta_family(const DeltaDesign& t, DesignWriter<DeltaDesign> writer) {
   DesignFamily family;
   family.model = "delta";
   family.translational = true;
@@ -90,11 +93,12 @@ DesignFamily delta_family(const DeltaDesign& t) {
     require(d.theta_min < d.theta_max, "drive_min_deg must be below drive_max_deg");
     return d;
   };
-  wire_family(family, design, make_delta);
+  wire_family(family, design, make_delta, writer);
   return family;
 }
 
-DesignFamily linear_delta_family(const LinearDeltaDesign& t) {
+DesignFamily linear_delta_family(const LinearDeltaDesign& t,
+                                 DesignWriter<LinearDeltaDesign> writer) {
   DesignFamily family;
   family.model = "linear_delta";
   family.translational = true;
@@ -119,11 +123,11 @@ DesignFamily linear_delta_family(const LinearDeltaDesign& t) {
     d.inclination = p.at(4);
     return d;
   };
-  wire_family(family, design, make_linear_delta);
+  wire_family(family, design, make_linear_delta, writer);
   return family;
 }
 
-DesignFamily hexaglide_family(const HexaglideDesign& t) {
+DesignFamily hexaglide_family(const HexaglideDesign& t, DesignWriter<HexaglideDesign> writer) {
   // Template geometry read back as parameters: the platform radius and pair separation of the
   // semi-regular form (joint 0 of Rz(90) * semi_regular_platform_joints), the guide offset of
   // guide 0 from its joint.
@@ -164,11 +168,11 @@ DesignFamily hexaglide_family(const HexaglideDesign& t) {
     d.home_height = t.home_height + p.at(6);
     return d;
   };
-  wire_family(family, design, make_hexaglide);
+  wire_family(family, design, make_hexaglide, writer);
   return family;
 }
 
-DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t) {
+DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t, DesignWriter<Tripod3PrsDesign> writer) {
   DesignFamily family;
   family.model = "tripod_3prs";
   family.parameters = {
@@ -190,7 +194,7 @@ DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t) {
     d.q_max = t.q_min + p.at(3);
     return d;
   };
-  wire_family(family, design, make_tripod_3prs);
+  wire_family(family, design, make_tripod_3prs, writer);
   return family;
 }
 
@@ -215,8 +219,8 @@ double pose_reach_violation(const Machine& machine, const Pose& pose) {
   }
   // The links' interference: how far they are closer than min_clearance (m).
   if (leg_chain->checks_leg_interference())
-    excess = std::max(excess, leg_chain->design().shapes.min_clearance -
-                                  leg_chain->leg_clearance(pose).value);
+    excess = std::max(
+        excess, leg_chain->design().shapes.min_clearance - leg_chain->leg_clearance(pose).value);
   // Unreachable for a reason the terms do not see (a rotation of a translational platform...).
   if (!(excess > 0.0)) return 1.0;
   return std::min(1.0, excess);
@@ -225,10 +229,8 @@ double pose_reach_violation(const Machine& machine, const Pose& pose) {
 MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::move(spec)) {
   const std::string where = fmt::format("{} design problem '{}'", spec_.family.model, spec_.name);
   const DesignFamily& family = spec_.family;
-  if (!family.build || !family.machine_size || !family.design)
-    throw std::invalid_argument(where +
-                                ": the design family lacks a builder, machine_size or "
-                                "machine-file writer");
+  if (!family.build || !family.machine_size)
+    throw std::invalid_argument(where + ": the design family lacks a builder or machine_size");
   if (spec_.parameters.size() != family.parameters.size())
     throw std::invalid_argument(fmt::format("{}: expected {} parameter ranges, found {}", where,
                                             family.parameters.size(), spec_.parameters.size()));

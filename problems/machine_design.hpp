@@ -96,11 +96,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <variant>
 #include <vector>
 
 #include "models/installation_space.hpp"
-#include "models/lathe_conversion.hpp"
 #include "models/leg_chain.hpp"
 #include "models/machine.hpp"
 #include "models/workspace/workspace.hpp"
@@ -113,9 +111,9 @@ namespace pkmopt {
 // ---------------------------------------------------------------------------------------------
 // Design families.
 
-/// The design of a family's machine: the design struct of its model.
-using FamilyDesign = std::variant<DeltaDesign, LinearDeltaDesign, HexaglideDesign, Tripod3PrsDesign,
-                                  Lathe16k20f3Design>;
+/// Writes a model's design as its machine file (the model's io/ reader reads it back).
+template <class Design>
+using DesignWriter = std::function<std::string(const Design&)>;
 
 /// One named design parameter of a family.
 struct FamilyParameter {
@@ -142,15 +140,13 @@ struct DesignFamily {
   /// The machine of a parameter vector (internal units; one value per parameter). Throws
   /// std::invalid_argument for an impossible machine.
   std::function<std::unique_ptr<Machine>(const std::vector<double>&)> build;
-  /// The model's design of a parameter vector (internal units); io/machine_file_writer.hpp
-  /// writes it as a machine file.
-  std::function<FamilyDesign(const std::vector<double>&)> design;
   /// The machine_size metric of a built design (m^3).
   std::function<double(const Machine&, const std::vector<double>&)> machine_size;
   /// The platform keeps its orientation (task poses must not rotate).
   bool translational = false;
-  /// The machine file of a parameter vector (internal units): set by the model's registry entry
-  /// (io/model_registry.hpp), which knows the file format; empty for a family built here alone.
+  /// The machine file of a parameter vector (internal units), from the writer the family was
+  /// made with (the model's registry entry gives its io/ writer; io/model_registry.hpp); empty
+  /// when it was made without one.
   std::function<std::string(const std::vector<double>&)> machine_file;
 
   /// Index of a parameter by name; -1 if there is none.
@@ -167,10 +163,15 @@ double pose_reach_violation(const Machine& machine, const Pose& pose);
 
 /// The families of the leg-chain models; the template supplies everything the parameters do
 /// not set (its geometric fields are the parameter defaults).
-DesignFamily delta_family(const DeltaDesign& design_template);
-DesignFamily linear_delta_family(const LinearDeltaDesign& design_template);
-DesignFamily hexaglide_family(const HexaglideDesign& design_template);
-DesignFamily tripod_3prs_family(const Tripod3PrsDesign& design_template);
+/// `machine_file` writes a design as a machine file (DesignFamily::machine_file).
+DesignFamily delta_family(const DeltaDesign& design_template,
+                          DesignWriter<DeltaDesign> machine_file = {});
+DesignFamily linear_delta_family(const LinearDeltaDesign& design_template,
+                                 DesignWriter<LinearDeltaDesign> machine_file = {});
+DesignFamily hexaglide_family(const HexaglideDesign& design_template,
+                              DesignWriter<HexaglideDesign> machine_file = {});
+DesignFamily tripod_3prs_family(const Tripod3PrsDesign& design_template,
+                                DesignWriter<Tripod3PrsDesign> machine_file = {});
 
 // ---------------------------------------------------------------------------------------------
 // The problem.

@@ -95,7 +95,8 @@ MeasuredDesign measure_design(const DesignStudy& study, const std::vector<double
   d.aggregate = std::move(record.aggregate);
   d.failure = std::move(record.failure);
   d.actuator = record.actuator;
-  if (machine_file && d.failure.empty()) d.machine_file = study.machine->machine_file(record.parameters);
+  if (machine_file && d.failure.empty())
+    d.machine_file = study.machine->machine_file(record.parameters);
   return d;
 }
 

@@ -13,8 +13,8 @@
 
 #include "io/actuator_catalog_file.hpp"
 #include "io/csv.hpp"
-#include "io/input_error.hpp"
 #include "io/hexapod_study_machine.hpp"
+#include "io/input_error.hpp"
 #include "io/output_file.hpp"
 #include "io/task_wrench_file.hpp"
 #include "optimizer/indicators.hpp"

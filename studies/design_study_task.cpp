@@ -177,5 +177,4 @@ FieldChoice<int> metric_choice(int& member) {
   return choice;
 }
 
-
 }  // namespace pkmopt::design_study_detail

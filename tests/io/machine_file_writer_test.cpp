@@ -1,7 +1,7 @@
 // Tests of io/machine_file_writer: the machine file each writer gives for a design with every
 // key away from its default, read back by the io readers (io/machine_file_leg_chain,
 // io/machine_file_lathe), is the same design (lengths exactly, angles to the 12 significant
-// digits the writers give degrees); family_machine_file dispatches on the design's type; and a
+// digits the writers give degrees); every registered family writes its model's files; and a
 // family design's file loads to the machine the family builds.
 #include "io/machine_file_writer.hpp"
 
@@ -16,6 +16,7 @@
 #include "io/machine_file.hpp"
 #include "io/machine_file_lathe.hpp"
 #include "io/machine_file_leg_chain.hpp"
+#include "io/model_registry.hpp"
 #include "io/yaml_reader.hpp"
 
 namespace pkmopt {
@@ -247,36 +248,53 @@ TEST(MachineFileWriter, LatheReadsBackToTheSameDesign) {
   EXPECT_EQ(r.actuator_error, d.actuator_error);
 }
 
-TEST(MachineFileWriter, FamilyMachineFileDispatchesOnTheDesignType) {
-  const std::vector<std::pair<FamilyDesign, std::string>> cases = {
-      {sample_delta(), delta_machine_file(sample_delta())},
-      {sample_linear_delta(), linear_delta_machine_file(sample_linear_delta())},
-      {sample_hexaglide(), hexaglide_machine_file(sample_hexaglide())},
-      {sample_tripod(), tripod_3prs_machine_file(sample_tripod())},
-      {sample_lathe(), lathe_16k20f3_machine_file(sample_lathe())}};
-  const char* models[] = {"delta", "linear_delta", "hexaglide", "tripod_3prs", "lathe_16k20f3"};
-  for (std::size_t k = 0; k < cases.size(); ++k) {
-    const std::string text = family_machine_file(cases[k].first);
-    EXPECT_EQ(text, cases[k].second) << models[k];
-    EXPECT_EQ(text.substr(0, text.find('\n')), std::string("model: ") + models[k]);
+// Every design family of the registry writes its designs with its model's writer: the default
+// design's file starts with the model's name and reads back to a machine of that model.
+TEST(MachineFileWriter, EveryRegisteredFamilyWritesItsModelsMachineFile) {
+  int families = 0;
+  for (const ModelEntry* entry : registered_models()) {
+    if (!entry->design_family) continue;
+    const DesignFamily family = entry->design_family(nullptr);
+    ASSERT_TRUE(family.machine_file) << entry->name;
+    const std::string text = family.machine_file(family.default_parameters());
+    EXPECT_EQ(text.substr(0, text.find('\n')), "model: " + entry->name);
+    EXPECT_EQ(load_machine(YamlValue::load_string(text, entry->name + ".yaml"))->model(),
+              entry->name);
+    ++families;
   }
+  EXPECT_EQ(families, 5);
+  EXPECT_EQ(delta_family(sample_delta(), delta_machine_file)
+                .machine_file({0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0}),
+            [] {
+              DeltaDesign d = sample_delta();
+              d.base_radius = 0.2;
+              d.platform_radius = 0.05;
+              d.upper_arm = 0.4;
+              d.rod = 0.9;
+              d.theta_min = deg_to_rad(-40);
+              d.theta_max = deg_to_rad(90);
+              return delta_machine_file(d);
+            }());
 }
 
 // Moved from tests/problems/machine_design_test.cpp: the written machine file of a family design,
 // read by the machine-file reader, gives the machine the family builds.
 TEST(MachineFileWriter, FamilyDesignsLoadBackToTheSameMachine) {
   const std::vector<std::pair<DesignFamily, std::vector<double>>> cases = {
-      {delta_family(DeltaDesign{}), {0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0}},
-      {linear_delta_family(LinearDeltaDesign{}), {0.4, 0.05, 0.8, 0.7, deg_to_rad(12), 0.0}},
-      {hexaglide_family(HexaglideDesign{}),
+      {delta_family(DeltaDesign{}, delta_machine_file),
+       {0.2, 0.05, 0.4, 0.9, deg_to_rad(-40), deg_to_rad(90), 0.0}},
+      {linear_delta_family(LinearDeltaDesign{}, linear_delta_machine_file),
+       {0.4, 0.05, 0.8, 0.7, deg_to_rad(12), 0.0}},
+      {hexaglide_family(HexaglideDesign{}, hexaglide_machine_file),
        {0.2, deg_to_rad(25), 0.2, 0.9, 1.6, deg_to_rad(5), 0.1}},
-      {tripod_3prs_family(Tripod3PrsDesign{}), {0.32, 0.14, 0.6, 0.9, 0.0}}};
+      {tripod_3prs_family(Tripod3PrsDesign{}, tripod_3prs_machine_file),
+       {0.32, 0.14, 0.6, 0.9, 0.0}}};
   const std::vector<Pose> poses = {
       Pose{{0.02, 0.03, -0.75}, {0, 0, 0}}, Pose{{0.02, 0.03, -0.55}, {0, 0, 0}},
       Pose{{0.05, -0.02, 0.45}, {0.03, 0.02, -0.01}}, Pose{{0.0, 0.0, 1.0}, {0.2, -0.1, 0.0}}};
   for (std::size_t c = 0; c < cases.size(); ++c) {
     const auto& [family, p] = cases[c];
-    const std::string text = family_machine_file(family.design(p));
+    const std::string text = family.machine_file(p);
     const YamlValue root = YamlValue::load_string(text, family.model + ".yaml");
     const std::unique_ptr<Machine> loaded = load_machine(root);
     ASSERT_NE(loaded, nullptr) << text;

@@ -41,8 +41,8 @@ TEST(LatheDesign, FamilyParametersAndBuilder) {
   // machine_size is the cube of the strut length.
   EXPECT_DOUBLE_EQ(family.machine_size(*machine, p), 0.65 * 0.65 * 0.65);
   // The machine file loads back to the same design.
-  const Lathe16k20f3Design read =
-      read_lathe_16k20f3_design(YamlValue::load_string(family_machine_file(family.design(p)), "family.yaml"));
+  const Lathe16k20f3Design read = read_lathe_16k20f3_design(YamlValue::load_string(
+      lathe_16k20f3_family(t, lathe_16k20f3_machine_file).machine_file(p), "family.yaml"));
   EXPECT_EQ(lathe_16k20f3_machine_file(read), lathe_16k20f3_machine_file(expected));
 }
 

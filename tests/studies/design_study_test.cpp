@@ -529,8 +529,7 @@ TEST_F(LegChainDesignStudy, LoadsTheFamilyWithTheTemplateFromTheMachineSection) 
   EXPECT_EQ(study.parameters[4].unit, "deg");
   EXPECT_EQ(study.parameters[4].min, 10.0);
   // The template keys reach the machine: the written design file carries them.
-  const std::string file =
-      study.machine->machine_file(problem.design_parameters({0.7, 0.6, 0.0}));
+  const std::string file = study.machine->machine_file(problem.design_parameters({0.7, 0.6, 0.0}));
   EXPECT_NE(file.find("rods: {E: 210000000000, area: 0.00015}"), std::string::npos) << file;
   EXPECT_NE(file.find("carriage_stiffness: 200000000"), std::string::npos) << file;
   EXPECT_NE(file.find("tcp: [0, 0, -0.05]"), std::string::npos) << file;
@@ -574,8 +573,9 @@ TEST_F(LegChainDesignStudy, SchemaErrors) {
   const std::string catalog =
       std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
   const std::string e8 = load_error(
-      "lc_e8", replaced(kLinearDeltaStudy, "  - task_reachable\n",
-                        "  - task_reachable\n  - {actuator: cheapest, catalog: " + catalog + "}\n"));
+      "lc_e8",
+      replaced(kLinearDeltaStudy, "  - task_reachable\n",
+               "  - task_reachable\n  - {actuator: cheapest, catalog: " + catalog + "}\n"));
   EXPECT_NE(e8.find("constraints[1].actuator: expected {metric: NAME, max|min: VALUE} (a "
                     "linear_delta study chooses no actuators from a catalog; it bounds "
                     "leg_force_max instead), found an actuator constraint"),
