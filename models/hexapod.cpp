@@ -11,6 +11,7 @@
 #include <string>
 
 #include "models/compliance_metrics.hpp"
+#include "models/hexapod_batch.hpp"
 #include "models/linalg.hpp"
 #include "models/machine_dynamics.hpp"
 #include "models/pose_solver.hpp"
@@ -151,6 +152,12 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
   cos_base_limit_ = j.base_max_angle >= std::numbers::pi ? -2.0 : std::cos(j.base_max_angle);
   cos_platform_limit_ =
       j.platform_max_angle >= std::numbers::pi ? -2.0 : std::cos(j.platform_max_angle);
+}
+
+void Hexapod::analyze_batch(const Pose* poses, std::size_t count, const Wrench& wrench,
+                            PoseMetrics* metrics, PoseCompliance* compliance) const {
+  analyze_hexapod_batch(*this, poses, count, wrench, metrics, HexapodBatchKernel::automatic,
+                        compliance);
 }
 
 std::unique_ptr<MachineData> Hexapod::make_data() const {

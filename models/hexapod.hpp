@@ -161,7 +161,7 @@ class HexapodData : public MachineData {
 };
 
 /// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.
-class Hexapod final : public Machine {
+class Hexapod final : public Machine, public BatchAnalysis {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit Hexapod(const HexapodDesign& design);
@@ -198,6 +198,10 @@ class Hexapod final : public Machine {
   /// base joints plus max_length (the legs standing straight up at full stroke).
   std::optional<double> envelope_volume() const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  /// The SIMD batch kernel (analyze_hexapod_batch, models/hexapod_batch.hpp, automatic kernel).
+  const BatchAnalysis* batch_analysis() const override { return this; }
+  void analyze_batch(const Pose* poses, std::size_t count, const Wrench& wrench,
+                     PoseMetrics* metrics, PoseCompliance* compliance) const override;
   /// Legs from the base joints a_i to the platform joints at the pose, and the tool.
   bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }

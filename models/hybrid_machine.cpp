@@ -11,7 +11,6 @@
 #include <utility>
 
 #include "models/compliance_metrics.hpp"
-#include "models/leg_chain.hpp"
 #include "models/leg_interference.hpp"
 #include "models/linalg.hpp"
 #include "models/require.hpp"
@@ -74,9 +73,7 @@ HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
                       num_serial_, qr.rank()));
   A_pinv_ = (A_.transpose() * A_).ldlt().solve(A_.transpose());
 
-  if (const auto* chain = dynamic_cast<const LegChainMachine*>(design_.module.get())) {
-    if (chain->design().mobility == PlatformMobility::kPlanarLegs) parasitic_module_ = chain;
-  }
+  parasitic_module_ = design_.module->parasitic_motion();
   require(parasitic_module_ == nullptr || design_.module->mass_model() == nullptr,
           "hybrid: a module with parasitic motion (planar legs) takes no masses in a hybrid "
           "machine: its dynamics on moving axes are not modelled");
@@ -321,8 +318,7 @@ bool HybridMachine::twist_jacobian(MachineData& data, const Pose& pose, Eigen::M
     out.bottomRows(n_module) = d.module_jacobian * to_local * remaining;
   } else {
     // [A D, R0 T_v; 0, R0 T_w] [q_s_dot; eta] = xi in the least-squares sense.
-    const auto& module_data = static_cast<const LegChainData&>(*d.module);
-    const Eigen::MatrixXd T = module_data.T;  // 6 x dof, local twist per DOF rate
+    const Eigen::MatrixXd T = parasitic_module_->twist_basis(*d.module);  // 6 x dof
     const int dof = static_cast<int>(T.cols());
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6, num_serial_ + dof);
     M.topLeftCorner(3, num_serial_) = A_ * free.asDiagonal();

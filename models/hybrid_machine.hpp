@@ -110,8 +110,6 @@
 
 namespace pkmopt {
 
-class LegChainMachine;
-
 /// One serial axis of a hybrid machine.
 struct HybridAxis {
   double min = 0.0;        ///< travel range (m), min <= max
@@ -217,7 +215,7 @@ class HybridMachine final : public Machine {
   Eigen::Vector3d t0_ = Eigen::Vector3d::Zero();
   Eigen::Matrix<double, 3, Eigen::Dynamic> A_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> A_pinv_;
-  const LegChainMachine* parasitic_module_ = nullptr;  // planar-leg module, else null
+  const ParasiticMotion* parasitic_module_ = nullptr;  // planar-leg module, else null
 };
 
 }  // namespace pkmopt

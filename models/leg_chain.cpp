@@ -397,6 +397,30 @@ bool LegChainMachine::reachable_from_kinematics(const LegChainData& d, const Pos
   return true;
 }
 
+std::optional<double> LegChainMachine::reach_excess(const Pose& pose) const {
+  const std::optional<Eigen::VectorXd> q = inverse_kinematics(pose);
+  if (!q) return std::nullopt;
+  Eigen::VectorXd base_angles, platform_angles;
+  joint_angles(pose, base_angles, platform_angles);
+  double excess = 0.0;
+  for (int i = 0; i < num_actuators(); ++i) {
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    excess = std::max({excess, leg.q_min - (*q)(i), (*q)(i)-leg.q_max});
+    if (std::isfinite(leg.base_max_angle))
+      excess = std::max(excess, base_angles(i) - leg.base_max_angle);
+    if (std::isfinite(leg.platform_max_angle))
+      excess = std::max(excess, platform_angles(i) - leg.platform_max_angle);
+  }
+  // The links' interference: how far they are closer than min_clearance (m).
+  if (checks_leg_interference())
+    excess = std::max(excess, design_.shapes.min_clearance - leg_clearance(pose).value);
+  return excess;
+}
+
+Eigen::MatrixXd LegChainMachine::twist_basis(const MachineData& data) const {
+  return static_cast<const LegChainData&>(data).T;
+}
+
 bool LegChainMachine::reachable(MachineData& data, const Pose& pose) const {
   auto& d = static_cast<LegChainData&>(data);
   compute_kinematics(d, pose);

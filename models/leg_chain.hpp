@@ -267,7 +267,7 @@ class LegChainData : public MachineData {
 };
 
 /// A leg-chain machine. Immutable; share it between threads, give each a LegChainData.
-class LegChainMachine final : public Machine {
+class LegChainMachine final : public Machine, public ParasiticMotion {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit LegChainMachine(const LegChainDesign& design);
@@ -293,6 +293,15 @@ class LegChainMachine final : public Machine {
   /// leg from its base joint, then the link to the platform joint; the tool.
   bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   bool checks_leg_interference() const override { return design_.shapes.present(); }
+  /// The largest excess over an actuator range, a joint-angle limit or the links' minimum
+  /// clearance at (the actual pose of) a pose (models/machine.hpp).
+  std::optional<double> reach_excess(const Pose& pose) const override;
+  /// This machine when its legs are planar (parasitic x, y, rz), else null.
+  const ParasiticMotion* parasitic_motion() const override {
+    return design_.mobility == PlatformMobility::kPlanarLegs ? this : nullptr;
+  }
+  /// T of the last analyze or twist_jacobian with `data` (the DOF twist columns).
+  Eigen::MatrixXd twist_basis(const MachineData& data) const override;
   /// The links' clearance at a pose (with each other and with the solids; +inf without a link
   /// shape or where a leg cannot close).
   Clearance leg_clearance(const Pose& pose) const;
@@ -335,7 +344,7 @@ class LegChainMachine final : public Machine {
   /// (translational), R = Rot(e, phi) with phi the twist of R about e (Schoenflies), the
   /// parasitic x, y, rz solved from z, rx, ry (planar legs). nullopt when the parasitic solve
   /// fails.
-  std::optional<Pose> actual_pose(const Pose& pose) const;
+  std::optional<Pose> actual_pose(const Pose& pose) const override;
   /// Index of the first rotational platform DOF (DOF twist columns from there on are angular
   /// velocities): 3 (6-DOF, Schoenflies), dof() (translational: none), 1 (planar legs).
   int first_rotational_dof() const { return first_rotational_dof_; }

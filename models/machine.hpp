@@ -39,6 +39,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -121,6 +122,34 @@ class MachineData {
   bool compliance_metrics = true;
   /// The compliance matrices of the last analyze (with compliance_metrics set).
   PoseCompliance matrices;
+};
+
+class Machine;
+
+/// A capability (Machine::batch_analysis): a kernel that analyzes many poses at once, faster
+/// than analyze pose by pose (the hexapod's SIMD path, models/hexapod_batch.hpp). It needs no
+/// MachineData and gives, for every pose, what analyze gives (compliance metrics included).
+class BatchAnalysis {
+ public:
+  virtual ~BatchAnalysis() = default;
+  /// Analyzes poses[0..count) under `wrench` into metrics[0..count) and, when `compliance` is
+  /// given, the compliance matrices into compliance[0..count).
+  virtual void analyze_batch(const Pose* poses, std::size_t count, const Wrench& wrench,
+                             PoseMetrics* metrics, PoseCompliance* compliance) const = 0;
+};
+
+/// A capability (Machine::parasitic_motion): a platform with fewer than six degrees of freedom
+/// whose remaining pose coordinates follow from the commanded ones (the parasitic x, y and rz of
+/// a 3-PRS tripod, models/leg_chain.hpp). Machines that carry it (a hybrid machine's axes) must
+/// move with the actual pose.
+class ParasiticMotion {
+ public:
+  virtual ~ParasiticMotion() = default;
+  /// The pose the platform takes when commanded to `pose`; nullopt when it cannot assemble.
+  virtual std::optional<Pose> actual_pose(const Pose& pose) const = 0;
+  /// T (6 x DOF): the TCP twist [v; omega] per rate of the platform's own coordinates, at the
+  /// pose of the last analyze or twist_jacobian with `data` (made by this machine).
+  virtual Eigen::MatrixXd twist_basis(const MachineData& data) const = 0;
 };
 
 class Machine {
@@ -252,6 +281,19 @@ class Machine {
     analyze(data, pose, wrench, metrics);
     return false;
   }
+
+  /// How far a pose lies beyond the machine's limits: the largest excess of an actuator
+  /// coordinate over its range (m or rad), of a joint angle over its limit (rad), or of the
+  /// legs' clearance below its minimum (m); 0 when no limit is exceeded (the pose may still be
+  /// unreachable for a reason these terms do not see). nullopt when a leg cannot close at the
+  /// pose or the model does not measure it.
+  virtual std::optional<double> reach_excess(const Pose& /*pose*/) const { return std::nullopt; }
+
+  /// The batch kernel of the machine (BatchAnalysis); null when it has none.
+  virtual const BatchAnalysis* batch_analysis() const { return nullptr; }
+  /// The parasitic motion of the platform (ParasiticMotion); null when every pose coordinate is
+  /// commanded.
+  virtual const ParasiticMotion* parasitic_motion() const { return nullptr; }
 
   /// The machine drawn as lines at a pose (models/machine_sketch.hpp). Returns false (out
   /// unspecified) when the legs cannot assemble at the pose or the model cannot draw itself.

@@ -6,8 +6,6 @@
 #include <exception>
 #include <memory>
 
-#include "models/hexapod.hpp"
-#include "models/hexapod_batch.hpp"
 #include "models/require.hpp"
 
 namespace pkmopt {
@@ -39,7 +37,7 @@ void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench
                          const std::function<void(const PoseSlice&)>& consume) {
   require(wrench_within_limits(wrench),
           "the wrench must be finite with every component within +-1e9 (N, N*m)");
-  const auto* hexapod = dynamic_cast<const Hexapod*>(&machine);
+  const BatchAnalysis* batch = machine.batch_analysis();
   const long long slices = static_cast<long long>((count + kPoseSlice - 1) / kPoseSlice);
   const int thread_count = threads > 0 ? threads : omp_get_max_threads();
   std::exception_ptr first_error;
@@ -50,14 +48,14 @@ void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench
     std::vector<PoseCompliance> compliance(matrices ? kPoseSlice : 0);
     std::unique_ptr<MachineData> data;
     try {
-      if (!hexapod) data = machine.make_data();
+      if (!batch) data = machine.make_data();
     } catch (...) {
 #pragma omp critical(pkmopt_pose_slices_error)
       if (!first_error) first_error = std::current_exception();
     }
 #pragma omp for schedule(static)
     for (long long s = 0; s < slices; ++s) {
-      if (!hexapod && !data) continue;  // its error is kept
+      if (!batch && !data) continue;  // its error is kept
       try {
         const std::size_t start = static_cast<std::size_t>(s) * kPoseSlice;
         const std::size_t size = std::min(kPoseSlice, count - start);
@@ -66,10 +64,9 @@ void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench
                               .metrics = std::span(metrics).first(size),
                               .matrices = std::span(compliance).first(matrices ? size : 0)};
         fill(slice);
-        if (hexapod) {
-          analyze_hexapod_batch(*hexapod, poses.data(), size, wrench, metrics.data(),
-                                HexapodBatchKernel::automatic,
-                                matrices ? compliance.data() : nullptr);
+        if (batch) {
+          batch->analyze_batch(poses.data(), size, wrench, metrics.data(),
+                               matrices ? compliance.data() : nullptr);
         } else {
           for (std::size_t k = 0; k < size; ++k) {
             machine.analyze(*data, poses[k], wrench, metrics[k]);

@@ -202,28 +202,10 @@ DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t, DesignWriter<Tripod3P
 // The problem.
 
 double pose_reach_violation(const Machine& machine, const Pose& pose) {
-  const auto* leg_chain = dynamic_cast<const LegChainMachine*>(&machine);
-  if (leg_chain == nullptr) return 1.0;
-  const std::optional<Eigen::VectorXd> q = leg_chain->inverse_kinematics(pose);
-  if (!q) return 1.0;
-  Eigen::VectorXd base_angles, platform_angles;
-  leg_chain->joint_angles(pose, base_angles, platform_angles);
-  double excess = 0.0;
-  for (int i = 0; i < leg_chain->num_actuators(); ++i) {
-    const LegChainLeg& leg = leg_chain->design().legs[static_cast<std::size_t>(i)];
-    excess = std::max({excess, leg.q_min - (*q)(i), (*q)(i)-leg.q_max});
-    if (std::isfinite(leg.base_max_angle))
-      excess = std::max(excess, base_angles(i) - leg.base_max_angle);
-    if (std::isfinite(leg.platform_max_angle))
-      excess = std::max(excess, platform_angles(i) - leg.platform_max_angle);
-  }
-  // The links' interference: how far they are closer than min_clearance (m).
-  if (leg_chain->checks_leg_interference())
-    excess = std::max(
-        excess, leg_chain->design().shapes.min_clearance - leg_chain->leg_clearance(pose).value);
+  const std::optional<double> excess = machine.reach_excess(pose);
   // Unreachable for a reason the terms do not see (a rotation of a translational platform...).
-  if (!(excess > 0.0)) return 1.0;
-  return std::min(1.0, excess);
+  if (!excess || !(*excess > 0.0)) return 1.0;
+  return std::min(1.0, *excess);
 }
 
 MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::move(spec)) {

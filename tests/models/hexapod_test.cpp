@@ -825,5 +825,27 @@ TEST(HexapodCompliance, CubicConfigurationHasThePublishedStiffness) {
   }
 }
 
+// The hexapod offers its SIMD kernel as a capability: the batch gives what analyze gives.
+TEST(HexapodCapabilities, BatchAnalysisGivesWhatAnalyzeGives) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  const BatchAnalysis* batch = hexapod.batch_analysis();
+  ASSERT_NE(batch, nullptr);
+  EXPECT_EQ(hexapod.parasitic_motion(), nullptr);
+  const std::vector<Pose> poses = {Pose{{0.0, 0.0, 0.9}, {0, 0, 0}},
+                                   Pose{{0.05, -0.03, 0.95}, {0.1, -0.05, 0.2}}};
+  const Wrench w = (Wrench() << 100, 200, -3000, 10, -20, 5).finished();
+  std::vector<PoseMetrics> metrics(poses.size());
+  batch->analyze_batch(poses.data(), poses.size(), w, metrics.data(), nullptr);
+  auto data = hexapod.make_data();
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    PoseMetrics m;
+    hexapod.analyze(*data, poses[k], w, m);
+    EXPECT_EQ(metrics[k].reachable, m.reachable);
+    EXPECT_LT((metrics[k].q - m.q).norm(), 1e-12);
+    EXPECT_LT((metrics[k].tau - m.tau).norm(), 1e-9 * m.tau.norm());
+    EXPECT_NEAR(metrics[k].stiffness_min / m.stiffness_min, 1.0, 1e-10);
+  }
+}
+
 }  // namespace
 }  // namespace pkmopt

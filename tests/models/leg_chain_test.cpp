@@ -1034,5 +1034,50 @@ TEST(LegChain, WorkspaceOfTheDeltaUsesItsSearchBox) {
   EXPECT_FALSE(ws.touches_search_box);
 }
 
+// Capabilities (models/machine.hpp): reach_excess is the largest excess over an actuator range,
+// computed here from the closed-form IK and the legs' ranges; planar legs have a parasitic
+// motion whose twist basis is T of the pose analyzed last; nothing casts to a model's type.
+TEST(LegChainCapabilities, ReachExcessAndParasiticMotion) {
+  const LegChainMachine linear(linear_delta_design(LinearDeltaDesign{}));
+  const LegChainDesign& d = linear.design();
+  EXPECT_EQ(linear.parasitic_motion(), nullptr);
+  EXPECT_EQ(linear.batch_analysis(), nullptr);
+  int beyond = 0, within = 0;
+  for (const double dz : {0.0, 0.05, 0.2, 0.5, -0.2, -0.4}) {
+    Pose pose = d.home;
+    pose.position.z() += dz;
+    const std::optional<Eigen::VectorXd> q = linear.inverse_kinematics(pose);
+    if (!q) continue;
+    double expected = 0.0;
+    for (std::size_t i = 0; i < d.legs.size(); ++i)
+      expected = std::max({expected, d.legs[i].q_min - (*q)(static_cast<Eigen::Index>(i)),
+                           (*q)(static_cast<Eigen::Index>(i)) - d.legs[i].q_max});
+    const std::optional<double> excess = linear.reach_excess(pose);
+    ASSERT_TRUE(excess.has_value()) << dz;
+    EXPECT_DOUBLE_EQ(*excess, expected) << dz;
+    auto data = linear.make_data();
+    EXPECT_EQ(linear.reachable(*data, pose), expected == 0.0) << dz;
+    (expected > 0.0 ? beyond : within) += 1;
+  }
+  EXPECT_GT(beyond, 0);
+  EXPECT_GT(within, 0);
+  const LegChainMachine tripod(tripod_3prs_design(Tripod3PrsDesign{}));
+  const ParasiticMotion* parasitic = tripod.parasitic_motion();
+  ASSERT_NE(parasitic, nullptr);
+  Pose commanded = tripod.design().home;
+  commanded.angles = {0.05, -0.03, 0.0};
+  const std::optional<Pose> actual = parasitic->actual_pose(commanded);
+  ASSERT_TRUE(actual.has_value());
+  EXPECT_EQ(actual->position.z(), commanded.position.z());
+  EXPECT_NE(actual->position.x(), commanded.position.x());  // the parasitic shift
+  auto data = tripod.make_data();
+  PoseMetrics m;
+  tripod.analyze(*data, commanded, Wrench::Zero(), m);
+  const Eigen::MatrixXd T = parasitic->twist_basis(*data);
+  EXPECT_EQ(T.rows(), 6);
+  EXPECT_EQ(T.cols(), 3);
+  EXPECT_LT((T - tripod.twist_map(commanded)).norm(), 1e-12);
+}
+
 }  // namespace
 }  // namespace pkmopt
