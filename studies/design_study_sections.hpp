@@ -118,55 +118,39 @@ struct OutputSection {
   int front_size = 0;  ///< 0: every non-dominated design
 };
 
+/// The field rule of a limit the workspace command and Python share (models/workspace).
+inline FieldRule limit_rule(const ValueLimit& limit, std::string_view unit, std::string_view doc) {
+  return FieldRule{.min = limit.min,
+                   .max = limit.max,
+                   .min_exclusive = limit.min_exclusive,
+                   .max_exclusive = limit.max_exclusive,
+                   .unit = unit,
+                   .expected = limit.expected,
+                   .doc = doc};
+}
+
 template <class Fields>
 void describe_fields(Fields& f, TaskOrientationsSection& o) {
+  using namespace workspace_limits;
   f.field("tilt_deg", o.tilt_deg,
-          {.min = 0,
-           .max = 89,
-           .unit = "deg",
-           .expected = "an angle in [0, 89] degrees",
-           .doc = "half-angle of the tool's tilt cone at every task position"});
-  f.field("yaw_deg", o.yaw_deg,
-          {.min = 0,
-           .max = 179,
-           .unit = "deg",
-           .expected = "an angle in [0, 179] degrees",
-           .doc = "yaw range ± about the tool axis"});
+          limit_rule(kTiltDeg, "deg", "half-angle of the tool's tilt cone at every task position"));
+  f.field("yaw_deg", o.yaw_deg, limit_rule(kYawRangeDeg, "deg", "yaw range ± about the tool axis"));
   f.field("step_deg", o.step_deg,
-          {.min = 0.5,
-           .max = 90,
-           .unit = "deg",
-           .expected = "an angle in [0.5, 90] degrees",
-           .doc = "sampling step of tilt and yaw"});
+          limit_rule(kOrientationStepDeg, "deg", "sampling step of tilt and yaw"));
 }
 
 template <class Fields>
 void describe_fields(Fields& f, TaskWorkspaceSection& w) {
+  using namespace workspace_limits;
   f.field("resolution", w.resolution,
-          {.min = 0,
-           .min_exclusive = true,
-           .unit = "m",
-           .doc = "grid spacing of the workspace_volume objective"});
-  f.field(
-      "tilt_deg", w.tilt_deg,
-      {.min = 0,
-       .max = 89,
-       .unit = "deg",
-       .expected = "an angle in [0, 89] degrees",
-       .doc =
-           "the workspace holds the positions reachable with every orientation of this tilt cone"});
-  f.field("yaw_deg", w.yaw_deg,
-          {.min = 0,
-           .max = 179,
-           .unit = "deg",
-           .expected = "an angle in [0, 179] degrees",
-           .doc = "... and of this yaw range"});
+          limit_rule(kResolution, "m", "grid spacing of the workspace_volume objective"));
+  f.field("tilt_deg", w.tilt_deg,
+          limit_rule(kTiltDeg, "deg",
+                     "the workspace holds the positions reachable with every orientation of this "
+                     "tilt cone"));
+  f.field("yaw_deg", w.yaw_deg, limit_rule(kYawRangeDeg, "deg", "... and of this yaw range"));
   f.field("step_deg", w.step_deg,
-          {.min = 0.5,
-           .max = 90,
-           .unit = "deg",
-           .expected = "an angle in [0.5, 90] degrees",
-           .doc = "sampling step of the orientations"});
+          limit_rule(kOrientationStepDeg, "deg", "sampling step of the orientations"));
 }
 
 template <class Fields>

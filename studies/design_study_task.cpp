@@ -85,15 +85,19 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   region.expect_map();
   const YamlValue shape = region.required("shape");
   yaml += "task:\n";
+  // The count is checked before the poses are made (1000^3 points or a 0.01 deg step over a
+  // wide cone would exhaust memory).
+  OrientationSet orientation_set;
+  orientation_set.tilt = tilt;
+  orientation_set.yaw_range = yaw;
+  orientation_set.orientation_step = step;
+  const double orientations_per_position = static_cast<double>(orientation_count(orientation_set));
   if (shape.as_string() == "box") {
     BoxRegionSection box;
     read_fields(region, box);
     const Eigen::Vector3d centre(box.centre[0], box.centre[1], box.centre[2]);
     const Eigen::Vector3i counts(box.points[0], box.points[1], box.points[2]);
-    // The count is checked before the poses are made (1000^3 points would exhaust memory).
-    const double orientations_per_point = static_cast<double>(
-        box_task_poses(centre, Eigen::Vector3d::Zero(), Eigen::Vector3i::Ones(), tilt, yaw, step)
-            .size());
+    const double orientations_per_point = orientations_per_position;
     const double total =
         static_cast<double>(box.points[0]) * box.points[1] * box.points[2] * orientations_per_point;
     if (total > 100000)
@@ -109,9 +113,7 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     CylinderRegionSection cylinder;
     read_fields(region, cylinder);
     const Eigen::Vector3d centre(cylinder.centre[0], cylinder.centre[1], cylinder.centre[2]);
-    const double orientations_per_point = static_cast<double>(
-        box_task_poses(centre, Eigen::Vector3d::Zero(), Eigen::Vector3i::Ones(), tilt, yaw, step)
-            .size());
+    const double orientations_per_point = orientations_per_position;
     const double total = (1.0 + static_cast<double>(cylinder.rings) * cylinder.per_ring) *
                          cylinder.layers * orientations_per_point;
     if (total > 100000)

@@ -16,6 +16,7 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
+#include "io/csv.hpp"
 #include "io/input_error.hpp"
 #include "io/machine_file.hpp"
 #include "io/output_file.hpp"
@@ -55,21 +56,20 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     const auto a = parse_number_list("--orientation", opt.orientation, 3);
     options.orientations.nominal_angles = deg_to_rad(Eigen::Vector3d(a[0], a[1], a[2]));
   }
-  if (!(std::isfinite(opt.tilt_deg) && opt.tilt_deg >= 0.0 && opt.tilt_deg < 180.0)) {
-    bad_option("--tilt", "an angle in degrees, 0 <= tilt < 180", opt.tilt_deg);
-  }
-  if (!(std::isfinite(opt.yaw_range_deg) && opt.yaw_range_deg >= 0.0 &&
-        opt.yaw_range_deg < 180.0)) {
-    bad_option("--yaw-range", "an angle in degrees, 0 <= yaw range < 180", opt.yaw_range_deg);
-  }
-  if (!(std::isfinite(opt.orientation_step_deg) && opt.orientation_step_deg >= 0.01 &&
-        opt.orientation_step_deg <= 90.0)) {
-    bad_option("--orientation-step", "an angle in degrees, 0.01 <= step <= 90",
-               opt.orientation_step_deg);
-  }
+  using namespace workspace_limits;  // one rule per limit, shared with studies and Python
+  if (!kTiltDeg.accepts(opt.tilt_deg)) bad_option("--tilt", kTiltDeg.expected, opt.tilt_deg);
+  if (!kYawRangeDeg.accepts(opt.yaw_range_deg))
+    bad_option("--yaw-range", kYawRangeDeg.expected, opt.yaw_range_deg);
+  if (!kOrientationStepDeg.accepts(opt.orientation_step_deg))
+    bad_option("--orientation-step", kOrientationStepDeg.expected, opt.orientation_step_deg);
   options.orientations.tilt = deg_to_rad(opt.tilt_deg);
   options.orientations.yaw_range = deg_to_rad(opt.yaw_range_deg);
   options.orientations.orientation_step = deg_to_rad(opt.orientation_step_deg);
+  if (const std::int64_t count = orientation_count(options.orientations); count > kMaxOrientations)
+    throw InputError(fmt::format(
+        "--orientation-step: expected a step that samples at most {} orientations of the tilt "
+        "and yaw range, found {} ({} orientations)",
+        kMaxOrientations, format_number(opt.orientation_step_deg), count));
   if (opt.mode == "all") {
     options.orientations.mode = OrientationSet::Mode::kAll;
   } else if (opt.mode == "some") {
@@ -78,20 +78,16 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     throw InputError(
         fmt::format("--mode: expected 'all' or 'some', found {}", quote_found(opt.mode)));
   }
-  if (opt.resolution && !(std::isfinite(*opt.resolution) && *opt.resolution > 0.0)) {
-    bad_option("--resolution", "a grid spacing in metres > 0", *opt.resolution);
-  }
-  if (!(std::isfinite(opt.tolerance) && opt.tolerance >= 1e-4 && opt.tolerance <= 0.5)) {
-    bad_option("--tolerance", "a relative accuracy 1e-4 <= T <= 0.5", opt.tolerance);
-  }
+  if (opt.resolution && !kResolution.accepts(*opt.resolution))
+    bad_option("--resolution", kResolution.expected, *opt.resolution);
+  if (!kTolerance.accepts(opt.tolerance))
+    bad_option("--tolerance", kTolerance.expected, opt.tolerance);
   // The grid's spacing: given, or chosen below for --tolerance (validated with a placeholder).
   options.resolution = opt.resolution.value_or(0.02);
-  if (opt.min_margin && !(*opt.min_margin >= 0.0 && *opt.min_margin <= 1.0)) {
-    bad_option("--min-margin", "a singularity margin 0 <= X <= 1", *opt.min_margin);
-  }
-  if (opt.min_stiffness && !(std::isfinite(*opt.min_stiffness) && *opt.min_stiffness >= 0.0)) {
-    bad_option("--min-stiffness", "a stiffness in N/m >= 0", *opt.min_stiffness);
-  }
+  if (opt.min_margin && !kMinMargin.accepts(*opt.min_margin))
+    bad_option("--min-margin", kMinMargin.expected, *opt.min_margin);
+  if (opt.min_stiffness && !kMinStiffness.accepts(*opt.min_stiffness))
+    bad_option("--min-stiffness", kMinStiffness.expected, *opt.min_stiffness);
   options.min_singularity_margin = opt.min_margin;
   options.min_stiffness = opt.min_stiffness;
   if (!opt.wrench.empty()) {

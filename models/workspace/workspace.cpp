@@ -398,6 +398,25 @@ void check_options(const WorkspaceOptions& options) {
 
 }  // namespace
 
+std::int64_t orientation_count(const OrientationSet& set) {
+  const double step = set.orientation_step;
+  const double rings = set.tilt > 0.0 ? std::ceil(set.tilt / step - 1e-9) : 0.0;
+  const double yaws = set.yaw_range > 0.0 ? std::ceil(2.0 * set.yaw_range / step - 1e-9) : 0.0;
+  // As sample_orientations' loops, in doubles (a huge set must not overflow the count).
+  if (!(rings < 1e7 && yaws < 1e7)) return std::numeric_limits<std::int64_t>::max();
+  double count = 0.0;
+  for (int ring = static_cast<int>(rings); ring >= 0; --ring) {
+    const double theta = rings > 0 ? set.tilt * ring / rings : 0.0;
+    const double azimuths =
+        ring == 0
+            ? 1.0
+            : std::max(4.0, std::ceil(2.0 * std::numbers::pi * std::sin(theta) / step - 1e-9));
+    count += azimuths * (yaws + 1.0);
+    if (count > 9e18) return std::numeric_limits<std::int64_t>::max();
+  }
+  return static_cast<std::int64_t>(count);
+}
+
 std::vector<Eigen::Matrix3d> sample_orientations(const OrientationSet& set) {
   const Eigen::Matrix3d R0 = rotation_zyx<double>(set.nominal_angles);
   const double step = set.orientation_step;
@@ -438,15 +457,23 @@ std::string validate(const WorkspaceOptions& options) {
   if (!set.nominal_angles.allFinite()) {
     return "WorkspaceOptions::orientations.nominal_angles must be finite";
   }
-  if (!(set.tilt >= 0.0 && set.tilt < std::numbers::pi)) {
+  // The limits users see in degrees (workspace_limits), here in radians.
+  using namespace workspace_limits;
+  if (!kTiltDeg.accepts(rad_to_deg(set.tilt))) {
     return violated("orientations.tilt", set.tilt, "0 <= tilt < pi");
   }
-  if (!(set.yaw_range >= 0.0 && set.yaw_range < std::numbers::pi)) {
+  if (!kYawRangeDeg.accepts(rad_to_deg(set.yaw_range))) {
     return violated("orientations.yaw_range", set.yaw_range, "0 <= yaw_range < pi");
   }
-  if (!(set.orientation_step >= 1e-3 * kDegToRad && set.orientation_step <= std::numbers::pi)) {
+  if (!kOrientationStepDeg.accepts(rad_to_deg(set.orientation_step))) {
     return violated("orientations.orientation_step", set.orientation_step,
-                    "1e-3 deg <= orientation_step <= pi");
+                    "0.01 deg <= orientation_step <= pi/2");
+  }
+  if (const std::int64_t count = orientation_count(set); count > kMaxOrientations) {
+    return fmt::format(
+        "WorkspaceOptions::orientations sample {} orientations. Violated constraint: at most {} "
+        "(a coarser orientation_step)",
+        count, kMaxOrientations);
   }
   if (!(options.resolution > 0.0 && std::isfinite(options.resolution))) {
     return violated("resolution", options.resolution, "resolution > 0 (finite)");

@@ -53,9 +53,12 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "models/machine.hpp"
@@ -78,6 +81,46 @@ struct OrientationSet {
 
 /// The sampled rotation matrices of a set, the cone rim first (the likeliest to fail).
 std::vector<Eigen::Matrix3d> sample_orientations(const OrientationSet& set);
+/// How many rotations sample_orientations gives, counted without making them.
+std::int64_t orientation_count(const OrientationSet& set);
+/// Sets that sample more orientations are refused (validate): a coarser step is the answer.
+inline constexpr std::int64_t kMaxOrientations = 1'000'000;
+
+/// A limit on a value a user gives, in the unit users give it (degrees for angles). The
+/// workspace command, study files, the Python package and validate() below read the same ones,
+/// with the same words.
+struct ValueLimit {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+  std::string_view expected;  ///< what a message says is expected
+  bool accepts(double value) const {
+    return std::isfinite(value) && (min_exclusive ? value > min : value >= min) &&
+           (max_exclusive ? value < max : value <= max);
+  }
+};
+
+/// The limits of orientation sets and workspace grids.
+namespace workspace_limits {
+inline constexpr ValueLimit kTiltDeg{.min = 0,
+                                     .max = 180,
+                                     .max_exclusive = true,
+                                     .expected = "an angle in degrees, 0 <= tilt < 180"};
+inline constexpr ValueLimit kYawRangeDeg{.min = 0,
+                                         .max = 180,
+                                         .max_exclusive = true,
+                                         .expected = "an angle in degrees, 0 <= yaw range < 180"};
+inline constexpr ValueLimit kOrientationStepDeg{
+    .min = 0.01, .max = 90, .expected = "an angle in degrees, 0.01 <= step <= 90"};
+inline constexpr ValueLimit kResolution{
+    .min = 0, .min_exclusive = true, .expected = "a grid spacing in metres > 0"};
+inline constexpr ValueLimit kTolerance{
+    .min = 1e-4, .max = 0.5, .expected = "a relative accuracy 1e-4 <= T <= 0.5"};
+inline constexpr ValueLimit kMinMargin{
+    .min = 0, .max = 1, .expected = "a singularity margin 0 <= X <= 1"};
+inline constexpr ValueLimit kMinStiffness{.min = 0, .expected = "a stiffness in N/m >= 0"};
+}  // namespace workspace_limits
 
 struct WorkspaceOptions {
   OrientationSet orientations;

@@ -351,19 +351,23 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
       options.orientations.nominal_angles(k) =
           deg_to_rad(finite_number(s[k], fmt::format("orientation[{}]", k)));
   }
-  auto bad = [](const char* key, const char* expected, double found) {
-    throw InputError(fmt::format("{}: expected {}, found {}", key, expected, found));
+  // One rule per limit, shared with the workspace command and study files.
+  using namespace workspace_limits;
+  auto check = [](const char* key, const ValueLimit& limit, double found) {
+    if (!limit.accepts(found))
+      throw InputError(fmt::format("{}: expected {}, found {}", key, limit.expected, found));
   };
-  if (!(std::isfinite(tilt_deg) && tilt_deg >= 0.0 && tilt_deg < 180.0))
-    bad("tilt_deg", "an angle in degrees, 0 <= tilt < 180", tilt_deg);
-  if (!(std::isfinite(yaw_range_deg) && yaw_range_deg >= 0.0 && yaw_range_deg < 180.0))
-    bad("yaw_range_deg", "an angle in degrees, 0 <= yaw range < 180", yaw_range_deg);
-  if (!(std::isfinite(orientation_step_deg) && orientation_step_deg >= 0.01 &&
-        orientation_step_deg <= 90.0))
-    bad("orientation_step_deg", "an angle in degrees, 0.01 <= step <= 90", orientation_step_deg);
+  check("tilt_deg", kTiltDeg, tilt_deg);
+  check("yaw_range_deg", kYawRangeDeg, yaw_range_deg);
+  check("orientation_step_deg", kOrientationStepDeg, orientation_step_deg);
   options.orientations.tilt = deg_to_rad(tilt_deg);
   options.orientations.yaw_range = deg_to_rad(yaw_range_deg);
   options.orientations.orientation_step = deg_to_rad(orientation_step_deg);
+  if (const std::int64_t count = orientation_count(options.orientations); count > kMaxOrientations)
+    throw InputError(fmt::format(
+        "orientation_step_deg: expected a step that samples at most {} orientations of the tilt "
+        "and yaw range, found {} ({} orientations)",
+        kMaxOrientations, orientation_step_deg, count));
   if (mode == "all") {
     options.orientations.mode = OrientationSet::Mode::kAll;
   } else if (mode == "some") {
@@ -374,19 +378,18 @@ py::dict workspace(const PyMachine& self, const py::object& orientation, double 
   std::optional<double> resolution;
   if (!resolution_in.is_none()) {
     resolution = length_number(resolution_in, "resolution");
-    if (!(*resolution > 0.0)) bad("resolution", "a grid spacing in metres > 0", *resolution);
+    check("resolution", kResolution, *resolution);
   }
-  if (!(std::isfinite(tolerance) && tolerance >= 1e-4 && tolerance <= 0.5))
-    bad("tolerance", "a relative accuracy 1e-4 <= T <= 0.5", tolerance);
+  check("tolerance", kTolerance, tolerance);
   options.resolution = resolution.value_or(0.02);
   if (!min_margin.is_none()) {
     const double v = finite_number(min_margin, "min_margin");
-    if (!(v >= 0.0 && v <= 1.0)) bad("min_margin", "a singularity margin 0 <= X <= 1", v);
+    check("min_margin", kMinMargin, v);
     options.min_singularity_margin = v;
   }
   if (!min_stiffness.is_none()) {
     const double v = finite_number(min_stiffness, "min_stiffness");
-    if (!(v >= 0.0)) bad("min_stiffness", "a stiffness in N/m >= 0", v);
+    check("min_stiffness", kMinStiffness, v);
     options.min_stiffness = v;
   }
   options.wrench = wrench_from_python(wrench_in);

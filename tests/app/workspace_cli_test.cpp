@@ -165,6 +165,8 @@ TEST_F(WorkspaceCli, BadOptionsFailWithStatusTwoAndWriteNothing) {
   expect_input_error(machine_ + " --tilt 200", "--tilt");
   expect_input_error(machine_ + " --yaw-range -5", "--yaw-range");
   expect_input_error(machine_ + " --orientation-step 0", "--orientation-step");
+  expect_input_error(machine_ + " --tilt 179 --yaw-range 179 --orientation-step 0.01",
+                     "--orientation-step: expected a step that samples at most 1000000");
   expect_input_error(machine_ + " --mode most", "--mode");
   expect_input_error(machine_ + " --orientation 1,2", "--orientation");
   expect_input_error(machine_ + " --wrench 1,2,3", "--wrench");

@@ -232,6 +232,36 @@ TEST(Orientations, SamplesStayInTheConeAndReachItsRimAndYawEnds) {
   EXPECT_EQ(sample_orientations(constant).size(), 1u);
 }
 
+// orientation_count counts what sample_orientations makes without making it; validate refuses
+// sets of more than kMaxOrientations and steps outside the limits users see in degrees.
+TEST(Orientations, CountWithoutSamplingAndTheLimitsUsersSee) {
+  for (const auto& [tilt, yaw, step] : std::vector<std::array<double, 3>>{
+           {0, 0, 5}, {20, 15, 5}, {45, 0, 3}, {0, 90, 7}, {89, 179, 10}, {179, 0, 30}}) {
+    OrientationSet set;
+    set.tilt = deg_to_rad(tilt);
+    set.yaw_range = deg_to_rad(yaw);
+    set.orientation_step = deg_to_rad(step);
+    EXPECT_EQ(orientation_count(set), static_cast<std::int64_t>(sample_orientations(set).size()))
+        << tilt << " " << yaw << " " << step;
+  }
+  WorkspaceOptions options;
+  options.orientations.tilt = deg_to_rad(179);
+  options.orientations.yaw_range = deg_to_rad(179);
+  options.orientations.orientation_step = deg_to_rad(0.01);
+  EXPECT_GT(orientation_count(options.orientations), kMaxOrientations);
+  EXPECT_NE(validate(options).find("Violated constraint: at most 1000000"), std::string::npos)
+      << validate(options);
+  options.orientations.tilt = 0.0;
+  options.orientations.yaw_range = 0.0;
+  EXPECT_EQ(validate(options), "");  // 0.01 deg is the smallest step
+  options.orientations.orientation_step = deg_to_rad(0.009);
+  EXPECT_NE(validate(options), "");
+  EXPECT_TRUE(workspace_limits::kOrientationStepDeg.accepts(90.0));
+  EXPECT_FALSE(workspace_limits::kOrientationStepDeg.accepts(90.5));
+  EXPECT_FALSE(workspace_limits::kTiltDeg.accepts(180.0));
+  EXPECT_FALSE(workspace_limits::kTiltDeg.accepts(std::nan("")));
+}
+
 TEST(OrientationWorkspace, AllIsInsideConstantIsInsideSome) {
   const Hexapod hexapod = sample_hexapod();
   WorkspaceOptions options = volume_only(0.04);
