@@ -154,15 +154,15 @@ Hexapod::Hexapod(const HexapodDesign& design) : design_(design) {
       j.platform_max_angle >= std::numbers::pi ? -2.0 : std::cos(j.platform_max_angle);
 }
 
+HexapodData::HexapodData(const Hexapod& hexapod) : MachineData(&hexapod) {}
+
 void Hexapod::analyze_batch(const Pose* poses, std::size_t count, const Wrench& wrench,
                             PoseMetrics* metrics, PoseCompliance* compliance) const {
   analyze_hexapod_batch(*this, poses, count, wrench, metrics, HexapodBatchKernel::automatic,
                         compliance);
 }
 
-std::unique_ptr<MachineData> Hexapod::make_data() const {
-  return std::make_unique<HexapodData>(*this);
-}
+std::unique_ptr<MachineData> Hexapod::make_data() const { return new_data<HexapodData>(*this); }
 
 double Hexapod::leg_stiffness(double q) const {
   return 1.0 / leg_compliance(design_.stiffness, q, design_.min_length, design_.max_length);
@@ -245,7 +245,7 @@ Clearance Hexapod::with_solid_bodies(const Pose& pose, Clearance legs) const {
 }
 
 bool Hexapod::reachable(MachineData& data, const Pose& pose) const {
-  auto& d = static_cast<HexapodData&>(data);
+  auto& d = data_of<HexapodData>(data);
   const Mat3<double> R = rotation_zyx<double>(pose.angles);
   if (!compute_kinematics(d, pose, R)) return false;
   if (!reachable_from_kinematics(d, R)) return false;
@@ -387,13 +387,13 @@ void Hexapod::compute_compliance_metrics(HexapodData& d, const Pose& pose,
 
 void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                       PoseMetrics& out) const {
-  compute_metrics(static_cast<HexapodData&>(data), pose, wrench, out);
+  compute_metrics(data_of<HexapodData>(data), pose, wrench, out);
 }
 
 bool Hexapod::translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
                                  PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
                                  Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
-  auto& d = static_cast<HexapodData&>(data);
+  auto& d = data_of<HexapodData>(data);
   compute_metrics(d, pose, wrench, metrics);
   if (metrics.singular) return false;
   compliance_tt = d.compliance_tt;

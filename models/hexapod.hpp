@@ -147,7 +147,8 @@ void hexapod_legs(const Eigen::Matrix<T, 3, 6>& base, const Eigen::Matrix<T, 3, 
 class HexapodData : public MachineData {
  public:
   HexapodData() = default;
-  explicit HexapodData(const class Hexapod&) {}
+  /// A data of `hexapod` (what hexapod.make_data() makes).
+  explicit HexapodData(const class Hexapod& hexapod);
 
   Vec6<double> q;                 ///< leg lengths (m)
   Eigen::Matrix<double, 3, 6> s;  ///< unit leg vectors, base frame

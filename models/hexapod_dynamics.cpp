@@ -44,7 +44,7 @@ bool Hexapod::mass_matrix(MachineData& /*data*/, const Pose& pose, Matrix6d& M) 
 
 bool Hexapod::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
   if (!design_.masses.present) return false;
-  auto& d = static_cast<HexapodData&>(data);
+  auto& d = data_of<HexapodData>(data);
   const bool compliance_metrics = d.compliance_metrics;
   d.compliance_metrics = true;
   PoseMetrics metrics;

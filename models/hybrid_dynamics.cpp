@@ -112,7 +112,7 @@ void HybridMachine::compute_natural_frequencies(HybridData& d, const HybridSplit
 
 bool HybridMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
   if (mass_model() == nullptr) return false;
-  auto& d = static_cast<HybridData&>(data);
+  auto& d = data_of<HybridData>(data);
   const bool compliance_metrics = d.compliance_metrics;
   d.compliance_metrics = true;
   d.want_mode_shapes = true;
@@ -131,7 +131,7 @@ bool HybridMachine::inverse_dynamics(MachineData& data, const Pose& pose, const 
                                      const Vector6d& xi_dot, const Wrench& wrench,
                                      PoseMetrics& out) const {
   if (mass_model() == nullptr) return false;
-  auto& d = static_cast<HybridData&>(data);
+  auto& d = data_of<HybridData>(data);
   analyze(data, pose, wrench, out);  // every other metric under the wrench
   const HybridSplit s = split(pose);
   const Eigen::VectorXd free = free_axes(s);

@@ -80,7 +80,7 @@ HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
 }
 
 std::unique_ptr<MachineData> HybridMachine::make_data() const {
-  auto d = std::make_unique<HybridData>();
+  auto d = new_data<HybridData>();
   d->module = design_.module->make_data();
   return d;
 }
@@ -136,7 +136,7 @@ HybridSplit HybridMachine::split(const Pose& pose) const {
 
 void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                             PoseMetrics& out) const {
-  auto& d = static_cast<HybridData&>(data);
+  auto& d = data_of<HybridData>(data);
   const int n = num_actuators();
   const HybridSplit s = split(pose);
   Wrench local_wrench;
@@ -225,7 +225,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
 }
 
 bool HybridMachine::reachable(MachineData& data, const Pose& pose) const {
-  auto& d = static_cast<HybridData&>(data);
+  auto& d = data_of<HybridData>(data);
   const HybridSplit s = split(pose);
   return s.attained && design_.module->reachable(*d.module, s.local);
 }
@@ -297,7 +297,7 @@ Eigen::VectorXd HybridMachine::free_axes(const HybridSplit& s) const {
 }
 
 bool HybridMachine::twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const {
-  auto& d = static_cast<HybridData&>(data);
+  auto& d = data_of<HybridData>(data);
   const HybridSplit s = split(pose);
   if (!design_.module->twist_jacobian(*d.module, s.local, d.module_jacobian)) return false;
   const int n = num_actuators();
@@ -340,7 +340,7 @@ namespace pkmopt {
 
 bool HybridMachine::sketch(MachineData& data, const Pose& pose, MachineSketch& out) const {
   if (!pose.position.allFinite() || !pose.angles.allFinite()) return false;
-  auto& d = static_cast<HybridData&>(data);
+  auto& d = data_of<HybridData>(data);
   const HybridSplit s = split(pose);
   MachineSketch module_sketch;
   if (!design_.module->sketch(*d.module, s.local, module_sketch)) return false;

@@ -189,7 +189,7 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
 }
 
 std::unique_ptr<MachineData> LegChainMachine::make_data() const {
-  auto d = std::make_unique<LegChainData>();
+  auto d = new_data<LegChainData>();
   const int n = num_actuators();
   d->s.resize(3, n);
   d->r.resize(3, n);
@@ -206,7 +206,7 @@ std::unique_ptr<MachineData> LegChainMachine::make_data() const {
 
 bool LegChainMachine::twist_jacobian(MachineData& data, const Pose& pose,
                                      Eigen::MatrixXd& J) const {
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   compute_kinematics(d, pose);
   const int n = num_actuators();
   if (!d.ik_ok || (d.B.array() == 0.0).any()) return false;
@@ -351,7 +351,7 @@ void LegChainMachine::compute_kinematics(LegChainData& d, const Pose& pose) cons
 
 Eigen::MatrixXd LegChainMachine::twist_map(const Pose& pose) const {
   const auto data = make_data();
-  auto& d = static_cast<LegChainData&>(*data);
+  auto& d = data_of<LegChainData>(*data);
   compute_kinematics(d, pose);
   return d.T;
 }
@@ -418,11 +418,11 @@ std::optional<double> LegChainMachine::reach_excess(const Pose& pose) const {
 }
 
 Eigen::MatrixXd LegChainMachine::twist_basis(const MachineData& data) const {
-  return static_cast<const LegChainData&>(data).T;
+  return data_of<LegChainData>(data).T;
 }
 
 bool LegChainMachine::reachable(MachineData& data, const Pose& pose) const {
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   compute_kinematics(d, pose);
   return reachable_from_kinematics(d, pose) && (!design_.shapes.present() || links_apart(d));
 }
@@ -430,7 +430,7 @@ bool LegChainMachine::reachable(MachineData& data, const Pose& pose) const {
 void LegChainMachine::joint_angles(const Pose& pose, Eigen::VectorXd& base_angles,
                                    Eigen::VectorXd& platform_angles) const {
   const auto data = make_data();
-  auto& d = static_cast<LegChainData&>(*data);
+  auto& d = data_of<LegChainData>(*data);
   compute_kinematics(d, pose);
   const Eigen::Matrix3d R = d.rotation;
   const int n = num_actuators();
@@ -462,7 +462,7 @@ std::optional<Eigen::VectorXd> LegChainMachine::inverse_kinematics(const Pose& p
 
 void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                               PoseMetrics& out) const {
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   const int n = num_actuators();
   compute_kinematics(d, pose);
   out.reachable = reachable_from_kinematics(d, pose);
@@ -592,7 +592,7 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
 bool LegChainMachine::translational_maps(
     MachineData& data, const Pose& pose, const Wrench& wrench, PoseMetrics& metrics,
     Eigen::Matrix3d& compliance_tt, Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   analyze(d, pose, wrench, metrics);
   if (metrics.singular) return false;
   compliance_tt = d.compliance_tt;
@@ -619,7 +619,7 @@ namespace pkmopt {
 
 bool LegChainMachine::sketch(MachineData& data, const Pose& pose, MachineSketch& out) const {
   if (!pose.position.allFinite() || !pose.angles.allFinite()) return false;
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   compute_kinematics(d, pose);
   if (!d.ik_ok || !d.c.allFinite()) return false;
   out = MachineSketch{};

@@ -42,7 +42,7 @@ NaturalModes LegChainMachine::natural_modes_of(const LegChainData& d, bool shape
 
 bool LegChainMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
   if (!design_.masses.present) return false;
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   const bool compliance_metrics = d.compliance_metrics;
   d.compliance_metrics = true;
   PoseMetrics metrics;
@@ -58,7 +58,7 @@ bool LegChainMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes
 
 bool LegChainMachine::mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const {
   if (!design_.masses.present) return false;
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   compute_kinematics(d, pose);
   if (!d.ik_ok || !d.pose_ok || d.constraint_singular) return false;
   M = tcp_mass_matrix(design_.masses, d.rotation, design_.tcp, leg_points(d), d.position);
@@ -77,7 +77,7 @@ bool LegChainMachine::carried_dynamics(MachineData& data, const Pose& pose, cons
                                        Wrench& w_dyn, Eigen::Vector3d& net_force,
                                        Eigen::Matrix<double, 9, 9>* kinetic) const {
   if (!design_.masses.present) return false;
-  auto& d = static_cast<LegChainData&>(data);
+  auto& d = data_of<LegChainData>(data);
   compute_kinematics(d, pose);
   if (!d.ik_ok || !d.pose_ok || d.constraint_singular) return false;
   // The platform moves only along its own twists: project xi and xi_dot on the columns of T.

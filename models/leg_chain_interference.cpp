@@ -99,7 +99,7 @@ bool LegChainMachine::links_apart(const LegChainData& d) const {
 Clearance LegChainMachine::leg_clearance(const Pose& pose) const {
   if (!design_.shapes.present()) return {};
   const auto data = make_data();
-  auto& d = static_cast<LegChainData&>(*data);
+  auto& d = data_of<LegChainData>(*data);
   compute_kinematics(d, pose);
   return clearance_from_kinematics(d);
 }

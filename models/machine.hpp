@@ -43,8 +43,10 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "models/machine_sketch.hpp"
@@ -112,19 +114,32 @@ struct FkResult {
   std::string message;
 };
 
-/// Per-thread scratch space of a machine. Made by Machine::make_data().
+class Machine;
+
+/// Per-thread scratch space of a machine. Made by Machine::make_data(); a machine's per-pose
+/// functions accept only the data it made (std::invalid_argument otherwise).
 class MachineData {
  public:
   virtual ~MachineData() = default;
+  /// The machine that made this data (null for a data made outside make_data).
+  const Machine* made_by() const { return made_by_; }
   /// analyze fills compliance, tcp_deflection, tcp_rotation_deflection,
   /// stiffness_min_direction and stiffness_min_loaded only when this is set (a caller that
   /// needs none of them, e.g. a design problem, saves their cost; they are then left as zeros).
   bool compliance_metrics = true;
   /// The compliance matrices of the last analyze (with compliance_metrics set).
   PoseCompliance matrices;
-};
 
-class Machine;
+  MachineData() = default;
+
+ protected:
+  /// A data of `made_by` (a model's data type constructed from its machine).
+  explicit MachineData(const Machine* made_by) : made_by_(made_by) {}
+
+ private:
+  friend class Machine;
+  const Machine* made_by_ = nullptr;
+};
 
 /// A capability (Machine::batch_analysis): a kernel that analyzes many poses at once, faster
 /// than analyze pose by pose (the hexapod's SIMD path, models/hexapod_batch.hpp). It needs no
@@ -299,6 +314,34 @@ class Machine {
   /// unspecified) when the legs cannot assemble at the pose or the model cannot draw itself.
   virtual bool sketch(MachineData& /*data*/, const Pose& /*pose*/, MachineSketch& /*out*/) const {
     return false;
+  }
+
+ protected:
+  /// A new data of type D (a MachineData) marked as this machine's: make_data() returns one.
+  template <class D, class... Args>
+  std::unique_ptr<D> new_data(Args&&... args) const {
+    auto data = std::make_unique<D>(std::forward<Args>(args)...);
+    data->made_by_ = this;
+    return data;
+  }
+  /// `data` as this machine's data type D; throws std::invalid_argument when another machine
+  /// made it (a data is made by make_data() of the machine it is used with).
+  template <class D>
+  D& data_of(MachineData& data) const {
+    if (data.made_by_ != this) throw_foreign_data();
+    return static_cast<D&>(data);
+  }
+  template <class D>
+  const D& data_of(const MachineData& data) const {
+    if (data.made_by_ != this) throw_foreign_data();
+    return static_cast<const D&>(data);
+  }
+
+ private:
+  [[noreturn]] void throw_foreign_data() const {
+    throw std::invalid_argument(std::string(model()) +
+                                ": a MachineData made by another machine (each machine takes the "
+                                "data its make_data() made)");
   }
 };
 

@@ -673,7 +673,7 @@ TEST(HexapodCompliance, ComplianceIsTheInverseOfTheStiffnessAndGivesTheDeflectio
     const Hexapod hexapod(sample_machines::random_hexapod_design(u));
     const Pose pose = sample_machines::random_pose(u);
     const Wrench w = random_wrench(u);
-    HexapodData data;
+    HexapodData data(hexapod);
     PoseMetrics m;
     hexapod.analyze(data, pose, w, m);
     if (m.singular) continue;
@@ -711,7 +711,7 @@ TEST(HexapodCompliance, LoadedStiffnessMatchesFiniteDifferencesOfTheLoadedEquili
     Wrench w = random_wrench(u);
     w.head<3>() *= 5e4 / w.head<3>().norm();
     w.tail<3>() *= 5e3 / w.tail<3>().norm();
-    HexapodData data;
+    HexapodData data(hexapod);
     PoseMetrics m;
     hexapod.analyze(data, pose, w, m);
     if (m.singular || m.singularity_margin < 1e-3) continue;
@@ -740,7 +740,7 @@ TEST(HexapodCompliance, LoadedStiffnessMatchesFiniteDifferencesOfTheLoadedEquili
 TEST(HexapodCompliance, LoadedEqualsUnloadedWithoutLoadAndFallsUnderCompression) {
   const Hexapod hexapod(sample_machines::conventions_hexapod_design());
   const Pose pose{{0, 0, 0.9}, {0, 0, 0}};
-  HexapodData data;
+  HexapodData data(hexapod);
   PoseMetrics free, pressed;
   hexapod.analyze(data, pose, Wrench::Zero(), free);
   EXPECT_NEAR(free.stiffness_min_loaded, free.stiffness_min, 1e-9 * free.stiffness_min);
@@ -763,7 +763,7 @@ TEST(HexapodCompliance, DeflectionIsTheDisplacementOfTheLoadedEquilibriumFoundBy
     const Pose pose = sample_machines::random_pose(u);
     Wrench w = random_wrench(u);
     w *= 10.0 / w.head<3>().norm();  // 10 N: deflections of micrometres
-    HexapodData data;
+    HexapodData data(hexapod);
     PoseMetrics m;
     hexapod.analyze(data, pose, w, m);
     if (m.singular || m.singularity_margin < 1e-2) continue;
@@ -816,7 +816,7 @@ TEST(HexapodCompliance, CubicConfigurationHasThePublishedStiffness) {
       EXPECT_NEAR(K(3, 3), 0.025, 5e-4);
     }
     // Uniform translational stiffness 2k at the centre: stiffness_min = 2 N/m.
-    HexapodData data;
+    HexapodData data(hexapod);
     PoseMetrics m;
     hexapod.analyze(data, Pose{{0, 0, d}, {0, 0, 0}}, Wrench::Zero(), m);
     if (d == 0.0) {
@@ -845,6 +845,24 @@ TEST(HexapodCapabilities, BatchAnalysisGivesWhatAnalyzeGives) {
     EXPECT_LT((metrics[k].tau - m.tau).norm(), 1e-9 * m.tau.norm());
     EXPECT_NEAR(metrics[k].stiffness_min / m.stiffness_min, 1.0, 1e-10);
   }
+}
+
+// A MachineData remembers the machine that made it: another machine's data, or one made outside
+// make_data(), is refused with a message instead of being read as the wrong type.
+TEST(HexapodCapabilities, RefusesAnotherMachinesData) {
+  const Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  const Hexapod other(sample_machines::conventions_hexapod_design());
+  const Pose pose{{0.0, 0.0, 0.9}, {0, 0, 0}};
+  PoseMetrics m;
+  auto own = hexapod.make_data();
+  EXPECT_EQ(own->made_by(), &hexapod);
+  EXPECT_NO_THROW(hexapod.analyze(*own, pose, Wrench::Zero(), m));
+  auto foreign = other.make_data();
+  EXPECT_THROW(hexapod.analyze(*foreign, pose, Wrench::Zero(), m), std::invalid_argument);
+  MachineData bare;
+  EXPECT_THROW(hexapod.analyze(bare, pose, Wrench::Zero(), m), std::invalid_argument);
+  HexapodData constructed(hexapod);  // what make_data() makes
+  EXPECT_NO_THROW(hexapod.analyze(constructed, pose, Wrench::Zero(), m));
 }
 
 }  // namespace

@@ -674,7 +674,7 @@ TEST(Schoenflies, ParallelSingularityWhenNoStrutTurnsThePlatform) {
   EXPECT_TRUE(std::isinf(metrics.tau(0)));
   // With offsets of +-60 deg the same pose is well conditioned.
   const LegChainMachine offset(schoenflies_sample(60.0));
-  offset.analyze(*data, offset.design().home, Wrench::Zero(), metrics);
+  offset.analyze(*offset.make_data(), offset.design().home, Wrench::Zero(), metrics);
   EXPECT_FALSE(metrics.singular);
   EXPECT_GT(metrics.singularity_margin, 1e-2);
 }

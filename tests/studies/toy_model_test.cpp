@@ -85,9 +85,7 @@ class ToyTripod final : public Machine {
   std::string_view model() const override { return "toy_tripod"; }
   int num_actuators() const override { return 3; }
   bool revolute_actuators() const override { return false; }
-  std::unique_ptr<MachineData> make_data() const override {
-    return std::make_unique<MachineData>();
-  }
+  std::unique_ptr<MachineData> make_data() const override { return new_data<MachineData>(); }
 
   // The legs at a position: q_i and the rows u_i^T of J.
   Eigen::Vector3d legs(const Eigen::Vector3d& p, Eigen::Matrix3d& J) const {
