@@ -49,6 +49,8 @@ def mask(text, scratch):
     text = re.sub(r"\b\d+(\.\d+)? ?(s|ms|µs)\b(?=[ ,)\n;]|$)", "T s", text)
     text = re.sub(r"\d{4}-\d{2}-\d{2}[T ]\d{2}:\d{2}:\d{2}(\.\d+)?Z?", "DATE", text)
     text = re.sub(r"(wall_seconds|seconds)=[-0-9.eE+]+", r"\1=MASKED", text)
+    # progress lines come every few seconds of wall-clock time: how many is not a result
+    text = re.sub(r"(?m)^pkmopt: run: \d+/\d+ evaluations .*\n", "", text)
     return text
 
 
