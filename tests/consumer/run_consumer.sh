@@ -10,6 +10,14 @@ src=$1 build=$2 scratch=$3 cxx=${4:-c++}
 rm -rf "$scratch"
 mkdir -p "$scratch"
 cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
+# The public surface: no detail header or kernel is installed, and no installed header needs one.
+include="$scratch/prefix/include/pkmopt"
+private=$(find "$include" -name '*_detail.hpp' -o -name '*.inc')
+if [[ -n $private ]]; then echo "installed private headers: $private" >&2; exit 1; fi
+if grep -rlE '#include "[a-z_/]+(_detail\.hpp|\.inc)"' "$include"; then
+  echo "installed headers include private ones (above)" >&2
+  exit 1
+fi
 launcher=()
 if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S "$src/tests/consumer" -B "$scratch/build" -DCMAKE_BUILD_TYPE=Release \
