@@ -48,9 +48,8 @@ struct WorkspaceCommandOptions {
   std::string out_dir;
 };
 
-void run_workspace(const WorkspaceCommandOptions& opt) {
-  const auto start = std::chrono::steady_clock::now();
-  // Read and validate every input before anything is written.
+// The orientation set, grid and filters of the options, validated (InputError naming the option).
+WorkspaceOptions read_workspace_options(const WorkspaceCommandOptions& opt) {
   WorkspaceOptions options;
   if (!opt.orientation.empty()) {
     const auto a = parse_number_list("--orientation", opt.orientation, 3);
@@ -94,6 +93,11 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     const auto w = parse_wrench_option(opt.wrench);
     for (int i = 0; i < 6; ++i) options.wrench(i) = w[static_cast<std::size_t>(i)];
   }
+  return options;
+}
+
+// The slice's metric, with its axis, plane and pixel validated.
+SliceMetric read_slice_options(const WorkspaceCommandOptions& opt) {
   if (opt.slice_axis != "x" && opt.slice_axis != "y" && opt.slice_axis != "z") {
     throw InputError(
         fmt::format("--slice-axis: expected x, y or z, found {}", quote_found(opt.slice_axis)));
@@ -112,62 +116,34 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   if (opt.slice_pixel && !(std::isfinite(*opt.slice_pixel) && *opt.slice_pixel > 0.0)) {
     bad_option("--slice-pixel", "a pixel size in metres > 0", *opt.slice_pixel);
   }
-  const std::filesystem::path out_dir(opt.out_dir);
-  if (!opt.out_dir.empty() && std::filesystem::exists(out_dir) &&
-      !std::filesystem::is_directory(out_dir)) {
-    throw InputError(
-        fmt::format("--out: expected a folder, found the file {}", quote_found(opt.out_dir)));
-  }
-  options.keep_points = !opt.out_dir.empty();
-  const std::string invalid = validate(options);
-  if (!invalid.empty()) throw InputError(invalid);
-  const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
-  if (*metric == SliceMetric::kNaturalFrequency1 && machine->natural_frequency_count() == 0) {
-    throw InputError(fmt::format(
-        "--slice-metric natural_frequency_1: {} has no masses (docs/dynamics.md), found a model "
-        "'{}' without them",
-        opt.machine_file, machine->model()));
-  }
-  const auto box = workspace_search_box(*machine, sample_orientations(options.orientations));
-  if (!box) {
-    throw InputError(fmt::format("{}: model '{}' has no workspace search box yet", opt.machine_file,
-                                 machine->model()));
-  }
+  return *metric;
+}
 
-  // Under mpirun every rank computes its share of the grid and has the whole result; rank 0
-  // writes it (docs/distributed.md).
-  std::optional<MpiSession> session;
-  std::optional<MpiShare> share;
-  if (mpi_launch_from_environment().launched) {
-    session.emplace();
-    share.emplace(*session);
-    options.share = &*share;
-  }
+// The workspace at --resolution, or at the coarsest grid that meets --tolerance, and how accurate
+// its volume is.
+WorkspaceResult compute_with_accuracy(const Machine& machine, const WorkspaceCommandOptions& opt,
+                                      WorkspaceOptions& options, VolumeAccuracy& accuracy) {
   WorkspaceResult ws;
-  VolumeAccuracy accuracy;
   try {
     if (!opt.resolution) {
-      accuracy = choose_workspace_resolution(*machine, options, opt.tolerance);
+      accuracy = choose_workspace_resolution(machine, options, opt.tolerance);
       options.resolution = accuracy.resolution;
     }
-    ws = compute_workspace(*machine, options);
-    if (opt.resolution) accuracy = workspace_volume_accuracy(*machine, options, ws.volume);
+    ws = compute_workspace(machine, options);
+    if (opt.resolution) accuracy = workspace_volume_accuracy(machine, options, ws.volume);
   } catch (const std::invalid_argument& e) {
     // Only a grid too fine is the resolution's fault; anything else is the machine's.
     const std::string what = e.what();
     const bool grid = what.find("workspace grid") != std::string::npos;
     throw InputError(fmt::format("{}: {}", grid ? "--resolution" : opt.machine_file, what));
   }
+  return ws;
+}
 
-  // A machine whose legs have no common reach at any orientation has an empty search box: it
-  // cannot be assembled anywhere, and there is no plane to slice.
-  if (ws.bounding_box.isEmpty() && ws.search_box.isEmpty()) {
-    throw InputError(fmt::format(
-        "{}: expected legs that reach a common platform pose, found none at any orientation (the "
-        "reach of the legs does not overlap: check the leg or strut lengths, the radii and the "
-        "strokes)",
-        opt.machine_file));
-  }
+// The slice plane (through the middle of the workspace unless --slice-at is given), at most 4e6
+// pixels.
+SlicePlane slice_plane_of(const WorkspaceResult& ws, const WorkspaceOptions& options,
+                          const WorkspaceCommandOptions& opt) {
   // The slice: through the middle of the workspace unless --slice-at is given.
   const SlicePlane plane =
       choose_slice_plane(ws, options.resolution, opt.slice_axis[0], opt.slice_at, opt.slice_pixel);
@@ -182,12 +158,15 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
         "4e6; give a coarser --slice-pixel or --resolution",
         opt.machine_file, plane.pixel_count, plane.pixel));
   }
-  const WorkspaceSlice slice = compute_workspace_slice(
-      *machine, options, plane.box, plane.normal_axis, plane.offset, plane.pixel);
-  if (session && session->rank() > 0) return;
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return plane;
+}
 
+// Writes the result files (all or none), prints the summary line and says what is off.
+void report_workspace(const WorkspaceCommandOptions& opt, const Machine& machine,
+                      const WorkspaceOptions& options, const VolumeAccuracy& accuracy,
+                      const WorkspaceResult& ws, const WorkspaceSlice& slice, SliceMetric metric,
+                      double seconds) {
+  const std::filesystem::path out_dir(opt.out_dir);
   if (!opt.out_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
@@ -197,15 +176,15 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     }
     // Everything is rendered first; then each file is written whole or not at all.
     const WorkspaceRequest request{.machine_file = opt.machine_file,
-                                   .model = std::string(machine->model()),
+                                   .model = std::string(machine.model()),
                                    .options = options,
                                    .tilt_deg = opt.tilt_deg,
                                    .yaw_range_deg = opt.yaw_range_deg,
                                    .orientation_step_deg = opt.orientation_step_deg,
                                    .accuracy = accuracy};
-    const std::string summary = workspace_summary_json(request, ws, slice, *metric, seconds);
+    const std::string summary = workspace_summary_json(request, ws, slice, metric, seconds);
     std::vector<std::pair<std::string, std::string>> files;
-    for (const auto& [name, content] : workspace_files(ws, slice, *metric, summary))
+    for (const auto& [name, content] : workspace_files(ws, slice, metric, summary))
       files.emplace_back((out_dir / name).string(), content);
     write_files_together(files);  // the mesh, points, slice and summary, all of them or none
   }
@@ -232,6 +211,64 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
         "the volume's estimated error {:.2g} % is above --tolerance {:.2g} %: the finest grid the "
         "refinement allows ({} m) was not fine enough; give --resolution",
         100.0 * accuracy.relative_error(), 100.0 * opt.tolerance, accuracy.resolution));
+}
+
+void run_workspace(const WorkspaceCommandOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  // Read and validate every input before anything is written.
+  WorkspaceOptions options = read_workspace_options(opt);
+  const SliceMetric metric = read_slice_options(opt);
+  const std::filesystem::path out_dir(opt.out_dir);
+  if (!opt.out_dir.empty() && std::filesystem::exists(out_dir) &&
+      !std::filesystem::is_directory(out_dir)) {
+    throw InputError(
+        fmt::format("--out: expected a folder, found the file {}", quote_found(opt.out_dir)));
+  }
+  options.keep_points = !opt.out_dir.empty();
+  const std::string invalid = validate(options);
+  if (!invalid.empty()) throw InputError(invalid);
+  const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  if (metric == SliceMetric::kNaturalFrequency1 && machine->natural_frequency_count() == 0) {
+    throw InputError(fmt::format(
+        "--slice-metric natural_frequency_1: {} has no masses (docs/dynamics.md), found a model "
+        "'{}' without them",
+        opt.machine_file, machine->model()));
+  }
+  const auto box = workspace_search_box(*machine, sample_orientations(options.orientations));
+  if (!box) {
+    throw InputError(fmt::format("{}: model '{}' has no workspace search box yet", opt.machine_file,
+                                 machine->model()));
+  }
+
+  // Under mpirun every rank computes its share of the grid and has the whole result; rank 0
+  // writes it (docs/distributed.md).
+  std::optional<MpiSession> session;
+  std::optional<MpiShare> share;
+  if (mpi_launch_from_environment().launched) {
+    session.emplace();
+    share.emplace(*session);
+    options.share = &*share;
+  }
+  VolumeAccuracy accuracy;
+  const WorkspaceResult ws = compute_with_accuracy(*machine, opt, options, accuracy);
+
+  // A machine whose legs have no common reach at any orientation has an empty search box: it
+  // cannot be assembled anywhere, and there is no plane to slice.
+  if (ws.bounding_box.isEmpty() && ws.search_box.isEmpty()) {
+    throw InputError(fmt::format(
+        "{}: expected legs that reach a common platform pose, found none at any orientation (the "
+        "reach of the legs does not overlap: check the leg or strut lengths, the radii and the "
+        "strokes)",
+        opt.machine_file));
+  }
+  const SlicePlane plane = slice_plane_of(ws, options, opt);
+  const WorkspaceSlice slice = compute_workspace_slice(
+      *machine, options, plane.box, plane.normal_axis, plane.offset, plane.pixel);
+  if (session && session->rank() > 0) return;
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  report_workspace(opt, *machine, options, accuracy, ws, slice, metric, seconds);
 }
 
 }  // namespace
