@@ -51,37 +51,16 @@ DesignStudy load_design_study(const std::string& path) {
   return load_design_study(YamlValue::load_file(path));
 }
 
-DesignStudy load_design_study(const YamlValue& root) {
-  const std::string& path = root.file();
-  root.check_keys({"study", "description", "machine", "task", "objectives", "constraints",
-                   "optimizer", "output"});
-  DesignStudy study;
-  study.name = root.required("study").as_string();
-  if (auto v = root.optional("description")) study.description = v->as_string();
-  std::string yaml = fmt::format("# {} resolved: every default filled in (pkmopt {})\n",
-                                 nlohmann::json(study.name).dump(), kVersion);
-  yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
-  yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
-  const YamlValue machine_section = root.required("machine");
-  std::unique_ptr<StudyMachine> machine = read_study_machine(machine_section);
-  study.model = machine->model;
-  yaml += machine->resolved_yaml;
-  DesignGoals goals;
-  goals.name = study.name;
-  DesignTask& task = goals.task;
-  std::vector<DesignObjective>& objectives_list = goals.objectives;
-  std::vector<DesignConstraint>& limits = goals.constraints;
-  const YamlValue task_section = root.required("task");
-  read_task(task_section, task, study, yaml);
-  if (machine->translational && (study.task_tilt_deg > 0.0 || study.task_yaw_deg > 0.0))
-    task_section.required("orientations")
-        .fail(fmt::format("tilt_deg: 0 and yaw_deg: 0 (the {} platform keeps its orientation)",
-                          study.model),
-              fmt::format("tilt_deg {}, yaw_deg {}", format_number(study.task_tilt_deg),
-                          format_number(study.task_yaw_deg)));
+namespace {
 
-  // Where an actuator metric is first used (it needs {actuator: cheapest, catalog: FILE}).
-  std::optional<YamlValue> actuator_metric_use;
+// Where an actuator metric (actuator_cost, actuator_overload) is first used: it needs the
+// constraint {actuator: cheapest, catalog: FILE}.
+using ActuatorMetricUse = std::optional<YamlValue>;
+
+// `objectives:` into goals.objectives; appends its resolved YAML.
+void read_objectives(const YamlValue& root, DesignGoals& goals,
+                     ActuatorMetricUse& actuator_metric_use, std::string& yaml) {
+  std::vector<DesignObjective>& objectives_list = goals.objectives;
   const YamlValue objectives = root.required("objectives");
   const std::vector<YamlValue> objective_list = objectives.elements();
   if (objective_list.empty()) objectives.fail("a list of at least one objective", "an empty list");
@@ -100,6 +79,14 @@ DesignStudy load_design_study(const YamlValue& root) {
       actuator_metric_use = metric_value;
     yaml += "  - " + fields_flow_map(entry) + "\n";
   }
+}
+
+// `constraints:` into goals (the model reads actuator constraints); appends its resolved YAML.
+void read_constraints(const YamlValue& root, const std::string& path, StudyMachine& machine,
+                      DesignGoals& goals, ActuatorMetricUse& actuator_metric_use,
+                      std::string& yaml) {
+  std::vector<DesignConstraint>& limits = goals.constraints;
+  const DesignTask& task = goals.task;
   bool require_reachable = false;
   std::string constraint_yaml;
   if (auto constraints = root.optional("constraints")) {
@@ -113,7 +100,7 @@ DesignStudy load_design_study(const YamlValue& root) {
         continue;
       }
       if (c.has("actuator")) {
-        constraint_yaml += machine->read_actuator_constraint(c, path, task, limits);
+        constraint_yaml += machine.read_actuator_constraint(c, path, task, limits);
         continue;
       }
       ConstraintEntry entry;
@@ -129,31 +116,70 @@ DesignStudy load_design_study(const YamlValue& root) {
       constraint_yaml += "  - " + fields_flow_map(entry) + "\n";
     }
   }
-  if (actuator_metric_use && machine->actuator_catalog() == nullptr)
+  if (actuator_metric_use && machine.actuator_catalog() == nullptr)
     actuator_metric_use->fail(
         fmt::format("a metric of this {} study (actuator_cost and actuator_overload need a "
                     "constraint {{actuator: cheapest, catalog: FILE}})",
-                    study.model),
+                    machine.model),
         actuator_metric_use->describe());
   goals.require_reachable = require_reachable;
   if (require_reachable) constraint_yaml = "  - task_reachable\n" + constraint_yaml;
   yaml += constraint_yaml.empty() ? "constraints: []\n" : "constraints:\n" + constraint_yaml;
-  const YamlValue optimizer = root.required("optimizer");
+}
+
+// The formulation the algorithm asks for, refused when the model has no smooth one.
+void read_formulation(const YamlValue& optimizer, const StudyMachine& machine, DesignGoals& goals) {
   optimizer.expect_map();
   const YamlValue algorithm_value = optimizer.required("algorithm");
   const std::string algorithm = algorithm_value.as_string();
   goals.formulation =
       algorithm == "nsga2" ? DesignFormulation::aggregate : DesignFormulation::smooth;
-  if (!machine->smooth_formulation()) {
+  if (!machine.smooth_formulation()) {
     if (algorithm != "nsga2" && !derivative_free_nlopt(algorithm))
       algorithm_value.fail(
           fmt::format("nsga2 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, nlopt:BOBYQA, ... "
                       "for one objective): a {} design study measures worst cases over the task "
                       "and has no gradients",
-                      study.model),
+                      machine.model),
           "'" + algorithm + "'");
     goals.formulation = DesignFormulation::aggregate;
   }
+}
+
+}  // namespace
+
+DesignStudy load_design_study(const YamlValue& root) {
+  const std::string& path = root.file();
+  root.check_keys({"study", "description", "machine", "task", "objectives", "constraints",
+                   "optimizer", "output"});
+  DesignStudy study;
+  study.name = root.required("study").as_string();
+  if (auto v = root.optional("description")) study.description = v->as_string();
+  std::string yaml = fmt::format("# {} resolved: every default filled in (pkmopt {})\n",
+                                 nlohmann::json(study.name).dump(), kVersion);
+  yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
+  yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
+  const YamlValue machine_section = root.required("machine");
+  std::unique_ptr<StudyMachine> machine = read_study_machine(machine_section);
+  study.model = machine->model;
+  yaml += machine->resolved_yaml;
+  DesignGoals goals;
+  goals.name = study.name;
+  DesignTask& task = goals.task;
+  const YamlValue task_section = root.required("task");
+  read_task(task_section, task, study, yaml);
+  if (machine->translational && (study.task_tilt_deg > 0.0 || study.task_yaw_deg > 0.0))
+    task_section.required("orientations")
+        .fail(fmt::format("tilt_deg: 0 and yaw_deg: 0 (the {} platform keeps its orientation)",
+                          study.model),
+              fmt::format("tilt_deg {}, yaw_deg {}", format_number(study.task_tilt_deg),
+                          format_number(study.task_yaw_deg)));
+
+  ActuatorMetricUse actuator_metric_use;
+  read_objectives(root, goals, actuator_metric_use, yaml);
+  read_constraints(root, path, *machine, goals, actuator_metric_use, yaml);
+  const YamlValue optimizer = root.required("optimizer");
+  read_formulation(optimizer, *machine, goals);
   try {
     study.problem = machine->make_problem(std::move(goals));
   } catch (const std::invalid_argument& error) {
