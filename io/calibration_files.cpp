@@ -200,7 +200,8 @@ std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path
 HexapodDesign read_calibration_machine(const std::string& path, bool* stiffness_placeholder) {
   const YamlValue machine = YamlValue::load_file(path);
   const YamlValue model = machine.required("model");
-  if (model.as_string() != "hexapod") model.fail("'hexapod' (calibration)", model.describe());
+  if (model.as_string() != kHexapodModel)
+    model.fail(fmt::format("'{}' (calibration)", kHexapodModel), model.describe());
   // Calibration never uses the legs' stiffness: a file without one gets a placeholder (the
   // node is shared, so the other keys keep their lines for messages).
   bool placeholder = false;

@@ -89,7 +89,7 @@ class HexapodStudyMachine final : public StudyMachine {
 
 template <class Fields>
 void describe_fields(Fields& f, HexapodStudySection& m) {
-  f.note("model", "hexapod", "", "required", "the machine model");
+  f.note("model", kHexapodModel, "", "required", "the machine model");
   f.section("parameters", {}, [&](auto& g) {
     for (int i = 0; i < kNumDesignParameters; ++i) {
       auto& [lo, hi] = m.ranges[static_cast<std::size_t>(i)];
@@ -133,7 +133,8 @@ std::unique_ptr<StudyMachine> read_hexapod_study_machine(const YamlValue& machin
   HexapodStudySection m = default_hexapod_study_machine();
   read_fields(machine, m);
   const YamlValue model = machine.required("model");
-  if (model.as_string() != "hexapod") model.fail("'hexapod'", model.describe());
+  if (model.as_string() != kHexapodModel)
+    model.fail(fmt::format("'{}'", kHexapodModel), model.describe());
   check_leg_stiffness(machine.required("legs"), m.design.stiffness);
   normalize_joint_axes(machine, m.design.joints);
   check_mass_fields(machine, m.design.masses);
@@ -150,7 +151,7 @@ std::unique_ptr<StudyMachine> read_hexapod_study_machine(const YamlValue& machin
     }
   }
   auto study = std::make_unique<HexapodStudyMachine>();
-  study->model = "hexapod";
+  study->model = kHexapodModel;
   for (int i = 0; i < kNumDesignParameters; ++i) {
     const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;
     const auto [lo, hi] = m.ranges[static_cast<std::size_t>(i)];

@@ -58,7 +58,7 @@ Eigen::Matrix<double, 3, 6> read_joints(const YamlValue& root, const char* form_
 
 template <class Fields>
 void describe_fields(Fields& f, HexapodDesign& d) {
-  f.note("model", "hexapod", "", "required", "the machine model");
+  f.note("model", kHexapodModel, "", "required", "the machine model");
   f.note("name", "a text", "", "none", "free text");
   f.note("description", "a text", "", "none", "free text");
   f.note("base", "{radius, pair_separation_deg}", "m, deg", "required (or base_joints)",
@@ -157,7 +157,7 @@ std::unique_ptr<Machine> load_machine(const YamlValue& root) {
 
 ModelEntry hexapod_model_entry() {
   ModelEntry entry;
-  entry.name = "hexapod";
+  entry.name = kHexapodModel;
   entry.load = [](const YamlValue& root) {
     return std::make_unique<Hexapod>(read_hexapod_design(root));
   };

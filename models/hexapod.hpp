@@ -161,6 +161,9 @@ class HexapodData : public MachineData {
   Eigen::Matrix<double, 3, 6> error_map;
 };
 
+/// The hexapod's `model:` name in machine and study files.
+inline constexpr std::string_view kHexapodModel = "hexapod";
+
 /// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.
 class Hexapod final : public Machine, public BatchAnalysis {
  public:
@@ -173,7 +176,7 @@ class Hexapod final : public Machine, public BatchAnalysis {
   /// The characteristic length L (m) used in J_h.
   double characteristic_length() const { return characteristic_length_; }
 
-  std::string_view model() const override { return "hexapod"; }
+  std::string_view model() const override { return kHexapodModel; }
   int num_actuators() const override { return 6; }
   bool revolute_actuators() const override { return false; }
   std::unique_ptr<MachineData> make_data() const override;
