@@ -60,7 +60,10 @@ class FamilyStudyMachine final : public StudyMachine {
     MachineDesignSpec spec;
     spec.name = std::move(goals.name);
     spec.family = family;
-    spec.parameters = ranges;
+    // The ranges in internal units, from the file-unit ones the section was read into.
+    for (std::size_t i = 0; i < family.parameters.size(); ++i)
+      spec.parameters.push_back({family.parameters[i].to_internal(parameters[i].min),
+                                 family.parameters[i].to_internal(parameters[i].max)});
     spec.task = std::move(goals.task);
     spec.objectives = std::move(goals.objectives);
     spec.constraints = std::move(goals.constraints);
@@ -72,7 +75,6 @@ class FamilyStudyMachine final : public StudyMachine {
   }
 
   DesignFamily family;
-  std::vector<ParameterRange> ranges;  // internal units, one per family parameter
 };
 
 }  // namespace
@@ -110,15 +112,10 @@ std::unique_ptr<StudyMachine> read_family_study_machine(const ModelEntry& entry,
   study->family = entry.design_family(&template_section);
   const DesignFamily& family = study->family;
   study->translational = family.translational;
-  study->ranges = default_ranges(family);
   study->parameters = default_study_parameters(family);
   if (auto section = machine.optional("parameters")) {
     FieldReader::read_section(
         *section, [&](auto& g) { describe_family_parameters(g, family, study->parameters); });
-    for (std::size_t i = 0; i < family.parameters.size(); ++i)
-      if (section->has(family.parameters[i].name))
-        study->ranges[i] = {family.parameters[i].to_internal(study->parameters[i].min),
-                            family.parameters[i].to_internal(study->parameters[i].max)};
   }
   FieldWriter writer;
   writer.section("parameters", {},

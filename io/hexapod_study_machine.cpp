@@ -74,6 +74,12 @@ class HexapodStudyMachine final : public StudyMachine {
     s.constraints = std::move(goals.constraints);
     s.require_reachable = goals.require_reachable;
     s.formulation = goals.formulation;
+    // The ranges in internal units, from the file-unit ones (capped by actuator constraints).
+    for (int i = 0; i < kNumDesignParameters; ++i) {
+      const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;
+      const StudyParameter& p = parameters[static_cast<std::size_t>(i)];
+      s.parameters[static_cast<std::size_t>(i)] = {p.min * scale, p.max * scale};
+    }
     return std::make_unique<HexapodDesignProblem>(std::move(s));
   }
   std::string machine_file(const std::vector<double>& parameters) const override {
@@ -82,7 +88,7 @@ class HexapodStudyMachine final : public StudyMachine {
     return hexapod_design_to_yaml(hexapod_design_of(spec.machine_template, p));
   }
 
-  HexapodDesignSpec spec;  // the template, the parameter ranges and the catalog
+  HexapodDesignSpec spec;  // the template and the catalog (the ranges: `parameters`)
 };
 
 }  // namespace
@@ -153,16 +159,15 @@ std::unique_ptr<StudyMachine> read_hexapod_study_machine(const YamlValue& machin
   auto study = std::make_unique<HexapodStudyMachine>();
   study->model = kHexapodModel;
   for (int i = 0; i < kNumDesignParameters; ++i) {
-    const double scale = design_parameter_in_degrees(i) ? kDegToRad : 1.0;
     const auto [lo, hi] = m.ranges[static_cast<std::size_t>(i)];
-    study->spec.parameters[static_cast<std::size_t>(i)] = {lo * scale, hi * scale};
     study->parameters.push_back({std::string(design_parameter_name(i)),
                                  design_parameter_in_degrees(i) ? "deg" : "m", lo, hi});
   }
   study->spec.machine_template = m.design;
   FieldWriter writer;
   describe_fields(writer, m);
-  study->resolved_yaml = "machine:\n  model: hexapod\n" + writer.block(2);
+  study->resolved_yaml =
+      "machine:\n  model: " + std::string(kHexapodModel) + "\n" + writer.block(2);
   return study;
 }
 
@@ -218,8 +223,6 @@ std::string HexapodStudyMachine::read_actuator_constraint(
                       fmt::format("catalog '{}' whose longest stroke is {} m", catalog.name,
                                   format_number(longest)));
     hi = std::min(hi, longest);
-    spec.parameters[static_cast<std::size_t>(stroke)].upper =
-        std::min(spec.parameters[static_cast<std::size_t>(stroke)].upper, longest);
     spec.actuator_catalog = catalog;
     constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
     return fmt::format(
@@ -245,8 +248,6 @@ std::string HexapodStudyMachine::read_actuator_constraint(
                     fmt::format("'{}' with {} m", name, entry->stroke));
   }
   hi = std::min(hi, entry->stroke);
-  spec.parameters[static_cast<std::size_t>(stroke)].upper =
-      std::min(spec.parameters[static_cast<std::size_t>(stroke)].upper, entry->stroke);
   return fmt::format(
       "  - {{actuator: {}, catalog: {}}}  # leg_force_max <= {} N, {}stroke <= {} m\n",
       nlohmann::json(name).dump(), nlohmann::json(catalog_path.string()).dump(),

@@ -94,7 +94,7 @@ MachineDescription describe_machine(const YamlValue& root) {
   } else {
     // A parallel machine: its platform's degrees of freedom and its actuators.
     const std::unique_ptr<Machine> machine = load_machine(root);
-    const PlatformDofs dofs = machine_model(model_value).platform_dofs(root);
+    const PlatformDofs dofs = entry->platform_dofs(root);  // load_machine found the entry
     d.translations = dofs.translations;
     d.rotations = dofs.rotations;
     d.parallel_drives = machine->num_actuators();

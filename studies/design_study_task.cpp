@@ -97,9 +97,8 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     read_fields(region, box);
     const Eigen::Vector3d centre(box.centre[0], box.centre[1], box.centre[2]);
     const Eigen::Vector3i counts(box.points[0], box.points[1], box.points[2]);
-    const double orientations_per_point = orientations_per_position;
-    const double total =
-        static_cast<double>(box.points[0]) * box.points[1] * box.points[2] * orientations_per_point;
+    const double total = static_cast<double>(box.points[0]) * box.points[1] * box.points[2] *
+                         orientations_per_position;
     if (total > 100000)
       region.fail(
           fmt::format("at most 100000 task poses (points × orientations), found {:.0f}", total));
@@ -113,9 +112,8 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
     CylinderRegionSection cylinder;
     read_fields(region, cylinder);
     const Eigen::Vector3d centre(cylinder.centre[0], cylinder.centre[1], cylinder.centre[2]);
-    const double orientations_per_point = orientations_per_position;
     const double total = (1.0 + static_cast<double>(cylinder.rings) * cylinder.per_ring) *
-                         cylinder.layers * orientations_per_point;
+                         cylinder.layers * orientations_per_position;
     if (total > 100000)
       region.fail(
           fmt::format("at most 100000 task poses (points × orientations), found {:.0f}", total));
