@@ -7,8 +7,8 @@
 #include <cstdlib>
 
 #include "app/commands.hpp"
-#include "io/input_error.hpp"
-#include "io/number_policy.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
 
 namespace pkmopt {
 

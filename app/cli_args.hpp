@@ -8,7 +8,7 @@
 namespace pkmopt {
 
 /// `count` comma-separated finite numbers within the input number policy
-/// (io/number_policy.hpp) and of magnitude at most `max_magnitude`; throws InputError
+/// (io/format/number_policy.hpp) and of magnitude at most `max_magnitude`; throws InputError
 /// "--wrench: expected 6 comma-separated finite numbers, found '1,2'".
 std::vector<double> parse_number_list(std::string_view option, const std::string& text,
                                       std::size_t count, double max_magnitude = 1e15);

@@ -28,8 +28,8 @@ void add_draw_command(CLI::App& app);
 CLI::Validator number_check(bool (*accept)(double), std::string_view expected,
                             const std::string& name);
 
-/// The check of an option that is a length in metres: within +-1000 m (io/number_policy.hpp),
-/// "expected a length within +-1000 m, found 1e15".
+/// The check of an option that is a length in metres: within +-1000 m
+/// (io/format/number_policy.hpp), "expected a length within +-1000 m, found 1e15".
 CLI::Validator length_in_metres();
 
 }  // namespace pkmopt::cli

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "io/input_error.hpp"
-#include "io/number_policy.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -145,7 +145,8 @@ void report(const char* kind, const std::string& message) noexcept {
 }
 
 // Every real-valued option of every command obeys the input number policy
-// (io/number_policy.hpp): finite, within +-1e15, not subnormal; no option takes an empty value.
+// (io/format/number_policy.hpp): finite, within +-1e15, not subnormal; no option takes an empty
+// value.
 void check_real_options(CLI::App& app) {
   const CLI::Validator sane = cli::number_check(sane_input_number, kSaneNumberText, "sane number");
   // An option given an empty value ("--threads ''") is not given a value: refused, whatever its

@@ -22,8 +22,8 @@ void report(const char* kind, const std::string& message) noexcept;
 /// Stops `report` from printing: an MPI worker rank (rank 0 reports what every rank would).
 void silence_reports() noexcept;
 
-/// Adds the input number policy (io/number_policy.hpp: finite, within +-1e15, not subnormal) to
-/// every real-valued (FLOAT) option of the app and its subcommands, and refuses an empty value
+/// Adds the input number policy (io/format/number_policy.hpp: finite, within +-1e15, not subnormal)
+/// to every real-valued (FLOAT) option of the app and its subcommands, and refuses an empty value
 /// ("--threads ''") for every option that takes one.
 void check_real_options(CLI::App& app);
 

@@ -14,7 +14,7 @@
 
 #include "app/commands.hpp"
 #include "app/error_report.hpp"
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "pkmopt/version.hpp"
 #include "studies/distribute.hpp"
 

@@ -5,7 +5,7 @@
 #include <benchmark/benchmark.h>
 
 #include "models/sample_machines.hpp"
-#include "problems/calibration.hpp"
+#include "problems/calibration/calibration.hpp"
 
 namespace {
 

@@ -1,15 +1,15 @@
-// Natural frequencies of a hexapod (models/machine_dynamics.hpp, docs/dynamics.md): the cost of
-// the TCP mass matrix and the generalized eigenproblem per pose on the scalar path, of a whole
-// scalar analyze with a mass model, and of the SIMD batch (models/hexapod_batch.hpp) over 10^6
-// poses on one core: every metric and the six frequencies. Items = poses.
+// Natural frequencies of a hexapod (models/dynamics/machine_dynamics.hpp, docs/dynamics.md): the
+// cost of the TCP mass matrix and the generalized eigenproblem per pose on the scalar path, of a
+// whole scalar analyze with a mass model, and of the SIMD batch (models/hexapod/hexapod_batch.hpp)
+// over 10^6 poses on one core: every metric and the six frequencies. Items = poses.
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
 #include "bench/hexapod_poses.hpp"
-#include "models/hexapod.hpp"
-#include "models/hexapod_batch.hpp"
-#include "models/machine_dynamics.hpp"
+#include "models/dynamics/machine_dynamics.hpp"
+#include "models/hexapod/hexapod.hpp"
+#include "models/hexapod/hexapod_batch.hpp"
 #include "models/sample_machines.hpp"
 
 namespace {

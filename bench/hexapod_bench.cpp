@@ -14,8 +14,8 @@
 
 #include "bench/hexapod_poses.hpp"
 #include "bench/uniform_stream.hpp"
-#include "models/hexapod.hpp"
-#include "models/hexapod_batch.hpp"
+#include "models/hexapod/hexapod.hpp"
+#include "models/hexapod/hexapod_batch.hpp"
 #include "models/sample_machines.hpp"
 
 namespace {
@@ -38,7 +38,7 @@ std::vector<pkmopt::PoseMetrics> sized_metrics(std::size_t n) {
   return metrics;
 }
 
-// The SIMD batch path (models/hexapod_batch.hpp) on one thread: the 4096 poses of
+// The SIMD batch path (models/hexapod/hexapod_batch.hpp) on one thread: the 4096 poses of
 // BM_HexapodMetricsOneThread per iteration, items = poses.
 void run_batch_one_thread(benchmark::State& state, pkmopt::HexapodBatchKernel kernel) {
   const pkmopt::Hexapod hexapod = sample_hexapod();
@@ -68,10 +68,10 @@ void BM_HexapodMetricsBatchBaselineOneThread(benchmark::State& state) {
 }
 BENCHMARK(BM_HexapodMetricsBatchBaselineOneThread)->Unit(benchmark::kMicrosecond);
 
-// What `pkmopt analyze` runs on a hexapod: the SIMD batch path (models/hexapod_batch.hpp) on
-// slices of 1024 poses with OpenMP. Args: {poses, threads (0: all), matrices (1: also write the
+// What `pkmopt analyze` runs on a hexapod: the SIMD batch path (models/hexapod/hexapod_batch.hpp)
+// on slices of 1024 poses with OpenMP. Args: {poses, threads (0: all), matrices (1: also write the
 // 6x6 compliance and the loaded 3x3 block, as analyze --compliance), legs (1: 80 mm legs, the
-// interference check of models/leg_interference.hpp)}; items = poses, real time.
+// interference check of models/geometry/leg_interference.hpp)}; items = poses, real time.
 void BM_HexapodAnalyzeBatch(benchmark::State& state) {
   pkmopt::HexapodDesign design = sample_hexapod().design();
   if (state.range(3) != 0) design.leg_shape.diameter = 0.08;

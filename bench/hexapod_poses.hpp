@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/uniform_stream.hpp"
-#include "models/pose.hpp"
+#include "models/core/pose.hpp"
 
 namespace pkmopt::sample_machines {
 

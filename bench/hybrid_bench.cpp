@@ -1,5 +1,5 @@
-// Benchmarks of hybrid machines (models/hybrid_machine.hpp): the cost per pose of analyze on a
-// long X axis carrying the sample hexapod (follow rule, series compliance, 2^6 error vertices)
+// Benchmarks of hybrid machines (models/hybrid/hybrid_machine.hpp): the cost per pose of analyze on
+// a long X axis carrying the sample hexapod (follow rule, series compliance, 2^6 error vertices)
 // against the bare hexapod, and on a gantry X/Y carrying a 3-PRS head (parasitic compensation).
 #include <benchmark/benchmark.h>
 
@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "bench/uniform_stream.hpp"
-#include "models/hexapod.hpp"
-#include "models/hybrid_machine.hpp"
-#include "models/leg_chain.hpp"
+#include "models/hexapod/hexapod.hpp"
+#include "models/hybrid/hybrid_machine.hpp"
+#include "models/leg_chain/leg_chain.hpp"
 #include "models/sample_machines.hpp"
 
 namespace {

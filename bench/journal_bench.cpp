@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
-#include "problems/benchmarks.hpp"
+#include "io/format/csv.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 #include "studies/journal.hpp"
 
 namespace {

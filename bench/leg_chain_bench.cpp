@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bench/uniform_stream.hpp"
-#include "models/leg_chain.hpp"
+#include "models/leg_chain/leg_chain.hpp"
 
 namespace {
 

@@ -1,15 +1,15 @@
-// Benchmarks of the leg-chain models with link compliance (models/leg_chain_vjm.cpp): the full
-// `analyze` of a 3-PRS tripod (Sprint Z3-like, steel tube struts) and of a delta (elastic cranks,
-// parallelogram pairs with a width) per pose, single thread, over random poses of their working
-// regions, against the same machines with the axial model. The VJM path must stay above 200k
-// tripod poses/s per core (docs/stiffness.md).
+// Benchmarks of the leg-chain models with link compliance (models/leg_chain/leg_chain_vjm.cpp): the
+// full `analyze` of a 3-PRS tripod (Sprint Z3-like, steel tube struts) and of a delta (elastic
+// cranks, parallelogram pairs with a width) per pose, single thread, over random poses of their
+// working regions, against the same machines with the axial model. The VJM path must stay above
+// 200k tripod poses/s per core (docs/stiffness.md).
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
 #include <vector>
 
 #include "bench/uniform_stream.hpp"
-#include "models/leg_chain.hpp"
+#include "models/leg_chain/leg_chain.hpp"
 
 namespace {
 

@@ -22,7 +22,7 @@
 #include "optimizer/nbi.hpp"
 #include "optimizer/nsga2.hpp"
 #include "optimizer/random.hpp"
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 
 namespace {
 

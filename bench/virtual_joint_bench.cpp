@@ -1,7 +1,7 @@
-// Benchmarks of models/virtual_joint: the per-pose cost of the VJM platform stiffness of a 3-PRS
-// tripod (three legs: actuator spring, revolute, elastic strut, spherical joint) and of a delta
-// (motor spring, elastic crank, parallelogram rod pair), single thread. The leg geometry of every
-// pose is computed beforehand; the timed loop is what a leg-chain model would add per pose:
+// Benchmarks of models/stiffness/virtual_joint: the per-pose cost of the VJM platform stiffness of
+// a 3-PRS tripod (three legs: actuator spring, revolute, elastic strut, spherical joint) and of a
+// delta (motor spring, elastic crank, parallelogram rod pair), single thread. The leg geometry of
+// every pose is computed beforehand; the timed loop is what a leg-chain model would add per pose:
 // describe the three legs, eliminate their passive joints, sum at the TCP (and invert for the
 // compliance).
 #include <benchmark/benchmark.h>
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "bench/uniform_stream.hpp"
-#include "models/virtual_joint.hpp"
+#include "models/stiffness/virtual_joint.hpp"
 
 namespace {
 

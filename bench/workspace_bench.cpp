@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "models/hexapod.hpp"
+#include "models/hexapod/hexapod.hpp"
 #include "models/sample_machines.hpp"
 #include "models/workspace/workspace.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "fuzz/fuzz_input.hpp"
-#include "io/calibration_files.hpp"
+#include "io/calibration/calibration_files.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   fuzz::stage("studies/library/calibration-demo/nominal.yaml", "nominal.yaml");

@@ -4,10 +4,10 @@
 #include <cstdint>
 
 #include "fuzz/fuzz_input.hpp"
-#include "io/calibration_files.hpp"
-#include "io/csv.hpp"
-#include "io/pose_csv.hpp"
-#include "io/trajectory_files.hpp"
+#include "io/calibration/calibration_files.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/pose_csv.hpp"
+#include "io/results/trajectory_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string path = fuzz::write_input(data, size, "input.csv");

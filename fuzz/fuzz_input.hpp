@@ -18,15 +18,15 @@
 #include <fstream>
 #include <string>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 
 namespace fuzz {
 
 /// The scratch folder of this fuzzing process (created on first use, removed at exit).
 inline const std::filesystem::path& scratch() {
   static const std::filesystem::path dir = [] {
-    std::filesystem::path d = std::filesystem::temp_directory_path() /
-                              ("pkmopt-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::path d =
+        std::filesystem::temp_directory_path() / ("pkmopt-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     std::atexit([] {
       std::error_code ec;
@@ -50,8 +50,7 @@ inline std::string write_input(const std::uint8_t* data, std::size_t size,
 /// inputs that name other files (a calibration file names its machine and measurements).
 inline void stage(const std::string& source_relative, const std::string& name) {
   std::filesystem::copy_file(std::filesystem::path(PKMOPT_SOURCE_DIR) / source_relative,
-                             scratch() / name,
-                             std::filesystem::copy_options::overwrite_existing);
+                             scratch() / name, std::filesystem::copy_options::overwrite_existing);
 }
 
 /// Runs a reader; an InputError (the documented answer to bad input) is expected.

@@ -9,15 +9,15 @@
 #include <vector>
 
 #include "fuzz/fuzz_input.hpp"
-#include "io/machine_description.hpp"
-#include "io/machine_file.hpp"
-#include "models/pose_analysis.hpp"
+#include "io/machine/machine_description.hpp"
+#include "io/machine/machine_file.hpp"
+#include "models/core/pose_analysis.hpp"
 
 namespace {
 
 void check_no_nan(const pkmopt::PoseMetrics& m) {
-  const double scalars[] = {m.stiffness_min, m.singularity_margin, m.det_j, m.tcp_error_max,
-                            m.tcp_deflection, m.leg_clearance};
+  const double scalars[] = {m.stiffness_min, m.singularity_margin, m.det_j,
+                            m.tcp_error_max, m.tcp_deflection,     m.leg_clearance};
   bool nan = m.q.hasNaN() || m.tau.hasNaN() || m.natural_frequencies.hasNaN();
   for (double v : scalars) nan = nan || std::isnan(v);
   if (nan) std::abort();

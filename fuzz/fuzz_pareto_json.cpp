@@ -3,7 +3,7 @@
 #include <cstdint>
 
 #include "fuzz/fuzz_input.hpp"
-#include "io/pareto_json.hpp"
+#include "io/results/pareto_json.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   fuzz::expect_input_errors([&] {

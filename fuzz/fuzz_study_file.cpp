@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "fuzz/fuzz_input.hpp"
-#include "io/yaml_reader.hpp"
+#include "io/format/yaml_reader.hpp"
 #include "studies/benchmark_study.hpp"
 #include "studies/design_study.hpp"
 

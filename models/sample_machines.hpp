@@ -3,7 +3,7 @@
 //   pkmopt::Hexapod hexapod(pkmopt::sample_machines::conventions_hexapod_design());
 #pragma once
 
-#include "models/hexapod.hpp"
+#include "models/hexapod/hexapod.hpp"
 
 namespace pkmopt::sample_machines {
 

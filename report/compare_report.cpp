@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "pkmopt/report_assets.hpp"
 #include "report/compare_detail.hpp"
 #include "report/raster_image.hpp"

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "optimizer/indicators.hpp"
 #include "report/compare_detail.hpp"
 #include "report/compare_report.hpp"

@@ -1,7 +1,7 @@
 // A machine drawn in two orthographic views, as SVG: the front view (base x to the right, z up)
 // and the top view (x to the right, y up), side by side at one scale. Drawn from the model's
-// sketch at a pose (models/machine_sketch.hpp): the base (the outline of its joints, grey), the
-// legs (actuated parts orange, passive links dark, guides dashed), the platform (the outline of
+// sketch at a pose (models/core/machine_sketch.hpp): the base (the outline of its joints, grey),
+// the legs (actuated parts orange, passive links dark, guides dashed), the platform (the outline of
 // its joints, blue), the tool and the TCP (red); a task box, when given, dashed green.
 //
 // Used by `pkmopt draw` and by the report, whose drawings of several designs share one scale
@@ -18,7 +18,7 @@
 #include <optional>
 #include <string>
 
-#include "models/machine.hpp"
+#include "models/core/machine.hpp"
 
 namespace pkmopt {
 

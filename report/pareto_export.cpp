@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "models/workspace/workspace.hpp"
 #include "report/display_units.hpp"
 #include "report/pareto_report.hpp"

@@ -1,7 +1,8 @@
 // The files of `pkmopt export` (docs/export.md): a design study's Pareto front (DIR/pareto.json
-// of `pkmopt run`, read by io/pareto_json.hpp) rendered as one output file and, optionally, plots.
+// of `pkmopt run`, read by io/results/pareto_json.hpp) rendered as one output file and, optionally,
+// plots.
 //
-//   csv    pareto_csv (io/pareto_json.hpp), default name pareto_export.csv
+//   csv    pareto_csv (io/results/pareto_json.hpp), default name pareto_export.csv
 //   json   pareto_json, the front normalised, default name pareto_export.json
 //   html   report_html (report/pareto_report.hpp) with the knee design's workspace slice,
 //          default name report.html; always comes with the plots
@@ -9,7 +10,7 @@
 //          machine file, knee_slice.svg and knee_slice.png (coloured by singularity_margin; the
 //          slice is described in report/pareto_report.hpp)
 // Units are those of pareto.json. Everything is rendered in memory; the caller writes the files
-// (io/output_file.hpp) once the last one is rendered, so an error writes nothing.
+// (io/format/output_file.hpp) once the last one is rendered, so an error writes nothing.
 //
 // Example:
 //   const ParetoFront front = read_pareto_json("results/pareto.json");
@@ -25,7 +26,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/pareto_json.hpp"
+#include "io/results/pareto_json.hpp"
 
 namespace pkmopt {
 
@@ -46,8 +47,8 @@ enum class CsvUnits { kNone, kRow, kSuffix };
 /// "row" or "suffix"; nullopt otherwise.
 std::optional<CsvUnits> parse_csv_units(std::string_view name);
 
-/// pareto_csv (io/pareto_json.hpp) in engineering units with the units as `units` says (kNone:
-/// pareto_csv itself).
+/// pareto_csv (io/results/pareto_json.hpp) in engineering units with the units as `units` says
+/// (kNone: pareto_csv itself).
 std::string pareto_csv_with_units(const ParetoFront& front, CsvUnits units);
 
 /// The files of an export of `front` (read from the results folder `results_dir`, where the

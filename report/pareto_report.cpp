@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/machine/machine_file.hpp"
 #include "pkmopt/report_assets.hpp"
 #include "report/display_units.hpp"
 #include "report/pareto_report_detail.hpp"

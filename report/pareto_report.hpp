@@ -1,5 +1,6 @@
 // Reports of a design study's results (`pkmopt export`): the Pareto front of DIR/pareto.json
-// (read by io/pareto_json.hpp) as Pareto plots (SVG, PNG) and one self-contained HTML report.
+// (read by io/results/pareto_json.hpp) as Pareto plots (SVG, PNG) and one self-contained HTML
+// report.
 //
 // Units are those of pareto.json: parameters in file units (m, degrees for *_deg), objectives
 // in the user's sign and units (N/m, m^3, N, ...), constraint values g in metric units with
@@ -26,7 +27,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/pareto_json.hpp"
+#include "io/results/pareto_json.hpp"
 #include "models/workspace/workspace.hpp"
 
 namespace pkmopt {

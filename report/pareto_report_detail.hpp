@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/pareto_json.hpp"
+#include "io/results/pareto_json.hpp"
 
 namespace pkmopt::report_detail {
 

@@ -11,7 +11,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "io/machine_file.hpp"
+#include "io/machine/machine_file.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/report_assets.hpp"
 #include "report/display_units.hpp"

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "report/raster_image.hpp"
 
 namespace pkmopt {

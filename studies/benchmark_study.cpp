@@ -9,10 +9,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/csv.hpp"
-#include "io/field_list.hpp"
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/field_list.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
 #include "optimizer/front_thinning.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
@@ -33,7 +33,7 @@ void describe_fields(Fields& f, BenchmarkProblemSection& p) {
           {.required = true,
            .expected = "zdt1, zdt2, zdt3, zdt4, zdt6, dtlz1, dtlz2, dtlz3, dtlz4, dtlz7, bnh, srn, "
                        "tnk, osy, hs71 or rosenbrock",
-           .doc = "the benchmark problem (formulas in problems/benchmarks.hpp)"});
+           .doc = "the benchmark problem (formulas in problems/benchmarks/benchmarks.hpp)"});
   f.field("variables", p.variables,
           {.min = 1,
            .max = static_cast<double>(kMaxBenchmarkVariables),

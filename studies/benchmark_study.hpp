@@ -32,9 +32,9 @@
 #include <string>
 #include <vector>
 
-#include "io/output_file.hpp"
-#include "io/yaml_reader.hpp"
-#include "problems/benchmarks.hpp"
+#include "io/format/output_file.hpp"
+#include "io/format/yaml_reader.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 #include "studies/optimizer_spec.hpp"
 
 namespace pkmopt {
@@ -86,7 +86,7 @@ ArchivedFront archive_front(const Problem& problem, const std::vector<std::vecto
                             std::size_t front_size);
 
 /// Writes DIR/pareto.csv and DIR/summary.json (creating DIR) and the files `also` names, all or
-/// none (io/output_file.hpp); the keys of `extra_summary` are added to summary.json.
+/// none (io/format/output_file.hpp); the keys of `extra_summary` are added to summary.json.
 /// `reference_point` empty: nadir + 10% of the range of `reference_front` if given, else of
 /// the front found. `reference_front` may be empty (no IGD+ then).
 void write_run_outputs(const std::string& directory, const std::string& study_name,

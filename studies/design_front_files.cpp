@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "io/actuator_catalog_file.hpp"
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
+#include "io/design/actuator_catalog_file.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
 #include "optimizer/archive.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"

@@ -36,13 +36,14 @@
 //   output: {designs: true}                   # optional: write designs/<id>.yaml
 //
 // nsga2 uses the aggregate (derivative-free) formulation; every other algorithm the smooth one
-// (see problems/hexapod_design.hpp).
+// (see problems/design/hexapod_design.hpp).
 //
-// The machine section is read by the model it names (io/study_machine.hpp, io/model_registry.hpp);
-// the hexapod's is above (io/hexapod_study_machine.hpp). A model with a design family
-// (problems/machine_design.hpp) loads into a MachineDesignProblem: `parameters:` takes the
-// family's parameters (number = fixed, {min, max} = free), and every other key of the model's
-// machine file may follow except the keys the parameters set:
+// The machine section is read by the model it names (io/design/study_machine.hpp,
+// io/machine/model_registry.hpp); the hexapod's is above (io/design/hexapod_study_machine.hpp). A
+// model with a design family (problems/design/machine_design.hpp) loads into a
+// MachineDesignProblem: `parameters:` takes the family's parameters (number = fixed, {min, max} =
+// free), and every other key of the model's machine file may follow except the keys the parameters
+// set:
 //   machine:
 //     model: linear_delta
 //     parameters: {guide_radius: {min: 0.3, max: 0.6}, rod: {min: 0.5, max: 1.0}, stroke: 0.6,
@@ -78,9 +79,9 @@
 #include <utility>
 #include <vector>
 
-#include "io/output_file.hpp"
-#include "io/study_machine.hpp"
-#include "problems/design_problem.hpp"
+#include "io/design/study_machine.hpp"
+#include "io/format/output_file.hpp"
+#include "problems/design/design_problem.hpp"
 #include "studies/journal.hpp"
 #include "studies/optimizer_spec.hpp"
 
@@ -89,7 +90,7 @@ namespace pkmopt {
 struct DesignStudy {
   std::string name;
   std::string description;
-  /// The machine model (`machine.model`, io/model_registry.hpp).
+  /// The machine model (`machine.model`, io/machine/model_registry.hpp).
   std::string model;
   /// The model's part of the study: its parameters, capabilities and machine files.
   std::shared_ptr<const StudyMachine> machine;
@@ -155,7 +156,7 @@ struct DesignOutputSummary {
 };
 
 /// Writes pareto.csv, pareto.json, summary.json and designs/<id>.yaml into `directory`, together
-/// with the files `also` names, all or none (io/output_file.hpp, write_files_together).
+/// with the files `also` names, all or none (io/format/output_file.hpp, write_files_together).
 DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
                                          const RunOutcome& outcome, const DesignRunFacts& facts,
                                          const OutputFiles& also = {});

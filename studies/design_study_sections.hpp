@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
-#include "io/field_list.hpp"
-#include "io/yaml_reader.hpp"
-#include "problems/machine_design.hpp"
+#include "io/format/field_list.hpp"
+#include "io/format/yaml_reader.hpp"
+#include "problems/design/machine_design.hpp"
 #include "studies/design_study.hpp"
 #include "studies/optimizer_fields.hpp"
 

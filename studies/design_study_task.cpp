@@ -9,13 +9,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/actuator_catalog_file.hpp"
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/machine_file_writer.hpp"
-#include "io/output_file.hpp"
-#include "io/task_wrench_file.hpp"
+#include "io/design/actuator_catalog_file.hpp"
+#include "io/design/task_wrench_file.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
+#include "io/machine/machine_file.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 #include "studies/design_study_sections.hpp"

@@ -12,7 +12,7 @@
 #include <limits>
 #include <thread>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "studies/stop_report.hpp"
 
 #ifdef PKMOPT_HAVE_MPI

@@ -38,7 +38,7 @@
 #include <string>
 #include <vector>
 
-#include "models/process_share.hpp"
+#include "models/core/process_share.hpp"
 #include "studies/journal.hpp"
 
 namespace pkmopt {
@@ -91,7 +91,7 @@ class MpiSession {
   bool with_workers_ = false;
 };
 
-/// Every rank of MPI_COMM_WORLD as a part of a ProcessShare (models/process_share.hpp): the
+/// Every rank of MPI_COMM_WORLD as a part of a ProcessShare (models/core/process_share.hpp): the
 /// ranks run `pkmopt workspace` or `pkmopt analyze` in lockstep, each computing its share.
 class MpiShare final : public ProcessShare {
  public:

@@ -16,8 +16,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
 #include "optimizer/indicators.hpp"
 
 namespace pkmopt {

@@ -1,7 +1,7 @@
 // The keys of each algorithm in a study's `optimizer:` section, described once
-// (io/field_list.hpp): the reader, the resolved-file writer and the tables of docs/optimizer.md
-// all come from these lists. Besides its algorithm's keys every section has `algorithm`
-// (required) and `seed` (integer >= 0, default 1).
+// (io/format/field_list.hpp): the reader, the resolved-file writer and the tables of
+// docs/optimizer.md all come from these lists. Besides its algorithm's keys every section has
+// `algorithm` (required) and `seed` (integer >= 0, default 1).
 //
 // Example:
 //   Nsga2Spec spec;
@@ -9,7 +9,7 @@
 //   std::string table = fields_markdown(Nsga2Spec{});  // the docs table
 #pragma once
 
-#include "io/field_list.hpp"
+#include "io/format/field_list.hpp"
 #include "studies/optimizer_spec.hpp"
 
 namespace pkmopt {

@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
 #include "optimizer/anchors.hpp"
 #include "studies/optimizer_fields.hpp"
 

@@ -28,7 +28,7 @@
 #include <variant>
 #include <vector>
 
-#include "io/yaml_reader.hpp"
+#include "io/format/yaml_reader.hpp"
 #include "optimizer/epsilon_constraint.hpp"
 #include "optimizer/front_result.hpp"
 #include "optimizer/hybrid.hpp"

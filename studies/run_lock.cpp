@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 
 namespace pkmopt {
 namespace {

@@ -7,8 +7,8 @@
 // or not, so a stale run.lock never blocks a resume.
 //
 // remove_stale_temporaries(DIR) removes the temporaries of atomic writes (NAME.tmp.PID, see
-// io/output_file.hpp) left in DIR and DIR/designs by a run that was killed mid-write; call it
-// with the lock held (no other writer can own them then). It returns how many it removed.
+// io/format/output_file.hpp) left in DIR and DIR/designs by a run that was killed mid-write; call
+// it with the lock held (no other writer can own them then). It returns how many it removed.
 //
 // Example:
 //   RunLock lock("results/quick");        // throws InputError when another run holds it

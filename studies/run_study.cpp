@@ -9,9 +9,9 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
 #include "studies/benchmark_study.hpp"
 #include "studies/design_study.hpp"
 #include "studies/journal.hpp"

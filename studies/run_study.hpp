@@ -19,7 +19,7 @@
 #include <functional>
 #include <string>
 
-#include "io/yaml_reader.hpp"
+#include "io/format/yaml_reader.hpp"
 #include "studies/distribute.hpp"
 #include "studies/journal.hpp"
 

@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 
 namespace pkmopt {
 namespace {

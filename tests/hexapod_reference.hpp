@@ -1,6 +1,6 @@
 // An independent reference of the hexapod metric set and the rules the fast paths are held to,
-// shared by the HexapodFastPath harness (tests/models/hexapod_test.cpp) and the batch tests
-// (tests/models/hexapod_batch_test.cpp).
+// shared by the HexapodFastPath harness (tests/models/hexapod/hexapod_test.cpp) and the batch tests
+// (tests/models/hexapod/hexapod_batch_test.cpp).
 //
 // reference_metrics: Eigen's general solvers, nothing of the library's kernels: JacobiSVD for
 // cond(J_h) and cond(J), FullPivLU for det J, J^-1 and the leg forces, the iterative
@@ -22,7 +22,7 @@
 #include <limits>
 #include <string>
 
-#include "models/hexapod.hpp"
+#include "models/hexapod/hexapod.hpp"
 #include "tests/sample_machines.hpp"
 
 namespace pkmopt::hexapod_reference {

@@ -3,7 +3,7 @@
 // stiffness).
 #pragma once
 
-#include "problems/actuator_catalog.hpp"
+#include "problems/design/actuator_catalog.hpp"
 
 namespace pkmopt::sample_catalogs {
 

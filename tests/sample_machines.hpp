@@ -8,8 +8,8 @@
 #include <cstdint>
 
 #include "bench/uniform_stream.hpp"
-#include "models/hexapod.hpp"
-#include "models/leg_chain.hpp"
+#include "models/hexapod/hexapod.hpp"
+#include "models/leg_chain/leg_chain.hpp"
 #include "models/sample_machines.hpp"
 
 namespace pkmopt::sample_machines {

@@ -11,12 +11,12 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/analyze_csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/output_file.hpp"
-#include "io/pose_csv.hpp"
-#include "models/pose_analysis.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
+#include "io/format/pose_csv.hpp"
+#include "io/machine/machine_file.hpp"
+#include "io/results/analyze_csv.hpp"
+#include "models/core/pose_analysis.hpp"
 #include "studies/distribute.hpp"
 
 namespace pkmopt::cli {

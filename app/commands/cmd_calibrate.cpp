@@ -10,14 +10,14 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/calibration_files.hpp"
-#include "io/calibration_output.hpp"
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/number_policy.hpp"
-#include "io/output_file.hpp"
-#include "io/pose_csv.hpp"
-#include "problems/calibration_candidates.hpp"
+#include "io/calibration/calibration_files.hpp"
+#include "io/calibration/calibration_output.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
+#include "io/format/output_file.hpp"
+#include "io/format/pose_csv.hpp"
+#include "problems/calibration/calibration_candidates.hpp"
 
 namespace pkmopt::cli {
 namespace {

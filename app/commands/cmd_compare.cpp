@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "app/commands.hpp"
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
 #include "report/compare_report.hpp"
 
 namespace pkmopt::cli {

@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "app/commands.hpp"
-#include "io/machine_description.hpp"
+#include "io/machine/machine_description.hpp"
 
 namespace pkmopt::cli {
 

@@ -12,10 +12,10 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/number_policy.hpp"
-#include "io/output_file.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
+#include "io/format/output_file.hpp"
+#include "io/machine/machine_file.hpp"
 #include "report/machine_drawing.hpp"
 
 namespace pkmopt::cli {

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "app/commands.hpp"
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
-#include "io/pareto_json.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
+#include "io/results/pareto_json.hpp"
 #include "report/pareto_export.hpp"
 
 namespace pkmopt::cli {

@@ -7,10 +7,10 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/fk_csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/number_policy.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
+#include "io/machine/machine_file.hpp"
+#include "io/results/fk_csv.hpp"
 
 namespace pkmopt::cli {
 namespace {

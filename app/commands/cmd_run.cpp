@@ -10,7 +10,7 @@
 
 #include "app/commands.hpp"
 #include "app/error_report.hpp"
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "studies/distribute.hpp"
 #include "studies/run_study.hpp"
 

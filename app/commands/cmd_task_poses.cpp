@@ -15,12 +15,12 @@
 #include <optional>
 
 #include "app/commands.hpp"
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/number_policy.hpp"
-#include "io/output_file.hpp"
-#include "io/pareto_json.hpp"
-#include "io/pose_csv.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
+#include "io/format/output_file.hpp"
+#include "io/format/pose_csv.hpp"
+#include "io/results/pareto_json.hpp"
 #include "studies/design_study.hpp"
 
 namespace pkmopt::cli {

@@ -14,14 +14,14 @@
 
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
-#include "io/actuator_catalog_file.hpp"
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/number_policy.hpp"
-#include "io/output_file.hpp"
-#include "io/trajectory_files.hpp"
-#include "models/trajectory.hpp"
+#include "io/design/actuator_catalog_file.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
+#include "io/format/output_file.hpp"
+#include "io/machine/machine_file.hpp"
+#include "io/results/trajectory_files.hpp"
+#include "models/motion/trajectory.hpp"
 
 namespace pkmopt::cli {
 namespace {

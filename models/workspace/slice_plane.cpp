@@ -1,6 +1,6 @@
 #include "models/workspace/slice_plane.hpp"
 
-#include "models/require.hpp"
+#include "models/core/require.hpp"
 
 namespace pkmopt {
 

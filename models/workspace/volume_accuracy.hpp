@@ -20,7 +20,7 @@
 
 #include <optional>
 
-#include "models/machine.hpp"
+#include "models/core/machine.hpp"
 #include "models/workspace/workspace.hpp"
 
 namespace pkmopt {

@@ -14,8 +14,6 @@
 #include <type_traits>
 #include <unordered_map>
 
-#include "models/hexapod.hpp"
-
 namespace pkmopt {
 namespace {
 

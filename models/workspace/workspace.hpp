@@ -61,9 +61,9 @@
 #include <string_view>
 #include <vector>
 
-#include "models/machine.hpp"
-#include "models/pose.hpp"
-#include "models/process_share.hpp"
+#include "models/core/machine.hpp"
+#include "models/core/pose.hpp"
+#include "models/core/process_share.hpp"
 
 namespace pkmopt {
 
@@ -140,8 +140,8 @@ struct WorkspaceOptions {
   /// Refuse grids with more nodes than this (memory: about 2 bytes per node).
   std::int64_t max_grid_nodes = 200'000'000;
   /// Processes (MPI ranks) that compute this workspace together, each a share of the grid
-  /// layers, boundary crossings, inside nodes and slice pixels (models/process_share.hpp); every
-  /// process gets the whole result. nullptr: this process computes everything.
+  /// layers, boundary crossings, inside nodes and slice pixels (models/core/process_share.hpp);
+  /// every process gets the whole result. nullptr: this process computes everything.
   const ProcessShare* share = nullptr;
 };
 

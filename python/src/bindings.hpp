@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/yaml_reader.hpp"
+#include "io/format/yaml_reader.hpp"
 
 namespace pkmopt::python {
 
@@ -37,8 +37,8 @@ std::string text_from_python(py::handle value, const std::string& what);
 /// A file system path from a str or os.PathLike.
 std::string path_from_python(py::handle path);
 
-/// A number from Python within the input number policy (io/number_policy.hpp): finite, within
-/// +-1e15, 0 or at least 1e-30 in magnitude (InputError "what: expected ..., found ...").
+/// A number from Python within the input number policy (io/format/number_policy.hpp): finite,
+/// within +-1e15, 0 or at least 1e-30 in magnitude (InputError "what: expected ..., found ...").
 double finite_number(py::handle value, const std::string& what);
 
 /// A length or position in metres from Python: finite_number and within +-1000 m.

@@ -1,7 +1,7 @@
 // The compiled part of the Python package `pkmopt` (python/pkmopt/__init__.py).
 #include <pybind11/pybind11.h>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "pkmopt/version.hpp"
 #include "python/src/bindings.hpp"
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "io/input_error.hpp"
-#include "io/number_policy.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/number_policy.hpp"
 #include "python/src/bindings.hpp"
 #include "studies/run_study.hpp"
 

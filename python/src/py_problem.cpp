@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "optimizer/problem.hpp"
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 #include "python/src/bindings.hpp"
 #include "studies/optimizer_spec.hpp"
 

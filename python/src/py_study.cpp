@@ -11,12 +11,12 @@
 #include <optional>
 #include <string>
 
-#include "io/calibration_files.hpp"
-#include "io/calibration_output.hpp"
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/output_file.hpp"
-#include "io/pareto_json.hpp"
+#include "io/calibration/calibration_files.hpp"
+#include "io/calibration/calibration_output.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/output_file.hpp"
+#include "io/results/pareto_json.hpp"
 #include "python/src/bindings.hpp"
 #include "studies/run_study.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "python/src/bindings.hpp"
 
 namespace pkmopt::python {

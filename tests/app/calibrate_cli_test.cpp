@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
-#include "io/machine_file.hpp"
-#include "models/hexapod.hpp"
-#include "models/pose_analysis.hpp"
+#include "io/format/csv.hpp"
+#include "io/machine/machine_file.hpp"
+#include "models/core/pose_analysis.hpp"
+#include "models/hexapod/hexapod.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/sample_machines.hpp"
 #include "tests/scratch_dir.hpp"

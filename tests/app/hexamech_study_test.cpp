@@ -12,7 +12,7 @@
 #include <memory>
 #include <string>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
-#include "io/actuator_catalog_file.hpp"
-#include "io/machine_file.hpp"
-#include "io/machine_file_lathe.hpp"
-#include "io/machine_file_writer.hpp"
-#include "models/lathe_conversion.hpp"
-#include "problems/actuator_catalog.hpp"
-#include "problems/lathe_design.hpp"
+#include "io/design/actuator_catalog_file.hpp"
+#include "io/machine/machine_file.hpp"
+#include "io/machine/machine_file_lathe.hpp"
+#include "io/machine/machine_file_lathe.hpp"
+#include "models/leg_chain/lathe_conversion.hpp"
+#include "problems/design/actuator_catalog.hpp"
+#include "problems/design/lathe_design.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 using cli_runner::CliRun;
 
 const fs::path kStudy = fs::path(PKMOPT_SOURCE_DIR) / "studies" / "library" / "lathe-16k20f3";
-// The seeds' turning load at the optimal approach angle (problems/cutting_load.hpp), N.
+// The seeds' turning load at the optimal approach angle (problems/design/cutting_load.hpp), N.
 const char* kWrench = "1186.63,0,6633.45,0,0,0";
 
 std::vector<std::string> split(const std::string& line) {

@@ -1,4 +1,4 @@
-// Tests of the leg-chain machine files (io/machine_file_leg_chain) and of `pkmopt analyze`,
+// Tests of the leg-chain machine files (io/machine/machine_file_leg_chain) and of `pkmopt analyze`,
 // `fk`, `workspace` and `describe` on a delta, a hexaglide, a Schoenflies machine in the generic
 // `leg_chain` form and the tripod_3prs head: results agree with the library, revolute
 // coordinates are in degrees, bad input exits with status 2 and one message.
@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/machine_file_leg_chain.hpp"
-#include "models/leg_chain.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/machine/machine_file.hpp"
+#include "io/machine/machine_file_leg_chain.hpp"
+#include "models/leg_chain/leg_chain.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 

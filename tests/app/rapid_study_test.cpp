@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/machine_file.hpp"
-#include "models/acceleration_capability.hpp"
+#include "io/machine/machine_file.hpp"
+#include "models/dynamics/acceleration_capability.hpp"
 #include "studies/design_study.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"

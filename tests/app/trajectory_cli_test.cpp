@@ -1,7 +1,7 @@
 // Tests of `pkmopt trajectory`: the hexapod-450 study in its reduced form through the CLI (its
 // numbers checked against an independent computation or labelled as regression pins), a path
 // file giving the same rates as the built-in helix, and bad input exiting with status 2.
-// The library (models/trajectory) is tested in tests/models/trajectory_test.cpp.
+// The library (models/motion/trajectory) is tested in tests/models/motion/trajectory_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
-#include "io/machine_file.hpp"
-#include "models/hexapod.hpp"
-#include "models/trajectory.hpp"
+#include "io/format/csv.hpp"
+#include "io/machine/machine_file.hpp"
+#include "models/hexapod/hexapod.hpp"
+#include "models/motion/trajectory.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/hexapod_reference.hpp"
 #include "tests/scratch_dir.hpp"
@@ -32,7 +32,7 @@ std::string source_path(const std::string& relative) {
   return (fs::path(PKMOPT_SOURCE_DIR) / relative).string();
 }
 
-// The seeds' helix (as in tests/models/trajectory_test.cpp).
+// The seeds' helix (as in tests/models/motion/trajectory_test.cpp).
 HelixParameters seeds_helix() {
   HelixParameters h;
   h.centre = {0.0, 0.0, 0.70};
@@ -214,8 +214,8 @@ TEST_F(TrajectoryCli, PathFileGivesTheSameRatesAsTheHelix) {
 }
 
 // A machine with masses: the file's tau_dyn columns are the library's inverse dynamics (checked
-// against the bodies' momenta in tests/models/trajectory_test.cpp), the summary gives peak and RMS
-// forces, and the drive check names the limit a path exceeds.
+// against the bodies' momenta in tests/models/motion/trajectory_test.cpp), the summary gives peak
+// and RMS forces, and the drive check names the limit a path exceeds.
 TEST_F(TrajectoryCli, MassesGiveDynamicForcesAndTheDriveCheck) {
   const std::string masses = source_path("examples/hexapod_masses.yaml");
   const std::string catalog = source_path("studies/library/catalogs/sew-cms.yaml");

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "io/machine_file.hpp"
+#include "io/machine/machine_file.hpp"
 #include "models/workspace/workspace.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"

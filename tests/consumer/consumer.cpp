@@ -5,9 +5,9 @@
 #include <iostream>
 #include <memory>
 
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "models/machine.hpp"
+#include "io/format/input_error.hpp"
+#include "io/machine/machine_file.hpp"
+#include "models/core/machine.hpp"
 #include "studies/run_study.hpp"
 
 int main(int argc, char** argv) {

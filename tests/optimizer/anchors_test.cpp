@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 
 namespace pkmopt {
 namespace {

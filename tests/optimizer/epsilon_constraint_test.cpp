@@ -12,7 +12,7 @@
 
 #include "optimizer/archive.hpp"
 #include "optimizer/indicators.hpp"
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 
 namespace pkmopt {
 namespace {

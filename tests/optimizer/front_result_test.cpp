@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 
 namespace pkmopt {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "optimizer/indicators.hpp"
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 
 namespace pkmopt {
 namespace {

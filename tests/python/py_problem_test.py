@@ -11,7 +11,7 @@ NSGA2 = {"algorithm": "nsga2", "population": 40, "generations": 200, "seed": 5}
 
 
 class Zdt1:
-    """ZDT1 (Zitzler, Deb & Thiele 2000), in the order of operations of problems/benchmarks.cpp,
+    """ZDT1 (Zitzler, Deb & Thiele 2000), in the order of operations of problems/benchmarks/benchmarks.cpp,
     so that every fitness is the built-in one to the last bit."""
 
     def __init__(self, n=30):

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -8,7 +8,7 @@
 #include <regex>
 #include <string>
 
-#include "io/machine_file.hpp"
+#include "io/machine/machine_file.hpp"
 
 namespace pkmopt {
 namespace {

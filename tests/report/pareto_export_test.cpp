@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "report/pareto_report.hpp"
 
 namespace {

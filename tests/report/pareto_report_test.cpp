@@ -1,6 +1,6 @@
 // Tests of report/pareto_report (plots, the knee slice, the HTML report) and `pkmopt export`
 // (CSV, JSON and HTML of a results folder; bad input). Reading and writing pareto.json and the
-// CSV of a front (io/pareto_json) are tested in tests/io/pareto_json_test.cpp.
+// CSV of a front (io/results/pareto_json) are tested in tests/io/results/pareto_json_test.cpp.
 #include "report/pareto_report.hpp"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "io/csv.hpp"
+#include "io/format/csv.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -25,7 +25,7 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
-// pareto.json fixtures, shared with tests/io/pareto_json_test.cpp.
+// pareto.json fixtures, shared with tests/io/results/pareto_json_test.cpp.
 const fs::path kFixtures = fs::path(PKMOPT_SOURCE_DIR) / "tests/io/data/pareto_json";
 
 class ExportTest : public scratch::ScratchDirTest {

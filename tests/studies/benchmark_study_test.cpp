@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "io/input_error.hpp"
-#include "io/yaml_reader.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/yaml_reader.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -13,10 +13,9 @@
 #include <sstream>
 #include <string>
 
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
-#include "io/machine_file.hpp"
-#include "io/machine_file_writer.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
+#include "io/machine/machine_file.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "tests/scratch_dir.hpp"
 
 namespace pkmopt {

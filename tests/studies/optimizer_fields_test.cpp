@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "problems/benchmarks.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 #include "studies/benchmark_study.hpp"
 
 namespace pkmopt {

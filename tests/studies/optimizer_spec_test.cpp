@@ -15,9 +15,9 @@
 #include <variant>
 #include <vector>
 
-#include "io/input_error.hpp"
-#include "io/yaml_reader.hpp"
-#include "problems/benchmarks.hpp"
+#include "io/format/input_error.hpp"
+#include "io/format/yaml_reader.hpp"
+#include "problems/benchmarks/benchmarks.hpp"
 #include "studies/benchmark_study.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -166,7 +166,8 @@ TEST(OptimizerSpec, SingleObjectiveSections) {
   EXPECT_EQ(std::get<NloptSpec>(crs.algorithm).options.population, 5u);
   const auto zdt1 = make_benchmark("zdt1", 5);
   const std::string odd = error_of("{algorithm: nsga2, population: 5}", *zdt1);
-  EXPECT_NE(odd.find("optimizer.population: expected an even integer in [4, 1000000]"), std::string::npos)
+  EXPECT_NE(odd.find("optimizer.population: expected an even integer in [4, 1000000]"),
+            std::string::npos)
       << odd;
   EXPECT_NE(odd.find("study.yaml:1:"), std::string::npos) << odd;
 }

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "io/input_error.hpp"
+#include "io/format/input_error.hpp"
 #include "tests/scratch_dir.hpp"
 
 namespace pkmopt {

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "io/csv.hpp"
-#include "io/input_error.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/input_error.hpp"
 #include "studies/run_lock.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"

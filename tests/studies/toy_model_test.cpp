@@ -1,4 +1,4 @@
-// A model of the test's own, registered in the model registry (io/model_registry.hpp), goes
+// A model of the test's own, registered in the model registry (io/machine/model_registry.hpp), goes
 // through the ordinary paths of every command: the machine file is read and described,
 // analyzed at poses and written as the analyze CSV, solved by forward kinematics, its workspace
 // computed, and a short design study over its design family runs and writes its front and
@@ -25,15 +25,15 @@
 #include <string>
 #include <vector>
 
-#include "io/analyze_csv.hpp"
-#include "io/field_list.hpp"
-#include "io/fk_csv.hpp"
-#include "io/machine_description.hpp"
-#include "io/machine_file.hpp"
-#include "io/model_registry.hpp"
-#include "io/pose_csv.hpp"
-#include "io/study_machine.hpp"
-#include "models/pose_analysis.hpp"
+#include "io/design/study_machine.hpp"
+#include "io/format/field_list.hpp"
+#include "io/format/pose_csv.hpp"
+#include "io/machine/machine_description.hpp"
+#include "io/machine/machine_file.hpp"
+#include "io/machine/model_registry.hpp"
+#include "io/results/analyze_csv.hpp"
+#include "io/results/fk_csv.hpp"
+#include "models/core/pose_analysis.hpp"
 #include "models/workspace/workspace.hpp"
 #include "studies/design_study.hpp"
 #include "studies/run_study.hpp"

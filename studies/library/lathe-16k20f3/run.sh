@@ -10,7 +10,7 @@ OUT=${1:-lathe-16k20f3-out}
 PKMOPT=${PKMOPT:-$(command -v pkmopt || echo "$HERE/../../../build/bin/pkmopt")}
 QUICK=${QUICK:-0}
 mkdir -p "$OUT"
-# The conversion study's turning load at the optimal approach angle arccot 2 (problems/cutting_load.hpp):
+# The conversion study's turning load at the optimal approach angle arccot 2 (problems/design/cutting_load.hpp):
 # 1186.63 N along x, 6633.45 N along z on the tool, in the lathe frame.
 WRENCH=1186.63,0,6633.45,0,0,0
 

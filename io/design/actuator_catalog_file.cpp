@@ -1,0 +1,138 @@
+#include "io/design/actuator_catalog_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "io/format/field_list.hpp"
+
+namespace pkmopt {
+namespace {
+
+// [min, max] with 0 < min <= max.
+FieldRule range_rule(std::string_view unit, std::string_view doc) {
+  return {.min = 0,
+          .min_exclusive = true,
+          .required = true,
+          .unit = unit,
+          .expected = "[min, max] with 0 < min <= max",
+          .doc = doc};
+}
+
+FieldRule positive(std::string_view unit, std::string_view doc, bool required) {
+  return {.min = 0, .min_exclusive = true, .required = required, .unit = unit, .doc = doc};
+}
+
+}  // namespace
+
+template <class Fields>
+void describe_fields(Fields& f, ActuatorEntry& e) {
+  f.field("name", e.name, {.required = true, .doc = "the entry's name, unique in the catalog"});
+  f.field("type", e.type,
+          {.required = true, .doc = "drive type, e.g. electric_cylinder, linear_motor"});
+  f.field("max_force", e.max_force, positive("N", "rated (continuous) axial force", true));
+  f.field(
+      "peak_force", e.peak_force,
+      positive("N", "short-time peak axial force (>= max_force; max_force when not given)", false));
+  f.field("stroke", e.stroke, positive("m", "stroke", true));
+  f.field("max_speed", e.max_speed, positive("m/s", "maximum speed", true));
+  f.field("accuracy", e.accuracy, positive("m", "positioning accuracy (repeatability)", false));
+  f.field("stiffness", e.stiffness, positive("N/m", "axial stiffness", false));
+  f.field("cost", e.cost,
+          positive("", "relative cost (the cheapest entry that carries wins)", false));
+}
+
+template <class Fields>
+void describe_fields(Fields& f, DriveType& t) {
+  f.field("name", t.name, {.required = true, .doc = "the drive type"});
+  FieldRange speed{.low = t.speed_min, .high = t.speed_max, .closed = true};
+  f.field("speed", speed, range_rule("m/s", "typical speed range"));
+  FieldRange accuracy{.low = t.accuracy_min, .high = t.accuracy_max, .closed = true};
+  f.field("accuracy", accuracy, range_rule("m", "typical positioning accuracy (best .. worst)"));
+  f.field("note", t.note, {.zero_is_unset = true, .doc = "free text"});
+}
+
+template <class Fields>
+void describe_fields(Fields& f, ActuatorCatalog& c) {
+  f.field("catalog", c.name, {.required = true, .doc = "the catalog's name"});
+  f.note("description", "a text", "", "none", "free text");
+  f.note("entries", "a list of at least one entry (entries[] below)", "", "required",
+         "the actuators, one entry per orderable variant");
+  f.note("drive_types", "a list of drive types (drive_types[] below)", "", "none",
+         "a comparison table of drive principles (not used for sizing)");
+}
+
+ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
+  ActuatorCatalog catalog;
+  read_fields(root, catalog);
+  if (const auto d = root.optional("description")) (void)d->as_string();
+  const YamlValue entries = root.required("entries");
+  const std::vector<YamlValue> items = entries.elements();
+  if (items.empty()) entries.fail("a list of at least one entry", "an empty list");
+  std::set<std::string> names;
+  for (const YamlValue& item : items) {
+    ActuatorEntry entry;
+    read_fields(item, entry);
+    if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
+    if (entry.peak_force && *entry.peak_force < entry.max_force) {
+      item.required("peak_force")
+          .fail(fmt::format("a peak force (N) >= max_force = {}", entry.max_force),
+                fmt::format("{}", *entry.peak_force));
+    }
+    if (!names.insert(entry.name).second) {
+      item.required("name").fail("a name not used by an earlier entry",
+                                 "'" + entry.name + "' again");
+    }
+    catalog.entries.push_back(std::move(entry));
+  }
+  if (const auto types = root.optional("drive_types")) {
+    for (const YamlValue& item : types->elements()) {
+      DriveType type;
+      read_fields(item, type);
+      catalog.drive_types.push_back(std::move(type));
+    }
+  }
+  return catalog;
+}
+
+ActuatorCatalog load_actuator_catalog(const std::string& path) {
+  return read_actuator_catalog(YamlValue::load_file(path));
+}
+
+std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog) {
+  auto flow_map = [](auto item) {  // "{key: value, ...}" of an entry or a drive type
+    FieldWriter w;
+    describe_fields(w, item);
+    return w.flow_map();
+  };
+  ActuatorCatalog copy = catalog;
+  FieldWriter top;  // catalog
+  describe_fields(top, copy);
+  std::string out = top.flow_lines();
+  // The lists by hand, as the reader takes them (no description: the catalog holds none).
+  out += catalog.entries.empty() ? "entries: []\n" : "entries:\n";
+  for (const ActuatorEntry& entry : catalog.entries) out += "  - " + flow_map(entry) + "\n";
+  if (!catalog.drive_types.empty()) out += "drive_types:\n";
+  for (const DriveType& type : catalog.drive_types) out += "  - " + flow_map(type) + "\n";
+  return out;
+}
+
+std::string actuator_catalog_fields_markdown() {
+  FieldDocs docs;
+  ActuatorCatalog catalog;
+  describe_fields(docs, catalog);
+  ActuatorEntry entry;
+  docs.set_prefix("entries[].");
+  describe_fields(docs, entry);
+  DriveType type;
+  docs.set_prefix("drive_types[].");
+  describe_fields(docs, type);
+  return docs.markdown();
+}
+
+}  // namespace pkmopt

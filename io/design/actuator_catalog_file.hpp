@@ -1,0 +1,35 @@
+// Reading actuator catalog files (YAML) into problems/design/actuator_catalog.
+//
+//   catalog: sew-cms                     # name, required
+//   description: "..."                   # optional
+//   entries:                             # at least one
+//     - {name: CMS63S/200, type: electric_cylinder, max_force: 10500, stroke: 0.200,
+//        max_speed: 0.45, accuracy: 1.0e-5, stiffness: 1.5e8, cost: 2.0}   # last 3 optional
+//   drive_types:                         # optional comparison table
+//     - {name: linear_motor, speed: [2, 5], accuracy: [1.0e-6, 5.0e-6], note: "..."}
+//
+// SI units: N, m, m/s, N/m. Strict: unknown keys, missing keys, non-finite or non-positive
+// numbers, repeated names -> InputError "file:line:col: key: expected ..., found ...". The keys
+// of the catalog, its entries and its drive types are described once in field lists
+// (io/format/field_list.hpp): the reader, the writer (actuator_catalog_to_yaml: numbers in their
+// shortest round-trip form, texts quoted where YAML needs it; the catalog holds no description, so
+// none is written) and the docs table in README.md come from them.
+#pragma once
+
+#include <string>
+
+#include "io/format/yaml_reader.hpp"
+#include "problems/design/actuator_catalog.hpp"
+
+namespace pkmopt {
+
+ActuatorCatalog read_actuator_catalog(const YamlValue& root);
+ActuatorCatalog load_actuator_catalog(const std::string& path);
+/// The catalog file text of a catalog (read back by read_actuator_catalog to the same catalog).
+std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog);
+
+/// The docs table of the catalog file's keys (entries' keys as `entries[].KEY`, drive types' as
+/// `drive_types[].KEY`), from the field lists the reader uses.
+std::string actuator_catalog_fields_markdown();
+
+}  // namespace pkmopt

@@ -1,0 +1,137 @@
+// The study section of a design-family model (io/design/study_machine.hpp): `parameters:` takes the
+// family's parameters, every other key of the model's machine file may follow except the keys
+// the parameters set. The template design is read by the model's machine-file reader from the
+// section with the parameter keys filled in from the defaults, so its messages point into the
+// study file.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "io/design/study_machine.hpp"
+#include "io/format/csv.hpp"
+#include "io/format/field_list.hpp"
+#include "io/machine/model_registry.hpp"
+
+namespace pkmopt {
+namespace {
+
+// The rule of a family parameter; `expected` holds the message text the rule points to.
+FieldRule family_parameter_rule(const FamilyParameter& p, std::string& expected) {
+  FieldRule rule{.unit = p.unit, .doc = p.doc};
+  if (!p.may_be_negative) {
+    rule.min = 0;
+    rule.min_exclusive = !p.may_be_zero;
+  }
+  if (std::isfinite(p.max_abs)) {
+    if (p.may_be_negative) rule.min = -p.max_abs;
+    rule.max = p.max_abs;
+    expected = p.may_be_negative
+                   ? fmt::format("values within [-{0}, {0}] {1}", format_number(p.max_abs), p.unit)
+                   : fmt::format("values within [0, {}] {}", format_number(p.max_abs), p.unit);
+    rule.expected = expected;
+  }
+  return rule;
+}
+
+template <class Fields>
+void describe_family_parameters(Fields& g, const DesignFamily& family,
+                                std::vector<StudyParameter>& parameters) {
+  for (std::size_t i = 0; i < family.parameters.size(); ++i) {
+    std::string expected;
+    FieldBounds bounds{parameters[i].min, parameters[i].max};
+    g.field(family.parameters[i].name, bounds,
+            family_parameter_rule(family.parameters[i], expected));
+  }
+}
+
+std::vector<StudyParameter> default_study_parameters(const DesignFamily& family) {
+  std::vector<StudyParameter> parameters;
+  for (const FamilyParameter& p : family.parameters)
+    parameters.push_back({p.name, p.unit, p.default_value, p.default_value});
+  return parameters;
+}
+
+class FamilyStudyMachine final : public StudyMachine {
+ public:
+  std::unique_ptr<DesignProblem> make_problem(DesignGoals goals) const override {
+    MachineDesignSpec spec;
+    spec.name = std::move(goals.name);
+    spec.family = family;
+    // The ranges in internal units, from the file-unit ones the section was read into.
+    for (std::size_t i = 0; i < family.parameters.size(); ++i)
+      spec.parameters.push_back({family.parameters[i].to_internal(parameters[i].min),
+                                 family.parameters[i].to_internal(parameters[i].max)});
+    spec.task = std::move(goals.task);
+    spec.objectives = std::move(goals.objectives);
+    spec.constraints = std::move(goals.constraints);
+    spec.require_reachable = goals.require_reachable;
+    return std::make_unique<MachineDesignProblem>(std::move(spec));
+  }
+  std::string machine_file(const std::vector<double>& p) const override {
+    return family.machine_file(p);
+  }
+
+  DesignFamily family;
+};
+
+}  // namespace
+
+std::string family_parameters_markdown(const DesignFamily& family) {
+  std::vector<StudyParameter> parameters = default_study_parameters(family);
+  FieldDocs docs;
+  describe_family_parameters(docs, family, parameters);
+  return docs.markdown();
+}
+
+std::unique_ptr<StudyMachine> read_family_study_machine(const ModelEntry& entry,
+                                                        const YamlValue& machine) {
+  const std::string& model = entry.name;
+  const DesignFamily defaults = entry.design_family(nullptr);
+  for (const std::string& key : defaults.parameter_keys)
+    if (machine.has(key))
+      machine.required(key).fail(fmt::format(
+          "no '{}' in the machine section of a {} design study: its parameters set it (give "
+          "them under machine.parameters)",
+          key, model));
+  const YAML::Node default_file = YAML::Load(defaults.machine_file(defaults.default_parameters()));
+  YAML::Node merged(YAML::NodeType::Map);
+  for (const auto& entry_node : machine.node())
+    if (entry_node.first.as<std::string>() != "parameters")
+      merged[entry_node.first] = entry_node.second;
+  for (const std::string& key : defaults.parameter_keys)
+    if (default_file[key]) merged[key] = default_file[key];
+  YamlValue template_section(merged, std::make_shared<const std::string>(machine.file()),
+                             machine.path());
+  template_section.set_location(machine.line(), machine.column());
+
+  auto study = std::make_unique<FamilyStudyMachine>();
+  study->model = model;
+  study->family = entry.design_family(&template_section);
+  const DesignFamily& family = study->family;
+  study->translational = family.translational;
+  study->parameters = default_study_parameters(family);
+  if (auto section = machine.optional("parameters")) {
+    FieldReader::read_section(
+        *section, [&](auto& g) { describe_family_parameters(g, family, study->parameters); });
+  }
+  FieldWriter writer;
+  writer.section("parameters", {},
+                 [&](auto& g) { describe_family_parameters(g, family, study->parameters); });
+  std::string yaml = "machine:\n  model: " + model + "\n" + writer.block(2);
+  // The template's own keys: the machine file of the defaults without the parameter keys.
+  std::istringstream lines(family.machine_file(family.default_parameters()));
+  for (std::string line; std::getline(lines, line);) {
+    const std::string key = line.substr(0, line.find(':'));
+    if (key == "model" || std::find(family.parameter_keys.begin(), family.parameter_keys.end(),
+                                    key) != family.parameter_keys.end())
+      continue;
+    yaml += "  " + line + "\n";
+  }
+  study->resolved_yaml = std::move(yaml);
+  return study;
+}
+
+}  // namespace pkmopt

@@ -1,0 +1,105 @@
+// The model registry: the one list of machine models.
+//
+// Every machine model registers once, with what the rest of pkmopt needs to know about it:
+//   name            the `model:` value of its machine files ("hexapod", "delta", ...)
+//   load            its machine file (a parsed YAML map) -> a Machine; strict, throws InputError
+//                   naming file, line, column and key. Empty for a model that is described but
+//                   not computed (serial axes by coordinate code)
+//   fields_markdown the docs table of its machine file's keys (docs/machines.md), from the same
+//                   field list its reader and writer use (io/format/field_list.hpp)
+//   platform_dofs   the platform's degrees of freedom {translations, rotations} of a file, for
+//                   `pkmopt describe`
+//   describe        a description of its own (serial axes, hybrids); empty: the default one,
+//                   platform_dofs and the actuators of the loaded machine
+//   design_family or study_machine   how it takes part in design studies
+//   (io/design/study_machine.hpp)
+// Commands, the study engine, the Python package and the docs tables find models here; a
+// model's own files (its machine, its field list, its design family) hold everything else
+// about it, and no other file names it.
+//
+// The registry lives in io/ because an entry carries its file reader and docs table; the layers
+// below (models/, problems/) know machines and design families, not their names in files.
+//
+// The built-in models are registered by io/machine/model_registry.cpp. A program (or a test) may
+// add its own for as long as a ModelRegistration lives:
+//
+//   ModelEntry entry;
+//   entry.name = "planar_3rpr";
+//   entry.load = [](const YamlValue& root) { return std::make_unique<Planar3Rpr>(read(root)); };
+//   entry.platform_dofs = [](const YamlValue&) { return PlatformDofs{2, 1}; };
+//   const ModelRegistration registration(std::move(entry));
+//   std::unique_ptr<Machine> m = load_machine(YamlValue::load_file("rpr.yaml"));
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/format/yaml_reader.hpp"
+#include "models/core/machine.hpp"
+#include "problems/design/machine_design.hpp"
+
+namespace pkmopt {
+
+struct MachineDescription;  // io/machine/machine_description.hpp
+class StudyMachine;         // io/design/study_machine.hpp
+
+/// The degrees of freedom of a machine's platform (or tool) relative to its base.
+struct PlatformDofs {
+  int translations = 0;
+  int rotations = 0;
+};
+
+/// One model of the registry (see the header comment).
+struct ModelEntry {
+  std::string name;
+  std::function<std::unique_ptr<Machine>(const YamlValue& root)> load;
+  std::function<std::string()> fields_markdown;
+  std::function<PlatformDofs(const YamlValue& root)> platform_dofs;
+  std::function<void(const YamlValue& root, MachineDescription& description)> describe;
+
+  // Design studies (io/design/study_machine.hpp), one of:
+  /// the model's design family around a template machine section (null: the defaults); the
+  /// family's machine_file writes its designs;
+  std::function<DesignFamily(const YamlValue* machine)> design_family;
+  /// a reader of its own for a study's `machine:` section, with its docs table.
+  std::function<std::unique_ptr<StudyMachine>(const YamlValue& machine)> study_machine;
+  std::function<std::string()> study_fields_markdown;
+};
+
+/// The model named `name`; nullptr when none is registered.
+const ModelEntry* find_model(std::string_view name);
+
+/// The model of a machine file's `model:` value that `load` can build; throws InputError at the
+/// value otherwise ("a known model (hexapod, delta, ...)").
+const ModelEntry& machine_model(const YamlValue& model_value);
+
+/// Every registered model, built-in ones first, in registration order.
+std::vector<const ModelEntry*> registered_models();
+
+/// The names of the models with a machine `load`, comma-separated ("hexapod, delta, ...").
+std::string machine_model_names();
+
+/// Adds a model for the lifetime of this object (a test's model, a plug-in); throws
+/// std::invalid_argument when the name is empty or taken.
+class ModelRegistration {
+ public:
+  explicit ModelRegistration(ModelEntry entry);
+  ~ModelRegistration();
+  ModelRegistration(const ModelRegistration&) = delete;
+  ModelRegistration& operator=(const ModelRegistration&) = delete;
+
+ private:
+  std::string name_;
+};
+
+// The built-in entries, each defined next to its model's machine-file reader.
+ModelEntry hexapod_model_entry();                   // io/machine/machine_file.cpp
+std::vector<ModelEntry> leg_chain_model_entries();  // io/machine/machine_file_leg_chain.cpp
+ModelEntry lathe_model_entry();                     // io/machine/machine_file_lathe.cpp
+ModelEntry hybrid_model_entry();                    // io/machine/machine_file_hybrid.cpp
+ModelEntry serial_model_entry();                    // io/machine/machine_file_serial.cpp
+
+}  // namespace pkmopt

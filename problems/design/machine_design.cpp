@@ -1,0 +1,218 @@
+#include "problems/design/machine_design.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "models/core/require.hpp"
+
+namespace pkmopt {
+
+// ---------------------------------------------------------------------------------------------
+// Families.
+
+double FamilyParameter::to_internal(double file_value) const {
+  return in_degrees() ? deg_to_rad(file_value) : file_value;
+}
+double FamilyParameter::to_file(double internal_value) const {
+  return in_degrees() ? rad_to_deg(internal_value) : internal_value;
+}
+
+int DesignFamily::index_of(std::string_view name) const {
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<double> DesignFamily::default_parameters() const {
+  std::vector<double> p;
+  for (const FamilyParameter& parameter : parameters)
+    p.push_back(parameter.to_internal(parameter.default_value));
+  return p;
+}
+
+double envelope_machine_size(const Machine& machine, const std::vector<double>& /*parameters*/) {
+  return machine_envelope_volume(machine).value_or(std::numeric_limits<double>::quiet_NaN());
+}
+
+std::vector<ParameterRange> default_ranges(const DesignFamily& family) {
+  std::vector<ParameterRange> ranges;
+  for (double value : family.default_parameters()) ranges.push_back({value, value});
+  return ranges;
+}
+
+namespace {
+
+double lift(const std::vector<double>& p, std::size_t home_index) { return p.at(home_index); }
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// The problem.
+
+double pose_reach_violation(const Machine& machine, const Pose& pose) {
+  const std::optional<double> excess = machine.reach_excess(pose);
+  // Unreachable for a reason the terms do not see (a rotation of a translational platform...).
+  if (!excess || !(*excess > 0.0)) return 1.0;
+  return std::min(1.0, *excess);
+}
+
+MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::move(spec)) {
+  const std::string where = fmt::format("{} design problem '{}'", spec_.family.model, spec_.name);
+  const DesignFamily& family = spec_.family;
+  if (!family.build || !family.machine_size)
+    throw std::invalid_argument(where + ": the design family lacks a builder or machine_size");
+  if (spec_.parameters.size() != family.parameters.size())
+    throw std::invalid_argument(fmt::format("{}: expected {} parameter ranges, found {}", where,
+                                            family.parameters.size(), spec_.parameters.size()));
+  for (std::size_t i = 0; i < spec_.parameters.size(); ++i) {
+    const ParameterRange& r = spec_.parameters[i];
+    if (!std::isfinite(r.lower) || !std::isfinite(r.upper) || r.lower > r.upper)
+      throw std::invalid_argument(
+          fmt::format("{}: parameter {}: expected finite lower <= upper, found [{}, {}]", where,
+                      family.parameters[i].name, r.lower, r.upper));
+    if (!r.fixed()) free_.push_back(static_cast<int>(i));
+  }
+  home_height_ = family.index_of("home_height");
+  needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
+  for (int m = 0; m < kNumDesignMetrics; ++m)
+    if (needed_[m] && is_actuator_metric(static_cast<DesignMetric>(m)))
+      throw std::invalid_argument(fmt::format(
+          "{}: {} needs an actuator catalog to choose from, which only hexapod design problems "
+          "have; bound leg_force_max instead",
+          where, design_metric_name(static_cast<DesignMetric>(m))));
+  if (spec_.task.acceleration_max > 0.0)
+    throw std::invalid_argument(
+        fmt::format("{}: task a_max needs a mass model, which only hexapod design problems have "
+                    "(machine.masses)",
+                    where));
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass,
+                                    DesignMetric::actuator_force_dynamic_max})
+    if (needed_[static_cast<int>(metric)])
+      throw std::invalid_argument(fmt::format(
+          "{}: {} needs a mass model, which only hexapod design problems have (machine.masses)",
+          where, design_metric_name(metric)));
+  if (spec_.task.installation_space.present())
+    throw std::invalid_argument(fmt::format(
+        "{}: task installation_space is checked only in hexapod design problems", where));
+  for (const DesignMetric m : {DesignMetric::swept_volume, DesignMetric::footprint})
+    if (needed_[static_cast<int>(m)])
+      throw std::invalid_argument(fmt::format(
+          "{}: {} is computed only in hexapod design problems (the convex hull of the joints "
+          "over the task); this family has machine_size",
+          where, design_metric_name(m)));
+  if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)]) {
+    // The template's shape is every design's (the family's parameters are dimensions).
+    const std::vector<double> middle = [&] {
+      std::vector<double> p;
+      for (const ParameterRange& r : spec_.parameters) p.push_back(0.5 * (r.lower + r.upper));
+      return p;
+    }();
+    bool shaped = false;
+    try {
+      shaped = family.build(middle)->checks_leg_interference();
+    } catch (const std::invalid_argument&) {
+      shaped = true;  // an invalid middle design says nothing about the shape; evaluations will
+    }
+    if (!shaped)
+      throw std::invalid_argument(fmt::format(
+          "{}: leg_clearance_min needs the links' shape (machine.link_diameter or crank_diameter, "
+          "docs/interference.md)",
+          where));
+  }
+}
+
+Bounds MachineDesignProblem::bounds() const {
+  Bounds b;
+  for (int i : free_) {
+    b.lower.push_back(spec_.parameters[static_cast<std::size_t>(i)].lower);
+    b.upper.push_back(spec_.parameters[static_cast<std::size_t>(i)].upper);
+  }
+  return b;
+}
+
+std::vector<double> MachineDesignProblem::parameters_of(const std::vector<double>& x) const {
+  if (x.size() != free_.size())
+    throw std::invalid_argument(
+        fmt::format("{}: expected {} variables, found {}", spec_.name, free_.size(), x.size()));
+  std::vector<double> p;
+  for (const ParameterRange& r : spec_.parameters) p.push_back(r.lower);
+  for (std::size_t j = 0; j < free_.size(); ++j) p[static_cast<std::size_t>(free_[j])] = x[j];
+  return p;
+}
+
+double MachineDesignProblem::home_height_of(const std::vector<double>& parameters) const {
+  return home_height_ < 0 ? 0.0 : lift(parameters, static_cast<std::size_t>(home_height_));
+}
+
+MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>& x) const {
+  MachineDesignEvaluation ev;
+  ev.parameters = parameters_of(x);
+  ev.metrics.fill(0.0);
+  ev.reach_violation = 1.0;
+  std::unique_ptr<Machine> machine;
+  try {
+    machine = spec_.family.build(ev.parameters);
+  } catch (const std::invalid_argument& error) {
+    ev.failure = fmt::format("invalid machine: {}", error.what());
+    return ev;
+  }
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
+  metric(DesignMetric::machine_size) = spec_.family.machine_size(*machine, ev.parameters);
+
+  // Every pose is analysed (reachability and the per-pose metrics come from one call).
+  const double h = home_height_of(ev.parameters);
+  const std::unique_ptr<MachineData> data = machine->make_data();
+  data->compliance_metrics = needed_[static_cast<int>(DesignMetric::tcp_deflection_max)] ||
+                             needed_[static_cast<int>(DesignMetric::stiffness_min_loaded)];
+  PoseMetrics m;
+  TaskWorstCase worst;
+  double reach_sum = 0.0;
+  for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
+    Pose pose = spec_.task.poses[k];
+    pose.position.z() += h;
+    machine->analyze(*data, pose, spec_.task.wrench, m);
+    if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
+    if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
+    if (m.singular && ev.failure.empty())
+      ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
+                               pose.position.x(), pose.position.y(), pose.position.z());
+    worst.add(m);
+    ++ev.analysed_poses;
+  }
+  ev.reach_violation = reach_sum / static_cast<double>(spec_.task.poses.size());
+  ev.reachable = reach_sum == 0.0;
+  if (ev.analysed_poses == 0 && ev.failure.empty())
+    ev.failure = "no task pose can be analysed (every pose is unreachable and singular)";
+  worst.store(ev.metrics);
+  measure_workspace_metrics(*machine, spec_.task.workspace, needed_, ev.metrics, ev.failure);
+  check_finite_metrics(needed_, ev.metrics, ev.failure);
+  return ev;
+}
+
+std::vector<double> MachineDesignProblem::aggregate_fitness(
+    const MachineDesignEvaluation& ev) const {
+  return aggregate_design_rows(spec_.objectives, spec_.constraints, spec_.require_reachable,
+                               ev.metrics, ev.reach_violation, !ev.ok());
+}
+
+DesignRecord MachineDesignProblem::measure(const std::vector<double>& x) const {
+  MachineDesignEvaluation ev = evaluate(x);
+  DesignRecord record;
+  record.home_height = home_height_of(ev.parameters);
+  record.metrics = ev.metrics;
+  record.aggregate = aggregate_fitness(ev);
+  record.failure = std::move(ev.failure);
+  record.parameters = std::move(ev.parameters);
+  return record;
+}
+
+std::vector<double> MachineDesignProblem::fitness(const std::vector<double>& x) const {
+  return aggregate_fitness(evaluate(x));
+}
+
+}  // namespace pkmopt

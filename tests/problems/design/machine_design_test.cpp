@@ -1,0 +1,237 @@
+#include "problems/design/machine_design.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+
+#include "models/hexapod/hexapod.hpp"
+#include "problems/design/leg_chain_design.hpp"
+
+namespace pkmopt {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A linear delta problem: rod, stroke and home_height free, a 3 x 3 x 2 box below the base.
+MachineDesignSpec linear_delta_spec() {
+  MachineDesignSpec spec;
+  spec.name = "linear-delta-test";
+  LinearDeltaDesign t;
+  t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  t.carriage_max_angle = deg_to_rad(60);
+  t.platform_max_angle = deg_to_rad(60);
+  spec.family = linear_delta_family(t);
+  spec.parameters = default_ranges(spec.family);
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("rod"))] = {0.4, 0.9};
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("stroke"))] = {0.3, 0.8};
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("home_height"))] = {-0.2, 0.2};
+  spec.task.poses = box_task_poses({0, 0, -0.35}, {0.1, 0.1, 0.05}, {3, 3, 2}, 0, 0);
+  spec.task.wrench << 300, 300, -1000, 0, 0, 0;
+  spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize},
+                     {DesignMetric::leg_force_max, Sense::minimize},
+                     {DesignMetric::machine_size, Sense::minimize}};
+  spec.constraints = {{DesignMetric::singularity_margin, Relation::greater_equal, 0.05},
+                      {DesignMetric::tcp_error_max, Relation::less_equal, 1e-4}};
+  return spec;
+}
+
+TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
+  const MachineDesignProblem problem(linear_delta_spec());
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation ev = problem.evaluate(x);
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  EXPECT_EQ(ev.analysed_poses, problem.spec().task.poses.size());
+
+  // The same design built directly from the model.
+  LinearDeltaDesign d;
+  d.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  d.carriage_max_angle = d.platform_max_angle = deg_to_rad(60);
+  d.rod = 0.7;
+  d.q_min = 0.0;
+  d.q_max = 0.6;
+  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const auto data = machine->make_data();
+  double stiffness = kInf, margin = kInf, force = 0.0, error = 0.0;
+  int reachable = 0;
+  double reach_sum = 0.0;
+  for (Pose pose : problem.spec().task.poses) {
+    pose.position.z() += 0.1;
+    PoseMetrics m;
+    machine->analyze(*data, pose, problem.spec().task.wrench, m);
+    ASSERT_FALSE(m.singular);
+    stiffness = std::min(stiffness, m.stiffness_min);
+    margin = std::min(margin, m.singularity_margin);
+    for (int i = 0; i < m.tau.size(); ++i) force = std::max(force, std::abs(m.tau(i)));
+    error = std::max(error, m.tcp_error_max);
+    reachable += m.reachable ? 1 : 0;
+    if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
+  }
+  auto metric = [&](DesignMetric m) { return ev.metrics[static_cast<int>(m)]; };
+  EXPECT_EQ(metric(DesignMetric::stiffness_min), stiffness);
+  EXPECT_EQ(metric(DesignMetric::singularity_margin), margin);
+  EXPECT_EQ(metric(DesignMetric::leg_force_max), force);
+  EXPECT_EQ(metric(DesignMetric::tcp_error_max), error);
+  EXPECT_EQ(metric(DesignMetric::machine_size), *machine->envelope_volume());
+  const double poses = static_cast<double>(problem.spec().task.poses.size());
+  EXPECT_EQ(ev.reach_violation, reach_sum / poses);
+  EXPECT_EQ(ev.reachable, reachable == static_cast<int>(poses));
+
+  // Rows: maximised objectives flip sign, constraints follow their relation, then reachability.
+  const std::vector<double> f = problem.fitness(x);
+  ASSERT_EQ(f.size(), 3u + 2u + 1u);
+  EXPECT_EQ(f[0], -stiffness);
+  EXPECT_EQ(f[1], force);
+  EXPECT_EQ(f[2], metric(DesignMetric::machine_size));
+  EXPECT_EQ(f[3], 0.05 - margin);
+  EXPECT_EQ(f[4], error - 1e-4);
+  EXPECT_EQ(f[5], ev.reach_violation);
+}
+
+TEST(MachineDesign, FailuresGivePenaltyRowsAndAReason) {
+  {  // an impossible machine: the drive range is empty
+    MachineDesignSpec spec;
+    spec.family = delta_family(DeltaDesign{});
+    spec.parameters = default_ranges(spec.family);
+    spec.parameters[4] = {deg_to_rad(-10), deg_to_rad(50)};  // drive_min_deg free
+    spec.parameters[5] = {deg_to_rad(0), deg_to_rad(0)};     // drive_max_deg fixed at 0
+    spec.task.poses = {Pose{{0, 0, -1.0}, {0, 0, 0}}};
+    spec.objectives = {{DesignMetric::stiffness_min, Sense::maximize}};
+    const MachineDesignProblem problem(spec);
+    const MachineDesignEvaluation ev = problem.evaluate({deg_to_rad(20)});
+    EXPECT_NE(ev.failure.find("invalid machine"), std::string::npos) << ev.failure;
+    for (double v : problem.fitness({deg_to_rad(20)})) EXPECT_EQ(v, kFailurePenalty);
+    EXPECT_TRUE(problem.evaluate({deg_to_rad(-10)}).ok());
+  }
+  {  // a task out of reach of every rod (5 m aside): nothing to analyse
+    MachineDesignSpec spec = linear_delta_spec();
+    spec.task.poses = box_task_poses({5.0, 0, -0.4}, {0.1, 0.1, 0.1}, {2, 2, 2}, 0, 0);
+    const MachineDesignProblem problem(spec);
+    const MachineDesignEvaluation ev = problem.evaluate({0.7, 0.6, 0.0});
+    EXPECT_EQ(ev.analysed_poses, 0u);
+    EXPECT_EQ(ev.reach_violation, 1.0);
+    EXPECT_NE(ev.failure.find("no task pose"), std::string::npos) << ev.failure;
+    for (double v : problem.fitness({0.7, 0.6, 0.0})) EXPECT_EQ(v, kFailurePenalty);
+  }
+  {  // part of the task beyond the stroke: infeasible but measured, g_reach = the fraction
+    MachineDesignSpec spec = linear_delta_spec();
+    const MachineDesignProblem problem(spec);
+    const MachineDesignEvaluation ev = problem.evaluate({0.9, 0.3, -0.2});
+    ASSERT_TRUE(ev.ok()) << ev.failure;
+    EXPECT_GT(ev.reach_violation, 0.0);
+    EXPECT_LT(ev.reach_violation, 1.0);
+    EXPECT_FALSE(ev.reachable);
+    EXPECT_EQ(problem.fitness({0.9, 0.3, -0.2}).back(), ev.reach_violation);
+  }
+}
+
+TEST(MachineDesign, ReachViolationIsTheExcessOverTheStrokeOrJointLimit) {
+  LinearDeltaDesign d;  // vertical guides, stroke [0, 0.6], joints unlimited
+  const Pose pose{{0.05, -0.02, -0.1}, {0, 0, 0}};
+  const auto reference = std::make_unique<LegChainMachine>(linear_delta_design(d));
+  const std::optional<Eigen::VectorXd> q = reference->inverse_kinematics(pose);
+  ASSERT_TRUE(q.has_value());
+  ASSERT_TRUE(reference->reachable(*reference->make_data(), pose));
+  d.q_max = q->maxCoeff() - 0.02;  // the highest carriage now misses by 20 mm
+  EXPECT_NEAR(pose_reach_violation(*make_linear_delta(d), pose), 0.02, 1e-12);
+  d.q_max = q->maxCoeff() - 2.0;  // capped at 1
+  d.q_min = d.q_max - 0.5;
+  EXPECT_EQ(pose_reach_violation(*make_linear_delta(d), pose), 1.0);
+  d = LinearDeltaDesign{};
+  Eigen::VectorXd base_angles, platform_angles;
+  reference->joint_angles(pose, base_angles, platform_angles);
+  d.carriage_max_angle = base_angles.maxCoeff() - 0.01;  // 0.01 rad over the carriage limit
+  EXPECT_NEAR(pose_reach_violation(*make_linear_delta(d), pose), 0.01, 1e-12);
+  // A pose no rod reaches.
+  EXPECT_EQ(pose_reach_violation(*reference, Pose{{5, 0, -0.4}, {0, 0, 0}}), 1.0);
+}
+
+// A linear delta with rods of a diameter: leg_clearance_min is the smallest clearance of the
+// built machine over the lifted task; a pose whose rods are closer than min_clearance misses by
+// the gap. Without a link shape the metric is refused.
+TEST(MachineDesign, LegChainLinksGiveLegClearanceMin) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.objectives.push_back({DesignMetric::leg_clearance_min, Sense::maximize});
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+  LinearDeltaDesign t;
+  t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  t.carriage_max_angle = t.platform_max_angle = deg_to_rad(60);
+  t.shapes.link_diameter = 0.03;
+  spec.family = linear_delta_family(t);
+  const MachineDesignProblem problem(spec);
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation ev = problem.evaluate(x);
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  LinearDeltaDesign d = t;
+  d.rod = 0.7;
+  d.q_max = 0.6;
+  const LegChainMachine machine(linear_delta_design(d));
+  double clearance = kInf;
+  for (Pose pose : problem.spec().task.poses) {
+    pose.position.z() += 0.1;
+    clearance = std::min(clearance, machine.leg_clearance(pose).value);
+  }
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::leg_clearance_min)], clearance);
+  EXPECT_GT(clearance, 0.0);
+  // A min_clearance beyond the clearance at a pose: that pose misses by the difference.
+  const Pose pose{{0.05, -0.02, -0.1}, {0, 0, 0}};
+  d.shapes.min_clearance = machine.leg_clearance(pose).value + 0.003;
+  const LegChainMachine tight(linear_delta_design(d));
+  EXPECT_FALSE(tight.reachable(*tight.make_data(), pose));
+  EXPECT_NEAR(pose_reach_violation(tight, pose), 0.003, 1e-12);
+}
+
+TEST(MachineDesign, SpecErrorsNameTheField) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.parameters.pop_back();
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+  spec = linear_delta_spec();
+  spec.objectives.clear();
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+  spec = linear_delta_spec();
+  spec.parameters[0] = {0.5, 0.4};
+  try {
+    MachineDesignProblem problem(spec);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("guide_radius"), std::string::npos) << e.what();
+  }
+  // The catalog actuator metrics belong to hexapod problems (they choose from a catalog).
+  spec = linear_delta_spec();
+  spec.objectives.push_back({DesignMetric::actuator_cost, Sense::minimize});
+  try {
+    MachineDesignProblem problem(spec);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("actuator_cost needs an actuator catalog"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(MachineDesign, BatchesAreBitIdenticalOnOneAndTwoThreads) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.objectives.push_back({DesignMetric::workspace_volume, Sense::maximize});
+  spec.task.workspace.resolution = 0.1;
+  const MachineDesignProblem problem(spec);
+  std::mt19937_64 engine(7);
+  const Bounds b = problem.bounds();
+  std::vector<std::vector<double>> xs(6);
+  for (auto& x : xs)
+    for (std::size_t j = 0; j < b.lower.size(); ++j)
+      x.push_back(b.lower[j] +
+                  (b.upper[j] - b.lower[j]) * static_cast<double>(engine() >> 11) * 0x1.0p-53);
+  const auto serial = problem.batch_fitness(xs, 1);
+  const auto parallel = problem.batch_fitness(xs, 2);
+  ASSERT_EQ(serial.size(), parallel.size());
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    EXPECT_EQ(serial[k], parallel[k]) << k;
+    EXPECT_EQ(serial[k], problem.fitness(xs[k])) << k;
+  }
+}
+
+}  // namespace
+}  // namespace pkmopt
