@@ -8,6 +8,12 @@ models and optimizer know nothing of each other. Every `#include "LAYER/..."` li
 anything. Also fails when app/ holds anything but main.cpp, cli_args.*, error_report.*,
 commands.hpp and commands/cmd_*.cpp (the command line only).
 
+Inside models/, every source file lives in a folder that names what it holds, and the folders are
+layered too: core/ (Machine, capabilities, poses) includes only core/; the shared capability
+folders (stiffness, dynamics, geometry, motion, workspace) include core/ and each other; a model's
+folder (hexapod, leg_chain, serial, hybrid) includes core/, the shared folders and itself (a hybrid
+machine also its serial axes). No model's folder reaches into another's.
+
 Usage: /usr/bin/python3 tests/layer_includes.py [SOURCE_ROOT]
 """
 
@@ -28,6 +34,19 @@ ALLOWED = {
     "fuzz": {"fuzz", "studies", "report", "io", "problems", "models", "optimizer", "pkmopt"},
 }
 LAYERS = set(ALLOWED) - {"pkmopt"}
+# models/ folders: the folders of models/ each may include (itself included).
+SHARED = {"core", "stiffness", "dynamics", "geometry", "motion", "workspace"}
+MODEL_FOLDERS = {
+    "core": {"core"},
+    **{shared: SHARED for shared in SHARED - {"core"}},
+    "hexapod": SHARED | {"hexapod"},
+    "leg_chain": SHARED | {"leg_chain"},
+    "serial": SHARED | {"serial"},
+    "hybrid": SHARED | {"hybrid", "serial"},
+}
+# Files of models/ outside its folders: the named sample machines of tests and benchmarks.
+MODELS_TOP = {"sample_machines.hpp", "CMakeLists.txt"}
+MODELS_INCLUDE = re.compile(r'^\s*#\s*include\s*"models/([^"/]+)/[^"]+"')
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"/]+)/[^"]+"')
 APP_FILES = re.compile(r"^(main\.cpp|(cli_args|error_report)\.(hpp|cpp)|commands\.hpp"
                        r"|commands/cmd_[a-z_]+\.cpp"
@@ -50,6 +69,13 @@ def main():
                 if layer == "app" and not APP_FILES.match(rel):
                     problems.append(f"app/{rel}: app/ holds command-line code only (main.cpp, "
                                     "cli_args, error_report, commands.hpp, commands/cmd_*.cpp)")
+                folder = rel.split(os.sep)[0] if os.sep in rel else None
+                if layer == "models" and folder is None and name not in MODELS_TOP:
+                    problems.append(f"models/{rel}: a file of models/ lives in the folder of what "
+                                    f"it holds ({', '.join(sorted(MODEL_FOLDERS))})")
+                if layer == "models" and folder is not None and folder not in MODEL_FOLDERS:
+                    problems.append(f"models/{rel}: '{folder}/' is not a folder of models/ this "
+                                    "check knows (add it to MODEL_FOLDERS with what it may include)")
                 if not name.endswith((".hpp", ".cpp", ".inc", ".h")):
                     continue
                 checked += 1
@@ -59,6 +85,12 @@ def main():
                         if not m:
                             continue
                         target = m.group(1)
+                        sub = MODELS_INCLUDE.match(line)
+                        if layer == "models" and folder in MODEL_FOLDERS and sub:
+                            if sub.group(1) not in MODEL_FOLDERS[folder]:
+                                problems.append(f"models/{rel}:{number}: includes "
+                                                f"'models/{sub.group(1)}/', which "
+                                                f"'models/{folder}/' may not use")
                         if target in LAYERS and target not in ALLOWED[layer]:
                             problems.append(f"{layer}/{rel}:{number}: includes '{target}/', a "
                                             f"layer above '{layer}'")

@@ -16,6 +16,7 @@
 #include "io/format/pose_csv.hpp"
 #include "io/machine/machine_file.hpp"
 #include "io/results/analyze_csv.hpp"
+#include "models/core/capabilities.hpp"
 #include "models/core/pose_analysis.hpp"
 #include "studies/distribute.hpp"
 
@@ -109,11 +110,9 @@ void analyze_shared(const AnalyzeOptions& opt, const Machine& machine, const Pos
 void run_analyze(const AnalyzeOptions& opt) {
   // Read and validate every input before anything is written.
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
-  if (opt.modes && machine->natural_frequency_count() == 0) {
-    throw InputError(
-        fmt::format("{}: --mode-shapes needs a mass model: the machine file has no "
-                    "'masses' (docs/dynamics.md)",
-                    opt.machine_file));
+  if (const Capability<Dynamics> dynamics = machine->dynamics(); opt.modes && !dynamics) {
+    throw InputError(fmt::format("{}: --mode-shapes needs a mass model: {} (docs/dynamics.md)",
+                                 opt.machine_file, dynamics.reason()));
   }
   Wrench wrench = Wrench::Zero();
   if (!opt.wrench.empty()) {

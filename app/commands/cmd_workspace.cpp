@@ -228,7 +228,7 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   const std::string invalid = validate(options);
   if (!invalid.empty()) throw InputError(invalid);
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
-  if (metric == SliceMetric::kNaturalFrequency1 && machine->natural_frequency_count() == 0) {
+  if (metric == SliceMetric::kNaturalFrequency1 && !machine->dynamics()) {
     throw InputError(fmt::format(
         "--slice-metric natural_frequency_1: {} has no masses (docs/dynamics.md), found a model "
         "'{}' without them",

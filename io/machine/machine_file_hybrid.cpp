@@ -229,7 +229,7 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
     describe_parallel(reader, design);
   }
   if (const auto gravity = root.optional("gravity")) {  // by hand: the one top-level number list
-    if (design.module->mass_model() == nullptr) {
+    if (!design.module->dynamics()) {
       gravity->fail("gravity only with a module that has masses",
                     "gravity and a module without masses");
     }

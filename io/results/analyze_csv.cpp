@@ -1,5 +1,6 @@
 #include "io/results/analyze_csv.hpp"
 
+#include "models/core/capabilities.hpp"
 #include "models/geometry/leg_interference.hpp"
 
 namespace pkmopt {
@@ -15,9 +16,10 @@ std::vector<std::string> analyze_value_columns(const Machine& machine, bool mode
                            "stiffness_dir_x", "stiffness_dir_y", "stiffness_dir_z"})
     names.emplace_back(name);
   if (machine.checks_leg_interference()) names.emplace_back("leg_clearance");
-  const int nf = machine.natural_frequency_count();
+  const Capability<Dynamics> dynamics = machine.dynamics();
+  const int nf = dynamics ? dynamics->natural_frequency_count() : 0;
   for (int j = 1; j <= nf; ++j) names.push_back("natural_frequency_" + std::to_string(j));
-  const int axes = machine.mode_axis_count();
+  const int axes = dynamics ? dynamics->mode_axis_count() : 0;
   static constexpr const char* kTwist[] = {"dx", "dy", "dz", "drx", "dry", "drz"};
   if (modes) {
     for (int k = 1; k <= nf; ++k) {
@@ -48,13 +50,14 @@ void analyze_values(const Machine& machine, const PoseMetrics& m, const PoseMode
   *out++ = m.stiffness_min_loaded;
   for (int k = 0; k < 3; ++k) *out++ = m.stiffness_min_direction(k) + 0.0;
   if (machine.checks_leg_interference()) *out++ = m.leg_clearance;
-  const int nf = machine.natural_frequency_count();
+  const Capability<Dynamics> dynamics = machine.dynamics();
+  const int nf = dynamics ? dynamics->natural_frequency_count() : 0;
   for (int j = 0; j < nf; ++j) {
     const bool have = j < m.natural_frequencies.size();
     *out++ = have ? m.natural_frequencies(j) : 0.0;
   }
   if (modes) {
-    const int axes = machine.mode_axis_count();
+    const int axes = dynamics ? dynamics->mode_axis_count() : 0;
     const Eigen::MatrixXd& shapes = modes->shapes;
     const bool have = shapes.rows() == axes + 6 && shapes.cols() >= nf;
     for (int k = 0; k < nf; ++k)

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "io/format/pose_csv.hpp"
+#include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 
 namespace pkmopt {

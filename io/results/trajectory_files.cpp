@@ -8,6 +8,7 @@
 
 #include "io/format/csv.hpp"
 #include "io/format/pose_csv.hpp"
+#include "models/dynamics/mass_model.hpp"
 #include "models/geometry/leg_interference.hpp"
 
 namespace pkmopt {

@@ -52,7 +52,6 @@
 
 #include "models/core/machine_sketch.hpp"
 #include "models/core/pose.hpp"
-#include "models/dynamics/mass_model.hpp"
 
 namespace pkmopt {
 
@@ -91,16 +90,6 @@ struct PoseCompliance {
   /// The translational block of the loaded compliance K_T^-1 (m/N), whose largest singular value
   /// gives stiffness_min_loaded; +inf entries when the loaded machine is unstable.
   Eigen::Matrix3d loaded_compliance_tt = Eigen::Matrix3d::Zero();
-};
-
-/// The natural modes of one pose (Machine::mode_shapes).
-struct PoseModes {
-  Eigen::VectorXd frequencies;  ///< Hz, ascending: PoseMetrics::natural_frequencies
-  /// Column k is mode k: the displacements of the serial axes of a hybrid machine (m, one row per
-  /// axis, Machine::mode_axis_count), then the TCP twist [dp (m); dtheta (rad)] in base axes.
-  /// Mass-normalised, x^T M x = 1 with M the mass matrix over the same coordinates (kg, kg*m^2);
-  /// the sign makes the largest of the machine's DOF components positive.
-  Eigen::MatrixXd shapes;
 };
 
 /// Options of the forward kinematics solve.
@@ -147,30 +136,34 @@ class MachineData {
   const Machine* made_by_ = nullptr;
 };
 
-/// A capability (Machine::batch_analysis): a kernel that analyzes many poses at once, faster
-/// than analyze pose by pose (the hexapod's SIMD path, models/hexapod/hexapod_batch.hpp). It needs
-/// no MachineData and gives, for every pose, what analyze gives (compliance metrics included).
-class BatchAnalysis {
- public:
-  virtual ~BatchAnalysis() = default;
-  /// Analyzes poses[0..count) under `wrench` into metrics[0..count) and, when `compliance` is
-  /// given, the compliance matrices into compliance[0..count).
-  virtual void analyze_batch(const Pose* poses, std::size_t count, const Wrench& wrench,
-                             PoseMetrics* metrics, PoseCompliance* compliance) const = 0;
-};
+class BatchAnalysis;
+class ParasiticMotion;
+class Dynamics;
+class TranslationalMaps;
 
-/// A capability (Machine::parasitic_motion): a platform with fewer than six degrees of freedom
-/// whose remaining pose coordinates follow from the commanded ones (the parasitic x, y and rz of
-/// a 3-PRS tripod, models/leg_chain/leg_chain.hpp). Machines that carry it (a hybrid machine's
-/// axes) must move with the actual pose.
-class ParasiticMotion {
+/// What a query for an optional capability answers (models/core/capabilities.hpp): the
+/// capability, or why the machine does not have it, in words a user can act on ("the machine
+/// file has no 'masses'").
+template <class T>
+class Capability {
  public:
-  virtual ~ParasiticMotion() = default;
-  /// The pose the platform takes when commanded to `pose`; nullopt when it cannot assemble.
-  virtual std::optional<Pose> actual_pose(const Pose& pose) const = 0;
-  /// T (6 x DOF): the TCP twist [v; omega] per rate of the platform's own coordinates, at the
-  /// pose of the last analyze or twist_jacobian with `data` (made by this machine).
-  virtual Eigen::MatrixXd twist_basis(const MachineData& data) const = 0;
+  /// The machine has it.
+  Capability(const T* capability) : capability_(capability) {}  // NOLINT: implicit on purpose
+  /// The machine does not have it, because of `reason`.
+  static Capability missing(std::string reason) {
+    Capability c(nullptr);
+    c.reason_ = std::move(reason);
+    return c;
+  }
+  explicit operator bool() const { return capability_ != nullptr; }
+  const T* get() const { return capability_; }
+  const T* operator->() const { return capability_; }
+  /// Why the machine has no such capability; empty when it has.
+  const std::string& reason() const { return reason_; }
+
+ private:
+  const T* capability_ = nullptr;
+  std::string reason_;
 };
 
 class Machine {
@@ -207,65 +200,6 @@ class Machine {
   /// True when the machine file gives the legs' shape: analyze fills leg_clearance and a pose is
   /// reachable only with leg_clearance >= min_clearance (models/geometry/leg_interference.hpp).
   virtual bool checks_leg_interference() const { return false; }
-  /// How many natural frequencies analyze gives (the platform DOF when the machine has a mass
-  /// model, else 0).
-  virtual int natural_frequency_count() const { return 0; }
-
-  /// The natural frequencies and mode shapes at a pose (PoseModes; the frequencies are those
-  /// of analyze). Returns false (out untouched) without a mass model, or when the pose is
-  /// unreachable or singular.
-  virtual bool mode_shapes(MachineData& /*data*/, const Pose& /*pose*/, PoseModes& /*out*/) const {
-    return false;
-  }
-  /// How many serial-axis rows lead PoseModes::shapes (a hybrid machine's axes; else 0).
-  virtual int mode_axis_count() const { return 0; }
-
-  /// The machine's platform and leg masses (models/dynamics/mass_model.hpp); null when it has none.
-  virtual const MassModel* mass_model() const { return nullptr; }
-  /// The TCP mass matrix M at a pose (6x6, base axes; kinetic energy 1/2 xi^T M xi of the
-  /// platform and every leg body, models/dynamics/machine_dynamics.hpp). Returns false (M
-  /// untouched) without a mass model or when a leg cannot close at the pose.
-  virtual bool mass_matrix(MachineData& /*data*/, const Pose& /*pose*/, Matrix6d& /*M*/) const {
-    return false;
-  }
-  /// The wrench at the TCP equivalent, by virtual power, to gravity and to the inertia of the
-  /// platform and every leg body when the TCP moves with the twist xi = [v; omega] and its rate
-  /// xi_dot = [a; alpha] (m/s, rad/s, m/s^2, rad/s^2; base axes;
-  /// models/dynamics/machine_dynamics.hpp). The actuators then carry the forces analyze gives for
-  /// the wrench w + w_dyn (w the external wrench on the tool). Returns false (w_dyn untouched)
-  /// without a mass model or when a leg cannot close at the pose.
-  virtual bool dynamic_wrench(MachineData& /*data*/, const Pose& /*pose*/, const Vector6d& /*xi*/,
-                              const Vector6d& /*xi_dot*/, Wrench& /*w_dyn*/) const {
-    return false;
-  }
-  /// Inverse dynamics: the actuator forces (out.tau; the other metrics as analyze gives them
-  /// under the wrench) that carry the external wrench on the tool, gravity and the inertia of
-  /// every moving body when the TCP moves with the twist xi and its rate xi_dot. By default the
-  /// static solve under wrench + dynamic_wrench; machines whose actuators also move bodies that
-  /// the TCP wrench does not see (serial axes) override it. Returns false without a mass model
-  /// or when a leg cannot close (out unspecified).
-  virtual bool inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
-                                const Vector6d& xi_dot, const Wrench& wrench,
-                                PoseMetrics& out) const {
-    Wrench w_dyn;
-    if (!dynamic_wrench(data, pose, xi, xi_dot, w_dyn)) return false;
-    analyze(data, pose, wrench + w_dyn, out);
-    return true;
-  }
-  /// For a machine carried on a translating base (the module of a hybrid machine): at `pose`
-  /// relative to its base, moving with the relative twist xi and rate xi_dot under the effective
-  /// gravity `gravity` (g minus the base's acceleration, base axes), the TCP wrench of gravity
-  /// and inertia (as dynamic_wrench), the net force of gravity and inertia on all its bodies
-  /// (models/dynamics/machine_dynamics.hpp, net_dynamic_force) and, when `kinetic` is given, the
-  /// 9x9 kinetic-energy matrix over [base velocity; absolute twist] (carried_mass_matrix). Returns
-  /// false without a mass model or when a leg cannot close.
-  virtual bool carried_dynamics(MachineData& /*data*/, const Pose& /*pose*/, const Vector6d& /*xi*/,
-                                const Vector6d& /*xi_dot*/, const Eigen::Vector3d& /*gravity*/,
-                                Wrench& /*w_dyn*/, Eigen::Vector3d& /*net_force*/,
-                                Eigen::Matrix<double, 9, 9>* /*kinetic*/) const {
-    return false;
-  }
-
   /// The volume of the machine's envelope (m^3, see the model's header); nullopt if unknown.
   virtual std::optional<double> envelope_volume() const { return std::nullopt; }
 
@@ -286,23 +220,6 @@ class Machine {
     return false;
   }
 
-  /// analyze(data, pose, wrench, metrics), and with it the translational maps at the TCP that a
-  /// hybrid machine (models/hybrid/hybrid_machine.hpp) needs to put this machine in series with
-  /// serial axes, in base axes (both independent of the wrench):
-  ///   compliance_tt (m/N): C_tt, the translational 3x3 block of the TCP compliance
-  ///     (stiffness_min = 1 / lambda_max(C_tt));
-  ///   error_map (3 x num_actuators, m): column j is the TCP position error when actuator j errs
-  ///     by +actuator_error and the others are exact, so tcp_error_max = max over sign vectors
-  ///     s in {-1, +1}^n of |error_map s|.
-  /// `metrics` is filled in every case; returns false (maps unspecified) at a singular pose or
-  /// when the model does not provide the maps (the default: analyze only).
-  virtual bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
-                                  PoseMetrics& metrics, Eigen::Matrix3d& /*compliance_tt*/,
-                                  Eigen::Matrix<double, 3, Eigen::Dynamic>& /*error_map*/) const {
-    analyze(data, pose, wrench, metrics);
-    return false;
-  }
-
   /// How far a pose lies beyond the machine's limits: the largest excess of an actuator
   /// coordinate over its range (m or rad), of a joint angle over its limit (rad), or of the
   /// legs' clearance below its minimum (m); 0 when no limit is exceeded (the pose may still be
@@ -310,11 +227,21 @@ class Machine {
   /// pose or the model does not measure it.
   virtual std::optional<double> reach_excess(const Pose& /*pose*/) const { return std::nullopt; }
 
+  // Optional capabilities (models/core/capabilities.hpp): null when the machine has none.
+
   /// The batch kernel of the machine (BatchAnalysis); null when it has none.
   virtual const BatchAnalysis* batch_analysis() const { return nullptr; }
   /// The parasitic motion of the platform (ParasiticMotion); null when every pose coordinate is
   /// commanded.
   virtual const ParasiticMotion* parasitic_motion() const { return nullptr; }
+  /// The machine's dynamics (Dynamics: its mass model, natural frequencies and modes, mass
+  /// matrix, inverse dynamics); missing, with the reason, when it has no mass model.
+  virtual Capability<Dynamics> dynamics() const {
+    return Capability<Dynamics>::missing(std::string(model()) + " machines have no mass model");
+  }
+  /// The translational maps at the TCP that put the machine in series with serial axes
+  /// (TranslationalMaps, the module of a hybrid machine); null when the model has none.
+  virtual const TranslationalMaps* translational_maps() const { return nullptr; }
 
   /// The machine drawn as lines at a pose (models/core/machine_sketch.hpp). Returns false (out
   /// unspecified) when the legs cannot assemble at the pose or the model cannot draw itself.

@@ -6,6 +6,7 @@
 #include <exception>
 #include <memory>
 
+#include "models/core/capabilities.hpp"
 #include "models/core/require.hpp"
 
 namespace pkmopt {
@@ -86,12 +87,13 @@ void analyze_pose_slices(const Machine& machine, std::size_t count, const Wrench
 std::vector<PoseModes> mode_shapes_of_poses(const Machine& machine, std::span<const Pose> poses) {
   const std::size_t n = poses.size();
   std::vector<PoseModes> modes(n);
+  const Capability<Dynamics> dynamics = machine.dynamics();
 #pragma omp parallel
   {
     const std::unique_ptr<MachineData> data = machine.make_data();
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      if (!machine.mode_shapes(*data, poses[i], modes[i])) modes[i] = PoseModes{};
+      if (!dynamics || !dynamics->mode_shapes(*data, poses[i], modes[i])) modes[i] = PoseModes{};
     }
   }
   return modes;

@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 
 namespace pkmopt {

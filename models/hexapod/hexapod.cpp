@@ -361,9 +361,9 @@ void Hexapod::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
   compute_metrics(data_of<HexapodData>(data), pose, wrench, out);
 }
 
-bool Hexapod::translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
-                                 PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
-                                 Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
+bool Hexapod::analyze_with_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                                PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
+                                Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
   auto& d = data_of<HexapodData>(data);
   compute_metrics(d, pose, wrench, metrics);
   if (metrics.singular) return false;

@@ -46,6 +46,7 @@
 #include <optional>
 #include <string>
 
+#include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
 #include "models/dynamics/leg_dynamics.hpp"
@@ -158,7 +159,10 @@ class HexapodData : public MachineData {
 inline constexpr std::string_view kHexapodModel = "hexapod";
 
 /// A Gough-Stewart hexapod. Immutable; share it between threads, give each a HexapodData.
-class Hexapod final : public Machine, public BatchAnalysis {
+class Hexapod final : public Machine,
+                      public BatchAnalysis,
+                      public Dynamics,
+                      public TranslationalMaps {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit Hexapod(const HexapodDesign& design);
@@ -202,10 +206,14 @@ class Hexapod final : public Machine, public BatchAnalysis {
                      PoseMetrics* metrics, PoseCompliance* compliance) const override;
   /// Legs from the base joints a_i to the platform joints at the pose, and the tool.
   bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
-  int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }
-  const MassModel* mass_model() const override {
-    return design_.masses.present ? &design_.masses : nullptr;
+  /// Present with a mass model (the machine file's `masses`).
+  Capability<Dynamics> dynamics() const override {
+    if (!design_.masses.present)
+      return Capability<Dynamics>::missing("the machine file has no 'masses'");
+    return this;
   }
+  int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }
+  const MassModel& mass_model() const override { return design_.masses; }
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
   bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
   bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,
@@ -214,11 +222,17 @@ class Hexapod final : public Machine, public BatchAnalysis {
                         const Vector6d& xi_dot, const Eigen::Vector3d& gravity, Wrench& w_dyn,
                         Eigen::Vector3d& net_force,
                         Eigen::Matrix<double, 9, 9>* kinetic) const override;
+  bool inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                        const Vector6d& xi_dot, const Wrench& wrench,
+                        PoseMetrics& out) const override {
+    return static_inverse_dynamics(*this, *this, data, pose, xi, xi_dot, wrench, out);
+  }
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (translational rows of J^-1), from compute_metrics.
-  bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
-                          PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
-                          Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
+  const TranslationalMaps* translational_maps() const override { return this; }
+  bool analyze_with_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                         PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
+                         Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
 
   /// Leg lengths at a pose.
   Vec6<double> inverse_kinematics(const Pose& pose) const;

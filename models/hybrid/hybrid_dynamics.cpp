@@ -26,10 +26,10 @@ Matrix6d turn6(const Eigen::Matrix3d& R) {
 }  // namespace
 
 int HybridMachine::natural_frequency_count() const {
-  if (mass_model() == nullptr) return 0;
+  if (module_dynamics_ == nullptr) return 0;
   int elastic = 0;
   for (const HybridAxis& a : design_.axes) elastic += a.stiffness > 0.0 ? 1 : 0;
-  return design_.module->natural_frequency_count() + elastic;
+  return module_dynamics_->natural_frequency_count() + elastic;
 }
 
 void HybridMachine::compute_natural_frequencies(HybridData& d, const HybridSplit& s,
@@ -40,8 +40,8 @@ void HybridMachine::compute_natural_frequencies(HybridData& d, const HybridSplit
   Wrench w_dyn;
   Eigen::Vector3d net;
   Eigen::Matrix<double, 9, 9> Q;
-  if (!design_.module->carried_dynamics(*d.module, s.local, Vector6d::Zero(), Vector6d::Zero(),
-                                        R0_.transpose() * design_.gravity, w_dyn, net, &Q)) {
+  if (!module_dynamics_->carried_dynamics(*d.module, s.local, Vector6d::Zero(), Vector6d::Zero(),
+                                          R0_.transpose() * design_.gravity, w_dyn, net, &Q)) {
     return;  // a leg cannot close: 0, as at a singular pose
   }
   // The module's kinetic energy in world axes: d_local = R0^T d, xi_local = turn^T xi.
@@ -112,7 +112,7 @@ void HybridMachine::compute_natural_frequencies(HybridData& d, const HybridSplit
 }
 
 bool HybridMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const {
-  if (mass_model() == nullptr) return false;
+  if (module_dynamics_ == nullptr) return false;
   auto& d = data_of<HybridData>(data);
   const bool compliance_metrics = d.compliance_metrics;
   d.compliance_metrics = true;
@@ -131,7 +131,7 @@ bool HybridMachine::mode_shapes(MachineData& data, const Pose& pose, PoseModes& 
 bool HybridMachine::inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
                                      const Vector6d& xi_dot, const Wrench& wrench,
                                      PoseMetrics& out) const {
-  if (mass_model() == nullptr) return false;
+  if (module_dynamics_ == nullptr) return false;
   auto& d = data_of<HybridData>(data);
   analyze(data, pose, wrench, out);  // every other metric under the wrench
   const HybridSplit s = split(pose);
@@ -147,8 +147,8 @@ bool HybridMachine::inverse_dynamics(MachineData& data, const Pose& pose, const 
   const Eigen::Vector3d g_local = R0_.transpose() * (design_.gravity - base_acceleration);
   Wrench w_dyn;
   Eigen::Vector3d net;
-  if (!design_.module->carried_dynamics(*d.module, s.local, xi_rel, xi_dot_rel, g_local, w_dyn, net,
-                                        nullptr)) {
+  if (!module_dynamics_->carried_dynamics(*d.module, s.local, xi_rel, xi_dot_rel, g_local, w_dyn,
+                                          net, nullptr)) {
     return false;
   }
   Wrench local_wrench;

@@ -74,7 +74,9 @@ HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
   A_pinv_ = (A_.transpose() * A_).ldlt().solve(A_.transpose());
 
   parasitic_module_ = design_.module->parasitic_motion();
-  require(parasitic_module_ == nullptr || design_.module->mass_model() == nullptr,
+  module_dynamics_ = design_.module->dynamics().get();
+  module_maps_ = design_.module->translational_maps();
+  require(parasitic_module_ == nullptr || module_dynamics_ == nullptr,
           "hybrid: a module with parasitic motion (planar legs) takes no masses in a hybrid "
           "machine: its dynamics on moving axes are not modelled");
 }
@@ -144,8 +146,12 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   local_wrench.tail<3>() = R0_.transpose() * wrench.tail<3>();
   PoseMetrics& m = d.module_metrics;
   d.module->compliance_metrics = d.compliance_metrics;
-  const bool maps = design_.module->translational_maps(*d.module, s.local, local_wrench, m,
-                                                       d.module_compliance, d.module_error_map);
+  bool maps = false;
+  if (module_maps_ != nullptr)
+    maps = module_maps_->analyze_with_maps(*d.module, s.local, local_wrench, m, d.module_compliance,
+                                           d.module_error_map);
+  else
+    design_.module->analyze(*d.module, s.local, local_wrench, m);
 
   out.reachable = m.reachable && s.attained;
   // The module's legs are numbered as their actuators: after the serial axes.
@@ -166,7 +172,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   if (m.singular || !maps) {
     out.singular = true;
     set_singular(out, d.compliance_metrics, d.matrices);
-    if (d.compliance_metrics && mass_model() != nullptr)
+    if (d.compliance_metrics && module_dynamics_ != nullptr)
       out.natural_frequencies.setZero(natural_frequency_count());
     return;
   }
@@ -199,7 +205,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
     fill_compliance_metrics(C, wrench, out, d.matrices);
     d.matrices.loaded_compliance_tt = loaded;
     out.stiffness_min_loaded = m.stiffness_min_loaded > 0.0 ? loaded_stiffness_of(loaded) : 0.0;
-    if (mass_model() != nullptr) compute_natural_frequencies(d, s, C_module, out);
+    if (module_dynamics_ != nullptr) compute_natural_frequencies(d, s, C_module, out);
   }
 
   // tcp_error_max over the vertices of the combined error box (zero columns skipped).
@@ -219,7 +225,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
       !std::isfinite(out.stiffness_min)) {
     out.singular = true;
     set_singular(out, d.compliance_metrics, d.matrices);
-    if (d.compliance_metrics && mass_model() != nullptr)
+    if (d.compliance_metrics && module_dynamics_ != nullptr)
       out.natural_frequencies.setZero(natural_frequency_count());
   }
 }

@@ -104,6 +104,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
 #include "models/serial/serial_chain.hpp"
@@ -153,7 +154,7 @@ struct HybridSplit {
 };
 
 /// A hybrid machine. Immutable; share it between threads, give each a HybridData.
-class HybridMachine final : public Machine {
+class HybridMachine final : public Machine, public Dynamics {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit HybridMachine(HybridDesign design);
@@ -186,7 +187,14 @@ class HybridMachine final : public Machine {
   /// guide line from the mount.
   bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   /// The module's masses (with the axes' in design().axes); null when the module has none.
-  const MassModel* mass_model() const override { return design_.module->mass_model(); }
+  /// Present when the module has a mass model.
+  Capability<Dynamics> dynamics() const override {
+    if (module_dynamics_ == nullptr)
+      return Capability<Dynamics>::missing("its parallel module has no mass model (" +
+                                           design_.module->dynamics().reason() + ")");
+    return this;
+  }
+  const MassModel& mass_model() const override { return module_dynamics_->mass_model(); }
   int natural_frequency_count() const override;
   bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
   int mode_axis_count() const override { return num_serial_; }
@@ -216,6 +224,8 @@ class HybridMachine final : public Machine {
   Eigen::Matrix<double, 3, Eigen::Dynamic> A_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> A_pinv_;
   const ParasiticMotion* parasitic_module_ = nullptr;  // planar-leg module, else null
+  const Dynamics* module_dynamics_ = nullptr;          // module with masses, else null
+  const TranslationalMaps* module_maps_ = nullptr;     // the module's maps, null without
 };
 
 }  // namespace pkmopt

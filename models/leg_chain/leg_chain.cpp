@@ -589,9 +589,9 @@ void LegChainMachine::analyze(MachineData& data, const Pose& pose, const Wrench&
   }
 }
 
-bool LegChainMachine::translational_maps(
-    MachineData& data, const Pose& pose, const Wrench& wrench, PoseMetrics& metrics,
-    Eigen::Matrix3d& compliance_tt, Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
+bool LegChainMachine::analyze_with_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                                        PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
+                                        Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const {
   auto& d = data_of<LegChainData>(data);
   analyze(d, pose, wrench, metrics);
   if (metrics.singular) return false;

@@ -123,6 +123,7 @@
 #include <string>
 #include <vector>
 
+#include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
 #include "models/dynamics/leg_dynamics.hpp"
@@ -270,7 +271,10 @@ class LegChainData : public MachineData {
 };
 
 /// A leg-chain machine. Immutable; share it between threads, give each a LegChainData.
-class LegChainMachine final : public Machine, public ParasiticMotion {
+class LegChainMachine final : public Machine,
+                              public ParasiticMotion,
+                              public Dynamics,
+                              public TranslationalMaps {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit LegChainMachine(const LegChainDesign& design);
@@ -312,12 +316,16 @@ class LegChainMachine final : public Machine, public ParasiticMotion {
   Clearance clearance_from_kinematics(const LegChainData& data) const;
   /// Whether the links keep min_clearance, decided faster than clearance_from_kinematics.
   bool links_apart(const LegChainData& data) const;
+  /// Present with a mass model (the machine file's `masses`).
+  Capability<Dynamics> dynamics() const override {
+    if (!design_.masses.present)
+      return Capability<Dynamics>::missing("the machine file has no 'masses'");
+    return this;
+  }
   int natural_frequency_count() const override {
     return design_.masses.present ? num_actuators() : 0;
   }
-  const MassModel* mass_model() const override {
-    return design_.masses.present ? &design_.masses : nullptr;
-  }
+  const MassModel& mass_model() const override { return design_.masses; }
   /// The full-twist TCP mass matrix at actual_pose(pose); only its restriction T^T M T to the
   /// platform's own twists is meaningful.
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
@@ -332,13 +340,19 @@ class LegChainMachine final : public Machine, public ParasiticMotion {
                         const Vector6d& xi_dot, const Eigen::Vector3d& gravity, Wrench& w_dyn,
                         Eigen::Vector3d& net_force,
                         Eigen::Matrix<double, 9, 9>* kinetic) const override;
+  bool inverse_dynamics(MachineData& data, const Pose& pose, const Vector6d& xi,
+                        const Vector6d& xi_dot, const Wrench& wrench,
+                        PoseMetrics& out) const override {
+    return static_inverse_dynamics(*this, *this, data, pose, xi, xi_dot, wrench, out);
+  }
   /// Row i: [s_i^T, (r_i x s_i)^T] / B_i at actual_pose(pose) (false when a leg cannot close or
   /// some B_i = 0). Along the platform's own twists xi = T eta it gives q_dot = J eta.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
   /// C_tt and actuator_error * (position rows of T J^-1), from analyze.
-  bool translational_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
-                          PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
-                          Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
+  const TranslationalMaps* translational_maps() const override { return this; }
+  bool analyze_with_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
+                         PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
+                         Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const override;
 
   /// Closed-form IK of every leg on its branch (at actual_pose(pose)); nullopt when a leg cannot
   /// close or the parasitic motion cannot be solved.

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/core/capabilities.hpp"
+
 namespace pkmopt {
 namespace {
 
@@ -178,7 +180,7 @@ TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path
   check_times(times, "evaluate_trajectory");
   const int na = machine.num_actuators();
   const std::unique_ptr<MachineData> data = machine.make_data();
-  const bool dynamics = machine.mass_model() != nullptr;
+  const Capability<Dynamics> dynamics = machine.dynamics();
   PoseMetrics scratch;
   TrajectoryResult result;
   result.samples.resize(times.size());
@@ -191,7 +193,7 @@ TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path
     s.twist_rate = twist_rate_from_path(point);
     if (dynamics) {
       // tau_dyn: the actuator forces under the wrench, gravity and inertia.
-      if (machine.inverse_dynamics(*data, s.pose, s.twist, s.twist_rate, wrench, scratch)) {
+      if (dynamics->inverse_dynamics(*data, s.pose, s.twist, s.twist_rate, wrench, scratch)) {
         s.tau_dyn = scratch.tau;
         for (Eigen::Index i = 0; i < s.tau_dyn.size(); ++i) {
           if (!std::isfinite(s.tau_dyn(i)) || scratch.singular) s.tau_dyn(i) = kInf;

@@ -557,7 +557,7 @@ WorkspaceResult compute_workspace(const Machine& machine, const WorkspaceOptions
       maps.singularity_margin_min = kInf;
       maps.stiffness_min_min = kInf;
       maps.stiffness_min_loaded_min = kInf;
-      maps.natural_frequencies = machine.natural_frequency_count() > 0 && options.compliance_maps;
+      maps.natural_frequencies = machine.dynamics() && options.compliance_maps;
       maps.natural_frequency_min = maps.natural_frequencies ? kInf : 0.0;
       double margin_sum = 0.0, stiffness_sum = 0.0;
       for (const auto& m : metrics) {

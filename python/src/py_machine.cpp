@@ -19,6 +19,7 @@
 #include "io/machine/machine_file.hpp"
 #include "io/machine/model_registry.hpp"
 #include "io/results/analyze_csv.hpp"
+#include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 #include "models/core/pose_analysis.hpp"
 #include "models/geometry/leg_interference.hpp"
@@ -158,7 +159,8 @@ py::dict analyze(const PyMachine& self, py::handle poses_in, const py::object& w
         py::str(py::tuple(poses.attr("shape"))).cast<std::string>()));
   const Wrench wrench = wrench_from_python(wrench_in);
   const int threads = threads_from_python(threads_in);
-  if (mode_shapes && machine.natural_frequency_count() == 0)
+  const Capability<Dynamics> dynamics = machine.dynamics();
+  if (mode_shapes && !dynamics)
     throw InputError(fmt::format(
         "mode_shapes: needs a mass model: {} has no 'masses' (docs/dynamics.md)", self.source));
   const std::size_t n = static_cast<std::size_t>(poses.shape(0));
@@ -172,8 +174,9 @@ py::dict analyze(const PyMachine& self, py::handle poses_in, const py::object& w
   // C_ab as an (N, 6, 6) array, the mode shapes as (N, modes, axes + 6)).
   const std::vector<std::string> names = analyze_value_columns(machine, mode_shapes, compliance);
   const std::size_t na = static_cast<std::size_t>(machine.num_actuators());
-  const std::size_t nf = static_cast<std::size_t>(machine.natural_frequency_count());
-  const std::size_t rows = static_cast<std::size_t>(machine.mode_axis_count()) + 6;
+  const std::size_t nf =
+      static_cast<std::size_t>(dynamics ? dynamics->natural_frequency_count() : 0);
+  const std::size_t rows = static_cast<std::size_t>(dynamics ? dynamics->mode_axis_count() : 0) + 6;
   if (!out.is_none() && !py::isinstance<py::dict>(out))
     throw InputError("out: expected the dict of an earlier analyze, or None");
   py::dict result;
@@ -240,7 +243,7 @@ py::dict analyze(const PyMachine& self, py::handle poses_in, const py::object& w
             PoseModes pose_modes;
             for (std::size_t k = 0; k < s.metrics.size(); ++k) {
               const std::size_t i = first + s.start + k;
-              if (mode_shapes && !machine.mode_shapes(*data, s.poses[k], pose_modes))
+              if (mode_shapes && !dynamics->mode_shapes(*data, s.poses[k], pose_modes))
                 pose_modes = PoseModes{};
               analyze_values(machine, s.metrics[k], mode_shapes ? &pose_modes : nullptr,
                              compliance ? &s.matrices[k] : nullptr, values.data());
@@ -497,7 +500,10 @@ void bind_machine(py::module_& m) {
           "tau in N.")
       .def_property_readonly(
           "natural_frequency_count",
-          [](const PyMachine& self) { return self.machine->natural_frequency_count(); },
+          [](const PyMachine& self) {
+            const Capability<Dynamics> dynamics = self.machine->dynamics();
+            return dynamics ? dynamics->natural_frequency_count() : 0;
+          },
           "How many natural frequencies analyze gives (the platform DOF with a mass model, "
           "else 0).")
       .def_property_readonly(

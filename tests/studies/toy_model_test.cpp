@@ -260,6 +260,9 @@ TEST_F(ToyModel, IsReadDescribedAndAnalyzedThroughTheRegistry) {
   const std::string path = write("toy.yaml", file_);
   const std::unique_ptr<Machine> machine = load_machine_file(path);
   EXPECT_EQ(machine->model(), "toy_tripod");
+  // Capabilities it does not declare are missing, and say so.
+  EXPECT_EQ(machine->dynamics().reason(), "toy_tripod machines have no mass model");
+  EXPECT_EQ(machine->translational_maps(), nullptr);
   const MachineDescription d = describe_machine_file(path);
   EXPECT_EQ(format_description(d),
             "model: toy_tripod\ndof: 3 (3 translations, 0 rotations)\ndrives: 0 serial, 3 "

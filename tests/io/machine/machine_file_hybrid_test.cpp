@@ -91,7 +91,7 @@ TEST(HybridMachineFileFields, ListsHaveOneEntryPerAxis) {
            "parallel: {file: hexapod_masses.yaml, home: [0, 0, 0.9]}\ngravity: [0, 0.5, -9.8]\n"));
   EXPECT_EQ(heavy.axes[0].mass, 80.0);
   EXPECT_EQ(heavy.gravity, Eigen::Vector3d(0, 0.5, -9.8));
-  ASSERT_NE(heavy.module->mass_model(), nullptr);
+  ASSERT_TRUE(heavy.module->dynamics());
   try {
     (void)read_hybrid_design(
         yaml("model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n"

@@ -29,7 +29,9 @@ Eigen::VectorXd accelerated_forces(const Machine& machine, MachineData& data, co
   Vector6d xi_dot = Vector6d::Zero();
   xi_dot.head<3>() = a;
   Wrench w_dyn;
-  EXPECT_TRUE(machine.dynamic_wrench(data, pose, Vector6d::Zero(), xi_dot, w_dyn));
+  EXPECT_TRUE(machine.dynamics());
+  if (!machine.dynamics()) return Eigen::VectorXd();
+  EXPECT_TRUE(machine.dynamics()->dynamic_wrench(data, pose, Vector6d::Zero(), xi_dot, w_dyn));
   PoseMetrics m;
   machine.analyze(data, pose, wrench + w_dyn, m);
   return m.tau;

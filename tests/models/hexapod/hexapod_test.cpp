@@ -833,6 +833,41 @@ TEST(HexapodCapabilities, BatchAnalysisGivesWhatAnalyzeGives) {
   }
 }
 
+// The hexapod's dynamics is a capability it has with masses: missing, with the reason a command
+// prints, without them; present, the machine's own mass model, with them. The static inverse
+// dynamics is analyze under the wrench plus the gravity and inertia wrench.
+TEST(HexapodCapabilities, DynamicsWithMassesOnlyAndSaysWhyNot) {
+  const Hexapod bare(sample_machines::conventions_hexapod_design());
+  const Capability<Dynamics> none = bare.dynamics();
+  EXPECT_FALSE(none);
+  EXPECT_EQ(none.get(), nullptr);
+  EXPECT_EQ(none.reason(), "the machine file has no 'masses'");
+  EXPECT_NE(bare.translational_maps(), nullptr);
+
+  sample_machines::Uniform u(7);
+  HexapodDesign design = sample_machines::conventions_hexapod_design();
+  design.masses = sample_machines::random_hexapod_masses(u);
+  const Hexapod heavy(design);
+  const Capability<Dynamics> dynamics = heavy.dynamics();
+  ASSERT_TRUE(dynamics);
+  EXPECT_EQ(dynamics.reason(), "");
+  EXPECT_EQ(&dynamics->mass_model(), &heavy.design().masses);
+  EXPECT_EQ(dynamics->natural_frequency_count(), 6);
+  EXPECT_EQ(dynamics->mode_axis_count(), 0);
+  const Pose pose{{0.02, -0.01, 0.9}, deg_to_rad(Eigen::Vector3d(3, -2, 5))};
+  Vector6d xi, xi_dot;
+  xi << 0.1, -0.2, 0.05, 0.3, 0.1, -0.2;
+  xi_dot << 1.0, 0.5, -2.0, 0.4, -0.3, 0.8;
+  const Wrench w = (Wrench() << 100, -50, -800, 5, 0, -10).finished();
+  auto data = heavy.make_data();
+  Wrench w_dyn;
+  ASSERT_TRUE(dynamics->dynamic_wrench(*data, pose, xi, xi_dot, w_dyn));
+  PoseMetrics expected, found;
+  heavy.analyze(*data, pose, w + w_dyn, expected);
+  ASSERT_TRUE(dynamics->inverse_dynamics(*data, pose, xi, xi_dot, w, found));
+  EXPECT_EQ(found.tau, expected.tau);
+}
+
 // A MachineData remembers the machine that made it: another machine's data, or one made outside
 // make_data(), is refused with a message instead of being read as the wrong type.
 TEST(HexapodCapabilities, RefusesAnotherMachinesData) {

@@ -141,6 +141,15 @@ TEST(HybridMachine, RefusesRotaryAxesDependentAxesAndBadRanges) {
                std::invalid_argument);  // revolute drives
 }
 
+// A hybrid machine has dynamics when its module has; without, it says why, in the module's words.
+TEST(HybridMachine, DynamicsComeFromTheModule) {
+  const HybridMachine bare = make_hybrid("1", {{-1.0, 1.0}}, conventions_hexapod(), {0, 0, 0.9});
+  EXPECT_FALSE(bare.dynamics());
+  EXPECT_EQ(bare.dynamics().reason(),
+            "its parallel module has no mass model (the machine file has no 'masses')");
+  EXPECT_EQ(bare.translational_maps(), nullptr);
+}
+
 // The follow rule: q_s = clamp(A^+ (p - t0 - R0 h)), here with one x axis.
 TEST(HybridMachine, FollowRuleAndRoundTrip) {
   const HybridMachine hybrid = make_hybrid("1", {{-1.0, 1.0}}, conventions_hexapod(), {0, 0, 0.9});
@@ -404,7 +413,7 @@ TEST(HybridMachine, ModuleTranslationalMaps) {
   Eigen::Matrix<double, 3, Eigen::Dynamic> E;
   PoseMetrics metrics, reference;
   const Wrench w = (Wrench() << 300, -200, -900, 10, 0, -20).finished();
-  ASSERT_TRUE(hexapod.translational_maps(*hex_data, pose, w, metrics, C, E));
+  ASSERT_TRUE(hexapod.analyze_with_maps(*hex_data, pose, w, metrics, C, E));
   hexapod.analyze(*hexapod.make_data(), pose, w, reference);  // the same analyze
   EXPECT_EQ(metrics.tau, reference.tau);
   EXPECT_EQ(metrics.stiffness_min, reference.stiffness_min);
@@ -420,7 +429,9 @@ TEST(HybridMachine, ModuleTranslationalMaps) {
   const Eigen::Vector3d q(0.45, 0.52, 0.40);
   const FkResult fk = tripod->forward_kinematics(q, std::nullopt);
   ASSERT_TRUE(fk.converged);
-  ASSERT_TRUE(tripod->translational_maps(*tripod_data, fk.pose, w, metrics, C, E));
+  ASSERT_NE(tripod->translational_maps(), nullptr);
+  ASSERT_TRUE(
+      tripod->translational_maps()->analyze_with_maps(*tripod_data, fk.pose, w, metrics, C, E));
   tripod->analyze(*tripod->make_data(), fk.pose, w, reference);
   EXPECT_EQ(metrics.tau, reference.tau);
   EXPECT_EQ(metrics.stiffness_min, reference.stiffness_min);

@@ -245,7 +245,8 @@ TEST(LatheConversion, MassesGiveFourNaturalFrequencies) {
   d.masses.legs.cylinder = {.mass = 9.0, .centre = 0.3, .inertia = 0.4};
   d.masses.legs.rod = {.mass = 4.0, .centre = 0.4, .inertia = 0.15};
   const auto heavy = make_lathe_16k20f3(d);
-  ASSERT_EQ(heavy->natural_frequency_count(), 4);
+  ASSERT_TRUE(heavy->dynamics());
+  ASSERT_EQ(heavy->dynamics()->natural_frequency_count(), 4);
   const auto db = bare->make_data(), dh = heavy->make_data();
   for (const Pose& pose : sample_poses()) {
     PoseMetrics mb, mh;

@@ -588,7 +588,7 @@ TEST(LegChainVjm, StiffnessMinDoesNotNeedTheComplianceMetrics) {
   EXPECT_EQ(lean.stiffness_min, full.stiffness_min);
   Eigen::Matrix3d Ctt;
   Eigen::Matrix<double, 3, Eigen::Dynamic> error_map;
-  ASSERT_TRUE(m.translational_maps(*data, pose, Wrench::Zero(), lean, Ctt, error_map));
+  ASSERT_TRUE(m.analyze_with_maps(*data, pose, Wrench::Zero(), lean, Ctt, error_map));
   const Eigen::Matrix3d full_tt = full_compliance.topLeftCorner<3, 3>();
   EXPECT_EQ(Ctt, full_tt);
 }
