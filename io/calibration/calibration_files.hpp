@@ -1,4 +1,5 @@
-// Calibration files: the calibration YAML, the measurement CSV and the reports.
+// Calibration files: the calibration YAML and the measurement CSV (the reports are in
+// io/calibration/calibration_report.hpp).
 //
 // Calibration YAML (paths relative to the YAML file; docs/calibration.md has every key):
 //   machine: nominal.yaml            # nominal hexapod machine file
@@ -34,6 +35,7 @@
 //   CalibrationResult result = calibrate(setup.nominal_design, setup.nominal,
 //                                        fitted_measurements(setup), setup.options);
 //   std::string text = calibration_report_text(calibration_report_json(setup, result));
+//                                          // io/calibration/calibration_report.hpp
 #pragma once
 
 #include <Eigen/Core>
@@ -167,22 +169,5 @@ std::vector<CalibrationMeasurement> read_measurement_csv(
     std::vector<std::string>* campaigns = nullptr);
 std::vector<CalibrationMeasurement> read_measurement_csv(const std::string& path,
                                                          double unit_scale);
-
-/// The report of a calibration as JSON (see docs/calibration.md for every field).
-nlohmann::json calibration_report_json(const CalibrationSetup& setup,
-                                       const CalibrationResult& result);
-/// The report's `status`: {ok, warnings}; not ok (a result that is probably wrong) when the fit
-/// did not converge, when more than `max_rejected_share` of the fitted poses were rejected, or
-/// when forward kinematics of the calibrated machine fails on fitted or held-out poses.
-nlohmann::json calibration_status(const nlohmann::json& report, const CalibrationResult& result,
-                                  double max_rejected_share);
-/// The split-half check of a calibration: its inlier poses fitted again in two alternate
-/// halves (the sigmas of the full fit, no outlier rejection), and for the free parameters
-/// z = (estimate_A - estimate_B) / sqrt(sigma_A^2 + sigma_B^2): {done, poses, parameters, z_rms,
-/// z_max, z_max_parameter}; z_rms near 1 says the reported sigmas are believable. {done: false,
-/// reason} when a half cannot identify the parameters.
-nlohmann::json split_half_check(const CalibrationSetup& setup, const CalibrationResult& result);
-/// The same report as readable text.
-std::string calibration_report_text(const nlohmann::json& report);
 
 }  // namespace pkmopt

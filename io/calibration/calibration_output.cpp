@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "io/calibration/calibration_report.hpp"
 #include "io/format/csv.hpp"
 #include "io/format/input_error.hpp"
 #include "io/machine/machine_file.hpp"

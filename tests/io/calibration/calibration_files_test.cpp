@@ -143,35 +143,6 @@ TEST_F(CalibrationSetupFile, ColumnsRenameAtOnceAndRefuseCollisions) {
   EXPECT_THROW(pkmopt::read_measurement_csv(path("m.csv"), order, nullptr), pkmopt::InputError);
 }
 
-// The status of a report: each probably-wrong condition gives its warning, none gives ok.
-TEST(CalibrationStatus, EachProblemIsNamed) {
-  nlohmann::json report;
-  report["poses"] = {{"fitted", 90}, {"outliers", 10}};
-  for (const char* set : {"fitted", "held_out"})
-    report["errors"]["after"][set] = {{"count", 30}, {"fk_failures", 0}};
-  pkmopt::CalibrationResult result;
-  result.converged = true;
-  EXPECT_TRUE(pkmopt::calibration_status(report, result, 0.2)["ok"].get<bool>());
-  result.converged = false;
-  result.solver_message = "Maximum number of iterations reached.";
-  nlohmann::json status = pkmopt::calibration_status(report, result, 0.2);
-  EXPECT_FALSE(status["ok"].get<bool>());
-  ASSERT_EQ(status["warnings"].size(), 1u);
-  EXPECT_EQ(status["warnings"][0],
-            "the fit did not converge (Maximum number of iterations reached.)");
-  result.converged = true;
-  status = pkmopt::calibration_status(report, result, 0.05);  // 10 of 100 > 5 %
-  ASSERT_EQ(status["warnings"].size(), 1u);
-  EXPECT_EQ(status["warnings"][0].get<std::string>().rfind("10 of 100 poses of the fit (10 %)", 0),
-            0u);
-  report["errors"]["after"]["held_out"]["fk_failures"] = 3;
-  status = pkmopt::calibration_status(report, result, 0.2);
-  ASSERT_EQ(status["warnings"].size(), 1u);
-  EXPECT_EQ(status["warnings"][0].get<std::string>().rfind(
-                "forward kinematics of the calibrated machine failed on 3 of 30 held-out poses", 0),
-            0u);
-}
-
 // The written file of a setup's keys loads to the same setup.
 TEST_F(CalibrationSetupFile, WrittenKeysLoadToTheSameSetup) {
   const std::string file = setup_file(
