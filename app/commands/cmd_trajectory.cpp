@@ -85,8 +85,8 @@ HelixParameters read_helix(const TrajectoryCommandOptions& opt) {
   return h;
 }
 
-void run_trajectory(const TrajectoryCommandOptions& opt) {
-  // Read and validate every input before anything is written.
+// The path options fit together: --path or --helix, helix and sampling options only with --helix.
+void check_path_options(const TrajectoryCommandOptions& opt) {
   if (opt.helix == !opt.path_file.empty()) {
     throw InputError(opt.helix ? "--path and --helix: expected one of them, found both"
                                : "expected --path PATH.csv or --helix, found neither");
@@ -107,75 +107,66 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
   if (opt.samples && opt.dt) {
     throw InputError("--samples and --dt: expected one of them, found both");
   }
+}
+
+// The helix of the --helix-* options and its sample times (--samples or --dt, within the limits;
+// the helix must stay within +-1000 m).
+std::unique_ptr<TcpPath> helix_path(const TrajectoryCommandOptions& opt,
+                                    std::vector<double>& times) {
   std::unique_ptr<TcpPath> path;
-  std::vector<double> times;
-  if (opt.helix) {
-    HelixParameters h = read_helix(opt);
-    if (opt.t_start) h.t_start = *opt.t_start;
-    if (opt.t_end) h.t_end = *opt.t_end;
-    if (!std::isfinite(h.t_start)) bad_option("--t-start", "a finite time in s", h.t_start);
-    if (!(std::isfinite(h.t_end) && h.t_end > h.t_start)) {
-      bad_option("--t-end", fmt::format("a finite time in s > t-start = {}", h.t_start), h.t_end);
+  HelixParameters h = read_helix(opt);
+  if (opt.t_start) h.t_start = *opt.t_start;
+  if (opt.t_end) h.t_end = *opt.t_end;
+  if (!std::isfinite(h.t_start)) bad_option("--t-start", "a finite time in s", h.t_start);
+  if (!(std::isfinite(h.t_end) && h.t_end > h.t_start)) {
+    bad_option("--t-end", fmt::format("a finite time in s > t-start = {}", h.t_start), h.t_end);
+  }
+  int count = 201;
+  if (opt.samples) {
+    if (!(*opt.samples >= 2 && *opt.samples <= kMaxSamples)) {
+      bad_option("--samples", fmt::format("a sample count 2 <= N <= {}", kMaxSamples),
+                 *opt.samples);
     }
-    int count = 201;
-    if (opt.samples) {
-      if (!(*opt.samples >= 2 && *opt.samples <= kMaxSamples)) {
-        bad_option("--samples", fmt::format("a sample count 2 <= N <= {}", kMaxSamples),
-                   *opt.samples);
-      }
-      count = *opt.samples;
+    count = *opt.samples;
+  }
+  if (opt.dt) {
+    const double span = h.t_end - h.t_start;
+    if (!(std::isfinite(*opt.dt) && *opt.dt > 0.0 && span / *opt.dt < kMaxSamples)) {
+      bad_option("--dt", fmt::format("a time step in s > 0 giving at most {} samples", kMaxSamples),
+                 *opt.dt);
     }
-    if (opt.dt) {
-      const double span = h.t_end - h.t_start;
-      if (!(std::isfinite(*opt.dt) && *opt.dt > 0.0 && span / *opt.dt < kMaxSamples)) {
-        bad_option("--dt",
-                   fmt::format("a time step in s > 0 giving at most {} samples", kMaxSamples),
-                   *opt.dt);
-      }
-      if (*opt.dt > span) {
-        bad_option("--dt",
-                   fmt::format("a time step of at most the path's duration ({} s, from "
-                               "--t-start to --t-end)",
-                               format_number(span)),
-                   *opt.dt);
-      }
-      // The step is kept; the last sample is t_end (a shorter last step if dt does not divide).
-      times = stepped_times(h.t_start, h.t_end, *opt.dt);
-    } else {
-      times = uniform_times(h.t_start, h.t_end, count);
+    if (*opt.dt > span) {
+      bad_option("--dt",
+                 fmt::format("a time step of at most the path's duration ({} s, from "
+                             "--t-start to --t-end)",
+                             format_number(span)),
+                 *opt.dt);
     }
-    path = std::make_unique<HelixPath>(h);
-    // Each option is a length within +-1000 m; the helix they make must stay there too.
-    for (const double t : times)
-      if (const Eigen::Vector3d p = path->at(t).pose.position;
-          !(p.cwiseAbs().maxCoeff() <= kMaxInputLength))
-        throw InputError(
-            fmt::format("--helix-*: expected a helix within +-{:g} m, found the TCP at ({}, {}, "
-                        "{}) m at t = {} "
-                        "s (--helix-centre, --helix-radius, --helix-height, --t-start, --t-end)",
-                        kMaxInputLength, format_number(p.x()), format_number(p.y()),
-                        format_number(p.z()), format_number(t)));
+    // The step is kept; the last sample is t_end (a shorter last step if dt does not divide).
+    times = stepped_times(h.t_start, h.t_end, *opt.dt);
   } else {
-    auto sampled = std::make_unique<SampledPath>(read_path_csv(opt.path_file));
-    times = sampled->times();
-    path = std::move(sampled);
+    times = uniform_times(h.t_start, h.t_end, count);
   }
-  Wrench wrench = Wrench::Zero();
-  if (!opt.wrench.empty()) {
-    const auto w = parse_wrench_option(opt.wrench);
-    for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
-  }
-  if (opt.catalog_file.empty() != opt.drive.empty()) {
-    throw InputError(
-        opt.drive.empty()
-            ? "--catalog: expected --drive NAME with it (the entry to check), found none"
-            : "--drive: expected --catalog CATALOG.yaml with it, found none");
-  }
-  const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
-  std::optional<ActuatorCatalog> catalog;
+  path = std::make_unique<HelixPath>(h);
+  // Each option is a length within +-1000 m; the helix they make must stay there too.
+  for (const double t : times)
+    if (const Eigen::Vector3d p = path->at(t).pose.position;
+        !(p.cwiseAbs().maxCoeff() <= kMaxInputLength))
+      throw InputError(
+          fmt::format("--helix-*: expected a helix within +-{:g} m, found the TCP at ({}, {}, "
+                      "{}) m at t = {} "
+                      "s (--helix-centre, --helix-radius, --helix-height, --t-start, --t-end)",
+                      kMaxInputLength, format_number(p.x()), format_number(p.y()),
+                      format_number(p.z()), format_number(t)));
+  return path;
+}
+
+// The drive of --catalog/--drive to check the forces against (null without); `catalog` holds it.
+const ActuatorEntry* read_drive(const TrajectoryCommandOptions& opt, const Machine& machine,
+                                std::optional<ActuatorCatalog>& catalog) {
   const ActuatorEntry* drive = nullptr;
   if (!opt.catalog_file.empty()) {
-    if (machine->revolute_actuators()) {
+    if (machine.revolute_actuators()) {
       throw InputError(fmt::format(
           "--catalog: expected a machine with linear actuators (the catalog holds linear drives), "
           "found {} with revolute ones",
@@ -191,18 +182,13 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
     }
   }
 
-  const TrajectoryResult result = evaluate_trajectory(*machine, *path, times, wrench);
+  return drive;
+}
 
-  const std::string table = trajectory_csv(*machine, result, opt.jacobian);
-  // The summary: ranges along the path, the agreement of q_dot with the IK differences, and the
-  // singular poses. On stdout when the table goes to a file, else on stderr.
-  const TrajectorySummary reduced = summarize_trajectory(result, machine->num_actuators());
-  std::string summary = trajectory_summary_text(*machine, result, reduced);
-  if (drive != nullptr) {
-    bool carries = false;
-    summary += drive_check_text(*drive, reduced, carries);
-  }
-
+// The table (to --out or stdout), the singular poses (--singular-out) and the summary (stdout
+// when the table goes to a file, else stderr).
+void write_trajectory_outputs(const TrajectoryCommandOptions& opt, const std::string& table,
+                              const std::string& singular_table, const std::string& summary) {
   // Both files are written to temporaries first and moved into place together: when the
   // second cannot be, the first is removed again (no output is left by a failed command).
   std::optional<AtomicOutputFile> out, singular;
@@ -212,7 +198,7 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
   }
   if (!opt.singular_out_file.empty()) {
     singular.emplace(opt.singular_out_file);
-    singular->stream() << singular_poses_csv(result);
+    singular->stream() << singular_table;
   }
   if (out) out->commit();
   if (singular) {
@@ -236,6 +222,47 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
     std::cout << summary;
     std::cout.flush();
   }
+}
+
+void run_trajectory(const TrajectoryCommandOptions& opt) {
+  // Read and validate every input before anything is written.
+  check_path_options(opt);
+  std::unique_ptr<TcpPath> path;
+  std::vector<double> times;
+  if (opt.helix) {
+    path = helix_path(opt, times);
+  } else {
+    auto sampled = std::make_unique<SampledPath>(read_path_csv(opt.path_file));
+    times = sampled->times();
+    path = std::move(sampled);
+  }
+  Wrench wrench = Wrench::Zero();
+  if (!opt.wrench.empty()) {
+    const auto w = parse_wrench_option(opt.wrench);
+    for (int i = 0; i < 6; ++i) wrench(i) = w[static_cast<std::size_t>(i)];
+  }
+  if (opt.catalog_file.empty() != opt.drive.empty()) {
+    throw InputError(
+        opt.drive.empty()
+            ? "--catalog: expected --drive NAME with it (the entry to check), found none"
+            : "--drive: expected --catalog CATALOG.yaml with it, found none");
+  }
+  const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
+  std::optional<ActuatorCatalog> catalog;
+  const ActuatorEntry* drive = read_drive(opt, *machine, catalog);
+  const TrajectoryResult result = evaluate_trajectory(*machine, *path, times, wrench);
+
+  const std::string table = trajectory_csv(*machine, result, opt.jacobian);
+  // The summary: ranges along the path, the agreement of q_dot with the IK differences, and the
+  // singular poses. On stdout when the table goes to a file, else on stderr.
+  const TrajectorySummary reduced = summarize_trajectory(result, machine->num_actuators());
+  std::string summary = trajectory_summary_text(*machine, result, reduced);
+  if (drive != nullptr) {
+    bool carries = false;
+    summary += drive_check_text(*drive, reduced, carries);
+  }
+
+  write_trajectory_outputs(opt, table, singular_poses_csv(result), summary);
 }
 
 }  // namespace

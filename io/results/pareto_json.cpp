@@ -211,22 +211,10 @@ bool ParetoFront::home_height_is_parameter() const {
                      [](const ParetoParameter& p) { return p.name == "home_height"; });
 }
 
-ParetoFront read_pareto_json(const std::string& path) {
-  const std::string text = read_input_file(path);
-  const json root = parse_json_text(text, path);
-  const ParetoReader r(path);
-  if (!root.is_object()) r.fail("(top level)", "an object", describe(root));
-  ParetoFront front;
-  front.file = path;
-  front.format = r.string(root, "", "format");
-  if (front.format != "pkmopt-pareto-1") {
-    r.fail("format", "'pkmopt-pareto-1'", quote_found(front.format));
-  }
-  front.pkmopt_version = r.string(root, "", "pkmopt_version");
-  front.study = r.string(root, "", "study");
-  front.description = r.string(root, "", "description");
-  front.model = r.string(root, "", "model");
+namespace {
 
+// The columns: parameters, fixed parameters, objectives and constraints (names used once).
+void read_columns(const ParetoReader& r, const json& root, ParetoFront& front) {
   std::set<std::string> names;  // every column name must be unique
   auto unique = [&](const std::string& where, const std::string& name) {
     if (name.empty()) r.fail(where, "a non-empty name", "''");
@@ -283,20 +271,25 @@ ParetoFront read_pareto_json(const std::string& path) {
     con.unit = r.string(c, where, "unit");
     front.constraints.push_back(con);
   }
+}
+
+// The task: centre, wrench, tilt and yaw, and the extent of the task positions if given.
+ParetoTask read_task(const ParetoReader& r, const json& root) {
+  ParetoTask out;
   const json& task = r.object(root, "", "task");
   const json& centre = r.array(task, "task", "centre");
   if (centre.size() != 3) r.fail("task.centre", "3 numbers", describe(centre));
   for (int k = 0; k < 3; ++k) {
-    front.task.centre(k) = r.number_value(centre[static_cast<std::size_t>(k)],
-                                          ParetoReader::index("task.centre", k), false);
+    out.centre(k) = r.number_value(centre[static_cast<std::size_t>(k)],
+                                   ParetoReader::index("task.centre", k), false);
   }
   const json& wrench = r.array(task, "task", "wrench");
   if (wrench.size() != 6) r.fail("task.wrench", "6 numbers", describe(wrench));
   for (std::size_t k = 0; k < 6; ++k) {
-    front.task.wrench[k] = r.number_value(wrench[k], ParetoReader::index("task.wrench", k), false);
+    out.wrench[k] = r.number_value(wrench[k], ParetoReader::index("task.wrench", k), false);
   }
-  front.task.tilt_deg = r.number(task, "task", "tilt_deg", false);
-  front.task.yaw_deg = r.number(task, "task", "yaw_deg", false);
+  out.tilt_deg = r.number(task, "task", "tilt_deg", false);
+  out.yaw_deg = r.number(task, "task", "yaw_deg", false);
   if (task.contains("positions_min") || task.contains("positions_max")) {
     Eigen::Vector3d extent[2];
     const char* keys[2] = {"positions_min", "positions_max"};
@@ -312,8 +305,13 @@ ParetoFront read_pareto_json(const std::string& path) {
     if (!(extent[0].array() <= extent[1].array()).all())
       r.fail("task.positions_max", "a corner above task.positions_min",
              describe(task["positions_max"]));
-    front.task.positions = std::make_pair(extent[0], extent[1]);
+    out.positions = std::make_pair(extent[0], extent[1]);
   }
+  return out;
+}
+
+// How the front was selected and how the hypervolume converged (both optional).
+void read_selection_and_convergence(const ParetoReader& r, const json& root, ParetoFront& front) {
   if (root.contains("front_selection")) {
     const json& f = r.object(root, "", "front_selection");
     ParetoSelection sel;
@@ -340,7 +338,64 @@ ParetoFront read_pareto_json(const std::string& path) {
     }
     front.convergence = conv;
   }
+}
 
+// Design `i` of `designs`, its values named by the front's columns.
+ParetoDesign read_design(const ParetoReader& r, const json& d, const std::string& where,
+                         const ParetoFront& front, const std::vector<std::string>& parameter_names,
+                         const std::vector<std::string>& objective_names,
+                         const std::vector<std::string>& constraint_names) {
+  ParetoDesign design;
+  design.id = r.string(d, where, "id");
+  if (design.id.empty()) r.fail(where + ".id", "a non-empty id", "''");
+  if (front.design_index(design.id) >= 0) {
+    r.fail(where + ".id", "an id used once", quote_found(design.id));
+  }
+  design.parameters = named_values(r, d, where, "parameters", parameter_names);
+  design.home_height = r.number(d, where, "home_height", false);
+  design.objectives = named_values(r, d, where, "objectives", objective_names);
+  design.constraints = named_values(r, d, where, "constraints", constraint_names);
+  design.feasible = r.boolean(d, where, "feasible");
+  if (d.contains("actuator") && !d["actuator"].is_null()) {
+    const std::string a = where + ".actuator";
+    const json& actuator = r.object(d, where, "actuator");
+    design.actuator = ParetoActuator{.name = r.string(actuator, a, "name"),
+                                     .max_force = r.number(actuator, a, "max_force", false),
+                                     .stroke = r.number(actuator, a, "stroke", false),
+                                     .cost = r.number(actuator, a, "cost", false),
+                                     .force_reserve = r.number(actuator, a, "force_reserve", true)};
+  }
+  if (d.contains("machine_file")) {
+    const std::string file = r.string(d, where, "machine_file");
+    if (file.empty() || std::filesystem::path(file).is_absolute()) {
+      r.fail(where + ".machine_file", "a path relative to the results folder", quote_found(file));
+    }
+    design.machine_file = file;
+  }
+  return design;
+}
+
+}  // namespace
+
+ParetoFront read_pareto_json(const std::string& path) {
+  const std::string text = read_input_file(path);
+  const json root = parse_json_text(text, path);
+  const ParetoReader r(path);
+  if (!root.is_object()) r.fail("(top level)", "an object", describe(root));
+  ParetoFront front;
+  front.file = path;
+  front.format = r.string(root, "", "format");
+  if (front.format != "pkmopt-pareto-1") {
+    r.fail("format", "'pkmopt-pareto-1'", quote_found(front.format));
+  }
+  front.pkmopt_version = r.string(root, "", "pkmopt_version");
+  front.study = r.string(root, "", "study");
+  front.description = r.string(root, "", "description");
+  front.model = r.string(root, "", "model");
+
+  read_columns(r, root, front);
+  front.task = read_task(r, root);
+  read_selection_and_convergence(r, root, front);
   if (root.contains("actuator_catalog") && !root["actuator_catalog"].is_null())
     front.actuator_catalog =
         r.string(r.object(root, "", "actuator_catalog"), "actuator_catalog", "name");
@@ -353,35 +408,8 @@ ParetoFront read_pareto_json(const std::string& path) {
     const std::string where = ParetoReader::index("designs", i);
     const json& d = designs[i];
     if (!d.is_object()) r.fail(where, "an object", describe(d));
-    ParetoDesign design;
-    design.id = r.string(d, where, "id");
-    if (design.id.empty()) r.fail(where + ".id", "a non-empty id", "''");
-    if (front.design_index(design.id) >= 0) {
-      r.fail(where + ".id", "an id used once", quote_found(design.id));
-    }
-    design.parameters = named_values(r, d, where, "parameters", parameter_names);
-    design.home_height = r.number(d, where, "home_height", false);
-    design.objectives = named_values(r, d, where, "objectives", objective_names);
-    design.constraints = named_values(r, d, where, "constraints", constraint_names);
-    design.feasible = r.boolean(d, where, "feasible");
-    if (d.contains("actuator") && !d["actuator"].is_null()) {
-      const std::string a = where + ".actuator";
-      const json& actuator = r.object(d, where, "actuator");
-      design.actuator =
-          ParetoActuator{.name = r.string(actuator, a, "name"),
-                         .max_force = r.number(actuator, a, "max_force", false),
-                         .stroke = r.number(actuator, a, "stroke", false),
-                         .cost = r.number(actuator, a, "cost", false),
-                         .force_reserve = r.number(actuator, a, "force_reserve", true)};
-    }
-    if (d.contains("machine_file")) {
-      const std::string file = r.string(d, where, "machine_file");
-      if (file.empty() || std::filesystem::path(file).is_absolute()) {
-        r.fail(where + ".machine_file", "a path relative to the results folder", quote_found(file));
-      }
-      design.machine_file = file;
-    }
-    front.designs.push_back(std::move(design));
+    front.designs.push_back(
+        read_design(r, d, where, front, parameter_names, objective_names, constraint_names));
   }
   const json& knee = r.member(root, "", "knee", "a design id or null");
   if (!knee.is_null()) {

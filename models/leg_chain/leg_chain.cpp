@@ -45,6 +45,77 @@ Eigen::Vector3d rotate_about(const Eigen::Vector3d& w, double a, const Eigen::Ve
 
 }  // namespace
 
+namespace {
+
+// Checks leg i (0-based) of a design and normalises its axes and crank direction; throws
+// std::invalid_argument naming the leg and the field.
+void check_leg(LegChainLeg& leg, int i, PlatformMobility mobility) {
+  const std::string name = "leg " + std::to_string(i + 1) + ": ";
+  require(leg.base_point.allFinite() && leg.platform_point.allFinite() && leg.axis.allFinite() &&
+              leg.crank_zero.allFinite(),
+          name + "points and axes must be finite numbers");
+  require(std::isfinite(leg.q_min) && std::isfinite(leg.q_max) && leg.q_min < leg.q_max,
+          name + "the actuator range needs finite q_min < q_max, found [" + fmt_double(leg.q_min) +
+              ", " + fmt_double(leg.q_max) + "]");
+  require(leg.branch == 1 || leg.branch == -1, name + "branch must be +1 or -1");
+  if (leg.kind == LegKind::kUPS) {
+    require(leg.q_min > 0.0, name + "min_length must be > 0, found " + fmt_double(leg.q_min));
+  } else {
+    require(
+        std::isfinite(leg.link_length) && leg.link_length > 0.0,
+        name + "the link length must be a finite number > 0, found " + fmt_double(leg.link_length));
+    require(leg.axis.norm() > 1e-12, name + "the guide / crank axis must be non-zero");
+    leg.axis.normalize();
+  }
+  if (leg.kind == LegKind::kRUS) {
+    require(std::isfinite(leg.crank_length) && leg.crank_length > 0.0,
+            name + "the crank length must be a finite number > 0, found " +
+                fmt_double(leg.crank_length));
+    leg.crank_zero -= leg.crank_zero.dot(leg.axis) * leg.axis;
+    require(leg.crank_zero.norm() > 1e-12,
+            name + "the crank direction at q = 0 must not be along the crank axis");
+    leg.crank_zero.normalize();
+    require(leg.q_max - leg.q_min <= 2.0 * kPi + 1e-12,
+            name + "the crank range must not exceed 360 degrees");
+  }
+  require(std::isfinite(leg.axial_stiffness) && leg.axial_stiffness >= 0.0 &&
+              std::isfinite(leg.E) && leg.E >= 0.0 && std::isfinite(leg.area) && leg.area >= 0.0 &&
+              std::isfinite(leg.actuator_stiffness) && leg.actuator_stiffness >= 0.0 &&
+              leg.rods >= 1,
+          name + "stiffness values must be finite numbers >= 0 (rods >= 1)");
+  require(leg.axial_stiffness > 0.0 || (leg.E > 0.0 && leg.area > 0.0) || leg.link_section,
+          name +
+              "a link stiffness is needed: axial_stiffness > 0, or E > 0 and area > 0, or a "
+              "link_section");
+  require(std::isfinite(leg.base_joint_stiffness) && leg.base_joint_stiffness >= 0.0 &&
+              std::isfinite(leg.platform_joint_stiffness) && leg.platform_joint_stiffness >= 0.0,
+          name + "joint stiffnesses must be finite numbers >= 0");
+  check_screw_drive(leg.drive, name + "drive", leg.kind == LegKind::kRUS);
+  require(!std::isnan(leg.base_max_angle) && leg.base_max_angle > 0.0 &&
+              !std::isnan(leg.platform_max_angle) && leg.platform_max_angle > 0.0,
+          name + "joint angle limits must be > 0");
+  require(leg.base_axis.allFinite() && leg.base_axis.norm() > 1e-12 &&
+              leg.platform_axis.allFinite() && leg.platform_axis.norm() > 1e-12,
+          name + "joint axes must be non-zero finite vectors");
+  leg.base_axis.normalize();
+  leg.platform_axis.normalize();
+  if (mobility == PlatformMobility::kPlanarLegs) {
+    require(leg.plane_normal.allFinite() && leg.plane_normal.norm() > 1e-12,
+            name + "plane_normal must be a non-zero finite vector");
+    leg.plane_normal.normalize();
+    // The actuated point must move within the leg's plane.
+    if (leg.kind == LegKind::kPUS) {
+      require(std::abs(leg.plane_normal.dot(leg.axis)) <= 1e-9,
+              name + "the guide axis must lie in the leg's plane (axis . plane_normal = 0)");
+    } else if (leg.kind == LegKind::kRUS) {
+      require(leg.plane_normal.cross(leg.axis).norm() <= 1e-9,
+              name + "the crank axis must be parallel to plane_normal");
+    }
+  }
+}
+
+}  // namespace
+
 LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design) {
   const int n = static_cast<int>(design_.legs.size());
   switch (design_.mobility) {
@@ -85,69 +156,8 @@ LegChainMachine::LegChainMachine(const LegChainDesign& design) : design_(design)
   int revolute = 0;
   for (int i = 0; i < n; ++i) {
     LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
-    const std::string name = "leg " + std::to_string(i + 1) + ": ";
-    require(leg.base_point.allFinite() && leg.platform_point.allFinite() && leg.axis.allFinite() &&
-                leg.crank_zero.allFinite(),
-            name + "points and axes must be finite numbers");
-    require(std::isfinite(leg.q_min) && std::isfinite(leg.q_max) && leg.q_min < leg.q_max,
-            name + "the actuator range needs finite q_min < q_max, found [" +
-                fmt_double(leg.q_min) + ", " + fmt_double(leg.q_max) + "]");
-    require(leg.branch == 1 || leg.branch == -1, name + "branch must be +1 or -1");
-    if (leg.kind == LegKind::kUPS) {
-      require(leg.q_min > 0.0, name + "min_length must be > 0, found " + fmt_double(leg.q_min));
-    } else {
-      require(std::isfinite(leg.link_length) && leg.link_length > 0.0,
-              name + "the link length must be a finite number > 0, found " +
-                  fmt_double(leg.link_length));
-      require(leg.axis.norm() > 1e-12, name + "the guide / crank axis must be non-zero");
-      leg.axis.normalize();
-    }
-    if (leg.kind == LegKind::kRUS) {
-      ++revolute;
-      require(std::isfinite(leg.crank_length) && leg.crank_length > 0.0,
-              name + "the crank length must be a finite number > 0, found " +
-                  fmt_double(leg.crank_length));
-      leg.crank_zero -= leg.crank_zero.dot(leg.axis) * leg.axis;
-      require(leg.crank_zero.norm() > 1e-12,
-              name + "the crank direction at q = 0 must not be along the crank axis");
-      leg.crank_zero.normalize();
-      require(leg.q_max - leg.q_min <= 2.0 * kPi + 1e-12,
-              name + "the crank range must not exceed 360 degrees");
-    }
-    require(std::isfinite(leg.axial_stiffness) && leg.axial_stiffness >= 0.0 &&
-                std::isfinite(leg.E) && leg.E >= 0.0 && std::isfinite(leg.area) &&
-                leg.area >= 0.0 && std::isfinite(leg.actuator_stiffness) &&
-                leg.actuator_stiffness >= 0.0 && leg.rods >= 1,
-            name + "stiffness values must be finite numbers >= 0 (rods >= 1)");
-    require(leg.axial_stiffness > 0.0 || (leg.E > 0.0 && leg.area > 0.0) || leg.link_section,
-            name +
-                "a link stiffness is needed: axial_stiffness > 0, or E > 0 and area > 0, or a "
-                "link_section");
-    require(std::isfinite(leg.base_joint_stiffness) && leg.base_joint_stiffness >= 0.0 &&
-                std::isfinite(leg.platform_joint_stiffness) && leg.platform_joint_stiffness >= 0.0,
-            name + "joint stiffnesses must be finite numbers >= 0");
-    check_screw_drive(leg.drive, name + "drive", leg.kind == LegKind::kRUS);
-    require(!std::isnan(leg.base_max_angle) && leg.base_max_angle > 0.0 &&
-                !std::isnan(leg.platform_max_angle) && leg.platform_max_angle > 0.0,
-            name + "joint angle limits must be > 0");
-    require(leg.base_axis.allFinite() && leg.base_axis.norm() > 1e-12 &&
-                leg.platform_axis.allFinite() && leg.platform_axis.norm() > 1e-12,
-            name + "joint axes must be non-zero finite vectors");
-    leg.base_axis.normalize();
-    leg.platform_axis.normalize();
-    if (design_.mobility == PlatformMobility::kPlanarLegs) {
-      require(leg.plane_normal.allFinite() && leg.plane_normal.norm() > 1e-12,
-              name + "plane_normal must be a non-zero finite vector");
-      leg.plane_normal.normalize();
-      // The actuated point must move within the leg's plane.
-      if (leg.kind == LegKind::kPUS) {
-        require(std::abs(leg.plane_normal.dot(leg.axis)) <= 1e-9,
-                name + "the guide axis must lie in the leg's plane (axis . plane_normal = 0)");
-      } else if (leg.kind == LegKind::kRUS) {
-        require(leg.plane_normal.cross(leg.axis).norm() <= 1e-9,
-                name + "the crank axis must be parallel to plane_normal");
-      }
-    }
+    check_leg(leg, i, design_.mobility);
+    if (leg.kind == LegKind::kRUS) ++revolute;
   }
   require(revolute == 0 || revolute == n, "legs must be all revolute or all prismatic");
   revolute_ = revolute == n;

@@ -83,6 +83,18 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
     if (!r.fixed()) free_.push_back(i);
   }
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
+  check_machine_for_goals(where);
+  set_up_actuator_catalog(where);
+  if (spec_.formulation == DesignFormulation::aggregate) {
+    num_inequality_ = spec_.constraints.size() + (spec_.require_reachable ? 1 : 0);
+    return;
+  }
+  set_up_smooth_formulation(where);
+}
+
+// The machine has what the goals need: masses for a_max and the dynamic metrics, the legs' shape
+// for their clearance.
+void HexapodDesignProblem::check_machine_for_goals(const std::string& where) {
   if (spec_.task.acceleration_max > 0.0 && !spec_.machine_template.masses.present)
     throw std::invalid_argument(fmt::format(
         "{}: task a_max needs the machine's masses (machine.masses, docs/dynamics.md)", where));
@@ -101,6 +113,11 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
         "{}: leg_clearance_min needs the legs' shape (machine.legs.diameter, or legs.cylinder "
         "and legs.rod; docs/interference.md)",
         where));
+}
+
+// The actuator catalog the design chooses its drives from: checked, its costs, the stroke within
+// its longest entry; without one, no goal may need it.
+void HexapodDesignProblem::set_up_actuator_catalog(const std::string& where) {
   if (spec_.actuator_catalog) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
     if (catalog.entries.empty())
@@ -138,15 +155,16 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
             fmt::format("{}: {} needs an actuator catalog to choose from, found none", where,
                         design_metric_name(static_cast<DesignMetric>(m))));
   }
+}
 
+// The rows of the smooth formulation (Ipopt, NLopt): epigraph variables of the objectives that
+// have one, the rows of each constraint, the reach rows, and the bound of the stiffness epigraph
+// variable. Goals without a smooth form are refused.
+void HexapodDesignProblem::set_up_smooth_formulation(const std::string& where) {
   const std::size_t poses = spec_.task.poses.size();
   const HexapodJointLimits& limits = spec_.machine_template.joints;
   const std::size_t reach_per_pose = 12 + (std::isfinite(limits.base_max_angle) ? 6 : 0) +
                                      (std::isfinite(limits.platform_max_angle) ? 6 : 0);
-  if (spec_.formulation == DesignFormulation::aggregate) {
-    num_inequality_ = spec_.constraints.size() + (spec_.require_reachable ? 1 : 0);
-    return;
-  }
   if ((spec_.machine_template.leg_shape.present() || spec_.task.installation_space.present()) &&
       spec_.require_reachable)
     throw std::invalid_argument(fmt::format(
@@ -183,29 +201,7 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
         throw std::invalid_argument(
             fmt::format("{}: objective {} is listed twice", where,
                         design_metric_name(spec_.objectives[epigraph_objectives_[a]].metric)));
-  for (const DesignConstraint& c : spec_.constraints) {
-    if (c.metric == DesignMetric::leg_force_max && c.relation == Relation::less_equal) {
-      num_inequality_ += 12 * poses;
-    } else if (c.metric == DesignMetric::stiffness_min && c.relation == Relation::greater_equal) {
-      num_inequality_ += kStiffnessRowsPerPose * poses;
-    } else if (c.metric == DesignMetric::machine_size) {
-      num_inequality_ += 1;
-    } else if (c.metric == DesignMetric::actuator_overload && c.relation == Relation::less_equal) {
-      if (!spec_.parameters[kStroke].fixed())
-        throw std::invalid_argument(fmt::format(
-            "{}: constraint actuator_overload <= has a smooth formulation only with a fixed "
-            "stroke (the catalog's force capacity jumps where the stroke passes an entry's); "
-            "fix the stroke or use an evolutionary optimizer (aggregate formulation)",
-            where));
-      num_inequality_ += 12 * poses;
-    } else {
-      throw std::invalid_argument(fmt::format(
-          "{}: constraint {} {} has no smooth formulation (smooth: leg_force_max <=, "
-          "stiffness_min >=, machine_size <= or >=); use an evolutionary optimizer (aggregate "
-          "formulation)",
-          where, design_metric_name(c.metric), c.relation == Relation::less_equal ? "<=" : ">="));
-    }
-  }
+  num_inequality_ += smooth_constraint_rows(where, poses);
   // Upper bound of the stiffness epigraph variable: stiffness_min <= lambda_max(K_tt) <=
   // sum k_i <= 6 k(q) at the shortest leg a reachable design can have.
   const LegStiffness& k = spec_.machine_template.stiffness;
@@ -215,6 +211,37 @@ HexapodDesignProblem::HexapodDesignProblem(HexapodDesignSpec spec) : spec_(std::
   stiffness_upper_ = 6.0 / compliance / kEpigraphStiffnessUnit;
   if (!std::isfinite(stiffness_upper_) || stiffness_upper_ <= 0.0) stiffness_upper_ = 1e6;
   if (spec_.require_reachable) num_inequality_ += reach_per_pose * poses;
+}
+
+// The rows of the constraints in the smooth formulation; a constraint without a smooth form is
+// refused.
+std::size_t HexapodDesignProblem::smooth_constraint_rows(const std::string& where,
+                                                         std::size_t poses) const {
+  std::size_t rows = 0;
+  for (const DesignConstraint& c : spec_.constraints) {
+    if (c.metric == DesignMetric::leg_force_max && c.relation == Relation::less_equal) {
+      rows += 12 * poses;
+    } else if (c.metric == DesignMetric::stiffness_min && c.relation == Relation::greater_equal) {
+      rows += kStiffnessRowsPerPose * poses;
+    } else if (c.metric == DesignMetric::machine_size) {
+      rows += 1;
+    } else if (c.metric == DesignMetric::actuator_overload && c.relation == Relation::less_equal) {
+      if (!spec_.parameters[kStroke].fixed())
+        throw std::invalid_argument(fmt::format(
+            "{}: constraint actuator_overload <= has a smooth formulation only with a fixed "
+            "stroke (the catalog's force capacity jumps where the stroke passes an entry's); "
+            "fix the stroke or use an evolutionary optimizer (aggregate formulation)",
+            where));
+      rows += 12 * poses;
+    } else {
+      throw std::invalid_argument(fmt::format(
+          "{}: constraint {} {} has no smooth formulation (smooth: leg_force_max <=, "
+          "stiffness_min >=, machine_size <= or >=); use an evolutionary optimizer (aggregate "
+          "formulation)",
+          where, design_metric_name(c.metric), c.relation == Relation::less_equal ? "<=" : ">="));
+    }
+  }
+  return rows;
 }
 
 Bounds HexapodDesignProblem::bounds() const {

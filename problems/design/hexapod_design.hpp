@@ -226,6 +226,10 @@ class HexapodDesignProblem final : public DesignProblem {
   std::vector<double> aggregate_fitness(const DesignEvaluation& evaluation) const;
 
  private:
+  void check_machine_for_goals(const std::string& where);
+  void set_up_actuator_catalog(const std::string& where);
+  void set_up_smooth_formulation(const std::string& where);
+  std::size_t smooth_constraint_rows(const std::string& where, std::size_t poses) const;
   template <typename T>
   void smooth_rows(const std::array<T, kNumDesignParameters>& p, const std::vector<T>& epigraph,
                    std::vector<T>& rows) const;
