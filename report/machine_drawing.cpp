@@ -58,6 +58,72 @@ const char* line_style(MachineSketch::Part part) {
   return "";
 }
 
+// One view of the machine (base and platform outlines, the task box, the lines, the joints and
+// the TCP) in the w x h pixel rectangle at (x0, y0), px pixels per metre from the corner of box.
+std::string view_svg(const MachineSketch& sketch, const MachineDrawingOptions& options,
+                     const View& v, const Eigen::AlignedBox3d& box, double px, int x0, int y0,
+                     int w, int h) {
+  std::string out;
+  auto X = [&](const Eigen::Vector3d& p) { return x0 + (p(v.right) - box.min()(v.right)) * px; };
+  auto Y = [&](const Eigen::Vector3d& p) { return y0 + h - (p(v.up) - box.min()(v.up)) * px; };
+  out += fmt::format("<g class=\"view\"><text x=\"{}\" y=\"{}\" fill=\"#555\">{}</text>\n", x0,
+                     y0 - 4, v.name);
+  out += fmt::format(
+      "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#fafafa\" stroke=\"#ddd\"/>\n", x0,
+      y0, w, h);
+  // Outlines: the convex hull of the joints projected on the view.
+  auto outline = [&](const std::vector<Eigen::Vector3d>& joints, const char* fill,
+                     const char* stroke) {
+    std::vector<Eigen::Vector2d> flat;
+    for (const auto& p : joints) flat.emplace_back(X(p), Y(p));
+    const std::vector<Eigen::Vector2d> hull = convex_hull(flat);
+    if (hull.size() < 2) return;
+    std::string points;
+    for (const auto& q : hull) points += fmt::format("{:.1f},{:.1f} ", q.x(), q.y());
+    out += fmt::format(
+        "<polygon points=\"{}\" fill=\"{}\" fill-opacity=\"0.5\" stroke=\"{}\" "
+        "stroke-width=\"1.5\"/>\n",
+        points, fill, stroke);
+  };
+  outline(sketch.base_joints, "#cfcfcf", "#777");
+  if (!options.task_box.isEmpty()) {
+    const Eigen::AlignedBox3d& t = options.task_box;
+    out += fmt::format(
+        "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
+        "stroke=\"#2a8a2a\" stroke-dasharray=\"4 3\"><title>task box</title></rect>\n",
+        X(t.min()), Y(t.max()), t.sizes()(v.right) * px, t.sizes()(v.up) * px);
+  }
+  for (const MachineSketch::Line& l : sketch.lines)
+    out += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" {}/>\n",
+                       X(l.from), Y(l.from), X(l.to), Y(l.to), line_style(l.part));
+  outline(sketch.platform_joints, "#7fa8e0", "#2a5ba8");
+  for (const auto& p : sketch.base_joints)
+    out +=
+        fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"#555\"/>\n", X(p), Y(p));
+  for (const auto& p : sketch.platform_joints)
+    out += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"#2a5ba8\"/>\n", X(p),
+                       Y(p));
+  out += fmt::format(
+      "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"#c00\"><title>TCP ({:.1f}, "
+      "{:.1f}, {:.1f}) mm</title></circle>\n",
+      X(sketch.tcp), Y(sketch.tcp), 1e3 * sketch.tcp.x(), 1e3 * sketch.tcp.y(),
+      1e3 * sketch.tcp.z());
+  out += "</g>\n";
+  return out;
+}
+
+// A scale bar of 100 mm (or 10 mm or 1 m, whichever fits the first view of `first_width` pixels
+// best) at the bottom of a drawing `height` pixels high.
+std::string scale_bar_svg(double px, int first_width, int height) {
+  double bar = 0.1;
+  if (bar * px > first_width * 0.6) bar = 0.01;
+  if (bar * px < 20) bar = 1.0;
+  return fmt::format(
+      "<line x1=\"4\" y1=\"{0}\" x2=\"{1:.1f}\" y2=\"{0}\" stroke=\"#000\" stroke-width=\"2\"/>"
+      "<text x=\"{2:.1f}\" y=\"{3}\">{4:g} mm</text>\n",
+      height - 7, 4 + bar * px, 8 + bar * px, height - 3, bar * 1e3);
+}
+
 }  // namespace
 
 Eigen::AlignedBox3d sketch_bounds(const MachineSketch& sketch) {
@@ -112,64 +178,13 @@ std::string machine_svg(const MachineSketch& sketch, const MachineDrawingOptions
   int x0 = 0;
   for (std::size_t k = 0; k < kViews.size(); ++k) {
     const View& v = kViews[k];
-    const int w = sizes[k].first;  // not a structured binding: lambdas below capture h
+    const int w = sizes[k].first;
     const int h = sizes[k].second;
     const int y0 = title_height + label_height;
-    auto X = [&](const Eigen::Vector3d& p) { return x0 + (p(v.right) - box.min()(v.right)) * px; };
-    auto Y = [&](const Eigen::Vector3d& p) { return y0 + h - (p(v.up) - box.min()(v.up)) * px; };
-    out += fmt::format("<g class=\"view\"><text x=\"{}\" y=\"{}\" fill=\"#555\">{}</text>\n", x0,
-                       y0 - 4, v.name);
-    out += fmt::format(
-        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"#fafafa\" stroke=\"#ddd\"/>\n",
-        x0, y0, w, h);
-    // Outlines: the convex hull of the joints projected on the view.
-    auto outline = [&](const std::vector<Eigen::Vector3d>& joints, const char* fill,
-                       const char* stroke) {
-      std::vector<Eigen::Vector2d> flat;
-      for (const auto& p : joints) flat.emplace_back(X(p), Y(p));
-      const std::vector<Eigen::Vector2d> hull = convex_hull(flat);
-      if (hull.size() < 2) return;
-      std::string points;
-      for (const auto& q : hull) points += fmt::format("{:.1f},{:.1f} ", q.x(), q.y());
-      out += fmt::format(
-          "<polygon points=\"{}\" fill=\"{}\" fill-opacity=\"0.5\" stroke=\"{}\" "
-          "stroke-width=\"1.5\"/>\n",
-          points, fill, stroke);
-    };
-    outline(sketch.base_joints, "#cfcfcf", "#777");
-    if (!options.task_box.isEmpty()) {
-      const Eigen::AlignedBox3d& t = options.task_box;
-      out += fmt::format(
-          "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
-          "stroke=\"#2a8a2a\" stroke-dasharray=\"4 3\"><title>task box</title></rect>\n",
-          X(t.min()), Y(t.max()), t.sizes()(v.right) * px, t.sizes()(v.up) * px);
-    }
-    for (const MachineSketch::Line& l : sketch.lines)
-      out += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" {}/>\n",
-                         X(l.from), Y(l.from), X(l.to), Y(l.to), line_style(l.part));
-    outline(sketch.platform_joints, "#7fa8e0", "#2a5ba8");
-    for (const auto& p : sketch.base_joints)
-      out += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"#555\"/>\n", X(p),
-                         Y(p));
-    for (const auto& p : sketch.platform_joints)
-      out += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"2.5\" fill=\"#2a5ba8\"/>\n", X(p),
-                         Y(p));
-    out += fmt::format(
-        "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"3.5\" fill=\"#c00\"><title>TCP ({:.1f}, "
-        "{:.1f}, {:.1f}) mm</title></circle>\n",
-        X(sketch.tcp), Y(sketch.tcp), 1e3 * sketch.tcp.x(), 1e3 * sketch.tcp.y(),
-        1e3 * sketch.tcp.z());
-    out += "</g>\n";
+    out += view_svg(sketch, options, v, box, px, x0, y0, w, h);
     x0 += w + 12;
   }
-  // Scale bar: 100 mm (or 10 mm / 1 m, whichever fits the first view best).
-  double bar = 0.1;
-  if (bar * px > sizes[0].first * 0.6) bar = 0.01;
-  if (bar * px < 20) bar = 1.0;
-  out += fmt::format(
-      "<line x1=\"4\" y1=\"{0}\" x2=\"{1:.1f}\" y2=\"{0}\" stroke=\"#000\" stroke-width=\"2\"/>"
-      "<text x=\"{2:.1f}\" y=\"{3}\">{4:g} mm</text>\n",
-      height - 7, 4 + bar * px, 8 + bar * px, height - 3, bar * 1e3);
+  out += scale_bar_svg(px, sizes[0].first, height);
   out += "</svg>\n";
   return out;
 }

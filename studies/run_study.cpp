@@ -184,54 +184,47 @@ StudyRunResult run_study_file(const std::string& study_file, const StudyRunOptio
   return run_study(YamlValue::load_file(study_file), options);
 }
 
-StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) {
-  StudyRunOptions opt = options;
-  if (!opt.message)
-    opt.message = [](const std::string& text) { std::cerr << "pkmopt: run: " << text << '\n'; };
-  const auto wall_start = std::chrono::steady_clock::now();
-  auto wall_seconds = [&] {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  };
-  if (opt.threads < 0 || opt.threads > kMaxStudyThreads)
-    throw InputError(
-        fmt::format("--threads: expected an integer in [0, {}] (0: all cores), found {}",
-                    kMaxStudyThreads, opt.threads));
-  if (opt.resume && opt.force)
-    throw InputError("--resume and --force: expected one of them, found both");
-  if (opt.mpi != nullptr && opt.mpi->rank() > 0) {
-    serve_as_worker([&root] { return load_evaluator(root); }, opt.threads);
-    StudyRunResult worker;
-    worker.worker = true;
-    return worker;
-  }
-  if (root.is_map() && root.has("machine")) {
-    const DesignStudy design = load_design_study(root);
-    const PreparedDirectory prepared = prepare_output_directory(opt);
-    const bool resumed = prepared.resumed;
-    JournalOptions journal_options = design_journal_options(design);
-    fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
-    const std::unique_ptr<MpiDispatcher> workers = dispatch_to_workers(
-        opt, design.optimization_problem(), journal_options, design.resolved_yaml);
-    JournaledProblem journaled(design.optimization_problem(), journal_options);
-    const RunOutcome outcome = run_optimizer(journaled, design.optimizer, opt.threads);
-    journaled.finish();
-    DesignRunFacts facts;
-    facts.threads = opt.threads;
-    facts.mpi_ranks = workers ? workers->workers() + 1 : 1;
-    facts.resumed = resumed;
-    facts.journal = &journaled;
-    facts.wall_seconds = wall_seconds();
-    const DesignOutputSummary written = write_design_outputs(
-        opt.out, design, outcome, facts, {{resolved_path(opt), design.resolved_yaml}});
-    StudyRunResult result =
-        run_result(design.name, design.optimizer, outcome, journaled, resumed, facts.wall_seconds);
-    result.design_study = true;
-    result.designs = written.designs;
-    result.status = written.status;
-    result.infeasibility = written.infeasibility;
-    result.mpi_workers = workers ? workers->workers() : 0;
-    return result;
-  }
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A design study: the problem of its machine, journaled, optimised, and its result files.
+StudyRunResult run_design_study(const YamlValue& root, const StudyRunOptions& opt,
+                                std::chrono::steady_clock::time_point wall_start) {
+  const DesignStudy design = load_design_study(root);
+  const PreparedDirectory prepared = prepare_output_directory(opt);
+  const bool resumed = prepared.resumed;
+  JournalOptions journal_options = design_journal_options(design);
+  fill_journal_options(journal_options, opt, design.resolved_yaml, design.optimizer);
+  const std::unique_ptr<MpiDispatcher> workers = dispatch_to_workers(
+      opt, design.optimization_problem(), journal_options, design.resolved_yaml);
+  JournaledProblem journaled(design.optimization_problem(), journal_options);
+  const RunOutcome outcome = run_optimizer(journaled, design.optimizer, opt.threads);
+  journaled.finish();
+  DesignRunFacts facts;
+  facts.threads = opt.threads;
+  facts.mpi_ranks = workers ? workers->workers() + 1 : 1;
+  facts.resumed = resumed;
+  facts.journal = &journaled;
+  facts.wall_seconds = seconds_since(wall_start);
+  const DesignOutputSummary written = write_design_outputs(
+      opt.out, design, outcome, facts, {{resolved_path(opt), design.resolved_yaml}});
+  StudyRunResult result =
+      run_result(design.name, design.optimizer, outcome, journaled, resumed, facts.wall_seconds);
+  result.design_study = true;
+  result.designs = written.designs;
+  result.status = written.status;
+  result.infeasibility = written.infeasibility;
+  result.mpi_workers = workers ? workers->workers() : 0;
+  return result;
+}
+
+// A benchmark study: the problem, journaled, optimised, its front the archive of every
+// evaluation, and its result files.
+StudyRunResult run_benchmark_study(const YamlValue& root, const StudyRunOptions& opt,
+                                   std::chrono::steady_clock::time_point wall_start) {
   const BenchmarkStudy study = load_benchmark_study(root);
   const PreparedDirectory prepared = prepare_output_directory(opt);
   const bool resumed = prepared.resumed;
@@ -268,15 +261,38 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
   extra["evaluations_loaded_from_journal"] = journaled.loaded_entries();
   extra["evaluations_new"] = journaled.entries().size() - journaled.loaded_entries();
   extra["evaluations_failed"] = journaled.failed();
-  extra["wall_seconds"] = wall_seconds();
+  extra["wall_seconds"] = seconds_since(wall_start);
   write_run_outputs(opt.out, study.name, *study.problem, study.optimizer, outcome, opt.threads,
                     study.reference_point, reference_front, extra,
                     {{resolved_path(opt), study.resolved_yaml}});
-  StudyRunResult result =
-      run_result(study.name, study.optimizer, outcome, journaled, resumed, wall_seconds());
+  StudyRunResult result = run_result(study.name, study.optimizer, outcome, journaled, resumed,
+                                     seconds_since(wall_start));
   result.problem = study.problem->name();
   result.mpi_workers = workers ? workers->workers() : 0;
   return result;
+}
+
+}  // namespace
+
+StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) {
+  StudyRunOptions opt = options;
+  if (!opt.message)
+    opt.message = [](const std::string& text) { std::cerr << "pkmopt: run: " << text << '\n'; };
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (opt.threads < 0 || opt.threads > kMaxStudyThreads)
+    throw InputError(
+        fmt::format("--threads: expected an integer in [0, {}] (0: all cores), found {}",
+                    kMaxStudyThreads, opt.threads));
+  if (opt.resume && opt.force)
+    throw InputError("--resume and --force: expected one of them, found both");
+  if (opt.mpi != nullptr && opt.mpi->rank() > 0) {
+    serve_as_worker([&root] { return load_evaluator(root); }, opt.threads);
+    StudyRunResult worker;
+    worker.worker = true;
+    return worker;
+  }
+  if (root.is_map() && root.has("machine")) return run_design_study(root, opt, wall_start);
+  return run_benchmark_study(root, opt, wall_start);
 }
 
 }  // namespace pkmopt

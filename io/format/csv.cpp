@@ -58,6 +58,101 @@ double CsvTable::number(const CsvRow& row, int col) const {
   return value;
 }
 
+namespace {
+
+// Reads the records of a CSV text one by one (RFC 4180 quoting; a quoted field may span lines),
+// counting lines for the messages.
+class RecordReader {
+ public:
+  RecordReader(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+  // The next record into `cells` (its first line in `record_line`; `blank` when it is an empty
+  // line); false at the end of the text.
+  bool next(std::vector<std::string>& cells, int& record_line, bool& blank) {
+    cells.clear();
+    if (pos_ >= text_.size()) return false;
+    record_line = line_;
+    std::string cell;
+    bool in_quotes = false;
+    bool was_quoted = false;
+    int quote_line = line_;
+    while (pos_ < text_.size()) {
+      const char c = text_[pos_];
+      if (in_quotes) {
+        if (c == '"') {
+          if (pos_ + 1 < text_.size() && text_[pos_ + 1] == '"') {
+            cell += '"';
+            pos_ += 2;
+            continue;
+          }
+          in_quotes = false;
+          ++pos_;
+          continue;
+        }
+        if (c == '\n') ++line_;
+        cell += c;
+        ++pos_;
+        continue;
+      }
+      if (c == '"' && trim(cell).empty()) {
+        in_quotes = true;
+        was_quoted = true;
+        quote_line = line_;
+        cell.clear();
+        ++pos_;
+        continue;
+      }
+      if (c == ',') {
+        cells.push_back(cell);
+        cell.clear();
+        was_quoted = false;
+        ++pos_;
+        continue;
+      }
+      if (c == '\r' || c == '\n') {
+        if (c == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n') ++pos_;
+        ++pos_;
+        ++line_;
+        break;
+      }
+      cell += c;
+      ++pos_;
+    }
+    if (in_quotes) {
+      throw InputError(fmt::format("{}unterminated quoted field (expected a closing '\"')",
+                                   location_prefix(file_, quote_line)));
+    }
+    cells.push_back(cell);
+    blank = cells.size() == 1 && trim(cells[0]).empty() && !was_quoted;
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  const std::string& file_;
+  std::size_t pos_ = 0;
+  int line_ = 1;
+};
+
+// A header's names are non-empty and used once.
+void check_header(const std::vector<std::string>& header, const std::string& file,
+                  int record_line) {
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i].empty()) {
+      throw InputError(fmt::format("{}column {}: expected a column name, found an empty one",
+                                   location_prefix(file, record_line), i + 1));
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (header[i] == header[j]) {
+        throw InputError(fmt::format("{}column {}: duplicate column name {}",
+                                     location_prefix(file, record_line), i + 1,
+                                     quote_found(header[i])));
+      }
+    }
+  }
+}
+
+}  // namespace
+
 CsvTable parse_csv(const std::string& text_in, const std::string& file) {
   require_utf8(text_in, file);
   std::string_view text(text_in);
@@ -65,91 +160,19 @@ CsvTable parse_csv(const std::string& text_in, const std::string& file) {
   CsvTable table;
   table.file = file;
 
-  std::size_t pos = 0;
-  int line = 1;
-  // Parse one record starting at pos; returns false at end of input.
-  auto next_record = [&](std::vector<std::string>& cells, int& record_line, bool& blank) {
-    cells.clear();
-    if (pos >= text.size()) return false;
-    record_line = line;
-    std::string cell;
-    bool in_quotes = false;
-    bool was_quoted = false;
-    int quote_line = line;
-    while (pos < text.size()) {
-      const char c = text[pos];
-      if (in_quotes) {
-        if (c == '"') {
-          if (pos + 1 < text.size() && text[pos + 1] == '"') {
-            cell += '"';
-            pos += 2;
-            continue;
-          }
-          in_quotes = false;
-          ++pos;
-          continue;
-        }
-        if (c == '\n') ++line;
-        cell += c;
-        ++pos;
-        continue;
-      }
-      if (c == '"' && trim(cell).empty()) {
-        in_quotes = true;
-        was_quoted = true;
-        quote_line = line;
-        cell.clear();
-        ++pos;
-        continue;
-      }
-      if (c == ',') {
-        cells.push_back(cell);
-        cell.clear();
-        was_quoted = false;
-        ++pos;
-        continue;
-      }
-      if (c == '\r' || c == '\n') {
-        if (c == '\r' && pos + 1 < text.size() && text[pos + 1] == '\n') ++pos;
-        ++pos;
-        ++line;
-        break;
-      }
-      cell += c;
-      ++pos;
-    }
-    if (in_quotes) {
-      throw InputError(fmt::format("{}unterminated quoted field (expected a closing '\"')",
-                                   location_prefix(file, quote_line)));
-    }
-    cells.push_back(cell);
-    blank = cells.size() == 1 && trim(cells[0]).empty() && !was_quoted;
-    return true;
-  };
+  RecordReader reader(text, file);
 
   std::vector<std::string> cells;
   int record_line = 0;
   bool blank = false;
   bool have_header = false;
-  while (next_record(cells, record_line, blank)) {
+  while (reader.next(cells, record_line, blank)) {
     if (blank) continue;
     if (!have_header) {
       for (auto& c : cells) table.header.push_back(trim(c));
       table.header_line = record_line;
       have_header = true;
-      for (std::size_t i = 0; i < table.header.size(); ++i) {
-        if (table.header[i].empty()) {
-          throw InputError(fmt::format("{}column {}: expected a column name, found an empty one",
-                                       location_prefix(file, record_line), i + 1));
-        }
-        for (std::size_t j = 0; j < i; ++j) {
-          if (table.header[i] == table.header[j]) {
-            throw InputError(fmt::format("{}column {}: duplicate column name {}",
-                                         location_prefix(file, record_line), i + 1,
-                                         quote_found(table.header[i])));
-          }
-        }
-      }
+      check_header(table.header, file, record_line);
       continue;
     }
     if (cells.size() != table.header.size()) {
