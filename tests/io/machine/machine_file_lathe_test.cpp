@@ -11,9 +11,12 @@
 #include <string>
 
 #include "io/format/input_error.hpp"
+#include "tests/io/machine/readback.hpp"
 
 namespace pkmopt {
 namespace {
+
+using readback_test::expect_angle;
 
 std::string error_of(const std::string& text) {
   try {
@@ -189,16 +192,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 YamlValue yaml(const std::string& text, const std::string& name) {
   return YamlValue::load_string(text, name);
 }
-
-// Angles go through the file in degrees with 12 significant digits.
-void expect_angle(double read, double written, const char* what) {
-  if (std::isinf(written)) {
-    EXPECT_EQ(read, written) << what;
-  } else {
-    EXPECT_NEAR(read, written, 1e-11 * std::max(1.0, std::abs(written))) << what;
-  }
-}
-
 
 Lathe16k20f3Design sample_lathe() {
   Lathe16k20f3Design d;

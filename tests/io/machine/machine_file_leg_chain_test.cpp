@@ -21,9 +21,12 @@
 #include "io/machine/machine_file.hpp"
 #include "io/machine/model_registry.hpp"
 #include "problems/design/leg_chain_design.hpp"
+#include "tests/io/machine/readback.hpp"
 
 namespace pkmopt {
 namespace {
+
+using readback_test::expect_angle;
 
 const std::string kSource = PKMOPT_SOURCE_DIR;
 
@@ -43,15 +46,6 @@ std::string error_of(const std::string& text) {
     return e.what();
   }
   return "no error";
-}
-
-// Angles go through the files in degrees with 12 significant digits.
-void expect_angle(double read, double written, const std::string& what) {
-  if (std::isinf(written)) {
-    EXPECT_EQ(read, written) << what;
-  } else {
-    EXPECT_NEAR(read, written, 1e-11 * std::max(1.0, std::abs(written))) << what;
-  }
 }
 
 void expect_vector_angles(const Eigen::Vector3d& read, const Eigen::Vector3d& written,
@@ -606,15 +600,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 YamlValue yaml(const std::string& text, const std::string& name) {
   return YamlValue::load_string(text, name);
-}
-
-// Angles go through the file in degrees with 12 significant digits.
-void expect_angle(double read, double written, const char* what) {
-  if (std::isinf(written)) {
-    EXPECT_EQ(read, written) << what;
-  } else {
-    EXPECT_NEAR(read, written, 1e-11 * std::max(1.0, std::abs(written))) << what;
-  }
 }
 
 // The file gives either axial_stiffness or E and area (the other is not read back).
