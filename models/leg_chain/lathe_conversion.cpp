@@ -111,6 +111,28 @@ double seeds_strut_length(const SeedsStrutInputs& in) {
   return std::sqrt(in.X_K * in.X_K + dy * dy + dz * dz);
 }
 
+SeedsStrutInputs seeds_strut_inputs(const Lathe16k20f3Design& d, double D_max, double Y_xx,
+                                    double Z_xx) {
+  SeedsStrutInputs in;
+  in.Y_D = -d.guide_y;
+  in.Z_D = -d.guide_z;
+  in.D_max = D_max;
+  in.Y_xx = Y_xx;
+  in.Z_xx = Z_xx;
+  in.Y_I = -(d.tool_reach * std::cos(d.approach_angle) + d.strut_joint_y);
+  in.Z_I = -(d.tool_reach * std::sin(d.approach_angle) + d.strut_joint_z);
+  return in;
+}
+
+SeedsStrutLength seeds_strut_length_at_inclination(const SeedsStrutInputs& in, double max_angle) {
+  SeedsStrutInputs across = in;
+  across.X_K = 0.0;
+  SeedsStrutLength out;
+  out.length = seeds_strut_length(across) / std::sin(max_angle);
+  out.X_K = out.length * std::cos(max_angle);
+  return out;
+}
+
 std::vector<Pose> lathe_task_poses(const LatheTask& task) {
   for (int a = 0; a < 3; ++a) {
     if (task.counts(a) < 1) throw std::invalid_argument("lathe task: counts must be >= 1");

@@ -38,12 +38,19 @@
 // motor torsion; models/stiffness/compliance_chain.hpp) and the joints' axial stiffness, all in
 // series. The parallelogram bars are taken as rigid (leg_chain.hpp).
 //
-// The conversion study's strut-length formula (`seeds_strut_length`): the strut from the carriage
-// hinge (Y_I, Z_I) must reach the farthest tool position, the largest part's radius plus the
-// tool-approach clearance in y and in z from the part axis (Y_D, Z_D), with the axial offset X_K
-// that keeps it inclined to the guideway:
+// The conversion study's strut-length formula (`seeds_strut_length`), with the inputs as the
+// study defines them: the strut runs from the carriage hinge (a base joint) to the strut joint of
+// the turret housing (a platform joint) when the tool tip is at its farthest position, the
+// largest part's radius plus the tool-approach clearance from the part axis in y and in z:
 //   L = sqrt(X_K^2 + (Y_D + D_max/2 + Y_xx - Y_I)^2 + (Z_D + D_max/2 + Z_xx - Z_I)^2)
-// (all in m). `minimal_strut_length` computes instead the shortest strut with which the whole
+// with Y_D, Z_D the part axis seen from the hinge line, Y_I, Z_I the tool tip seen from the
+// platform joint (the turret's geometry) and X_K the strut's offset along the guideway, which its
+// largest inclination fixes: X_K = L cos(strut_max_angle), so L = sqrt(dy^2 + dz^2) /
+// sin(strut_max_angle) (`seeds_strut_length_at_inclination`; `seeds_strut_inputs` reads the
+// inputs off a design). For this design that gives 0.5277 m for the study's region and 0.7205 m
+// for the 400 mm cross travel, the minimal strut lengths below to 1e-5 m: the far corner of the
+// task with the strut at its largest inclination is what binds. All in m.
+// `minimal_strut_length` computes the shortest strut with which the whole
 // mechanism reaches every pose of a task (bisection on strut_length; reachability is monotone in
 // it while the carriage travel does not bind: a longer strut reaches farther from the guide line
 // and leans more towards it, but pushes the carriages farther out along x).
@@ -125,17 +132,31 @@ std::unique_ptr<Machine> make_lathe_16k20f3(const Lathe16k20f3Design& d);
 
 /// The inputs of the conversion study's strut-length formula (m; see the header comment).
 struct SeedsStrutInputs {
-  double X_K = 0.0;    ///< axial offset of the strut (carriage hinge to platform joint along x)
-  double Y_D = 0.0;    ///< part axis y
-  double Z_D = 0.0;    ///< part axis z
+  double X_K = 0.0;    ///< strut offset along the guideway (x), hinge to platform joint
+  double Y_D = 0.0;    ///< part axis y, from the carriage hinge line
+  double Z_D = 0.0;    ///< part axis z, from the carriage hinge line
   double D_max = 0.0;  ///< largest part diameter
   double Y_xx = 0.0;   ///< tool-approach clearance along y
   double Z_xx = 0.0;   ///< ... along z
-  double Y_I = 0.0;    ///< carriage hinge y
-  double Z_I = 0.0;    ///< carriage hinge z
+  double Y_I = 0.0;    ///< tool tip y, from the platform strut joint
+  double Z_I = 0.0;    ///< tool tip z, from the platform strut joint
 };
 /// L = sqrt(X_K^2 + (Y_D + D_max/2 + Y_xx - Y_I)^2 + (Z_D + D_max/2 + Z_xx - Z_I)^2).
 double seeds_strut_length(const SeedsStrutInputs& in);
+/// The formula's inputs from a design (X_K left 0): Y_D = -guide_y, Z_D = -guide_z (the part axis
+/// is the frame's x axis); the tool tip from the strut joint at phi = 0,
+/// Y_I = -(tool_reach cos a0 + strut_joint_y), Z_I = -(tool_reach sin a0 + strut_joint_z); D_max
+/// and the clearances as given (for a cross travel T instead of the largest part, Y_xx =
+/// T - D_max / 2).
+SeedsStrutInputs seeds_strut_inputs(const Lathe16k20f3Design& d, double D_max, double Y_xx,
+                                    double Z_xx);
+/// The formula with X_K from the strut's largest inclination to the guideway:
+/// X_K = L cos(max_angle), so L = sqrt(dy^2 + dz^2) / sin(max_angle) (in.X_K is not read).
+struct SeedsStrutLength {
+  double length = 0.0;  ///< L (m)
+  double X_K = 0.0;     ///< L cos(max_angle) (m)
+};
+SeedsStrutLength seeds_strut_length_at_inclination(const SeedsStrutInputs& in, double max_angle);
 
 /// The task: the working tool's tip over a box of the lathe frame at phi = 0 (approach angle a0).
 /// Defaults: x over the 1000 mm between centres, y over the promised 400 mm cross travel from the

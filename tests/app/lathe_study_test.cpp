@@ -12,13 +12,13 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "io/design/actuator_catalog_file.hpp"
 #include "io/machine/machine_file.hpp"
-#include "io/machine/machine_file_lathe.hpp"
 #include "io/machine/machine_file_lathe.hpp"
 #include "models/leg_chain/lathe_conversion.hpp"
 #include "problems/design/actuator_catalog.hpp"
@@ -159,11 +159,12 @@ TEST_F(Lathe, ComputedMinimalStrutReachesTheTaskAndOnePercentLessDoesNot) {
   // minimal_strut_length_m of OUT/strut_length.csv). The loop below checks what makes it the
   // minimum: the task reachable at it, not at 1% less.
   EXPECT_NEAR(*l_min, 0.72052, 2e-5);
-  // The seeds' formula with the study's inputs (README, step 1) is 42% shorter:
-  // L = sqrt(X_K^2 + (Y_D + D/2 + Y_xx - Y_I)^2 + (Z_D + D/2 + Z_xx - Z_I)^2)
-  //   = sqrt(0.2^2 + (0.16 + 0.02 - 0.10)^2 + (0.16 + 0.02 + 0.175)^2) = sqrt(0.172425).
-  EXPECT_NEAR(std::sqrt(0.172425), 0.41524, 1e-5);
-  EXPECT_NEAR(seeds_strut_length({0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175}), 0.41524, 1e-5);
+  // The conversion study's formula with its own definitions (README, step 1), the 400 mm cross
+  // travel in place of the largest part's radius and clearance, by hand:
+  // L = sqrt((-0.10 + 0.40 + 0.2931)^2 + (0.175 + 0.18 - 0.0284)^2) / sin 70 deg = 0.72052 m.
+  const double dy = -0.10 + 0.40 + 0.16 * 2.0 / std::sqrt(5.0) + 0.15;
+  const double dz = 0.175 + 0.18 + 0.16 / std::sqrt(5.0) - 0.10;
+  EXPECT_NEAR(std::hypot(dy, dz) / std::sin(70.0 * std::numbers::pi / 180.0), *l_min, 2e-5);
   for (const auto& [length, all] :
        {std::pair{*l_min + 1e-6, true}, std::pair{0.99 * *l_min, false}}) {
     const CliRun run = analyze(machine_with_strut(length));

@@ -15,8 +15,15 @@ mkdir -p "$OUT"
 WRENCH=1186.63,0,6633.45,0,0,0
 
 # 1. The conversion study's strut-length formula, L = sqrt(X_K^2 + (Y_D + D/2 + Y_xx - Y_I)^2 + (Z_D + D/2 + Z_xx - Z_I)^2)
-#    with X_K 0.2, Y_D = Z_D = 0, D 0.32, Y_xx = Z_xx = 0.02, hinge (Y_I, Z_I) = (0.10, -0.175).
-awk 'BEGIN { printf "seeds_strut_length_m,%.6f\n", sqrt(0.2^2 + (0 + 0.16 + 0.02 - 0.10)^2 + (0 + 0.16 + 0.02 + 0.175)^2) }' \
+#    with its own definitions (README, step 1): Y_D, Z_D = -0.10, 0.175 (the part axis from the hinge
+#    line), Y_I, Z_I = -(0.16 (2, 1)/sqrt(5) + (0.15, -0.10)) (the tool tip from the strut joint),
+#    X_K = L cos 70 deg (the hinge limit), so L = sqrt(dy^2 + dz^2) / sin 70 deg; the 400 mm cross
+#    travel in place of D/2 + Y_xx in y.
+awk 'BEGIN { pi = atan2(0, -1); s = sin(70 * pi / 180);
+             yi = -(0.16 * 2 / sqrt(5) + 0.15); zi = -(0.16 / sqrt(5) - 0.10);
+             dz = 0.175 + 0.16 + 0.02 - zi;
+             printf "seeds_strut_length_m,%.6f\n", sqrt((-0.10 + 0.16 + 0.02 - yi)^2 + dz^2) / s;
+             printf "seeds_strut_length_400mm_m,%.6f\n", sqrt((-0.10 + 0.40 - yi)^2 + dz^2) / s }' \
   > "$OUT/strut_length.csv"
 
 # 2. The minimal strut length that reaches the whole task (task.csv: tool tip over x -0.5..0.5,

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include "models/geometry/segment_distance.hpp"
@@ -125,10 +126,29 @@ TEST(LatheConversion, SeedsFormulaIsTheDistanceToTheFarCorner) {
   in.Z_xx = 0.03;
   in.Z_I = -0.31;  // 0.10 + 0.16 + 0.03 + 0.31 = 0.60
   EXPECT_NEAR(seeds_strut_length(in), 0.7, 1e-15);
-  // The study's inputs (README): X_K 0.2, part axis at the origin, D_max 0.32, 20 mm clearance,
-  // hinge line (0.10, -0.175): sqrt(0.2^2 + 0.08^2 + 0.355^2).
-  const SeedsStrutInputs study{0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175};
-  EXPECT_NEAR(seeds_strut_length(study), std::sqrt(0.172425), 1e-15);
+}
+
+// The formula's inputs as the conversion study defines them, read off the design by hand: the
+// part axis from the hinge line (0.10, -0.175), the tool tip from the strut joint
+// (0.16 (cos a0, sin a0) + (0.15, -0.10), a0 = arccot 2), the 70 deg hinge limit giving X_K.
+TEST(LatheConversion, SeedsInputsAreReadOffTheDesignAsTheStudyDefinesThem) {
+  const Lathe16k20f3Design d;
+  const SeedsStrutInputs in = seeds_strut_inputs(d, 0.32, 0.02, 0.02);
+  EXPECT_DOUBLE_EQ(in.Y_D, -0.10);
+  EXPECT_DOUBLE_EQ(in.Z_D, 0.175);
+  EXPECT_NEAR(in.Y_I, -(0.16 * 2.0 / std::sqrt(5.0) + 0.15), 1e-15);
+  EXPECT_NEAR(in.Z_I, -(0.16 / std::sqrt(5.0) - 0.10), 1e-15);
+  const double dy = -0.10 + 0.18 + 0.16 * 2.0 / std::sqrt(5.0) + 0.15;
+  const double dz = 0.175 + 0.18 + 0.16 / std::sqrt(5.0) - 0.10;
+  const double s70 = std::sin(70.0 * std::numbers::pi / 180.0);
+  const SeedsStrutLength l = seeds_strut_length_at_inclination(in, d.strut_max_angle);
+  EXPECT_NEAR(l.length, std::hypot(dy, dz) / s70, 1e-15);
+  EXPECT_NEAR(l.X_K, l.length * std::cos(70.0 * std::numbers::pi / 180.0), 1e-15);
+  // With that X_K the formula itself gives the same length (the strut at 70 deg to the guide).
+  SeedsStrutInputs with_x = in;
+  with_x.X_K = l.X_K;
+  EXPECT_NEAR(seeds_strut_length(with_x), l.length, 1e-15);
+  EXPECT_NEAR(l.length, 0.52765, 1e-5);  // the README's step 1, by hand: sqrt(0.24587) / sin 70
 }
 
 TEST(LatheConversion, MinimalStrutLengthReachesTheTaskAndOnePercentLessDoesNot) {
@@ -141,8 +161,8 @@ TEST(LatheConversion, MinimalStrutLengthReachesTheTaskAndOnePercentLessDoesNot) 
   EXPECT_TRUE(lathe_reaches(at, task));
   at.strut_length = 0.99 * *l_min;
   EXPECT_FALSE(lathe_reaches(at, task));
-  // The seeds' region (tip up to D_max/2 + 20 mm in y and z) needs 0.5277 m (README, step 2),
-  // more than their formula's 0.4152 m: the strut ends at the turret housing, not at the tip.
+  // The study's region (tip up to D_max/2 + 20 mm in y and z) needs 0.5277 m (README, step 2),
+  // what the study's formula gives with its own definitions.
   const auto l_seeds = minimal_strut_length(
       d, lathe_task_poses(LatheTask{{-0.5, 0.0, 0.0}, {0.5, 0.18, 0.18}, {5, 5, 5}}), 0.2, 0.8,
       1e-6);
@@ -151,9 +171,38 @@ TEST(LatheConversion, MinimalStrutLengthReachesTheTaskAndOnePercentLessDoesNot) 
   // Lathe16k20f3Design{}, lathe_task_poses(LatheTask{{-0.5, 0, 0}, {0.5, 0.18, 0.18}, {5, 5, 5}}),
   // 0.2, 0.8, 1e-6)`, the call above (README, step 2).
   EXPECT_NEAR(*l_seeds, 0.52765, 2e-5);
-  EXPECT_GT(*l_seeds, seeds_strut_length({0.2, 0.0, 0.0, 0.32, 0.02, 0.02, 0.10, -0.175}));
+  EXPECT_NEAR(
+      *l_seeds,
+      seeds_strut_length_at_inclination(seeds_strut_inputs(d, 0.32, 0.02, 0.02), d.strut_max_angle)
+          .length,
+      2e-5);
+  // The 400 mm cross travel: the formula with the travel in place of the largest part's radius
+  // and clearance (Y_xx = 0.40 - 0.16) gives the task's minimal strut.
+  EXPECT_NEAR(
+      *l_min,
+      seeds_strut_length_at_inclination(seeds_strut_inputs(d, 0.32, 0.24, 0.02), d.strut_max_angle)
+          .length,
+      2e-5);
   // Too short an upper end: nothing found.
   EXPECT_FALSE(minimal_strut_length(d, task, 0.1, 0.2, 1e-6));
+}
+
+// The axial cutting force along x (0.2 of P_z in the tool frame here, 0.2 of the machine-frame
+// force in the conversion study; README, step 3) is carried by the two carriages alone, half
+// each: the cylinders' forces do not change with it.
+TEST(LatheConversion, TheAxialForceGoesToTheCarriagesOnly) {
+  const auto machine = make_lathe_16k20f3(Lathe16k20f3Design{});
+  auto data = machine->make_data();
+  const double tool_frame = 1186.63, machine_frame = 0.2 * 6633.45;
+  for (const Pose& pose : lathe_task_poses(LatheTask{})) {
+    PoseMetrics a, b;
+    machine->analyze(*data, pose, (Wrench() << tool_frame, 0, 6633.45, 0, 0, 0).finished(), a);
+    machine->analyze(*data, pose, (Wrench() << machine_frame, 0, 6633.45, 0, 0, 0).finished(), b);
+    ASSERT_TRUE(a.reachable);
+    for (int i : {2, 3}) EXPECT_NEAR(b.tau(i), a.tau(i), 1e-9 * std::abs(a.tau(i)));
+    for (int i : {0, 1})
+      EXPECT_NEAR(std::abs(b.tau(i) - a.tau(i)), 0.5 * (machine_frame - tool_frame), 1e-6);
+  }
 }
 
 TEST(LatheConversion, LegForcesBalanceTheTurningLoadByVirtualWork) {
