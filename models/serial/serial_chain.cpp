@@ -185,6 +185,30 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> SerialChain::tool_point_jacobian(
   return J;
 }
 
+Eigen::Matrix<double, 6, Eigen::Dynamic> SerialChain::twist_jacobian(
+    const Eigen::VectorXd& q, const Eigen::Vector3d& r_tool) const {
+  const Eigen::Vector3d r0 = tool_point(q, r_tool);
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, num_variables_);
+  Eigen::Matrix4d prefix = Eigen::Matrix4d::Identity();
+  int k = 0;
+  for (const ChainElement& e : elements_) {
+    const double value = e.variable ? q(k) : e.value;
+    if (e.variable) {
+      Eigen::Vector3d axis = Eigen::Vector3d::Zero();
+      axis((e.motion - 1) % 3) = 1.0;
+      const Eigen::Vector3d direction = prefix.topLeftCorner<3, 3>() * axis;
+      if (e.motion <= 3) {
+        J.col(k) << direction, Eigen::Vector3d::Zero();
+      } else {
+        J.col(k) << direction.cross(r0 - prefix.topRightCorner<3, 1>()), direction;
+      }
+      ++k;
+    }
+    prefix = prefix * elementary_motion<double>(e.motion, value);
+  }
+  return J;
+}
+
 std::string structure_class(int serial_drives, int parallel_drives) {
   return fmt::format("P{}\u0417{}", serial_drives, parallel_drives);
 }

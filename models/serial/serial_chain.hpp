@@ -68,6 +68,13 @@ class SerialChain {
   /// d r_0 / d q (3 x num_variables()).
   Eigen::Matrix<double, 3, Eigen::Dynamic> tool_point_jacobian(const Eigen::VectorXd& q,
                                                                const Eigen::Vector3d& r_tool) const;
+  /// The tool's twist per unit axis velocity (6 x num_variables()): column j is [v; omega] of the
+  /// tool frame at the tool point r_0 (base axes) when axis j moves at unit speed, the others
+  /// still: a linear axis gives [R_j e_a; 0], a rotary one omega = R_j e_a and
+  /// v = omega x (r_0 - o_j), with (R_j, o_j) the frame the element moves in (the product of the
+  /// elements before it). Rows 0..2 are tool_point_jacobian.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> twist_jacobian(const Eigen::VectorXd& q,
+                                                          const Eigen::Vector3d& r_tool) const;
 
  private:
   void check_q(const Eigen::VectorXd& q) const;

@@ -89,6 +89,35 @@ TEST(SerialChain, ToolPointJacobianMatchesFiniteDifferences) {
   }
 }
 
+// The twist Jacobian: its position rows are the tool-point Jacobian, and its rotation rows the
+// angular velocity of the tool frame, omega^ = dR/dq R^T, by central differences.
+TEST(SerialChain, TwistJacobianMatchesFiniteDifferences) {
+  sample_machines::Uniform rng(11);
+  for (const char* code : {"641236", "12345", "3:0.4 5 1 2:-0.2 6 4:0.3 3", "66 11 45"}) {
+    const SerialChain chain = SerialChain::from_code(code);
+    for (int trial = 0; trial < 10; ++trial) {
+      Eigen::VectorXd q(chain.num_variables());
+      for (int i = 0; i < q.size(); ++i) q(i) = rng(-1.0, 1.0);
+      const Eigen::Vector3d r(rng(-0.2, 0.2), rng(-0.2, 0.2), rng(-0.2, 0.2));
+      const Eigen::MatrixXd J = chain.twist_jacobian(q, r);
+      EXPECT_LT((J.topRows(3) - chain.tool_point_jacobian(q, r)).norm(), 1e-12) << code;
+      const Eigen::Matrix3d R = chain.transform(q).topLeftCorner<3, 3>();
+      const double h = 1e-6;
+      for (int i = 0; i < q.size(); ++i) {
+        Eigen::VectorXd qp = q, qm = q;
+        qp(i) += h;
+        qm(i) -= h;
+        const Eigen::Matrix3d W = (chain.transform(qp).topLeftCorner<3, 3>() -
+                                   chain.transform(qm).topLeftCorner<3, 3>()) /
+                                  (2 * h) * R.transpose();
+        const Eigen::Vector3d omega(W(2, 1), W(0, 2), W(1, 0));
+        EXPECT_LT((J.col(i).tail<3>() - omega).norm(), 1e-8) << code << " column " << i;
+        EXPECT_LT((W + W.transpose()).norm(), 1e-8) << code;  // skew: a rotation rate
+      }
+    }
+  }
+}
+
 TEST(SerialChain, ConstantsEnterTheProduct) {
   const SerialChain chain = SerialChain::from_code("1, 3:0.25, 4:1.5707963267948966");
   EXPECT_EQ(chain.num_variables(), 1);
