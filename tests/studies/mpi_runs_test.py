@@ -162,17 +162,30 @@ def test_killed_mpirun_resumes_with_other_ranks_and_without_mpi():
 
 def start_long_run(out, extra=()):
     """mpirun -np 3 on the long ZDT1 study, in a session of its own; returns (process, the three
-    rank PIDs in the order they started: rank 0 first), once the run has got going."""
+    rank PIDs in rank order: rank 0 first), once the run has got going."""
     path = write_study("long", benchmark(250))
     proc = subprocess.Popen([*MPIRUN, "-np", "3", str(BINARY), "run", str(path), "--out",
                              str(out), "--no-progress", *extra], cwd=SCRATCH,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
                             start_new_session=True, env=MPI_ENV)
     check(wait_for_lines(out / "journal.txt", 3000, proc), f"{out.name}: the run never got going")
-    ranks = sorted(map(int, subprocess.run(["ps", "--ppid", str(proc.pid), "-o", "pid="],
-                                           capture_output=True, text=True).stdout.split()))
+    children = map(int, subprocess.run(["ps", "--ppid", str(proc.pid), "-o", "pid="],
+                                       capture_output=True, text=True).stdout.split())
+    ranks = [pid for _, pid in sorted((rank_of(pid), pid) for pid in children)]
     check(len(ranks) == 3, f"{out.name}: expected 3 ranks under mpirun, found {ranks}")
     return path, proc, ranks
+
+
+def rank_of(pid):
+    """The MPI rank of a process under mpirun (Open MPI's OMPI_COMM_WORLD_RANK); its PID when the
+    environment cannot be read. PIDs alone do not give the start order: they wrap around."""
+    try:
+        for item in pathlib.Path(f"/proc/{pid}/environ").read_bytes().split(b"\0"):
+            if item.startswith(b"OMPI_COMM_WORLD_RANK="):
+                return int(item.split(b"=", 1)[1])
+    except (OSError, ValueError):
+        pass
+    return pid
 
 
 def finish_and_resume(path, proc, out, ranks):
