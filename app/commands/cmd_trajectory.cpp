@@ -188,7 +188,7 @@ const ActuatorEntry* read_drive(const TrajectoryCommandOptions& opt, const Machi
 // The table (to --out or stdout), the singular poses (--singular-out) and the summary (stdout
 // when the table goes to a file, else stderr).
 void write_trajectory_outputs(const TrajectoryCommandOptions& opt, const std::string& table,
-                              const std::string& singular_table, const std::string& summary) {
+                              const TrajectoryResult& result, const std::string& summary) {
   // Both files are written to temporaries first and moved into place together: when the
   // second cannot be, the first is removed again (no output is left by a failed command).
   std::optional<AtomicOutputFile> out, singular;
@@ -198,7 +198,7 @@ void write_trajectory_outputs(const TrajectoryCommandOptions& opt, const std::st
   }
   if (!opt.singular_out_file.empty()) {
     singular.emplace(opt.singular_out_file);
-    singular->stream() << singular_table;
+    singular->stream() << singular_poses_csv(result);
   }
   if (out) out->commit();
   if (singular) {
@@ -262,7 +262,7 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
     summary += drive_check_text(*drive, reduced, carries);
   }
 
-  write_trajectory_outputs(opt, table, singular_poses_csv(result), summary);
+  write_trajectory_outputs(opt, table, result, summary);
 }
 
 }  // namespace

@@ -306,17 +306,16 @@ void check_fitted_rows(const CalibrationSetup& setup) {
                    "shifts; hold out fewer of its rows or put another campaign first"
                  : ""));
   }
-  const std::vector<CalibrationMeasurement> fitted = fitted_measurements(setup);
+  const std::size_t fitted = setup.fit.size();
   int num_free = 0;
   for (bool f : setup.options.free) num_free += f ? 1 : 0;
-  if (6 * static_cast<int>(fitted.size()) < num_free + 1) {
+  if (6 * static_cast<int>(fitted) < num_free + 1) {
     throw InputError(fmt::format(
         "{}: too few poses: {} fitted rows ({} held out) give {} equations, the {} free "
         "parameters (model {}{}) need more; measure at least {} poses (3 times as many is a "
         "good rule), hold out fewer, or fix parameters",
-        setup.measurement_file, fitted.size(), setup.held_out.size(), 6 * fitted.size(), num_free,
-        setup.model, setup.frame == "instrument" ? " + instrument + target" : "",
-        num_free / 6 + 1));
+        setup.measurement_file, fitted, setup.held_out.size(), 6 * fitted, num_free, setup.model,
+        setup.frame == "instrument" ? " + instrument + target" : "", num_free / 6 + 1));
   }
 }
 
