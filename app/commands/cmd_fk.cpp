@@ -26,11 +26,24 @@ void run_fk(const FkCommandOptions& opt) {
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
   const int na = machine->num_actuators();
   // Linear actuators' coordinates are lengths (+-1000 m); revolute ones are angles in degrees.
+  const bool all_revolute = machine->revolute_actuators();
+  const bool mixed = !all_revolute && machine->any_revolute_actuator();
   const auto q_values = parse_number_list("--q", opt.q, static_cast<std::size_t>(na),
-                                          machine->revolute_actuators() ? 1e15 : kMaxInputLength);
+                                          all_revolute || mixed ? 1e15 : kMaxInputLength);
   Eigen::VectorXd q(na);
-  const double q_scale = machine->revolute_actuators() ? kDegToRad : 1.0;
-  for (int i = 0; i < na; ++i) q(i) = q_values[static_cast<std::size_t>(i)] * q_scale;
+  for (int i = 0; i < na; ++i) {
+    const double value = q_values[static_cast<std::size_t>(i)];
+    if (machine->revolute_actuator(i)) {
+      q(i) = value * kDegToRad;
+    } else if (!sane_input_length(value)) {
+      throw InputError(
+          fmt::format("--q: expected value {} (a linear axis) within +-{:g} m, found "
+                      "'{}'",
+                      i + 1, kMaxInputLength, opt.q));
+    } else {
+      q(i) = value;
+    }
+  }
   if (const std::string expected = machine->actuator_coordinates_requirement(q);
       !expected.empty()) {
     throw InputError(fmt::format("--q: expected {}, found '{}'", expected, opt.q));
@@ -64,7 +77,9 @@ void run_fk(const FkCommandOptions& opt) {
                "pkmopt: warning: fk: the pose solves --q but lies outside the machine's strokes "
                "or joint limits ({}); check the units of --q ({})\n",
                opt.machine_file,
-               machine->revolute_actuators() ? "degrees" : "metres, not millimetres");
+               machine->revolute_actuators() ? "degrees"
+               : mixed                       ? "metres for linear axes, degrees for rotary ones"
+                                             : "metres, not millimetres");
 }
 
 }  // namespace
@@ -74,8 +89,10 @@ void add_fk_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "fk", "Forward kinematics: the TCP pose for given actuator coordinates (damped Newton)");
   cmd->add_option("machine", opt->machine_file, "Machine file (YAML)")->required();
-  cmd->add_option("--q", opt->q,
-                  "Actuator coordinates q1,...,qn (m for legs, deg for revolute drives)")
+  cmd->add_option(
+         "--q", opt->q,
+         "Actuator coordinates q1,...,qn (m for legs and linear axes, deg for revolute drives and "
+         "rotary axes)")
       ->required();
   cmd->add_option("--guess", opt->guess,
                   "Start pose x,y,z,rx,ry,rz (m, deg); default: the machine's home pose");

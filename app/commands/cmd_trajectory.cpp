@@ -166,7 +166,7 @@ const ActuatorEntry* read_drive(const TrajectoryCommandOptions& opt, const Machi
                                 std::optional<ActuatorCatalog>& catalog) {
   const ActuatorEntry* drive = nullptr;
   if (!opt.catalog_file.empty()) {
-    if (machine.revolute_actuators()) {
+    if (machine.any_revolute_actuator()) {
       throw InputError(fmt::format(
           "--catalog: expected a machine with linear actuators (the catalog holds linear drives), "
           "found {} with revolute ones",

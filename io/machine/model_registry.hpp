@@ -4,7 +4,7 @@
 //   name            the `model:` value of its machine files ("hexapod", "delta", ...)
 //   load            its machine file (a parsed YAML map) -> a Machine; strict, throws InputError
 //                   naming file, line, column and key. Empty for a model that is described but
-//                   not computed (serial axes by coordinate code)
+//                   not computed
 //   fields_markdown the docs table of its machine file's keys (docs/machines.md), from the same
 //                   field list its reader and writer use (io/format/field_list.hpp)
 //   platform_dofs   the platform's degrees of freedom {translations, rotations} of a file, for

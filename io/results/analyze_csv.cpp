@@ -37,9 +37,8 @@ std::vector<std::string> analyze_value_columns(const Machine& machine, bool mode
 void analyze_values(const Machine& machine, const PoseMetrics& m, const PoseModes* modes,
                     const PoseCompliance* compliance, double* out) {
   const int na = machine.num_actuators();
-  const double q_scale = machine.revolute_actuators() ? kRadToDeg : 1.0;
   *out++ = m.reachable ? 1.0 : 0.0;
-  for (int j = 0; j < na; ++j) *out++ = m.q(j) * q_scale;
+  for (int j = 0; j < na; ++j) *out++ = m.q(j) * (machine.revolute_actuator(j) ? kRadToDeg : 1.0);
   for (int j = 0; j < na; ++j) *out++ = m.tau(j);
   *out++ = m.stiffness_min;
   *out++ = m.singularity_margin;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -14,15 +15,18 @@
 namespace pkmopt {
 namespace {
 
-std::string joined(const Eigen::VectorXd& v, double scale) {
+std::string joined(const Eigen::VectorXd& v, const Eigen::VectorXd& scale) {
   std::string s;
-  for (Eigen::Index i = 0; i < v.size(); ++i) s += ',' + format_number(v(i) * scale);
+  for (Eigen::Index i = 0; i < v.size(); ++i) s += ',' + format_number(v(i) * scale(i));
   return s;
 }
 
 // Actuator coordinates in the files: metres, or degrees for revolute drives.
-double actuator_scale(const Machine& machine) {
-  return machine.revolute_actuators() ? kRadToDeg : 1.0;
+Eigen::VectorXd actuator_scales(const Machine& machine) {
+  Eigen::VectorXd scale(machine.num_actuators());
+  for (int i = 0; i < machine.num_actuators(); ++i)
+    scale(i) = machine.revolute_actuator(i) ? kRadToDeg : 1.0;
+  return scale;
 }
 
 }  // namespace
@@ -34,7 +38,8 @@ SampledPath read_path_csv(const std::string& path) {
 
 std::string trajectory_csv(const Machine& machine, const TrajectoryResult& result, bool jacobian) {
   const int na = machine.num_actuators();
-  const double q_scale = actuator_scale(machine);
+  const Eigen::VectorXd q_scale = actuator_scales(machine);
+  const Eigen::VectorXd unit = Eigen::VectorXd::Ones(na);
   std::ostringstream out;
   const bool dynamics = !result.samples.empty() && result.samples.front().tau_dyn.size() > 0;
   out << "t,x,y,z,rx,ry,rz,vx,vy,vz,wx,wy,wz,ax,ay,az,alpha_x,alpha_y,alpha_z,reachable,singular";
@@ -67,8 +72,8 @@ std::string trajectory_csv(const Machine& machine, const TrajectoryResult& resul
     line += joined(s.metrics.q, q_scale);
     line += joined(s.q_dot, q_scale);
     line += joined(s.q_dot_fd, q_scale);
-    line += joined(s.metrics.tau, 1.0);
-    if (dynamics) line += joined(s.tau_dyn, 1.0);
+    line += joined(s.metrics.tau, unit);
+    if (dynamics) line += joined(s.tau_dyn, unit);
     line += ',' + format_number(s.metrics.singularity_margin);
     line += ',' + format_number(s.metrics.det_j);
     if (interference) {
@@ -106,8 +111,8 @@ std::string trajectory_summary_text(const Machine& machine, const TrajectoryResu
                                     const TrajectorySummary& summary) {
   const int na = machine.num_actuators();
   // Engineering units on the terminal: prismatic coordinates in mm, revolute ones in degrees.
-  const double q_scale = machine.revolute_actuators() ? actuator_scale(machine) : 1e3;
-  const char* q_unit = machine.revolute_actuators() ? "deg" : "mm";
+  auto q_scale = [&](int i) { return machine.revolute_actuator(i) ? kRadToDeg : 1e3; };
+  auto q_unit = [&](int i) { return machine.revolute_actuator(i) ? "deg" : "mm"; };
   std::string text = fmt::format(
       "trajectory: {} samples, t {} .. {} s, {} reachable, min singularity_margin {:.4g}\n",
       summary.samples, format_number(result.samples.front().t),
@@ -136,24 +141,36 @@ std::string trajectory_summary_text(const Machine& machine, const TrajectoryResu
   }
   for (int i = 0; i < na; ++i) {
     text += fmt::format("  q_{}: {:.6g} .. {:.6g} {}, max |q_dot| {:.4g} {}/s\n", i + 1,
-                        summary.q_min(i) * q_scale, summary.q_max(i) * q_scale, q_unit,
-                        summary.q_dot_max(i) * q_scale, q_unit);
+                        summary.q_min(i) * q_scale(i), summary.q_max(i) * q_scale(i), q_unit(i),
+                        summary.q_dot_max(i) * q_scale(i), q_unit(i));
   }
-  text += fmt::format("  max |q_dot - q_dot_fd| {:.3g} {}/s (interior samples)\n",
-                      summary.q_dot_mismatch_max * q_scale, q_unit);
+  if (machine.any_revolute_actuator() && !machine.revolute_actuators() &&
+      summary.q_dot_mismatch.size() == na) {
+    double linear = 0.0, rotary = 0.0;
+    for (int i = 0; i < na; ++i)
+      (machine.revolute_actuator(i) ? rotary : linear) =
+          std::max(machine.revolute_actuator(i) ? rotary : linear, summary.q_dot_mismatch(i));
+    text += fmt::format(
+        "  max |q_dot - q_dot_fd| {:.3g} mm/s (linear axes), {:.3g} deg/s (rotary axes) (interior "
+        "samples)\n",
+        linear * 1e3, rotary * kRadToDeg);
+  } else {
+    text += fmt::format("  max |q_dot - q_dot_fd| {:.3g} {}/s (interior samples)\n",
+                        summary.q_dot_mismatch_max * q_scale(0), q_unit(0));
+  }
   text += fmt::format("  TCP: max speed {:.4g} m/s, max acceleration {:.4g} m/s^2 ({:.3g} g)\n",
                       summary.speed_max, summary.acceleration_max,
                       summary.acceleration_max / kStandardGravity);
-  const char* force_unit = machine.revolute_actuators() ? "N*m" : "N";
+  auto force_unit = [&](int i) { return machine.revolute_actuator(i) ? "N*m" : "N"; };
   // The force lines when there are forces: a wrench or masses.
   const bool forces = summary.dynamics || (summary.tau_max.size() == na && summary.tau_max.any());
   for (int i = 0; i < na && forces; ++i) {
     std::string line = fmt::format("  tau_{}: max |tau| {:.5g} {} under the wrench", i + 1,
-                                   summary.tau_max(i), force_unit);
+                                   summary.tau_max(i), force_unit(i));
     if (summary.dynamics) {
       line += fmt::format(
           "; with gravity and inertia: peak {:.5g} {}, RMS {:.5g} {}, peak power {:.4g} W",
-          summary.tau_dyn_max(i), force_unit, summary.tau_dyn_rms(i), force_unit,
+          summary.tau_dyn_max(i), force_unit(i), summary.tau_dyn_rms(i), force_unit(i),
           summary.power_max(i));
     }
     text += line + '\n';

@@ -174,8 +174,18 @@ class Machine {
   virtual std::string_view model() const = 0;
   /// Number of actuators (dimension of q and tau).
   virtual int num_actuators() const = 0;
-  /// True when the actuators are revolute (q in rad inside, degrees in files).
+  /// True when every actuator is revolute (q in rad inside, degrees in files).
   virtual bool revolute_actuators() const = 0;
+  /// True when actuator i (0-based) is revolute: its q in rad inside and degrees in files, its
+  /// tau in N*m. Machines that mix linear and rotary drives (a serial 5-axis machine) override
+  /// it; the others' drives are all of one kind.
+  virtual bool revolute_actuator(int /*i*/) const { return revolute_actuators(); }
+  /// True when any actuator is revolute.
+  bool any_revolute_actuator() const {
+    for (int i = 0; i < num_actuators(); ++i)
+      if (revolute_actuator(i)) return true;
+    return false;
+  }
 
   virtual std::unique_ptr<MachineData> make_data() const = 0;
 

@@ -107,20 +107,13 @@
 #include "models/core/capabilities.hpp"
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
+#include "models/serial/serial_axis.hpp"
 #include "models/serial/serial_chain.hpp"
 
 namespace pkmopt {
 
-/// One serial axis of a hybrid machine.
-struct HybridAxis {
-  double min = 0.0;        ///< travel range (m), min <= max
-  double max = 0.0;        ///< m
-  double stiffness = 0.0;  ///< axial stiffness of the drive (N/m); 0 = rigid
-  double error = 0.0;      ///< positioning error half-width (m); default 0 (exact)
-  /// kg: the mass this axis moves on its own (its carriage and what is fixed to it; the axes it
-  /// carries and the module count separately); 0 = massless.
-  double mass = 0.0;
-};
+/// One serial axis of a hybrid machine (a translation: m, N/m).
+using HybridAxis = SerialAxis;
 
 /// Everything that defines a hybrid machine. Validated by the HybridMachine constructor.
 struct HybridDesign {

@@ -215,6 +215,15 @@ TrajectoryResult evaluate_trajectory(const Machine& machine, const TcpPath& path
   // The check: q_dot from the IK coordinates at the neighbouring samples.
   std::vector<Eigen::VectorXd> q(times.size());
   for (std::size_t k = 0; k < times.size(); ++k) q[k] = result.samples[k].metrics.q;
+  // A rotary axis that turns past its wrap (a table's C through 180 degrees) is unwrapped, so that
+  // its whole turns do not show as rates.
+  for (int i = 0; i < na; ++i) {
+    if (!machine.revolute_actuator(i)) continue;
+    for (std::size_t k = 1; k < q.size(); ++k) {
+      const double step = q[k](i) - q[k - 1](i);
+      if (std::isfinite(step)) q[k](i) = q[k - 1](i) + std::remainder(step, 2.0 * std::numbers::pi);
+    }
+  }
   const std::vector<Eigen::VectorXd> q_rate = central_difference_rates(times, q);
   for (std::size_t k = 0; k < times.size(); ++k) {
     Eigen::VectorXd fd = q_rate[k];
@@ -291,6 +300,7 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
   summary.q_min = Eigen::VectorXd::Constant(num_actuators, kInf);
   summary.q_max = -summary.q_min;
   summary.q_dot_max = Eigen::VectorXd::Zero(num_actuators);
+  summary.q_dot_mismatch = Eigen::VectorXd::Zero(num_actuators);
   summary.tau_max = Eigen::VectorXd::Zero(num_actuators);
   summary.dynamics = !result.samples.empty() && result.samples.front().tau_dyn.size() > 0;
   if (summary.dynamics) {
@@ -332,8 +342,9 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
     summary.singularity_margin_min =
         std::min(summary.singularity_margin_min, s.metrics.singularity_margin);
     if (s.jacobian_ok && interior) {
-      summary.q_dot_mismatch_max =
-          std::max(summary.q_dot_mismatch_max, (s.q_dot - s.q_dot_fd).cwiseAbs().maxCoeff());
+      const Eigen::VectorXd gap = (s.q_dot - s.q_dot_fd).cwiseAbs();
+      summary.q_dot_mismatch = summary.q_dot_mismatch.cwiseMax(gap);
+      summary.q_dot_mismatch_max = std::max(summary.q_dot_mismatch_max, gap.maxCoeff());
     }
   }
   if (summary.dynamics) {

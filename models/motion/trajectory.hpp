@@ -218,6 +218,8 @@ struct TrajectorySummary {
   /// max over actuators and interior samples (not the first or last) with jacobian_ok of
   /// |q_dot - q_dot_fd|; 0 when there is none.
   double q_dot_mismatch_max = 0.0;
+  /// The same per actuator (machines that mix linear and rotary axes report each in its unit).
+  Eigen::VectorXd q_dot_mismatch;
   double speed_max = 0.0;         ///< max |v| of the TCP (m/s)
   double acceleration_max = 0.0;  ///< max |a| of the TCP (m/s^2)
   Eigen::VectorXd tau_max;        ///< per actuator, max |tau| under the wrench alone

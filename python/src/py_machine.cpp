@@ -273,10 +273,11 @@ py::dict ik(const PyMachine& self, py::handle pose_in) {
   machine.analyze(*data, pose, Wrench::Zero(), metrics);
   py::dict out;
   bool closes = metrics.q.size() == machine.num_actuators() && metrics.q.allFinite();
-  const double q_scale = machine.revolute_actuators() ? kRadToDeg : 1.0;
   if (closes) {
     py::array_t<double> q(metrics.q.size());
-    for (Eigen::Index j = 0; j < metrics.q.size(); ++j) q.mutable_at(j) = metrics.q(j) * q_scale;
+    for (Eigen::Index j = 0; j < metrics.q.size(); ++j)
+      q.mutable_at(j) =
+          metrics.q(j) * (machine.revolute_actuator(static_cast<int>(j)) ? kRadToDeg : 1.0);
     out["q"] = q;
   } else {
     out["q"] = py::none();
@@ -292,14 +293,15 @@ py::dict fk(const PyMachine& self, py::handle q_in, const py::object& guess_in,
   const DoubleArray qa = DoubleArray::ensure(q_in);
   if (!qa || qa.ndim() != 1 || qa.shape(0) != na)
     throw InputError(fmt::format("q: expected {} actuator coordinates ({}), found {}", na,
-                                 machine.revolute_actuators() ? "deg" : "m", python_repr(q_in)));
+                                 machine.revolute_actuators()      ? "deg"
+                                 : machine.any_revolute_actuator() ? "m or deg per axis"
+                                                                   : "m",
+                                 python_repr(q_in)));
   Eigen::VectorXd q(na);
-  const double q_scale = machine.revolute_actuators() ? kDegToRad : 1.0;
   for (int i = 0; i < na; ++i)
-    q(i) = (machine.revolute_actuators()
-                ? finite_number(py::float_(qa.at(i)), fmt::format("q[{}]", i))
-                : length_number(py::float_(qa.at(i)), fmt::format("q[{}]", i))) *
-           q_scale;
+    q(i) = machine.revolute_actuator(i)
+               ? finite_number(py::float_(qa.at(i)), fmt::format("q[{}]", i)) * kDegToRad
+               : length_number(py::float_(qa.at(i)), fmt::format("q[{}]", i));
   if (const std::string expected = machine.actuator_coordinates_requirement(q); !expected.empty())
     throw InputError(fmt::format("q: expected {}, found {}", expected, python_repr(q_in)));
   std::optional<Pose> guess;
@@ -496,8 +498,18 @@ void bind_machine(py::module_& m) {
       .def_property_readonly(
           "revolute_actuators",
           [](const PyMachine& self) { return self.machine->revolute_actuators(); },
-          "True when the actuators are revolute: q in degrees and tau in N*m; else q in m and "
-          "tau in N.")
+          "True when every actuator is revolute: q in degrees and tau in N*m; else q in m and "
+          "tau in N, except for the axes `revolute_axes` marks.")
+      .def_property_readonly(
+          "revolute_axes",
+          [](const PyMachine& self) {
+            py::list out;
+            for (int i = 0; i < self.machine->num_actuators(); ++i)
+              out.append(self.machine->revolute_actuator(i));
+            return out;
+          },
+          "One flag per actuator: True for a revolute drive or rotary axis (q in degrees, tau in "
+          "N*m), False for a linear one (m, N). A serial 5-axis machine mixes both.")
       .def_property_readonly(
           "natural_frequency_count",
           [](const PyMachine& self) {
