@@ -290,6 +290,18 @@ def test_describe_prints_what_the_cli_prints():
     assert pkmopt.load_machine(source("examples", "delta.yaml")).revolute_actuators
 
 
+def test_a_serial_machine_has_degrees_and_metres_per_axis():
+    machine = pkmopt.load_machine(source("examples", "serial_641236.yaml"))
+    assert not machine.revolute_actuators
+    assert machine.revolute_axes == [True, True, False, False, False]
+    # C = 30 deg, A = -20 deg, X, Y, Z in metres: fk then ik gives them back in the same units.
+    pose = machine.fk([30.0, -20.0, 0.1, 0.05, 0.2])["pose"]
+    np.testing.assert_allclose(machine.ik(pose)["q"], [30.0, -20.0, 0.1, 0.05, 0.2], atol=1e-9)
+    _, out, _ = run_cli("fk", source("examples", "serial_641236.yaml"), "--q", "30,-20,0.1,0.05,0.2")
+    row = out.splitlines()[1].split(",")
+    np.testing.assert_allclose(pose, [float(v) for v in row[:6]], rtol=1e-12, atol=1e-12)
+
+
 def test_load_errors_carry_the_cli_message(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("model: hexapod\nbase: {radius: 0.6, pair_separation_deg: 20}\n"
