@@ -13,6 +13,7 @@
 #include "models/core/linalg.hpp"
 #include "models/core/require.hpp"
 #include "models/geometry/leg_interference.hpp"
+#include "models/serial/serial_statics.hpp"
 #include "models/stiffness/compliance_metrics.hpp"
 
 namespace pkmopt {
@@ -72,6 +73,8 @@ HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
                       "independent translation axes",
                       num_serial_, qr.rank()));
   A_pinv_ = (A_.transpose() * A_).ldlt().solve(A_.transpose());
+  Jf_ = FeedJacobian::Zero(6, num_serial_);
+  Jf_.topRows<3>() = A_;
 
   parasitic_module_ = design_.module->parasitic_motion();
   module_dynamics_ = design_.module->dynamics().get();
@@ -164,7 +167,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.q.resize(n);
   out.q << s.serial, m.q;
   out.tau.resize(n);
-  out.tau.head(num_serial_) = (A_.transpose() * wrench.head<3>()).array() + 0.0;
+  out.tau.head(num_serial_) = serial_drive_loads(Jf_, wrench);
   out.tau.tail(n - num_serial_) = m.tau;
   out.singular = m.singular;
   out.singularity_margin = m.singularity_margin;
@@ -178,11 +181,10 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   }
 
   // Serial and parallel compliances in series.
-  Eigen::Matrix3d compliance = R0_ * d.module_compliance * R0_.transpose();
-  for (int i = 0; i < num_serial_; ++i) {
-    const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
-    if (k > 0.0) compliance += A_.col(i) * A_.col(i).transpose() / k;
-  }
+  Matrix6d in_series = Matrix6d::Zero();
+  in_series.topLeftCorner<3, 3>() = R0_ * d.module_compliance * R0_.transpose();
+  add_serial_compliance(Jf_, design_.axes, in_series);
+  const Eigen::Matrix3d compliance = in_series.topLeftCorner<3, 3>();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(compliance, Eigen::EigenvaluesOnly);
   const double c_max = eig.eigenvalues()(2);
@@ -193,14 +195,13 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
     // geometric term).
     Matrix6d turn = Matrix6d::Zero();
     turn.topLeftCorner<3, 3>() = turn.bottomRightCorner<3, 3>() = R0_;
-    Matrix6d C = turn * d.module->matrices.compliance * turn.transpose();  // + the axes below
-    Eigen::Matrix3d loaded = R0_ * d.module->matrices.loaded_compliance_tt * R0_.transpose();
-    for (int i = 0; i < num_serial_; ++i) {
-      const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
-      if (k <= 0.0) continue;
-      C.topLeftCorner<3, 3>() += A_.col(i) * A_.col(i).transpose() / k;
-      loaded += A_.col(i) * A_.col(i).transpose() / k;
-    }
+    Matrix6d C = turn * d.module->matrices.compliance * turn.transpose();
+    add_serial_compliance(Jf_, design_.axes, C);
+    Matrix6d loaded_in_series = Matrix6d::Zero();
+    loaded_in_series.topLeftCorner<3, 3>() =
+        R0_ * d.module->matrices.loaded_compliance_tt * R0_.transpose();
+    add_serial_compliance(Jf_, design_.axes, loaded_in_series);
+    const Eigen::Matrix3d loaded = loaded_in_series.topLeftCorner<3, 3>();
     const Matrix6d C_module = turn * d.module->matrices.compliance * turn.transpose();
     fill_compliance_metrics(C, wrench, out, d.matrices);
     d.matrices.loaded_compliance_tt = loaded;
@@ -211,10 +212,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   // tcp_error_max over the vertices of the combined error box (zero columns skipped).
   Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 16> columns(3, n);
   int used = 0;
-  for (int i = 0; i < num_serial_; ++i) {
-    const double e = design_.axes[static_cast<std::size_t>(i)].error;
-    if (e > 0.0) columns.col(used++) = e * A_.col(i);
-  }
+  append_serial_error_columns(Jf_, design_.axes, columns, used);
   for (int j = 0; j < d.module_error_map.cols(); ++j) {
     if (d.module_error_map.col(j).squaredNorm() > 0.0) {
       columns.col(used++) = R0_ * d.module_error_map.col(j);

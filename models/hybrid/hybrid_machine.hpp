@@ -30,6 +30,8 @@
 // Metrics at a pose under a wrench w = [f; m] at the TCP (base axes):
 //   reachable   module reachable at the local pose (the serial axes are clamped to their range,
 //               so they are always in range) and, with a parasitic module, the pose attained.
+//   (The serial axes' statics, compliance and error columns are those of serial machines,
+//   models/serial/serial_statics.hpp, with the axes' twists J_f = [A; 0].)
 //   tau         serial axis i: tau_s,i = a_i . f (N; the statics of a serial chain, tau_s = A^T f:
 //               each prismatic drive carries the force component along its axis, moments go into
 //               the guides); module: the module's tau under the local wrench [R0^T f; R0^T m]
@@ -109,6 +111,7 @@
 #include "models/core/pose.hpp"
 #include "models/serial/serial_axis.hpp"
 #include "models/serial/serial_chain.hpp"
+#include "models/serial/serial_statics.hpp"
 
 namespace pkmopt {
 
@@ -216,6 +219,7 @@ class HybridMachine final : public Machine, public Dynamics {
   Eigen::Vector3d t0_ = Eigen::Vector3d::Zero();
   Eigen::Matrix<double, 3, Eigen::Dynamic> A_;
   Eigen::Matrix<double, Eigen::Dynamic, 3> A_pinv_;
+  FeedJacobian Jf_;  // [A; 0]: the axes' twists, for the statics shared with serial machines
   const ParasiticMotion* parasitic_module_ = nullptr;  // planar-leg module, else null
   const Dynamics* module_dynamics_ = nullptr;          // module with masses, else null
   const TranslationalMaps* module_maps_ = nullptr;     // the module's maps, null without

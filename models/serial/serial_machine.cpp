@@ -15,6 +15,7 @@
 
 #include "models/core/linalg.hpp"
 #include "models/core/require.hpp"
+#include "models/serial/serial_statics.hpp"
 #include "models/stiffness/compliance_metrics.hpp"
 
 namespace pkmopt {
@@ -226,7 +227,7 @@ void SerialMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.singular = !(rcond >= kSingularRcond);
   out.singularity_margin = out.singular ? 0.0 : rcond;
 
-  out.tau = (Jf.transpose() * wrench).array() + 0.0;
+  out.tau = serial_drive_loads(Jf, wrench);
 
   // The drives in series.
   Eigen::VectorXd D(n);
@@ -236,7 +237,8 @@ void SerialMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
     D(i) = k > 0.0 ? 1.0 / k : 0.0;
     elastic = elastic || k > 0.0;
   }
-  const Matrix6d C = Jf * D.asDiagonal() * Jf.transpose();
+  Matrix6d C = Matrix6d::Zero();
+  add_serial_compliance(Jf, design_.axes, C);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(C.topLeftCorner<3, 3>(), Eigen::EigenvaluesOnly);
   const double c_max = eig.eigenvalues()(2);
@@ -278,10 +280,7 @@ void SerialMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
 
   Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 5> columns(3, n);
   int used = 0;
-  for (int i = 0; i < n; ++i) {
-    const double e = design_.axes[static_cast<std::size_t>(i)].error;
-    if (e > 0.0) columns.col(used++) = e * Jf.block<3, 1>(0, i);
-  }
+  append_serial_error_columns(Jf, design_.axes, columns, used);
   out.tcp_error_max = max_norm_over_sign_vectors(columns.leftCols(used));
 }
 
