@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -122,6 +123,22 @@ std::string trajectory_summary_text(const Machine& machine, const TrajectoryResu
         "  WARNING: {} of {} samples are not reachable (actuator ranges, joint limits or leg "
         "interference): the machine cannot follow this path\n",
         summary.samples - summary.reachable, summary.samples);
+  }
+  if (!result.samples.empty() && summary.singularity_margin_min < kNearSingularMargin) {
+    const TrajectorySample& s = result.samples[summary.singularity_margin_min_sample];
+    int fastest = 0;
+    for (int i = 1; i < na && i < s.q_dot.size(); ++i)
+      if (std::abs(s.q_dot(i) * q_scale(i)) > std::abs(s.q_dot(fastest) * q_scale(fastest)))
+        fastest = i;
+    text += fmt::format(
+        "  WARNING: near a singular pose at t = {} s (x,y,z = {:.6g},{:.6g},{:.6g} m, rx,ry,rz = "
+        "{:.6g},{:.6g},{:.6g} deg): singularity_margin {:.3g} < {:g}; the drive rates grow as "
+        "1/margin there (fastest: q_{} at {:.4g} {}/s)\n",
+        format_number(s.t), s.pose.position(0), s.pose.position(1), s.pose.position(2),
+        rad_to_deg(s.pose.angles(0)), rad_to_deg(s.pose.angles(1)), rad_to_deg(s.pose.angles(2)),
+        s.metrics.singularity_margin, kNearSingularMargin, fastest + 1,
+        s.q_dot.size() > fastest ? std::abs(s.q_dot(fastest)) * q_scale(fastest) : 0.0,
+        q_unit(fastest));
   }
   if (machine.checks_leg_interference() && !result.samples.empty()) {
     const TrajectorySample& closest = result.samples[summary.clearance_min_sample];

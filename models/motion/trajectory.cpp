@@ -339,8 +339,10 @@ TrajectorySummary summarize_trajectory(const TrajectoryResult& result, int num_a
             0.5 * (s.t - previous.t) * (s.tau_dyn.cwiseAbs2() + previous.tau_dyn.cwiseAbs2());
       }
     }
-    summary.singularity_margin_min =
-        std::min(summary.singularity_margin_min, s.metrics.singularity_margin);
+    if (s.metrics.singularity_margin < summary.singularity_margin_min) {
+      summary.singularity_margin_min = s.metrics.singularity_margin;
+      summary.singularity_margin_min_sample = k;
+    }
     if (s.jacobian_ok && interior) {
       const Eigen::VectorXd gap = (s.q_dot - s.q_dot_fd).cwiseAbs();
       summary.q_dot_mismatch = summary.q_dot_mismatch.cwiseMax(gap);

@@ -81,6 +81,10 @@
 
 namespace pkmopt {
 
+/// Below this singularity_margin a path sample is near a singular pose: the drive rates grow as
+/// 1 / margin there (the trajectory summary warns).
+inline constexpr double kNearSingularMargin = 0.01;
+
 /// omega = E(angles) * angle_rates for R = Rz(rz) Ry(ry) Rx(rx) (angles in rad, base axes).
 Eigen::Matrix3d angular_velocity_map(const Eigen::Vector3d& angles);
 
@@ -218,6 +222,8 @@ struct TrajectorySummary {
   /// max over actuators and interior samples (not the first or last) with jacobian_ok of
   /// |q_dot - q_dot_fd|; 0 when there is none.
   double q_dot_mismatch_max = 0.0;
+  /// The sample of singularity_margin_min (0 with no sample).
+  std::size_t singularity_margin_min_sample = 0;
   /// The same per actuator (machines that mix linear and rotary axes report each in its unit).
   Eigen::VectorXd q_dot_mismatch;
   double speed_max = 0.0;         ///< max |v| of the TCP (m/s)

@@ -170,6 +170,35 @@ TEST(TrajectorySummaryText, LinesInMetres) {
   EXPECT_EQ(pkmopt::trajectory_summary_text(hexapod(), r, s), expected);
 }
 
+// A path whose margin falls below kNearSingularMargin: the warning names the sample, its pose and
+// the fastest drive there, each axis in its unit.
+TEST(TrajectorySummaryText, NearSingularSampleIsWarnedWithTheFastestDrive) {
+  TrajectoryResult r;
+  r.samples.resize(2);
+  r.samples[1].t = 0.5;
+  r.samples[1].pose.position = {0.1, 0.2, 0.9};
+  r.samples[1].pose.angles = {0.0, pkmopt::deg_to_rad(10.0), 0.0};
+  r.samples[1].metrics.singularity_margin = 0.004;
+  r.samples[1].q_dot = Eigen::VectorXd::Constant(6, 0.01);
+  r.samples[1].q_dot(3) = -0.25;
+  pkmopt::TrajectorySummary s;
+  s.samples = 2;
+  s.reachable = 2;
+  s.singularity_margin_min = 0.004;
+  s.singularity_margin_min_sample = 1;
+  s.q_min = s.q_max = s.q_dot_max = Eigen::VectorXd::Zero(6);
+  s.tau_max = Eigen::VectorXd::Zero(6);
+  const std::string text = pkmopt::trajectory_summary_text(hexapod(), r, s);
+  EXPECT_NE(text.find("  WARNING: near a singular pose at t = 0.5 s (x,y,z = 0.1,0.2,0.9 m, "
+                      "rx,ry,rz = 0,10,0 deg): singularity_margin 0.004 < 0.01; the drive rates "
+                      "grow as 1/margin there (fastest: q_4 at 250 mm/s)\n"),
+            std::string::npos)
+      << text;
+  s.singularity_margin_min = 0.02;  // not near: no warning
+  EXPECT_EQ(pkmopt::trajectory_summary_text(hexapod(), r, s).find("near a singular"),
+            std::string::npos);
+}
+
 // A summary with dynamics: the per-actuator lines and the drive check against an entry with and
 // without a peak rating.
 pkmopt::TrajectorySummary dynamic_summary() {
