@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <type_traits>
@@ -133,6 +134,33 @@ std::string actuator_catalog_fields_markdown() {
   docs.set_prefix("drive_types[].");
   describe_fields(docs, type);
   return docs.markdown();
+}
+
+ActuatorConstraintFile read_actuator_constraint_file(const YamlValue& constraint,
+                                                     const std::string& study_path) {
+  ActuatorConstraintFile out;
+  read_fields(constraint, out.keys);
+  const YamlValue catalog_value = constraint.required("catalog");
+  std::filesystem::path path = out.keys.catalog;
+  if (path.is_relative()) path = std::filesystem::path(study_path).parent_path() / path;
+  if (!std::filesystem::exists(path))
+    catalog_value.fail("an actuator catalog file", "'" + path.string() + "' (no such file)");
+  path = std::filesystem::absolute(path).lexically_normal();
+  out.catalog_path = path.string();
+  out.catalog = load_actuator_catalog(out.catalog_path);
+  if (const auto drives = constraint.optional("drives")) {
+    const std::vector<YamlValue> numbers = drives->elements();
+    if (numbers.empty()) drives->fail("a list of actuator numbers (1-based)", "an empty list");
+    for (const YamlValue& number : numbers) {
+      const long long n = number.as_int();
+      if (n < 1 || n > 1000) number.fail("an actuator number >= 1", std::to_string(n));
+      if (std::find(out.drives.begin(), out.drives.end(), static_cast<int>(n - 1)) !=
+          out.drives.end())
+        number.fail("distinct actuator numbers", std::to_string(n) + " twice");
+      out.drives.push_back(static_cast<int>(n - 1));
+    }
+  }
+  return out;
 }
 
 }  // namespace pkmopt

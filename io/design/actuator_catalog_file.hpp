@@ -17,7 +17,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "io/format/field_list.hpp"
 #include "io/format/yaml_reader.hpp"
 #include "problems/design/actuator_catalog.hpp"
 
@@ -27,6 +29,45 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root);
 ActuatorCatalog load_actuator_catalog(const std::string& path);
 /// The catalog file text of a catalog (read back by read_actuator_catalog to the same catalog).
 std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog);
+
+/// One `{actuator, catalog}` entry of a study's `constraints:`.
+struct ActuatorConstraintEntry {
+  std::string actuator;
+  std::string catalog;
+};
+
+template <class Fields>
+void describe_fields(Fields& f, ActuatorConstraintEntry& a) {
+  f.field(
+      "actuator", a.actuator,
+      {.required = true,
+       .expected = "an entry name of the catalog, or cheapest",
+       .doc = "the legs are this catalog entry, or cheapest: the optimiser chooses per design"});
+  f.field("catalog", a.catalog,
+          {.required = true,
+           .expected = "a path",
+           .doc = "actuator catalog file, relative to the study file"});
+  f.note("drives", "a list of actuator numbers (1-based, as q_1..q_n)", "", "every drive",
+         "the drives the entry is chosen for (a machine with two kinds of drive, e.g. the "
+         "16K20F3 lathe's cylinders 3 and 4 beside its carriages 1 and 2); not for hexapods, "
+         "whose six legs are alike");
+}
+
+/// `{actuator: cheapest, catalog: FILE}`: the optimiser chooses the entry.
+inline constexpr const char* kCheapestActuator = "cheapest";
+
+/// A study's `{actuator, catalog}` constraint read: its keys, the catalog file's absolute path
+/// (resolved against the study file's folder) and the catalog.
+struct ActuatorConstraintFile {
+  ActuatorConstraintEntry keys;
+  std::vector<int> drives;  ///< 0-based actuator indices from `drives`; empty: every drive
+  std::string catalog_path;
+  ActuatorCatalog catalog;
+};
+/// Reads `constraint` of the study at `study_path`; throws InputError at `catalog` when the file
+/// does not exist or is not a catalog.
+ActuatorConstraintFile read_actuator_constraint_file(const YamlValue& constraint,
+                                                     const std::string& study_path);
 
 /// The docs table of the catalog file's keys (entries' keys as `entries[].KEY`, drive types' as
 /// `drive_types[].KEY`), from the field lists the reader uses.

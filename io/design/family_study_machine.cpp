@@ -7,9 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
+#include "io/design/actuator_catalog_file.hpp"
 #include "io/design/study_machine.hpp"
 #include "io/format/csv.hpp"
 #include "io/format/field_list.hpp"
@@ -68,13 +72,72 @@ class FamilyStudyMachine final : public StudyMachine {
     spec.objectives = std::move(goals.objectives);
     spec.constraints = std::move(goals.constraints);
     spec.require_reachable = goals.require_reachable;
+    spec.actuator_catalog = catalog;
+    spec.actuator_drives = drives;
     return std::make_unique<MachineDesignProblem>(std::move(spec));
+  }
+  const ActuatorCatalog* actuator_catalog() const override { return catalog ? &*catalog : nullptr; }
+
+  // {actuator: cheapest, catalog: FILE}: every design's drives are the cheapest entry that
+  // carries them; {actuator: NAME, catalog: FILE}: they are that entry. Either adds
+  // actuator_overload <= 0 (the entry's force rating against leg_force_max, its stroke against
+  // the design's longest actuator stroke).
+  std::string read_actuator_constraint(const YamlValue& c, const std::string& study_path,
+                                       const DesignTask& /*task*/,
+                                       std::vector<DesignConstraint>& constraints) override {
+    const ActuatorConstraintFile file = read_actuator_constraint_file(c, study_path);
+    const YamlValue name_value = c.required("actuator");
+    const std::string& name = file.keys.actuator;
+    if (catalog) name_value.fail("one {actuator, catalog} constraint per study", "a second one");
+    const std::unique_ptr<Machine> machine = family.build(family.default_parameters());
+    for (const int i : file.drives)
+      if (i >= machine->num_actuators())
+        c.required("drives").fail(
+            fmt::format("actuator numbers 1..{} ({} drives)", machine->num_actuators(), model),
+            std::to_string(i + 1));
+    drives = file.drives;
+    if (machine->any_revolute_actuator())
+      name_value.fail(fmt::format("a model with linear drives (the catalog holds linear drives; "
+                                  "bound leg_force_max instead)"),
+                      fmt::format("{} with revolute drives", model));
+    if (name == kCheapestActuator) {
+      if (find_actuator(file.catalog, name) != nullptr)
+        name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for "
+                                    "the cheapest entry)",
+                                    kCheapestActuator),
+                        fmt::format("catalog '{}' with such an entry", file.catalog.name));
+      try {
+        actuator_costs(file.catalog);
+      } catch (const std::invalid_argument& error) {
+        c.required("catalog").fail("a catalog whose entries all have a cost or all have none",
+                                   error.what());
+      }
+      catalog = file.catalog;
+    } else {
+      const ActuatorEntry* entry = find_actuator(file.catalog, name);
+      if (entry == nullptr) {
+        std::string names;
+        for (const ActuatorEntry& e : file.catalog.entries)
+          names += (names.empty() ? "" : ", ") + e.name;
+        name_value.fail(fmt::format("an entry of catalog '{}' ({})", file.catalog.name, names),
+                        "'" + name + "'");
+      }
+      catalog = ActuatorCatalog{file.catalog.name, {*entry}, {}};
+    }
+    constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
+    std::string listed;
+    for (const int i : drives) listed += (listed.empty() ? "" : ", ") + std::to_string(i + 1);
+    return fmt::format("  - {{actuator: {}, catalog: {}{}}}  # actuator_overload <= 0\n",
+                       nlohmann::json(name).dump(), nlohmann::json(file.catalog_path).dump(),
+                       drives.empty() ? "" : ", drives: [" + listed + "]");
   }
   std::string machine_file(const std::vector<double>& p) const override {
     return family.machine_file(p);
   }
 
   DesignFamily family;
+  std::optional<ActuatorCatalog> catalog;  // from an {actuator, catalog} constraint
+  std::vector<int> drives;                 // its drives (0-based), empty: every drive
 };
 
 }  // namespace

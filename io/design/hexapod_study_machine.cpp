@@ -181,19 +181,15 @@ std::unique_ptr<StudyMachine> read_hexapod_study_machine(const YamlValue& machin
 std::string HexapodStudyMachine::read_actuator_constraint(
     const YamlValue& c, const std::string& study_path, const DesignTask& task,
     std::vector<DesignConstraint>& constraints) {
-  ActuatorConstraintEntry entry_keys;
-  read_fields(c, entry_keys);
+  const ActuatorConstraintFile file = read_actuator_constraint_file(c, study_path);
+  if (!file.drives.empty())
+    c.required("drives").fail("no 'drives' (a hexapod's six legs are alike: the entry is theirs)",
+                              "a list of drives");
   const YamlValue catalog_value = c.required("catalog");
-  std::filesystem::path catalog_path = entry_keys.catalog;
-  if (catalog_path.is_relative())
-    catalog_path = std::filesystem::path(study_path).parent_path() / catalog_path;
-  if (!std::filesystem::exists(catalog_path))
-    catalog_value.fail("an actuator catalog file",
-                       "'" + catalog_path.string() + "' (no such file)");
-  catalog_path = std::filesystem::absolute(catalog_path).lexically_normal();
-  const ActuatorCatalog catalog = load_actuator_catalog(catalog_path.string());
+  const std::filesystem::path catalog_path = file.catalog_path;
+  const ActuatorCatalog& catalog = file.catalog;
   const YamlValue name_value = c.required("actuator");
-  const std::string name = entry_keys.actuator;
+  const std::string name = file.keys.actuator;
   int stroke = -1;
   for (int i = 0; i < kNumDesignParameters; ++i) {
     if (design_parameter_name(i) == "stroke") stroke = i;

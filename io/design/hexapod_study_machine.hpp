@@ -29,32 +29,11 @@
 #include <memory>
 #include <string>
 
+#include "io/design/actuator_catalog_file.hpp"
 #include "io/design/study_machine.hpp"
 #include "io/format/yaml_reader.hpp"
 
 namespace pkmopt {
-
-/// One `{actuator, catalog}` entry of a study's `constraints:`.
-struct ActuatorConstraintEntry {
-  std::string actuator;
-  std::string catalog;
-};
-
-template <class Fields>
-void describe_fields(Fields& f, ActuatorConstraintEntry& a) {
-  f.field(
-      "actuator", a.actuator,
-      {.required = true,
-       .expected = "an entry name of the catalog, or cheapest",
-       .doc = "the legs are this catalog entry, or cheapest: the optimiser chooses per design"});
-  f.field("catalog", a.catalog,
-          {.required = true,
-           .expected = "a path",
-           .doc = "actuator catalog file, relative to the study file"});
-}
-
-/// `{actuator: cheapest, catalog: FILE}`: the optimiser chooses the entry.
-inline constexpr const char* kCheapestActuator = "cheapest";
 
 /// The hexapod's study section. Throws InputError.
 std::unique_ptr<StudyMachine> read_hexapod_study_machine(const YamlValue& machine);

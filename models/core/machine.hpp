@@ -180,6 +180,9 @@ class Machine {
   /// tau in N*m. Machines that mix linear and rotary drives (a serial 5-axis machine) override
   /// it; the others' drives are all of one kind.
   virtual bool revolute_actuator(int /*i*/) const { return revolute_actuators(); }
+  /// The travel of actuator i (0-based): the width of its range, m (rad for a revolute one);
+  /// nullopt when the model does not give one.
+  virtual std::optional<double> actuator_stroke(int /*i*/) const { return std::nullopt; }
   /// True when any actuator is revolute.
   bool any_revolute_actuator() const {
     for (int i = 0; i < num_actuators(); ++i)

@@ -176,6 +176,10 @@ class Hexapod final : public Machine,
   std::string_view model() const override { return kHexapodModel; }
   int num_actuators() const override { return 6; }
   bool revolute_actuators() const override { return false; }
+  std::optional<double> actuator_stroke(int i) const override {
+    if (i < 0 || i >= 6) return std::nullopt;
+    return design_.max_length - design_.min_length;
+  }
   std::unique_ptr<MachineData> make_data() const override;
 
   void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,

@@ -165,6 +165,15 @@ class HybridMachine final : public Machine, public Dynamics {
   std::string_view model() const override { return "hybrid"; }
   int num_actuators() const override { return num_serial_ + design_.module->num_actuators(); }
   bool revolute_actuators() const override { return false; }  ///< modules are prismatic
+  /// The serial axes' travels, then the module's strokes.
+  std::optional<double> actuator_stroke(int i) const override {
+    if (i < 0 || i >= num_actuators()) return std::nullopt;
+    if (i < num_serial_) {
+      const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
+      return a.max - a.min;
+    }
+    return design_.module->actuator_stroke(i - num_serial_);
+  }
   /// The module's interference check; clearance_pair numbers its legs as their actuators.
   bool checks_leg_interference() const override {
     return design_.module->checks_leg_interference();

@@ -286,6 +286,11 @@ class LegChainMachine final : public Machine,
   std::string_view model() const override { return design_.model; }
   int num_actuators() const override { return static_cast<int>(design_.legs.size()); }
   bool revolute_actuators() const override { return revolute_; }
+  std::optional<double> actuator_stroke(int i) const override {
+    if (i < 0 || i >= num_actuators()) return std::nullopt;
+    const LegChainLeg& leg = design_.legs[static_cast<std::size_t>(i)];
+    return leg.q_max - leg.q_min;
+  }
   std::unique_ptr<MachineData> make_data() const override;
   void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                PoseMetrics& out) const override;

@@ -104,6 +104,11 @@ class SerialMachine final : public Machine {
   int num_actuators() const override { return static_cast<int>(feed_.size()); }
   bool revolute_actuators() const override { return false; }
   bool revolute_actuator(int i) const override;
+  std::optional<double> actuator_stroke(int i) const override {
+    if (i < 0 || i >= num_actuators()) return std::nullopt;
+    const SerialAxis& a = design_.axes[static_cast<std::size_t>(i)];
+    return a.max - a.min;
+  }
   std::unique_ptr<MachineData> make_data() const override;
   void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                PoseMetrics& out) const override;

@@ -80,11 +80,12 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
   home_height_ = family.index_of("home_height");
   needed_ = check_design_goals(where, spec_.objectives, spec_.constraints, spec_.task);
   for (int m = 0; m < kNumDesignMetrics; ++m)
-    if (needed_[m] && is_actuator_metric(static_cast<DesignMetric>(m)))
+    if (needed_[m] && is_actuator_metric(static_cast<DesignMetric>(m)) && !spec_.actuator_catalog)
       throw std::invalid_argument(fmt::format(
-          "{}: {} needs an actuator catalog to choose from, which only hexapod design problems "
-          "have; bound leg_force_max instead",
+          "{}: {} needs an actuator catalog to choose from (a constraint {{actuator: cheapest, "
+          "catalog: FILE}}), found none",
           where, design_metric_name(static_cast<DesignMetric>(m))));
+  if (spec_.actuator_catalog) set_up_actuator_catalog(where);
   if (spec_.task.acceleration_max > 0.0)
     throw std::invalid_argument(
         fmt::format("{}: task a_max needs a mass model, which only hexapod design problems have "
@@ -149,6 +150,44 @@ double MachineDesignProblem::home_height_of(const std::vector<double>& parameter
   return home_height_ < 0 ? 0.0 : lift(parameters, static_cast<std::size_t>(home_height_));
 }
 
+void MachineDesignProblem::set_up_actuator_catalog(const std::string& where) {
+  const ActuatorCatalog& catalog = *spec_.actuator_catalog;
+  if (catalog.entries.empty())
+    throw std::invalid_argument(fmt::format(
+        "{}: actuator catalog '{}': expected at least one entry, found none", where, catalog.name));
+  if (const std::string problem = check_actuator_catalog(catalog); !problem.empty())
+    throw std::invalid_argument(
+        fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
+  actuator_costs_ = actuator_costs(catalog);  // throws when only some entries have a cost
+  no_actuator_cost_ = catalog.entries.front().cost
+                          ? 2.0 * *std::max_element(actuator_costs_.begin(), actuator_costs_.end())
+                          : static_cast<double>(catalog.entries.size() + 1);
+  // The catalog holds linear drives: a family with revolute drives (a delta's cranks) has none
+  // to choose.
+  std::unique_ptr<Machine> machine;
+  try {
+    std::vector<double> middle;
+    for (const ParameterRange& r : spec_.parameters) middle.push_back(0.5 * (r.lower + r.upper));
+    machine = spec_.family.build(middle);
+  } catch (const std::invalid_argument&) {
+    machine = spec_.family.build(spec_.family.default_parameters());
+  }
+  if (machine->any_revolute_actuator())
+    throw std::invalid_argument(fmt::format(
+        "{}: actuator catalog '{}' holds linear drives; the {} family's drives are revolute", where,
+        catalog.name, spec_.family.model));
+  for (const int i : spec_.actuator_drives)
+    if (i < 0 || i >= machine->num_actuators())
+      throw std::invalid_argument(
+          fmt::format("{}: actuator_drives: expected drives 0..{}, found {}", where,
+                      machine->num_actuators() - 1, i));
+  for (int i = 0; i < machine->num_actuators(); ++i)
+    if (!machine->actuator_stroke(i))
+      throw std::invalid_argument(
+          fmt::format("{}: the {} family gives no actuator stroke to choose a catalog entry by",
+                      where, spec_.family.model));
+}
+
 MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>& x) const {
   MachineDesignEvaluation ev;
   ev.parameters = parameters_of(x);
@@ -171,6 +210,7 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
                              needed_[static_cast<int>(DesignMetric::stiffness_min_loaded)];
   PoseMetrics m;
   TaskWorstCase worst;
+  Eigen::VectorXd drive_force = Eigen::VectorXd::Zero(machine->num_actuators());  // max |tau_i|
   double reach_sum = 0.0;
   for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
     Pose pose = spec_.task.poses[k];
@@ -182,6 +222,7 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
       ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
                                pose.position.x(), pose.position.y(), pose.position.z());
     worst.add(m);
+    drive_force = drive_force.cwiseMax(m.tau.cwiseAbs());
     ++ev.analysed_poses;
   }
   ev.reach_violation = reach_sum / static_cast<double>(spec_.task.poses.size());
@@ -189,6 +230,28 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
   if (ev.analysed_poses == 0 && ev.failure.empty())
     ev.failure = "no task pose can be analysed (every pose is unreachable and singular)";
   worst.store(ev.metrics);
+  if (spec_.actuator_catalog) {
+    // Every drive gets the entry: the largest force over the task, the longest stroke.
+    const ActuatorCatalog& catalog = *spec_.actuator_catalog;
+    double stroke = 0.0, force = 0.0;
+    for (int i = 0; i < machine->num_actuators(); ++i) {
+      if (!spec_.actuator_drives.empty() &&
+          std::find(spec_.actuator_drives.begin(), spec_.actuator_drives.end(), i) ==
+              spec_.actuator_drives.end())
+        continue;
+      stroke = std::max(stroke, machine->actuator_stroke(i).value_or(0.0));
+      force = std::max(force, drive_force(i));
+    }
+    const ActuatorRequirement need{.force = force, .stroke = stroke};
+    metric(DesignMetric::actuator_overload) = actuator_overload(catalog, need);
+    const ActuatorChoice choice = choose_actuator(catalog, need);
+    if (choice.entry != nullptr) {
+      ev.actuator = static_cast<int>(choice.entry - catalog.entries.data());
+      metric(DesignMetric::actuator_cost) = actuator_costs_[static_cast<std::size_t>(ev.actuator)];
+    } else {
+      metric(DesignMetric::actuator_cost) = no_actuator_cost_;
+    }
+  }
   measure_workspace_metrics(*machine, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);
   return ev;
@@ -208,6 +271,7 @@ DesignRecord MachineDesignProblem::measure(const std::vector<double>& x) const {
   record.aggregate = aggregate_fitness(ev);
   record.failure = std::move(ev.failure);
   record.parameters = std::move(ev.parameters);
+  record.actuator = ev.actuator;
   return record;
 }
 

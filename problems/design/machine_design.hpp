@@ -32,6 +32,15 @@
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3
+//   actuator_cost, actuator_overload  with an actuator catalog (families with linear drives:
+//                       the lathe's cylinders, a hexaglide's or linear delta's carriages as
+//                       linear motors or screws): the cheapest entry that carries every drive,
+//                       need = {force: the largest |tau_i| over the task, stroke: the longest
+//                       actuator_stroke, both over the chosen drives (actuator_drives, default
+//                       every drive)}, as for the hexapod (problems/design/hexapod_design.hpp): its
+//                       relative cost (twice the dearest entry's, or entries + 1 for a rank
+//                       catalog, when none carries) and the overload of the best long-enough
+//                       entry (N; <= 0 exactly when some entry carries the drives)
 // Reduced over the poses where the machine can be analysed: a pose that is unreachable and
 // singular (typically a leg that cannot close at all) has no metrics and only counts in the
 // reachability row. A reachable singular pose makes the evaluation fail (as for the hexapod).
@@ -81,6 +90,7 @@
 #include "models/geometry/installation_space.hpp"
 #include "models/workspace/workspace.hpp"
 #include "optimizer/problem.hpp"
+#include "problems/design/actuator_catalog.hpp"
 #include "problems/design/design_metrics.hpp"
 #include "problems/design/design_problem.hpp"
 
@@ -151,6 +161,11 @@ struct MachineDesignSpec {
   std::vector<DesignObjective> objectives;
   std::vector<DesignConstraint> constraints;
   bool require_reachable = true;
+  /// The linear drives to choose every design's actuators from (actuator_cost,
+  /// actuator_overload; see the header comment); none when absent.
+  std::optional<ActuatorCatalog> actuator_catalog;
+  /// The drives (0-based) the catalog entry is chosen for; empty: every drive.
+  std::vector<int> actuator_drives;
 };
 
 /// Every parameter of a family fixed at its default.
@@ -163,6 +178,7 @@ struct MachineDesignEvaluation {
   bool reachable = false;          ///< every task pose reachable
   double reach_violation = 0.0;    ///< g_reach (0 when reachable, else in (0, 1])
   std::size_t analysed_poses = 0;  ///< poses the metrics were reduced over
+  int actuator = -1;               ///< with a catalog: the chosen entry, -1 when none carries
   std::string failure;             ///< empty when the evaluation succeeded
   bool ok() const { return failure.empty(); }
 };
@@ -190,6 +206,9 @@ class MachineDesignProblem final : public DesignProblem {
   const std::vector<DesignConstraint>& constraints() const override { return spec_.constraints; }
   bool require_reachable() const override { return spec_.require_reachable; }
   bool aggregate() const override { return true; }
+  const ActuatorCatalog* actuator_catalog() const override {
+    return spec_.actuator_catalog ? &*spec_.actuator_catalog : nullptr;
+  }
   /// Indices of the free parameters, in variable order.
   const std::vector<int>& free_parameters() const override { return free_; }
   std::vector<double> design_parameters(const std::vector<double>& x) const override {
@@ -209,10 +228,14 @@ class MachineDesignProblem final : public DesignProblem {
   std::vector<double> aggregate_fitness(const MachineDesignEvaluation& evaluation) const;
 
  private:
+  /// Checks the catalog and the family's drives; the costs by which designs choose.
+  void set_up_actuator_catalog(const std::string& where);
   MachineDesignSpec spec_;
   std::vector<int> free_;
   NeededMetrics needed_{};
   int home_height_ = -1;
+  std::vector<double> actuator_costs_;  // with a catalog: each entry's relative cost
+  double no_actuator_cost_ = 0.0;       // the cost of a design no entry carries
 };
 
 }  // namespace pkmopt

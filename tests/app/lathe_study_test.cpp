@@ -223,6 +223,11 @@ TEST_F(Lathe, ReducedParetoStudyRuns) {
   const std::string full = "population: 80, generations: 100";
   ASSERT_NE(study.find(full), std::string::npos);
   study.replace(study.find(full), full.size(), "population: 8, generations: 2");
+  // The catalog relative to the study's own folder.
+  const std::string catalog = "../catalogs/sew-cms.yaml";
+  ASSERT_NE(study.find(catalog), std::string::npos);
+  study.replace(study.find(catalog), catalog.size(),
+                (kStudy / catalog).lexically_normal().string());
   const fs::path file = dir_ / "pareto.yaml";
   std::ofstream(file) << study;
   const CliRun run =
@@ -237,7 +242,19 @@ TEST_F(Lathe, ReducedParetoStudyRuns) {
     // machine_size of the lathe family is L^3.
     EXPECT_NEAR(c.at("machine_size")[i], length * length * length, 1e-12);
     EXPECT_GT(c.at("stiffness_min")[i], 0.0);
+    // The cylinders' entry carries them: force reserve (overload <= 0) within the 17 kN rating.
+    EXPECT_LE(c.at("g_actuator_overload_max")[i], 0.0);
+    EXPECT_GT(c.at("g_actuator_overload_max")[i], -17000.0);
   }
+  // Their strokes (lengths 1.249..1.577 m on the task) rule out the 200 mm and shorter entries:
+  // every design gets CMS71L/350.
+  const std::string csv = cli_runner::read_text(dir_ / "out" / "pareto.csv");
+  const std::size_t designs = c.at("strut_length").size();
+  std::size_t chosen = 0;
+  for (std::size_t at = csv.find(",CMS71L/350,"); at != std::string::npos;
+       at = csv.find(",CMS71L/350,", at + 1))
+    ++chosen;
+  EXPECT_EQ(chosen, designs) << csv;
   const auto pareto = nlohmann::json::parse(cli_runner::read_text(dir_ / "out" / "pareto.json"));
   EXPECT_EQ(pareto["model"], "lathe_16k20f3");
   // Every Pareto design's machine file loads.

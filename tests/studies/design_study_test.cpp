@@ -568,18 +568,22 @@ TEST_F(LegChainDesignStudy, SchemaErrors) {
                                                       "algorithm: ipopt"));
   EXPECT_NE(e5.find("optimizer.algorithm: expected nsga2"), std::string::npos) << e5;
   EXPECT_NE(e5.find("found 'ipopt'"), std::string::npos) << e5;
-  // Only a model that chooses actuators takes a catalog constraint.
+  // A model with linear drives takes a catalog constraint; its drives are numbered 1..3.
   const std::string catalog =
       std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
   const std::string e8 = load_error(
       "lc_e8",
       replaced(kLinearDeltaStudy, "  - task_reachable\n",
                "  - task_reachable\n  - {actuator: cheapest, catalog: " + catalog + "}\n"));
-  EXPECT_NE(e8.find("constraints[1].actuator: expected {metric: NAME, max|min: VALUE} (a "
-                    "linear_delta study chooses no actuators from a catalog; it bounds "
-                    "leg_force_max instead), found an actuator constraint"),
+  EXPECT_EQ(e8, "no error") << e8;
+  const std::string e9 = load_error(
+      "lc_e9", replaced(kLinearDeltaStudy, "  - task_reachable\n",
+                        "  - task_reachable\n  - {actuator: cheapest, catalog: " + catalog +
+                            ", drives: [2, 4]}\n"));
+  EXPECT_NE(e9.find("constraints[1].drives: expected actuator numbers 1..3 (linear_delta "
+                    "drives), found 4"),
             std::string::npos)
-      << e8;
+      << e9;
   // A translational platform cannot tilt.
   const std::string e6 = load_error(
       "lc_e6",

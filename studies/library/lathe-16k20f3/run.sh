@@ -67,7 +67,9 @@ RES=0.02
 
 # 5. The Pareto front of strut length against stiffness.
 if [ "$QUICK" = 1 ]; then
-  sed 's/population: 80, generations: 100/population: 12, generations: 3/' "$HERE/pareto.yaml" \
+  # The reduced run in OUT: the catalog by its path from the study's own folder.
+  sed -e 's/population: 80, generations: 100/population: 12, generations: 3/' \
+    -e "s|catalog: \.\./catalogs/|catalog: $HERE/../catalogs/|" "$HERE/pareto.yaml" \
     > "$OUT/pareto-quick.yaml"
   "$PKMOPT" run "$OUT/pareto-quick.yaml" --out "$OUT/pareto" --force --no-progress
 else

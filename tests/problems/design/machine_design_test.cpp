@@ -91,6 +91,56 @@ TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
   EXPECT_EQ(f[5], ev.reach_violation);
 }
 
+// Linear motors for the carriages: the choice is the cheapest entry whose force rating and stroke
+// carry the largest carriage force over the task and the carriage travel, checked here against
+// the same design analysed by hand; the delta's cranks are refused.
+TEST(MachineDesign, CarriagesGetTheCheapestCatalogEntryThatCarriesThem) {
+  MachineDesignSpec spec = linear_delta_spec();
+  ActuatorCatalog catalog;
+  catalog.name = "motors";
+  catalog.entries = {{"weak-long", "linear_motor", 100.0, 1.0, 3.0, {}, {}, 1.0, {}},
+                     {"strong-short", "linear_motor", 5000.0, 0.4, 3.0, {}, {}, 2.0, {}},
+                     {"strong-long", "linear_motor", 5000.0, 1.0, 3.0, {}, {}, 5.0, {}},
+                     {"strongest-long", "linear_motor", 9000.0, 1.0, 3.0, {}, {}, 9.0, {}}};
+  spec.actuator_catalog = catalog;
+  spec.objectives.push_back({DesignMetric::actuator_cost, Sense::minimize});
+  spec.constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
+  const MachineDesignProblem problem(spec);
+  auto metric = [](const MachineDesignEvaluation& ev, DesignMetric m) {
+    return ev.metrics[static_cast<int>(m)];
+  };
+  // Stroke 0.6 m: the short entry is out; the force (about 1 kN) is beyond the weak one.
+  const MachineDesignEvaluation ev = problem.evaluate({0.7, 0.6, 0.1});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  const double force = metric(ev, DesignMetric::leg_force_max);
+  ASSERT_GT(force, 100.0);
+  ASSERT_LT(force, 5000.0);
+  EXPECT_EQ(ev.actuator, 2);  // strong-long
+  EXPECT_EQ(metric(ev, DesignMetric::actuator_cost), 5.0);
+  EXPECT_EQ(metric(ev, DesignMetric::actuator_overload), force - 9000.0);  // the best long entry
+  EXPECT_EQ(problem.measure({0.7, 0.6, 0.1}).actuator, 2);
+  // Stroke 0.35 m: the short strong entry carries it and is cheaper.
+  const MachineDesignEvaluation short_stroke = problem.evaluate({0.7, 0.35, 0.1});
+  ASSERT_TRUE(short_stroke.ok()) << short_stroke.failure;
+  EXPECT_EQ(short_stroke.actuator, 1);
+  EXPECT_EQ(metric(short_stroke, DesignMetric::actuator_cost), 2.0);
+  // Only the chosen drives count: none of a nonexistent drive.
+  MachineDesignSpec wrong_drive = spec;
+  wrong_drive.actuator_drives = {3};
+  EXPECT_THROW(MachineDesignProblem{wrong_drive}, std::invalid_argument);
+  // Without a catalog the actuator metrics are refused; a delta's cranks take no linear drive.
+  MachineDesignSpec no_catalog = spec;
+  no_catalog.actuator_catalog.reset();
+  EXPECT_THROW(MachineDesignProblem{no_catalog}, std::invalid_argument);
+  MachineDesignSpec delta;
+  delta.family = delta_family(DeltaDesign{});
+  delta.parameters = default_ranges(delta.family);
+  delta.task.poses = box_task_poses({0, 0, -0.8}, {0.05, 0.05, 0.05}, {2, 2, 2}, 0, 0);
+  delta.objectives = {{DesignMetric::actuator_cost, Sense::minimize}};
+  delta.actuator_catalog = catalog;
+  EXPECT_THROW(MachineDesignProblem{delta}, std::invalid_argument);
+}
+
 TEST(MachineDesign, FailuresGivePenaltyRowsAndAReason) {
   {  // an impossible machine: the drive range is empty
     MachineDesignSpec spec;
