@@ -161,4 +161,28 @@ const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::st
   return nullptr;
 }
 
+CatalogPricing catalog_pricing(const ActuatorCatalog& catalog) {
+  CatalogPricing pricing;
+  pricing.cost = actuator_costs(catalog);
+  pricing.none = !catalog.entries.empty() && catalog.entries.front().cost
+                     ? 2.0 * *std::max_element(pricing.cost.begin(), pricing.cost.end())
+                     : static_cast<double>(catalog.entries.size() + 1);
+  return pricing;
+}
+
+StudyActuatorChoice study_actuator_choice(const ActuatorCatalog& catalog,
+                                          const CatalogPricing& pricing,
+                                          const ActuatorRequirement& need) {
+  StudyActuatorChoice out;
+  out.overload = actuator_overload(catalog, need);
+  const ActuatorChoice choice = choose_actuator(catalog, need);
+  if (choice.entry == nullptr) {
+    out.cost = pricing.none;
+    return out;
+  }
+  out.entry = static_cast<int>(choice.entry - catalog.entries.data());
+  out.cost = pricing.cost[static_cast<std::size_t>(out.entry)];
+  return out;
+}
+
 }  // namespace pkmopt

@@ -85,6 +85,15 @@ ActuatorChoice choose_actuator(const ActuatorCatalog& catalog, const ActuatorReq
 /// std::invalid_argument when only some entries have a cost (the order would be a guess).
 std::vector<double> actuator_costs(const ActuatorCatalog& catalog);
 
+/// How a design study prices the entries: each entry's cost (actuator_costs) and the cost of a
+/// design no entry carries, dearer than every entry (twice the dearest cost; for a rank catalog
+/// the rank after the last). Throws std::invalid_argument as actuator_costs does.
+struct CatalogPricing {
+  std::vector<double> cost;
+  double none = 0.0;
+};
+CatalogPricing catalog_pricing(const ActuatorCatalog& catalog);
+
 /// How far the best entry long enough for need.stroke falls short of the forces (N): the minimum
 /// over those entries of max(need.force - max_force, need.peak_force - peak rating); <= 0 exactly
 /// when some entry carries both forces and the stroke (speed not considered); +inf when no entry
@@ -95,6 +104,17 @@ double actuator_overload(const ActuatorCatalog& catalog, const ActuatorRequireme
 /// when no entry is that long. A leg needing `force` and `stroke` is carried by some entry exactly
 /// when force <= actuator_force_capacity(catalog, stroke) (speed not considered).
 double actuator_force_capacity(const ActuatorCatalog& catalog, double stroke);
+
+/// A design study's choice for a need: the chosen entry's index (-1 when none carries), its cost
+/// (pricing.none when none carries) and actuator_overload(catalog, need).
+struct StudyActuatorChoice {
+  int entry = -1;
+  double cost = 0.0;
+  double overload = 0.0;
+};
+StudyActuatorChoice study_actuator_choice(const ActuatorCatalog& catalog,
+                                          const CatalogPricing& pricing,
+                                          const ActuatorRequirement& need);
 
 /// What a drive must do along a path (pkmopt trajectory): the peak and RMS axial force over
 /// the path (N), the peak speed (m/s) and the stroke it spans (m).

@@ -130,7 +130,7 @@ void HexapodDesignProblem::set_up_actuator_catalog(const std::string& where) {
       throw std::invalid_argument(
           fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
     try {
-      actuator_costs_ = actuator_costs(catalog);
+      pricing_ = catalog_pricing(catalog);
     } catch (const std::invalid_argument& error) {
       throw std::invalid_argument(fmt::format("{}: {}", where, error.what()));
     }
@@ -141,12 +141,6 @@ void HexapodDesignProblem::set_up_actuator_catalog(const std::string& where) {
           "{}: parameter stroke: expected an upper bound <= {} m (the longest entry of actuator "
           "catalog '{}'), found {} m",
           where, longest, catalog.name, spec_.parameters[kStroke].upper));
-    // No entry carries the legs: dearer than every entry (actuator_overload > 0 says why):
-    // twice the dearest price, or the rank after the last.
-    no_actuator_cost_ =
-        catalog.entries.front().cost
-            ? 2.0 * *std::max_element(actuator_costs_.begin(), actuator_costs_.end())
-            : static_cast<double>(catalog.entries.size() + 1);
     needed_[static_cast<int>(DesignMetric::leg_force_max)] = true;
   } else {
     for (int m = 0; m < kNumDesignMetrics; ++m)
@@ -566,14 +560,10 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
         .force = metric(DesignMetric::leg_force_max),
         .stroke = p[kStroke],
         .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
-    metric(DesignMetric::actuator_overload) = actuator_overload(catalog, need);
-    const ActuatorChoice choice = choose_actuator(catalog, need);
-    if (choice.entry != nullptr) {
-      ev.actuator = static_cast<int>(choice.entry - catalog.entries.data());
-      metric(DesignMetric::actuator_cost) = actuator_costs_[static_cast<std::size_t>(ev.actuator)];
-    } else {
-      metric(DesignMetric::actuator_cost) = no_actuator_cost_;
-    }
+    const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
+    ev.actuator = choice.entry;
+    metric(DesignMetric::actuator_cost) = choice.cost;
+    metric(DesignMetric::actuator_overload) = choice.overload;
   }
   if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
     std::vector<Pose> poses = spec_.task.poses;

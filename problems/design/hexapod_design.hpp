@@ -241,9 +241,8 @@ class HexapodDesignProblem final : public DesignProblem {
   std::vector<std::size_t> epigraph_objectives_;  // objective indices with an epigraph variable
   std::size_t num_inequality_ = 0;
   std::array<bool, kNumDesignMetrics> needed_{};
-  double stiffness_upper_ = 0.0;        // bound of the stiffness epigraph variable (N/um)
-  std::vector<double> actuator_costs_;  // by catalog entry (actuator_costs)
-  double no_actuator_cost_ = 0.0;       // actuator_cost when no entry carries the legs
+  double stiffness_upper_ = 0.0;  // bound of the stiffness epigraph variable (N/um)
+  CatalogPricing pricing_;        // the catalog's entries' costs, and a design's that none carries
 };
 
 }  // namespace pkmopt

@@ -158,10 +158,7 @@ void MachineDesignProblem::set_up_actuator_catalog(const std::string& where) {
   if (const std::string problem = check_actuator_catalog(catalog); !problem.empty())
     throw std::invalid_argument(
         fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
-  actuator_costs_ = actuator_costs(catalog);  // throws when only some entries have a cost
-  no_actuator_cost_ = catalog.entries.front().cost
-                          ? 2.0 * *std::max_element(actuator_costs_.begin(), actuator_costs_.end())
-                          : static_cast<double>(catalog.entries.size() + 1);
+  pricing_ = catalog_pricing(catalog);  // throws when only some entries have a cost
   // The catalog holds linear drives: a family with revolute drives (a delta's cranks) has none
   // to choose.
   std::unique_ptr<Machine> machine;
@@ -243,14 +240,10 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
       force = std::max(force, drive_force(i));
     }
     const ActuatorRequirement need{.force = force, .stroke = stroke};
-    metric(DesignMetric::actuator_overload) = actuator_overload(catalog, need);
-    const ActuatorChoice choice = choose_actuator(catalog, need);
-    if (choice.entry != nullptr) {
-      ev.actuator = static_cast<int>(choice.entry - catalog.entries.data());
-      metric(DesignMetric::actuator_cost) = actuator_costs_[static_cast<std::size_t>(ev.actuator)];
-    } else {
-      metric(DesignMetric::actuator_cost) = no_actuator_cost_;
-    }
+    const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
+    ev.actuator = choice.entry;
+    metric(DesignMetric::actuator_cost) = choice.cost;
+    metric(DesignMetric::actuator_overload) = choice.overload;
   }
   measure_workspace_metrics(*machine, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);

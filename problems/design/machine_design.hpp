@@ -234,8 +234,7 @@ class MachineDesignProblem final : public DesignProblem {
   std::vector<int> free_;
   NeededMetrics needed_{};
   int home_height_ = -1;
-  std::vector<double> actuator_costs_;  // with a catalog: each entry's relative cost
-  double no_actuator_cost_ = 0.0;       // the cost of a design no entry carries
+  CatalogPricing pricing_;  // with a catalog: the entries' costs, and a design's none carries
 };
 
 }  // namespace pkmopt

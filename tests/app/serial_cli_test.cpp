@@ -8,12 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <string>
-#include <vector>
 
+#include "io/format/csv.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
 
@@ -26,29 +23,10 @@ using cli_runner::CliRun;
 const std::string kMachine =
     (fs::path(PKMOPT_SOURCE_DIR) / "examples" / "serial_641236.yaml").string();
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  std::string cell;
-  while (std::getline(s, cell, ',')) out.push_back(cell);
-  return out;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream s(text);
-  std::string line;
-  while (std::getline(s, line)) out.push_back(line);
-  return out;
-}
-
-// The value of column `name` in row `row` (1 = the first data row) of a CSV text.
-double cell(const std::string& csv, const std::string& name, std::size_t row = 1) {
-  const std::vector<std::string> rows = lines(csv);
-  const std::vector<std::string> header = split(rows.at(0));
-  const auto at = std::find(header.begin(), header.end(), name);
-  if (at == header.end()) return NAN;
-  return std::stod(split(rows.at(row)).at(static_cast<std::size_t>(at - header.begin())));
+// The value of column `name` in data row `row` (0 = the first) of a CSV text.
+double cell(const std::string& csv, const std::string& name, std::size_t row = 0) {
+  const CsvTable t = parse_csv(csv, "output");
+  return t.number(t.rows.at(row), t.require_column(name));
 }
 
 class SerialCli : public scratch::ScratchDirTest {
@@ -121,11 +99,10 @@ TEST_F(SerialCli, TrajectoryAroundAConeTurnsCOnceAndRacesNearTheVertical) {
                               "--helix-orientation 2.9,0,0 --samples 2001 --out " +
                               path("n.csv"));
   ASSERT_EQ(near.status, 0) << near.err;
-  std::ifstream file(path("n.csv"));
-  const std::string csv((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const CsvTable t = read_csv_file(path("n.csv"));
   double c_rate = 0;
-  for (std::size_t row = 1; row < lines(csv).size(); ++row)
-    c_rate = std::max(c_rate, std::abs(cell(csv, "q_dot_1", row)));
+  for (const auto& row : t.rows)
+    c_rate = std::max(c_rate, std::abs(t.number(row, t.require_column("q_dot_1"))));
   EXPECT_GT(c_rate, 1000.0);  // deg/s, against 57.3 on the wide cone
 }
 
