@@ -23,14 +23,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // A parasitic module's pose counts as attained when the world TCP is within this (m).
 constexpr double kAttainedTolerance = 1e-9;
 
-void set_singular(PoseMetrics& out, bool compliance_metrics, PoseCompliance& matrices) {
-  out.singularity_margin = 0.0;
-  out.stiffness_min = 0.0;
-  out.tau.setConstant(kInf);
-  out.tcp_error_max = kInf;
-  if (compliance_metrics) set_singular_compliance_metrics(out, matrices);
-}
-
 }  // namespace
 
 HybridMachine::HybridMachine(HybridDesign design) : design_(std::move(design)) {
@@ -174,7 +166,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.det_j = m.det_j;
   if (m.singular || !maps) {
     out.singular = true;
-    set_singular(out, d.compliance_metrics, d.matrices);
+    set_singular_metrics(out, d.compliance_metrics, d.matrices);
     if (d.compliance_metrics && module_dynamics_ != nullptr)
       out.natural_frequencies.setZero(natural_frequency_count());
     return;
@@ -222,7 +214,7 @@ void HybridMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   if (!out.tau.allFinite() || !std::isfinite(out.tcp_error_max) ||
       !std::isfinite(out.stiffness_min)) {
     out.singular = true;
-    set_singular(out, d.compliance_metrics, d.matrices);
+    set_singular_metrics(out, d.compliance_metrics, d.matrices);
     if (d.compliance_metrics && module_dynamics_ != nullptr)
       out.natural_frequencies.setZero(natural_frequency_count());
   }

@@ -39,12 +39,8 @@ double excess_of(double value, const SerialAxis& a) {
 void set_unreachable(PoseMetrics& out, bool compliance_metrics, PoseCompliance& matrices) {
   out.reachable = false;
   out.singular = true;
-  out.singularity_margin = 0.0;
   out.det_j = 0.0;
-  out.stiffness_min = 0.0;
-  out.tau.setConstant(kInf);
-  out.tcp_error_max = kInf;
-  if (compliance_metrics) set_singular_compliance_metrics(out, matrices);
+  set_singular_metrics(out, compliance_metrics, matrices);
 }
 
 }  // namespace

@@ -102,4 +102,12 @@ void set_singular_compliance_metrics(PoseMetrics& out, PoseCompliance& matrices)
   matrices.loaded_compliance_tt.setConstant(kInf);
 }
 
+void set_singular_metrics(PoseMetrics& out, bool compliance_metrics, PoseCompliance& matrices) {
+  out.singularity_margin = 0.0;
+  out.stiffness_min = 0.0;
+  out.tau.setConstant(std::numeric_limits<double>::infinity());
+  out.tcp_error_max = std::numeric_limits<double>::infinity();
+  if (compliance_metrics) set_singular_compliance_metrics(out, matrices);
+}
+
 }  // namespace pkmopt

@@ -71,4 +71,8 @@ double loaded_stiffness_of(const Eigen::Matrix3d& loaded_tt);
 /// The metrics of a singular pose: compliance and deflections +inf, direction 0, loaded 0.
 void set_singular_compliance_metrics(PoseMetrics& out, PoseCompliance& matrices);
 
+/// Every metric of a singular pose (docs/conventions.md): singularity_margin and stiffness_min 0,
+/// each tau_i and tcp_error_max +inf, and with `compliance_metrics` the compliance ones above.
+void set_singular_metrics(PoseMetrics& out, bool compliance_metrics, PoseCompliance& matrices);
+
 }  // namespace pkmopt
