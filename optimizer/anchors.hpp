@@ -1,11 +1,11 @@
 // Anchor points of a front: for each objective i, a design minimising f_i (first solve:
 // min f_i + 1e-3 sum_{j != i} f_j / max(1, |f_j(start)|), which avoids weakly dominated
 // plateaus; L-BFGS for 30 iterations, then SR1 updates if it has not converged, because the
-// augmentation is concave where an f_j is and L-BFGS stalls there), refined lexicographically when Ipopt manages it (second solve: minimise
-// sum_{j != i} f_j / s_j subject to f_i <= f_i* + 1e-7 max(1, |f_i*|), s_j = max(1, |f_j|)).
-// The anchors give the ideal point (ideal_i = f_i(anchor_i)), the nadir estimate of the
-// pay-off table (nadir_j = max_i f_j(anchor_i)) and the objective ranges used to scale the
-// epsilon-constraint and NBI subproblems.
+// augmentation is concave where an f_j is and L-BFGS stalls there), refined lexicographically when
+// Ipopt manages it (second solve: minimise sum_{j != i} f_j / s_j subject to f_i <= f_i* + 1e-7
+// max(1, |f_i*|), s_j = max(1, |f_j|)). The anchors give the ideal point (ideal_i = f_i(anchor_i)),
+// the nadir estimate of the pay-off table (nadir_j = max_i f_j(anchor_i)) and the objective ranges
+// used to scale the epsilon-constraint and NBI subproblems.
 //
 // Example:
 //   pkmopt::AnchorSet anchors = pkmopt::compute_anchors(zdt1, start, ipopt_options);

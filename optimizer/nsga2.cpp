@@ -9,68 +9,12 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "optimizer/population.hpp"
 #include "optimizer/random.hpp"
 #include "optimizer/variation.hpp"
 
 namespace pkmopt {
 namespace {
-
-struct Individual {
-  std::vector<double> x;
-  std::vector<double> fitness;
-  double violation = 0.0;
-  std::size_t rank = 0;
-  double crowding = 0.0;
-};
-
-// Deb's constraint-domination: true when a is better than b.
-bool constrained_dominates(const Individual& a, const Individual& b, std::size_t m) {
-  if (a.violation == 0.0 && b.violation > 0.0) return true;
-  if (a.violation > 0.0 || b.violation > 0.0) return a.violation < b.violation;
-  bool strictly = false;
-  for (std::size_t i = 0; i < m; ++i) {
-    if (a.fitness[i] > b.fitness[i]) return false;
-    if (a.fitness[i] < b.fitness[i]) strictly = true;
-  }
-  return strictly;
-}
-
-// Fast non-dominated sort; sets rank, returns the fronts (indices in ascending order).
-std::vector<std::vector<std::size_t>> sort_fronts(std::vector<Individual>& pop, std::size_t m) {
-  const std::size_t n = pop.size();
-  std::vector<std::vector<std::size_t>> dominated(n);
-  std::vector<std::size_t> domination_count(n, 0);
-  std::vector<std::vector<std::size_t>> fronts(1);
-  for (std::size_t p = 0; p < n; ++p) {
-    for (std::size_t q = p + 1; q < n; ++q) {
-      if (constrained_dominates(pop[p], pop[q], m)) {
-        dominated[p].push_back(q);
-        ++domination_count[q];
-      } else if (constrained_dominates(pop[q], pop[p], m)) {
-        dominated[q].push_back(p);
-        ++domination_count[p];
-      }
-    }
-  }
-  for (std::size_t p = 0; p < n; ++p)
-    if (domination_count[p] == 0) {
-      pop[p].rank = 0;
-      fronts[0].push_back(p);
-    }
-  for (std::size_t level = 0; !fronts[level].empty(); ++level) {
-    std::vector<std::size_t> next;
-    for (std::size_t p : fronts[level])
-      for (std::size_t q : dominated[p])
-        if (--domination_count[q] == 0) {
-          pop[q].rank = level + 1;
-          next.push_back(q);
-        }
-    std::sort(next.begin(), next.end());
-    fronts.push_back(std::move(next));
-  }
-  fronts.pop_back();
-  return fronts;
-}
 
 void assign_crowding(std::vector<Individual>& pop, const std::vector<std::size_t>& front,
                      std::size_t m) {
@@ -103,28 +47,6 @@ std::size_t tournament(const std::vector<Individual>& pop, Random& rng) {
   if (pop[a].rank != pop[b].rank) return pop[a].rank < pop[b].rank ? a : b;
   if (pop[a].crowding != pop[b].crowding) return pop[a].crowding > pop[b].crowding ? a : b;
   return rng.bernoulli(0.5) ? a : b;
-}
-
-void evaluate(const Problem& problem, std::vector<Individual>& individuals, std::size_t first,
-              int threads, double equality_tolerance) {
-  std::vector<std::vector<double>> xs;
-  xs.reserve(individuals.size() - first);
-  for (std::size_t k = first; k < individuals.size(); ++k) xs.push_back(individuals[k].x);
-  std::vector<std::vector<double>> fitness = problem.batch_fitness(xs, threads);
-  const std::size_t m = problem.num_objectives();
-  for (std::size_t k = 0; k < fitness.size(); ++k) {
-    Individual& ind = individuals[first + k];
-    if (fitness[k].size() != problem.fitness_size())
-      throw std::runtime_error(fmt::format("problem '{}': fitness returned {} values, expected {}",
-                                           problem.name(), fitness[k].size(),
-                                           problem.fitness_size()));
-    ind.fitness = std::move(fitness[k]);
-    // Non-finite objectives make a design useless: treat it as infeasible.
-    bool finite = true;
-    for (std::size_t i = 0; i < m; ++i) finite = finite && std::isfinite(ind.fitness[i]);
-    ind.violation = constraint_violation(problem, ind.fitness, equality_tolerance, 0.0);
-    if (!finite) ind.violation = std::numeric_limits<double>::max();
-  }
 }
 
 }  // namespace
@@ -176,22 +98,9 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
                                           : 1.0 / static_cast<double>(n);
   Random rng(options.seed);
 
-  std::vector<Individual> population(size);
-  for (std::size_t k = 0; k < size; ++k) {
-    std::vector<double>& x = population[k].x;
-    if (k < options.initial_population.size()) {
-      x = options.initial_population[k];
-      if (x.size() != n)
-        throw std::invalid_argument(
-            fmt::format("nsga2: initial design {} has {} values, problem '{}' has {} variables",
-                        k + 1, x.size(), problem.name(), n));
-      for (std::size_t j = 0; j < n; ++j) x[j] = std::clamp(x[j], bounds.lower[j], bounds.upper[j]);
-    } else {
-      x.resize(n);
-      for (std::size_t j = 0; j < n; ++j) x[j] = rng.uniform(bounds.lower[j], bounds.upper[j]);
-    }
-  }
-  evaluate(counted, population, 0, options.threads, options.equality_tolerance);
+  std::vector<Individual> population =
+      initial_individuals(problem, size, options.initial_population, rng, "nsga2");
+  evaluate_individuals(counted, population, 0, options.threads, options.equality_tolerance);
   for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
 
   for (std::size_t generation = 0; generation < options.generations; ++generation) {
@@ -208,7 +117,7 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
       merged.push_back(std::move(child1));
       merged.push_back(std::move(child2));
     }
-    evaluate(counted, merged, size, options.threads, options.equality_tolerance);
+    evaluate_individuals(counted, merged, size, options.threads, options.equality_tolerance);
 
     std::vector<Individual> next;
     next.reserve(size);

@@ -13,7 +13,8 @@ constexpr double kAxisWeight = 1e-6;  // the other components of an axis's ASF w
 
 }  // namespace
 
-Normalization normalize_objectives(const std::vector<std::vector<double>>& f) {
+Normalization normalize_objectives(const std::vector<std::vector<double>>& f,
+                                   NormalizationMemory* memory) {
   if (f.empty() || f.front().empty())
     throw std::invalid_argument("normalize_objectives: expected objective vectors, found none");
   const std::size_t m = f.front().size();
@@ -24,17 +25,26 @@ Normalization normalize_objectives(const std::vector<std::vector<double>>& f) {
       throw std::invalid_argument("normalize_objectives: objective vectors of different sizes");
     for (std::size_t j = 0; j < m; ++j) n.ideal[j] = std::min(n.ideal[j], v[j]);
   }
+  // The candidates for the extreme points: the set, then the remembered ones.
+  std::vector<const std::vector<double>*> candidates;
+  for (const std::vector<double>& v : f) candidates.push_back(&v);
+  if (memory != nullptr && memory->ideal.size() == m) {
+    for (std::size_t j = 0; j < m; ++j) n.ideal[j] = std::min(n.ideal[j], memory->ideal[j]);
+    for (const std::vector<double>& e : memory->extremes)
+      if (e.size() == m) candidates.push_back(&e);
+  }
   // Extreme points by the achievement scalarising function of each axis.
   Eigen::MatrixXd E(m, m);
   std::vector<double> worst(m, 0.0);
+  std::vector<std::vector<double>> extreme_points;
   for (std::size_t axis = 0; axis < m; ++axis) {
     double best = std::numeric_limits<double>::infinity();
     std::size_t chosen = 0;
-    for (std::size_t s = 0; s < f.size(); ++s) {
+    for (std::size_t s = 0; s < candidates.size(); ++s) {
       double asf = 0.0;
       for (std::size_t i = 0; i < m; ++i) {
-        const double shifted = f[s][i] - n.ideal[i];
-        worst[i] = std::max(worst[i], shifted);
+        const double shifted = (*candidates[s])[i] - n.ideal[i];
+        if (s < f.size()) worst[i] = std::max(worst[i], shifted);
         asf = std::max(asf, shifted / (i == axis ? 1.0 : kAxisWeight));
       }
       if (asf < best) {
@@ -43,7 +53,13 @@ Normalization normalize_objectives(const std::vector<std::vector<double>>& f) {
       }
     }
     for (std::size_t i = 0; i < m; ++i)
-      E(static_cast<Eigen::Index>(axis), static_cast<Eigen::Index>(i)) = f[chosen][i] - n.ideal[i];
+      E(static_cast<Eigen::Index>(axis), static_cast<Eigen::Index>(i)) =
+          (*candidates[chosen])[i] - n.ideal[i];
+    extreme_points.push_back(*candidates[chosen]);
+  }
+  if (memory != nullptr) {
+    memory->ideal = n.ideal;
+    memory->extremes = extreme_points;
   }
   // The hyperplane through them: E b = 1, a = 1 / b.
   n.intercepts.assign(m, 0.0);

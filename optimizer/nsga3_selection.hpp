@@ -12,6 +12,8 @@
 //   extremes, a degenerate front), a_j = max_s f'_j(s) instead, and an axis on which every member
 //   is equal takes a_j = 1;
 //   normalised f_n = f' / a.
+//   With a NormalizationMemory across generations the ideal point is the smallest seen so far and
+//   the previous extreme points stay candidates (Blank, Deb & Roy, EMO 2019; pymoo's NSGA3).
 // Association (Algorithm 3): each member's nearest reference line through the origin and its
 // perpendicular distance d = |f_n - (w . f_n / |w|^2) w|; ties go to the lower index.
 // Niching (Algorithm 4): with rho_j the members already selected per direction, repeat K times:
@@ -39,8 +41,19 @@ struct Normalization {
   bool from_hyperplane = false;    ///< the extreme points' hyperplane gave every intercept
 };
 
-/// Algorithm 2 over a non-empty set of objective vectors of equal size M >= 1.
-Normalization normalize_objectives(const std::vector<std::vector<double>>& f);
+/// What the normalisation carries from one generation to the next (Blank, Deb & Roy, "Investigating
+/// the Normalization Procedure of NSGA-III", EMO 2019, as pymoo does): the ideal point found so far
+/// and the last extreme points, which stay candidates for the next ones. Empty at the start.
+struct NormalizationMemory {
+  std::vector<double> ideal;
+  std::vector<std::vector<double>> extremes;  ///< in objective units
+};
+
+/// Algorithm 2 over a non-empty set of objective vectors of equal size M >= 1; with `memory`, the
+/// ideal point is also the smallest seen before and the extreme points are chosen among f and the
+/// previous extremes (memory is updated).
+Normalization normalize_objectives(const std::vector<std::vector<double>>& f,
+                                   NormalizationMemory* memory = nullptr);
 
 /// (f - ideal) / intercepts for each vector.
 std::vector<std::vector<double>> normalized(const Normalization& n,

@@ -40,6 +40,30 @@ TEST(Nsga3Selection, NormalisationRecoversThePlanesIntercepts) {
   }
 }
 
+TEST(Nsga3Selection, TheMemoryKeepsTheIdealAndTheExtremesOfEarlierGenerations) {
+  const std::vector<double> a = {2.0, 0.5, 10.0};
+  std::vector<std::vector<double>> first, interior;
+  for (const std::vector<double>& u : das_dennis_directions(3, 4)) {
+    std::vector<double> v(3);
+    for (std::size_t j = 0; j < 3; ++j) v[j] = a[j] * u[j];
+    first.push_back(v);
+    if (std::all_of(u.begin(), u.end(), [](double x) { return x > 0.0; })) interior.push_back(v);
+  }
+  NormalizationMemory memory;
+  (void)normalize_objectives(first, &memory);
+  EXPECT_EQ(memory.ideal, (std::vector<double>{0.0, 0.0, 0.0}));
+  ASSERT_EQ(memory.extremes.size(), 3u);
+  // The interior points alone have another ideal point and other extremes; remembered, the first
+  // generation's plane stays.
+  const Normalization alone = normalize_objectives(interior);
+  EXPECT_GT(alone.ideal[0], 0.0);
+  const Normalization remembered = normalize_objectives(interior, &memory);
+  for (std::size_t j = 0; j < 3; ++j) {
+    EXPECT_EQ(remembered.ideal[j], 0.0);
+    EXPECT_NEAR(remembered.intercepts[j], a[j], 1e-12 * a[j]);
+  }
+}
+
 TEST(Nsga3Selection, DegenerateExtremesFallBackToTheWorstValues) {
   // Every point on one line: the three extreme points are not independent.
   std::vector<std::vector<double>> f;
