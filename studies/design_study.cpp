@@ -132,12 +132,13 @@ void read_formulation(const YamlValue& optimizer, const StudyMachine& machine, D
   optimizer.expect_map();
   const YamlValue algorithm_value = optimizer.required("algorithm");
   const std::string algorithm = algorithm_value.as_string();
-  goals.formulation =
-      algorithm == "nsga2" ? DesignFormulation::aggregate : DesignFormulation::smooth;
+  const bool evolutionary = algorithm == "nsga2" || algorithm == "nsga3";
+  goals.formulation = evolutionary ? DesignFormulation::aggregate : DesignFormulation::smooth;
   if (!machine.smooth_formulation()) {
-    if (algorithm != "nsga2" && !derivative_free_nlopt(algorithm))
+    if (!evolutionary && !derivative_free_nlopt(algorithm))
       algorithm_value.fail(
-          fmt::format("nsga2 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, nlopt:BOBYQA, ... "
+          fmt::format("nsga2 or nsga3 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, "
+                      "nlopt:BOBYQA, ... "
                       "for one objective): a {} design study measures worst cases over the task "
                       "and has no gradients",
                       machine.model),

@@ -39,6 +39,46 @@ void describe_fields(Fields& f, Nsga2Options& o) {
 }
 
 template <class Fields>
+void describe_fields(Fields& f, Nsga3Spec& s) {
+  Nsga3Options& o = s.options;
+  f.field("population", o.population,
+          {.min = 4,
+           .max = 1e6,
+           .even = true,
+           .zero_is_unset = true,
+           .default_text = "the directions rounded up to a multiple of 4",
+           .doc = "individuals per generation"});
+  f.field("generations", o.generations,
+          {.min = 0,
+           .max = 1e7,
+           .doc = "generations after the first; evaluations = population × (generations + 1)"});
+  f.field("divisions", o.divisions,
+          {.min = 1,
+           .max = 1000,
+           .doc = "H of the Das–Dennis reference directions, C(H + M − 1, M − 1) of them for M "
+                  "objectives (H1 of the boundary layer with inner_divisions)"});
+  f.field("inner_divisions", o.inner_divisions,
+          {.min = 0,
+           .max = 1000,
+           .doc = "H2 of an inside layer of directions (Deb & Jain 2014, for 8 and more "
+                  "objectives); 0: one layer"});
+  f.field("crossover_probability", o.crossover_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "SBX crossover probability per pair"});
+  f.field("crossover_eta", o.crossover_eta,
+          {.min = 0, .min_exclusive = true, .doc = "SBX distribution index (Deb & Jain 2014: 30)"});
+  f.field("mutation_probability", o.mutation_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
+  f.field("mutation_eta", o.mutation_eta,
+          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+}
+
+template <class Fields>
 void describe_fields(Fields& f, IpoptOptions& o) {
   f.field("max_iterations", o.max_iterations,
           {.min = 1, .max = 1e7, .doc = "Ipopt iterations per solve (max_iter)"});

@@ -63,6 +63,21 @@ AlgorithmSpec read_algorithm(const std::string& name, const YamlValue& s, const 
     spec.options.seed = seed;
     return spec;
   }
+  if (name == "nsga3") {
+    unsupported = nsga2_explain_unsupported(problem);
+    Nsga3Spec spec = read_spec<Nsga3Spec>(s);
+    spec.options.seed = seed;
+    if (spec.options.population == 0) {  // the directions' count rounded up to a multiple of 4
+      std::size_t directions = 0;
+      try {
+        directions = nsga3_directions(spec.options, problem.num_objectives()).size();
+      } catch (const std::invalid_argument& e) {
+        s.required("divisions").fail("fewer reference directions", e.what());
+      }
+      spec.options.population = (directions + 3) / 4 * 4;
+    }
+    return spec;
+  }
   if (name == "hybrid") {
     unsupported = nsga2_explain_unsupported(problem);
     if (!unsupported && problem.num_objectives() < 2)
@@ -119,6 +134,7 @@ std::vector<std::string> spec_keys() {
 std::string OptimizerSpec::name() const {
   return std::visit(
       Overloaded{[](const Nsga2Spec&) { return std::string("nsga2"); },
+                 [](const Nsga3Spec&) { return std::string("nsga3"); },
                  [](const HybridSpec&) { return std::string("hybrid"); },
                  [](const EpsilonConstraintSpec&) { return std::string("epsilon_constraint"); },
                  [](const NbiSpec&) { return std::string("nbi"); },
@@ -133,8 +149,15 @@ const Nsga2Options* OptimizerSpec::nsga2() const {
   return nullptr;
 }
 
+const Nsga3Options* OptimizerSpec::nsga3() const {
+  if (const auto* s = std::get_if<Nsga3Spec>(&algorithm)) return &s->options;
+  return nullptr;
+}
+
 long long OptimizerSpec::expected_requests() const {
   if (const auto* s = std::get_if<Nsga2Spec>(&algorithm))
+    return static_cast<long long>(s->options.population * (s->options.generations + 1));
+  if (const auto* s = std::get_if<Nsga3Spec>(&algorithm))
     return static_cast<long long>(s->options.population * (s->options.generations + 1));
   return 0;
 }
@@ -147,6 +170,8 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
   std::vector<std::string> allowed;
   if (name == "nsga2") {
     allowed = spec_keys<Nsga2Spec>();
+  } else if (name == "nsga3") {
+    allowed = spec_keys<Nsga3Spec>();
   } else if (name == "hybrid") {
     allowed = spec_keys<HybridSpec>();
   } else if (name == "epsilon_constraint") {
@@ -158,7 +183,7 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
   } else if (name.starts_with("nlopt:")) {
     allowed = spec_keys<NloptSpec>();
   } else {
-    algorithm.fail("one of nsga2, epsilon_constraint, nbi, hybrid, ipopt, nlopt:<ALGORITHM>",
+    algorithm.fail("one of nsga2, nsga3, epsilon_constraint, nbi, hybrid, ipopt, nlopt:<ALGORITHM>",
                    quote_found(name));
   }
   allowed.insert(allowed.begin(), {"algorithm", "seed"});
@@ -184,6 +209,9 @@ std::string optimizer_fields_markdown(std::string_view algorithm) {
   FieldDocs docs;
   if (algorithm == "nsga2") {
     Nsga2Spec spec;
+    describe_fields(docs, spec);
+  } else if (algorithm == "nsga3") {
+    Nsga3Spec spec;
     describe_fields(docs, spec);
   } else if (algorithm == "hybrid") {
     HybridSpec spec;
@@ -246,6 +274,11 @@ RunOutcome run_optimizer(const Problem& problem, const OptimizerSpec& spec, int 
             Nsga2Options options = s.options;
             options.threads = threads;
             return front_outcome(run_nsga2(problem, options));
+          },
+          [&](const Nsga3Spec& s) {
+            Nsga3Options options = s.options;
+            options.threads = threads;
+            return front_outcome(run_nsga3(problem, options));
           },
           [&](const HybridSpec& s) {
             HybridOptions options = s.options;

@@ -8,6 +8,7 @@
 //               crossover_probability: 0.9, crossover_eta: 15, mutation_probability: 0 (= 1/n),
 //               mutation_eta: 20}
 //   optimizer: {algorithm: hybrid, <nsga2 keys>, polish_iterations: 200}
+//   optimizer: {algorithm: nsga3, divisions: 12, generations: 250}   # population: automatic
 //   optimizer: {algorithm: epsilon_constraint, points: 21, primary_objective: 1,
 //               max_iterations: 200, tolerance: 1e-8, start: [...]}
 //   optimizer: {algorithm: nbi, points: 21, equality_form: false, max_iterations, tolerance, start}
@@ -36,6 +37,7 @@
 #include "optimizer/nbi.hpp"
 #include "optimizer/nlopt_solver.hpp"
 #include "optimizer/nsga2.hpp"
+#include "optimizer/nsga3.hpp"
 #include "optimizer/problem.hpp"
 #include "optimizer/solve_result.hpp"
 
@@ -44,6 +46,11 @@ namespace pkmopt {
 /// NSGA-II (optimizer/nsga2.hpp); options.seed is the spec's seed.
 struct Nsga2Spec {
   Nsga2Options options;
+};
+/// NSGA-III (optimizer/nsga3.hpp); options.seed is the spec's seed, options.population the
+/// resolved one (never 0 once read).
+struct Nsga3Spec {
+  Nsga3Options options;
 };
 /// NSGA-II, then every front point polished by Ipopt (optimizer/hybrid.hpp).
 struct HybridSpec {
@@ -68,19 +75,21 @@ struct NloptSpec {
   std::vector<double> start;
 };
 
-using AlgorithmSpec =
-    std::variant<Nsga2Spec, HybridSpec, EpsilonConstraintSpec, NbiSpec, IpoptSpec, NloptSpec>;
+using AlgorithmSpec = std::variant<Nsga2Spec, Nsga3Spec, HybridSpec, EpsilonConstraintSpec, NbiSpec,
+                                   IpoptSpec, NloptSpec>;
 
 /// The `optimizer:` section, resolved.
 struct OptimizerSpec {
   std::uint64_t seed = 1;
   AlgorithmSpec algorithm = Nsga2Spec{};
 
-  /// The algorithm's name as written in study files: nsga2, hybrid, epsilon_constraint, nbi,
+  /// The algorithm's name as written in study files: nsga2, nsga3, hybrid, epsilon_constraint, nbi,
   /// ipopt or nlopt:NAME.
   std::string name() const;
   /// The NSGA-II options of nsga2 and hybrid; null for the other algorithms.
   const Nsga2Options* nsga2() const;
+  /// The NSGA-III options of nsga3; null for the other algorithms.
+  const Nsga3Options* nsga3() const;
   /// The number of fitness requests an nsga2 run makes (population x (generations + 1)); 0 when
   /// it is not known in advance.
   long long expected_requests() const;

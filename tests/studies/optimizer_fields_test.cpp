@@ -25,7 +25,8 @@ std::string read_docs(const std::string& name) {
 // <!-- /fields -->, exactly as generated; the failure message shows the block to paste.
 TEST(OptimizerFields, DocsTablesMatchTheFieldLists) {
   const std::string docs = read_docs("optimizer.md");
-  for (const char* algorithm : {"nsga2", "hybrid", "epsilon_constraint", "nbi", "ipopt", "nlopt"}) {
+  for (const char* algorithm :
+       {"nsga2", "nsga3", "hybrid", "epsilon_constraint", "nbi", "ipopt", "nlopt"}) {
     const std::string block = std::string("<!-- fields: ") + algorithm + " -->\n" +
                               optimizer_fields_markdown(algorithm) + "<!-- /fields -->\n";
     EXPECT_NE(docs.find(block), std::string::npos)
@@ -34,11 +35,27 @@ TEST(OptimizerFields, DocsTablesMatchTheFieldLists) {
   }
 }
 
+// nsga3 without a population takes the directions' count rounded up to a multiple of 4 and
+// writes it back resolved (ZDT1, two objectives, H = 5: 6 directions, population 8).
+TEST(OptimizerFields, Nsga3PopulationFollowsTheDirections) {
+  const auto problem = make_benchmark("zdt1", 4, 0);
+  const OptimizerSpec spec = read_optimizer_section(
+      YamlValue::load_string("{algorithm: nsga3, divisions: 5, generations: 2}", "o.yaml"),
+      *problem);
+  ASSERT_NE(spec.nsga3(), nullptr);
+  EXPECT_EQ(spec.nsga3()->population, 8u);
+  EXPECT_EQ(spec.expected_requests(), 8 * 3);
+  EXPECT_NE(optimizer_section_yaml(spec).find("population: 8,"), std::string::npos);
+}
+
 TEST(OptimizerFields, EveryAlgorithmKeyIsReadAndWrittenBack) {
   const auto problem = make_benchmark("zdt1", 4, 0);
   const char* sections[] = {
       "{algorithm: nsga2, seed: 3, population: 8, generations: 2, crossover_probability: 0.8, "
       "crossover_eta: 10, mutation_probability: 0.25, mutation_eta: 30}",
+      "{algorithm: nsga3, seed: 4, population: 12, generations: 3, divisions: 5, "
+      "inner_divisions: 1, crossover_probability: 0.9, crossover_eta: 30, mutation_probability: "
+      "0, mutation_eta: 20}",
       "{algorithm: hybrid, seed: 1, population: 8, generations: 2, crossover_probability: 1, "
       "crossover_eta: 20, mutation_probability: 0, mutation_eta: 20, polish_iterations: 7}",
       "{algorithm: epsilon_constraint, seed: 1, points: 5, primary_objective: 2, "

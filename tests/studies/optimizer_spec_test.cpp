@@ -251,11 +251,11 @@ TEST(OptimizerSpec, SectionYamlReadsBackToTheSameSpec) {
 TEST(OptimizerSpec, UnknownAlgorithmAndKeysOfAnotherAlgorithmNameTheKey) {
   const auto zdt1 = make_benchmark("zdt1", 5);
   const auto hs71 = make_benchmark("hs71");
-  const std::string unknown = error_of("{algorithm: nsga3}", *zdt1);
+  const std::string unknown = error_of("{algorithm: spea2}", *zdt1);
   EXPECT_NE(unknown.find("study.yaml:1:"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("optimizer.algorithm: expected one of nsga2"), std::string::npos)
       << unknown;
-  EXPECT_NE(unknown.find("found 'nsga3'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("found 'spea2'"), std::string::npos) << unknown;
   // Each algorithm takes only its own keys.
   const struct {
     std::string flow, key;
