@@ -93,9 +93,11 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
   const std::size_t n = bounds.lower.size();
   const std::size_t m = problem.num_objectives();
   const std::size_t size = options.population;
-  const double mutation_probability = options.mutation_probability > 0.0
-                                          ? options.mutation_probability
-                                          : 1.0 / static_cast<double>(n);
+  const VariationSettings variation{options.crossover_probability, options.crossover_eta,
+                                    options.mutation_probability > 0.0
+                                        ? options.mutation_probability
+                                        : 1.0 / static_cast<double>(n),
+                                    options.mutation_eta};
   Random rng(options.seed);
 
   std::vector<Individual> population =
@@ -106,17 +108,9 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
   for (std::size_t generation = 0; generation < options.generations; ++generation) {
     std::vector<Individual> merged = population;
     merged.reserve(2 * size);
-    for (std::size_t k = 0; k < size / 2; ++k) {
-      Individual child1, child2;
-      child1.x = population[tournament(population, rng)].x;
-      child2.x = population[tournament(population, rng)].x;
-      if (rng.bernoulli(options.crossover_probability))
-        sbx_crossover(child1.x, child2.x, bounds, options.crossover_eta, rng);
-      polynomial_mutation(child1.x, bounds, mutation_probability, options.mutation_eta, rng);
-      polynomial_mutation(child2.x, bounds, mutation_probability, options.mutation_eta, rng);
-      merged.push_back(std::move(child1));
-      merged.push_back(std::move(child2));
-    }
+    append_offspring(
+        population, size, bounds, variation, [&] { return tournament(population, rng); }, rng,
+        merged);
     evaluate_individuals(counted, merged, size, options.threads, options.equality_tolerance);
 
     std::vector<Individual> next;
@@ -140,18 +134,7 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
     for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
   }
 
-  std::vector<std::vector<double>> xs, fitness;
-  for (const Individual& ind : population) {
-    xs.push_back(ind.x);
-    fitness.push_back(ind.fitness);
-  }
-  FrontResult result = make_front(problem, xs, fitness, options.equality_tolerance, 0.0);
-  result.algorithm = "nsga2";
-  result.fitness_evaluations = counted.fitness_evaluations();
-  result.gradient_evaluations = counted.gradient_evaluations();
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (result.x.empty()) result.message = "no feasible design in the final population";
-  return result;
+  return population_front(problem, population, options.equality_tolerance, "nsga2", counted, start);
 }
 
 }  // namespace pkmopt

@@ -101,4 +101,22 @@ std::vector<Individual> initial_individuals(const Problem& problem, std::size_t 
   return population;
 }
 
+FrontResult population_front(const Problem& problem, const std::vector<Individual>& population,
+                             double equality_tolerance, const std::string& algorithm,
+                             const CountingProblem& counted,
+                             std::chrono::steady_clock::time_point start) {
+  std::vector<std::vector<double>> xs, fitness;
+  for (const Individual& ind : population) {
+    xs.push_back(ind.x);
+    fitness.push_back(ind.fitness);
+  }
+  FrontResult result = make_front(problem, xs, fitness, equality_tolerance, 0.0);
+  result.algorithm = algorithm;
+  result.fitness_evaluations = counted.fitness_evaluations();
+  result.gradient_evaluations = counted.gradient_evaluations();
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (result.x.empty()) result.message = "no feasible design in the final population";
+  return result;
+}
+
 }  // namespace pkmopt

@@ -6,12 +6,15 @@
 // parallel when the problem allows, results in input order); the initial population.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <string>
 #include <vector>
 
+#include "optimizer/front_result.hpp"
 #include "optimizer/problem.hpp"
 #include "optimizer/random.hpp"
+#include "optimizer/variation.hpp"
 
 namespace pkmopt {
 
@@ -34,6 +37,41 @@ std::vector<std::vector<std::size_t>> sort_fronts(std::vector<Individual>& pop, 
 /// when the problem returns a fitness of the wrong size.
 void evaluate_individuals(const Problem& problem, std::vector<Individual>& individuals,
                           std::size_t first, int threads, double equality_tolerance);
+
+/// SBX crossover and polynomial mutation settings (optimizer/variation.hpp).
+struct VariationSettings {
+  double crossover_probability = 1.0;  ///< per pair
+  double crossover_eta = 20.0;
+  double mutation_probability = 0.0;  ///< per variable (resolved: never 0)
+  double mutation_eta = 20.0;
+};
+
+/// Appends `count` children (count even) to `out`: two parents by `select()` (an index into
+/// `parents`), SBX with the crossover probability, polynomial mutation of each; the random draws
+/// in that order, from `rng`.
+template <class Select>
+void append_offspring(const std::vector<Individual>& parents, std::size_t count,
+                      const Bounds& bounds, const VariationSettings& v, Select&& select,
+                      Random& rng, std::vector<Individual>& out) {
+  for (std::size_t k = 0; k < count / 2; ++k) {
+    Individual child1, child2;
+    child1.x = parents[select()].x;
+    child2.x = parents[select()].x;
+    if (rng.bernoulli(v.crossover_probability))
+      sbx_crossover(child1.x, child2.x, bounds, v.crossover_eta, rng);
+    polynomial_mutation(child1.x, bounds, v.mutation_probability, v.mutation_eta, rng);
+    polynomial_mutation(child2.x, bounds, v.mutation_probability, v.mutation_eta, rng);
+    out.push_back(std::move(child1));
+    out.push_back(std::move(child2));
+  }
+}
+
+/// The result of a run: the feasible non-dominated part of the final population (make_front),
+/// with the algorithm's name, the evaluation counts of `counted` and the time since `start`.
+FrontResult population_front(const Problem& problem, const std::vector<Individual>& population,
+                             double equality_tolerance, const std::string& algorithm,
+                             const CountingProblem& counted,
+                             std::chrono::steady_clock::time_point start);
 
 /// `size` individuals: the given designs first (clamped into the bounds), the rest drawn uniformly
 /// in the bounds from `rng`. Throws std::invalid_argument naming `algorithm` when a given design

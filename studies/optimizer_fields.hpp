@@ -9,10 +9,30 @@
 //   std::string table = fields_markdown(Nsga2Spec{});  // the docs table
 #pragma once
 
+#include <string_view>
+
 #include "io/format/field_list.hpp"
 #include "studies/optimizer_spec.hpp"
 
 namespace pkmopt {
+
+// SBX and polynomial mutation keys of the evolutionary algorithms (Nsga2Options, Nsga3Options).
+template <class Fields, class Options>
+void describe_variation_fields(Fields& f, Options& o, std::string_view eta_doc) {
+  f.field("crossover_probability", o.crossover_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "SBX crossover probability per pair"});
+  f.field("crossover_eta", o.crossover_eta, {.min = 0, .min_exclusive = true, .doc = eta_doc});
+  f.field("mutation_probability", o.mutation_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
+  f.field("mutation_eta", o.mutation_eta,
+          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+}
 
 template <class Fields>
 void describe_fields(Fields& f, Nsga2Options& o) {
@@ -22,20 +42,7 @@ void describe_fields(Fields& f, Nsga2Options& o) {
           {.min = 0,
            .max = 1e7,
            .doc = "generations after the first; evaluations = population × (generations + 1)"});
-  f.field("crossover_probability", o.crossover_probability,
-          {.min = 0,
-           .max = 1,
-           .expected = "a probability in [0, 1]",
-           .doc = "SBX crossover probability per pair"});
-  f.field("crossover_eta", o.crossover_eta,
-          {.min = 0, .min_exclusive = true, .doc = "SBX distribution index (Deb et al. 2002)"});
-  f.field("mutation_probability", o.mutation_probability,
-          {.min = 0,
-           .max = 1,
-           .expected = "a probability in [0, 1]",
-           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
-  f.field("mutation_eta", o.mutation_eta,
-          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+  describe_variation_fields(f, o, "SBX distribution index (Deb et al. 2002)");
 }
 
 template <class Fields>
@@ -62,20 +69,7 @@ void describe_fields(Fields& f, Nsga3Spec& s) {
            .max = 1000,
            .doc = "H2 of an inside layer of directions (Deb & Jain 2014, for 8 and more "
                   "objectives); 0: one layer"});
-  f.field("crossover_probability", o.crossover_probability,
-          {.min = 0,
-           .max = 1,
-           .expected = "a probability in [0, 1]",
-           .doc = "SBX crossover probability per pair"});
-  f.field("crossover_eta", o.crossover_eta,
-          {.min = 0, .min_exclusive = true, .doc = "SBX distribution index (Deb & Jain 2014: 30)"});
-  f.field("mutation_probability", o.mutation_probability,
-          {.min = 0,
-           .max = 1,
-           .expected = "a probability in [0, 1]",
-           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
-  f.field("mutation_eta", o.mutation_eta,
-          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+  describe_variation_fields(f, o, "SBX distribution index (Deb & Jain 2014: 30)");
 }
 
 template <class Fields>
