@@ -84,17 +84,9 @@ std::optional<std::string> Nsga3Options::validate() const {
     return violated("population", population, "population 0 (automatic) or even and >= 4");
   if (reference_directions.empty() && divisions < 1)
     return violated("divisions", divisions, "divisions >= 1");
-  if (!(crossover_probability >= 0.0 && crossover_probability <= 1.0))
-    return violated("crossover_probability", crossover_probability,
-                    "0 <= crossover_probability <= 1");
-  if (!(crossover_eta > 0.0)) return violated("crossover_eta", crossover_eta, "crossover_eta > 0");
-  if (!(mutation_probability >= 0.0 && mutation_probability <= 1.0))
-    return violated("mutation_probability", mutation_probability, "0 <= mutation_probability <= 1");
-  if (!(mutation_eta > 0.0)) return violated("mutation_eta", mutation_eta, "mutation_eta > 0");
-  if (!(equality_tolerance >= 0.0))
-    return violated("equality_tolerance", equality_tolerance, "equality_tolerance >= 0");
-  if (threads < 0) return violated("threads", threads, "threads >= 0");
-  return std::nullopt;
+  return check_evolution_options(
+      "Nsga3Options", {crossover_probability, crossover_eta, mutation_probability, mutation_eta},
+      equality_tolerance, threads);
 }
 
 std::vector<std::vector<double>> nsga3_directions(const Nsga3Options& options, std::size_t m) {

@@ -119,4 +119,25 @@ FrontResult population_front(const Problem& problem, const std::vector<Individua
   return result;
 }
 
+std::optional<std::string> check_evolution_options(std::string_view type,
+                                                   const VariationSettings& v,
+                                                   double equality_tolerance, int threads) {
+  auto violated = [&](const char* name, auto value, const char* rule) {
+    return fmt::format("{}::{} = {}. Violated constraint: {}", type, name, value, rule);
+  };
+  if (!(v.crossover_probability >= 0.0 && v.crossover_probability <= 1.0))
+    return violated("crossover_probability", v.crossover_probability,
+                    "0 <= crossover_probability <= 1");
+  if (!(v.crossover_eta > 0.0))
+    return violated("crossover_eta", v.crossover_eta, "crossover_eta > 0");
+  if (!(v.mutation_probability >= 0.0 && v.mutation_probability <= 1.0))
+    return violated("mutation_probability", v.mutation_probability,
+                    "0 <= mutation_probability <= 1");
+  if (!(v.mutation_eta > 0.0)) return violated("mutation_eta", v.mutation_eta, "mutation_eta > 0");
+  if (!(equality_tolerance >= 0.0))
+    return violated("equality_tolerance", equality_tolerance, "equality_tolerance >= 0");
+  if (threads < 0) return violated("threads", threads, "threads >= 0");
+  return std::nullopt;
+}
+
 }  // namespace pkmopt

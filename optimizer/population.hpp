@@ -8,7 +8,9 @@
 
 #include <chrono>
 #include <cstddef>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "optimizer/front_result.hpp"
@@ -65,6 +67,12 @@ void append_offspring(const std::vector<Individual>& parents, std::size_t count,
     out.push_back(std::move(child2));
   }
 }
+
+/// Empty when the variation settings (mutation_probability 0 meaning 1/n), the equality tolerance
+/// and the thread count are valid; otherwise "TYPE::KEY = VALUE. Violated constraint: RULE".
+std::optional<std::string> check_evolution_options(std::string_view type,
+                                                   const VariationSettings& v,
+                                                   double equality_tolerance, int threads);
 
 /// The result of a run: the feasible non-dominated part of the final population (make_front),
 /// with the algorithm's name, the evaluation counts of `counted` and the time since `start`.
