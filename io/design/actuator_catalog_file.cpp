@@ -148,6 +148,29 @@ ActuatorConstraintFile read_actuator_constraint_file(const YamlValue& constraint
   path = std::filesystem::absolute(path).lexically_normal();
   out.catalog_path = path.string();
   out.catalog = load_actuator_catalog(out.catalog_path);
+  const YamlValue name_value = constraint.required("actuator");
+  const std::string& name = out.keys.actuator;
+  const ActuatorEntry* entry = find_actuator(out.catalog, name);
+  if (name == kCheapestActuator) {
+    if (entry != nullptr)
+      name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for the "
+                                  "cheapest entry)",
+                                  kCheapestActuator),
+                      fmt::format("catalog '{}' with such an entry", out.catalog.name));
+    try {
+      actuator_costs(out.catalog);
+    } catch (const std::invalid_argument& error) {
+      catalog_value.fail("a catalog whose entries all have a cost or all have none", error.what());
+    }
+  } else if (entry == nullptr) {
+    std::string names;
+    for (const ActuatorEntry& e : out.catalog.entries)
+      names += (names.empty() ? "" : ", ") + e.name;
+    name_value.fail(fmt::format("an entry of catalog '{}' ({})", out.catalog.name, names),
+                    "'" + name + "'");
+  } else {
+    out.entry = static_cast<int>(entry - out.catalog.entries.data());
+  }
   if (const auto drives = constraint.optional("drives")) {
     const std::vector<YamlValue> numbers = drives->elements();
     if (numbers.empty()) drives->fail("a list of actuator numbers (1-based)", "an empty list");

@@ -61,11 +61,16 @@ inline constexpr const char* kCheapestActuator = "cheapest";
 struct ActuatorConstraintFile {
   ActuatorConstraintEntry keys;
   std::vector<int> drives;  ///< 0-based actuator indices from `drives`; empty: every drive
+  /// The named entry's index in `catalog`; -1 for `cheapest`.
+  int entry = -1;
+  bool cheapest() const { return entry < 0; }
   std::string catalog_path;
   ActuatorCatalog catalog;
 };
-/// Reads `constraint` of the study at `study_path`; throws InputError at `catalog` when the file
-/// does not exist or is not a catalog.
+/// Reads `constraint` of the study at `study_path`. Throws InputError at `catalog` when the file
+/// does not exist or is not a catalog, or (for `cheapest`) when only some entries have a cost; at
+/// `actuator` when the name is no entry of the catalog, or is `cheapest` and the catalog has an
+/// entry of that name.
 ActuatorConstraintFile read_actuator_constraint_file(const YamlValue& constraint,
                                                      const std::string& study_path);
 

@@ -100,30 +100,12 @@ class FamilyStudyMachine final : public StudyMachine {
       name_value.fail(fmt::format("a model with linear drives (the catalog holds linear drives; "
                                   "bound leg_force_max instead)"),
                       fmt::format("{} with revolute drives", model));
-    if (name == kCheapestActuator) {
-      if (find_actuator(file.catalog, name) != nullptr)
-        name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for "
-                                    "the cheapest entry)",
-                                    kCheapestActuator),
-                        fmt::format("catalog '{}' with such an entry", file.catalog.name));
-      try {
-        actuator_costs(file.catalog);
-      } catch (const std::invalid_argument& error) {
-        c.required("catalog").fail("a catalog whose entries all have a cost or all have none",
-                                   error.what());
-      }
-      catalog = file.catalog;
-    } else {
-      const ActuatorEntry* entry = find_actuator(file.catalog, name);
-      if (entry == nullptr) {
-        std::string names;
-        for (const ActuatorEntry& e : file.catalog.entries)
-          names += (names.empty() ? "" : ", ") + e.name;
-        name_value.fail(fmt::format("an entry of catalog '{}' ({})", file.catalog.name, names),
-                        "'" + name + "'");
-      }
-      catalog = ActuatorCatalog{file.catalog.name, {*entry}, {}};
-    }
+    // A named entry is a one-entry catalog: the same choice, the same overload.
+    catalog = file.cheapest()
+                  ? file.catalog
+                  : ActuatorCatalog{file.catalog.name,
+                                    {file.catalog.entries[static_cast<std::size_t>(file.entry)]},
+                                    {}};
     constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
     std::string listed;
     for (const int i : drives) listed += (listed.empty() ? "" : ", ") + std::to_string(i + 1);

@@ -185,7 +185,6 @@ std::string HexapodStudyMachine::read_actuator_constraint(
   if (!file.drives.empty())
     c.required("drives").fail("no 'drives' (a hexapod's six legs are alike: the entry is theirs)",
                               "a list of drives");
-  const YamlValue catalog_value = c.required("catalog");
   const std::filesystem::path catalog_path = file.catalog_path;
   const ActuatorCatalog& catalog = file.catalog;
   const YamlValue name_value = c.required("actuator");
@@ -196,20 +195,10 @@ std::string HexapodStudyMachine::read_actuator_constraint(
   }
   double& lo = parameters[static_cast<std::size_t>(stroke)].min;
   double& hi = parameters[static_cast<std::size_t>(stroke)].max;
-  if (name == kCheapestActuator) {
-    if (find_actuator(catalog, name) != nullptr)
-      name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for the "
-                                  "cheapest entry)",
-                                  kCheapestActuator),
-                      fmt::format("catalog '{}' with such an entry", catalog.name));
+  if (file.cheapest()) {
     if (spec.actuator_catalog)
       name_value.fail("one {actuator: cheapest, catalog: FILE} constraint per study",
                       "a second one");
-    try {
-      actuator_costs(catalog);
-    } catch (const std::invalid_argument& error) {
-      catalog_value.fail("a catalog whose entries all have a cost or all have none", error.what());
-    }
     double longest = 0.0;
     for (const ActuatorEntry& e : catalog.entries) longest = std::max(longest, e.stroke);
     if (lo > longest)
@@ -225,13 +214,7 @@ std::string HexapodStudyMachine::read_actuator_constraint(
         "  - {{actuator: {}, catalog: {}}}  # actuator_overload <= 0, stroke <= {} m\n",
         kCheapestActuator, nlohmann::json(catalog_path.string()).dump(), format_number(hi));
   }
-  const ActuatorEntry* entry = find_actuator(catalog, name);
-  if (entry == nullptr) {
-    std::string names;
-    for (const ActuatorEntry& e : catalog.entries) names += (names.empty() ? "" : ", ") + e.name;
-    name_value.fail(fmt::format("an entry of catalog '{}' ({})", catalog.name, names),
-                    "'" + name + "'");
-  }
+  const ActuatorEntry* entry = &catalog.entries[static_cast<std::size_t>(file.entry)];
   constraints.push_back({DesignMetric::leg_force_max, Relation::less_equal, entry->max_force});
   const double peak = entry->peak_force.value_or(entry->max_force);
   const bool rapid = task.acceleration_max > 0.0;  // the rapid moves go against the peak

@@ -115,18 +115,16 @@ Eigen::Vector3d SerialMachine::tool_axis_at(const Eigen::VectorXd& q) const {
   return design_.chain.transform(full_coordinates(q)).topLeftCorner<3, 3>() * design_.tool_axis;
 }
 
-Eigen::Matrix<double, 6, Eigen::Dynamic> SerialMachine::feed_jacobian(
-    const Eigen::VectorXd& q) const {
-  const Eigen::Matrix<double, 6, Eigen::Dynamic> all =
-      design_.chain.twist_jacobian(full_coordinates(q), design_.tool_point);
-  Eigen::Matrix<double, 6, Eigen::Dynamic> J(6, num_actuators());
+FeedJacobian SerialMachine::feed_jacobian(const Eigen::VectorXd& q) const {
+  const FeedJacobian all = design_.chain.twist_jacobian(full_coordinates(q), design_.tool_point);
+  FeedJacobian J(6, num_actuators());
   for (std::size_t i = 0; i < feed_.size(); ++i)
     J.col(static_cast<Eigen::Index>(i)) = all.col(feed_[i]);
   return J;
 }
 
-Eigen::MatrixXd SerialMachine::geometric_stiffness(
-    const Eigen::Matrix<double, 6, Eigen::Dynamic>& Jf, const Wrench& wrench) const {
+Eigen::MatrixXd SerialMachine::geometric_stiffness(const FeedJacobian& Jf,
+                                                   const Wrench& wrench) const {
   // Column j = [v_j; omega_j] (rotary) or [u_j; 0] (linear). An axis k before j turns column j
   // with it (rotary k: d col_j = [u_k x v_j; u_k x omega_j]; linear k: no change); an axis k at or
   // after j moves only the tool point, which a rotary j sees as dv_j = u_j x v_k.
@@ -187,6 +185,62 @@ std::optional<SerialMachine::Branch> SerialMachine::inverse_kinematics(const Pos
   return best;
 }
 
+void SerialMachine::conditioning(const FeedJacobian& Jf, const Eigen::Vector3d& a0,
+                                 PoseMetrics& out) const {
+  Matrix6d M;
+  M.leftCols(5) = Jf;
+  M.col(5) << 0.0, 0.0, 0.0, a0;
+  out.det_j = M.determinant() + 0.0;
+  // M_h = diag(I, L I) M diag(c): the rotary columns and the spin over L.
+  const double L = design_.characteristic_length;
+  Matrix6d Mh = M;
+  Mh.bottomRows<3>() *= L;
+  for (int i = 0; i < 5; ++i)
+    if (rotary_[static_cast<std::size_t>(i)]) Mh.col(i) /= L;
+  Mh.col(5) /= L;
+  const Eigen::JacobiSVD<Matrix6d> svd(Mh);
+  const auto& sv = svd.singularValues();
+  const double rcond = sv(0) > 0.0 ? sv(5) / sv(0) : 0.0;
+  out.singular = !(rcond >= kSingularRcond);
+  out.singularity_margin = out.singular ? 0.0 : rcond;
+}
+
+void SerialMachine::loaded_compliance(const FeedJacobian& Jf, const Wrench& wrench,
+                                      PoseMetrics& out, PoseCompliance& matrices) const {
+  const int n = num_actuators();
+  Eigen::VectorXd D(n);
+  std::vector<int> soft;  // the elastic axes
+  for (int i = 0; i < n; ++i) {
+    const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
+    D(i) = k > 0.0 ? 1.0 / k : 0.0;
+    if (k > 0.0) soft.push_back(i);
+  }
+  if (soft.empty()) {  // every drive rigid: nothing yields
+    matrices.loaded_compliance_tt.setZero();
+    out.stiffness_min_loaded = kInf;
+    return;
+  }
+  const Eigen::MatrixXd Kg = geometric_stiffness(Jf, wrench);
+  // Stable when K - K_g is positive definite on the elastic axes (its symmetric part).
+  const Eigen::MatrixXd Kg_sym = 0.5 * (Kg + Kg.transpose());
+  const Eigen::MatrixXd S =
+      Eigen::MatrixXd(D(soft).cwiseInverse().asDiagonal()) - Kg_sym(soft, soft);
+  const Eigen::LLT<Eigen::MatrixXd> llt(S);
+  // C_T = J_f (I - D K_g)^-1 D J_f^T, its translational block.
+  const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) - D.asDiagonal() * Kg;
+  const Eigen::MatrixXd X =
+      Eigen::PartialPivLU<Eigen::MatrixXd>(A).solve(D.asDiagonal() * Jf.transpose());
+  const Eigen::Matrix3d loaded = Jf.topRows<3>() * X.leftCols<3>();
+  if (llt.info() != Eigen::Success || !loaded.allFinite()) {
+    matrices.loaded_compliance_tt.setConstant(kInf);
+    out.stiffness_min_loaded = 0.0;
+    return;
+  }
+  matrices.loaded_compliance_tt = loaded;
+  out.stiffness_min_loaded = loaded_stiffness_of(loaded);
+  if (out.stiffness_min_loaded == 0.0 && loaded.isZero(0.0)) out.stiffness_min_loaded = kInf;
+}
+
 void SerialMachine::analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                             PoseMetrics& out) const {
   auto& d = data_of<SerialData>(data);
@@ -202,37 +256,13 @@ void SerialMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
     return;
   }
   out.q = branch->q;
-  d.q_full = full_coordinates(branch->q);
   out.reachable = branch->in_range;
 
-  const Eigen::Matrix<double, 6, Eigen::Dynamic> Jf = feed_jacobian(branch->q);
-  const Eigen::Vector3d a0 = tool_axis_at(branch->q);
-  Matrix6d M;
-  M.leftCols(5) = Jf;
-  M.col(5) << 0.0, 0.0, 0.0, a0;
-  out.det_j = M.determinant() + 0.0;
-  const double L = design_.characteristic_length;
-  Matrix6d Mh = M;
-  Mh.bottomRows<3>() *= L;
-  for (int i = 0; i < 5; ++i)
-    if (rotary_[static_cast<std::size_t>(i)]) Mh.col(i) /= L;
-  Mh.col(5) /= L;
-  const Eigen::JacobiSVD<Matrix6d> svd(Mh);
-  const auto& sv = svd.singularValues();
-  const double rcond = sv(0) > 0.0 ? sv(5) / sv(0) : 0.0;
-  out.singular = !(rcond >= kSingularRcond);
-  out.singularity_margin = out.singular ? 0.0 : rcond;
-
+  const FeedJacobian Jf = feed_jacobian(branch->q);
+  conditioning(Jf, tool_axis_at(branch->q), out);
   out.tau = serial_drive_loads(Jf, wrench);
 
   // The drives in series.
-  Eigen::VectorXd D(n);
-  bool elastic = false;
-  for (int i = 0; i < n; ++i) {
-    const double k = design_.axes[static_cast<std::size_t>(i)].stiffness;
-    D(i) = k > 0.0 ? 1.0 / k : 0.0;
-    elastic = elastic || k > 0.0;
-  }
   Matrix6d C = Matrix6d::Zero();
   add_serial_compliance(Jf, design_.axes, C);
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
@@ -241,37 +271,7 @@ void SerialMachine::analyze(MachineData& data, const Pose& pose, const Wrench& w
   out.stiffness_min = c_max > 0.0 ? 1.0 / c_max : kInf;
   if (d.compliance_metrics) {
     fill_compliance_metrics(C, wrench, out, d.matrices);
-    if (!elastic) {
-      d.matrices.loaded_compliance_tt.setZero();
-      out.stiffness_min_loaded = kInf;
-    } else {
-      const Eigen::MatrixXd Kg = geometric_stiffness(Jf, wrench);
-      // Stability: K - K_g positive definite on the elastic axes.
-      std::vector<int> soft;
-      for (int i = 0; i < n; ++i)
-        if (D(i) > 0.0) soft.push_back(i);
-      const int m = static_cast<int>(soft.size());
-      Eigen::MatrixXd S(m, m);
-      for (int a = 0; a < m; ++a)
-        for (int b = 0; b < m; ++b)
-          S(a, b) =
-              (a == b ? 1.0 / D(soft[static_cast<std::size_t>(a)]) : 0.0) -
-              0.5 * (Kg(soft[static_cast<std::size_t>(a)], soft[static_cast<std::size_t>(b)]) +
-                     Kg(soft[static_cast<std::size_t>(b)], soft[static_cast<std::size_t>(a)]));
-      const Eigen::LLT<Eigen::MatrixXd> llt(S);
-      const Eigen::MatrixXd A = Eigen::MatrixXd::Identity(n, n) - D.asDiagonal() * Kg;
-      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
-      const Eigen::MatrixXd X = lu.solve(D.asDiagonal() * Jf.transpose());
-      const Eigen::Matrix3d loaded = Jf.topRows<3>() * X.leftCols<3>();
-      if (llt.info() != Eigen::Success || !loaded.allFinite()) {
-        d.matrices.loaded_compliance_tt.setConstant(kInf);
-        out.stiffness_min_loaded = 0.0;
-      } else {
-        d.matrices.loaded_compliance_tt = loaded;
-        out.stiffness_min_loaded = loaded_stiffness_of(loaded);
-        if (out.stiffness_min_loaded == 0.0 && loaded.isZero(0.0)) out.stiffness_min_loaded = kInf;
-      }
-    }
+    loaded_compliance(Jf, wrench, out, d.matrices);
   }
 
   Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 5> columns(3, n);

@@ -74,6 +74,7 @@
 #include "models/serial/five_axis_ik.hpp"
 #include "models/serial/serial_axis.hpp"
 #include "models/serial/serial_chain.hpp"
+#include "models/serial/serial_statics.hpp"
 
 namespace pkmopt {
 
@@ -87,11 +88,8 @@ struct SerialDesign {
   double characteristic_length = 0.1;                    ///< L of singularity_margin (m)
 };
 
-/// Per-thread scratch space of a serial machine.
-class SerialData : public MachineData {
- public:
-  Eigen::VectorXd q_full;  ///< the chain's variables of the last solve (spindle 0)
-};
+/// Per-thread data of a serial machine (its analysis keeps no scratch state of its own).
+class SerialData : public MachineData {};
 
 class SerialMachine final : public Machine {
  public:
@@ -147,12 +145,17 @@ class SerialMachine final : public Machine {
   /// The tool axis a_0 and tool point r_0 of feed values q.
   Eigen::Vector3d tool_axis_at(const Eigen::VectorXd& q) const;
   /// J_f at feed values q (6 x num_actuators()).
-  Eigen::Matrix<double, 6, Eigen::Dynamic> feed_jacobian(const Eigen::VectorXd& q) const;
+  FeedJacobian feed_jacobian(const Eigen::VectorXd& q) const;
   /// K_g = d(J_f^T W)/dq at the configuration of J_f (see the header comment).
-  Eigen::MatrixXd geometric_stiffness(const Eigen::Matrix<double, 6, Eigen::Dynamic>& Jf,
-                                      const Wrench& wrench) const;
+  Eigen::MatrixXd geometric_stiffness(const FeedJacobian& Jf, const Wrench& wrench) const;
 
  private:
+  /// det_j, singularity_margin and singular from J_f and the tool axis a0 (see the header).
+  void conditioning(const FeedJacobian& Jf, const Eigen::Vector3d& a0, PoseMetrics& out) const;
+  /// stiffness_min_loaded and matrices.loaded_compliance_tt under `wrench` (see the header).
+  void loaded_compliance(const FeedJacobian& Jf, const Wrench& wrench, PoseMetrics& out,
+                         PoseCompliance& matrices) const;
+
   SerialDesign design_;
   std::vector<int> feed_;     // the chain variable index of each feed axis
   std::vector<bool> rotary_;  // per feed axis
