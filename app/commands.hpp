@@ -18,6 +18,7 @@ void add_simulate_measurements_command(CLI::App& app);
 void add_calibration_poses_command(CLI::App& app);
 void add_workspace_command(CLI::App& app);
 void add_export_command(CLI::App& app);
+void add_choose_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_trajectory_command(CLI::App& app);
 void add_task_poses_command(CLI::App& app);

@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
   pkmopt::cli::add_calibration_poses_command(app);
   pkmopt::cli::add_workspace_command(app);
   pkmopt::cli::add_export_command(app);
+  pkmopt::cli::add_choose_command(app);
   pkmopt::cli::add_compare_command(app);
   pkmopt::cli::add_trajectory_command(app);
   pkmopt::cli::add_task_poses_command(app);

@@ -1,4 +1,5 @@
-// Quality indicators of a Pareto front approximation, and choosing one design from it.
+// Quality indicators of a Pareto front approximation (choosing one design from a front:
+// optimizer/decision.hpp).
 // All objectives are minimised; a "front" is a list of objective vectors of equal length m.
 //
 // - hypervolume(A, r): the Lebesgue measure of the region dominated by A and bounded by the
@@ -13,19 +14,11 @@
 //   min_{a in A} sqrt( sum_i max(a_i - z_i, 0)^2 ) (smaller is better; 0 when A covers Z).
 // - spacing(A): Schott's spacing, the standard deviation (divisor N - 1) of the L1 distance of
 //   each point to its nearest neighbour in A (0 for an evenly spread front).
-// - knee_point(A): in coordinates normalised by the front's ideal and nadir points
-//   (f^ = (f - ideal) / (nadir - ideal)), the point farthest below the hyperplane through the
-//   unit vectors, i.e. the one with the smallest sum f^_i (Das 1999; with two objectives the
-//   point farthest from the line joining the two extreme points).
-// - pseudo_weights(A): Deb's pseudo-weights, w_i = ((nadir_i - f_i) / (nadir_i - ideal_i)) /
-//   sum_j (...), the relative importance of each objective at each point; choose_by_weights
-//   returns the point whose pseudo-weight vector is nearest a preference vector.
 // Units are those of the objectives (hypervolume: their product).
 //
 // Example:
 //   double hv = pkmopt::hypervolume({{0.0, 1.0}, {0.5, 0.5}, {1.0, 0.0}}, {1.0, 1.0});  // 0.25
 //   double igd = pkmopt::igd_plus(front, zdt1.reference_front(500));
-//   std::size_t knee = pkmopt::knee_point(front);
 #pragma once
 
 #include <cstddef>
@@ -51,14 +44,5 @@ std::vector<double> nadir_point(const ObjectiveSet& front);
 /// A reference point for the hypervolume: nadir + margin * (nadir - ideal) per objective
 /// (a range of 0 is replaced by 1).
 std::vector<double> reference_point_from(const ObjectiveSet& front, double margin = 0.1);
-
-/// Index of the knee point of a non-empty front (see header comment).
-std::size_t knee_point(const ObjectiveSet& front);
-
-/// Pseudo-weight vector of every point of a non-empty front (each sums to 1).
-ObjectiveSet pseudo_weights(const ObjectiveSet& front);
-
-/// Index of the point whose pseudo-weights are nearest (Euclidean) to `preference`.
-std::size_t choose_by_weights(const ObjectiveSet& front, const std::vector<double>& preference);
 
 }  // namespace pkmopt

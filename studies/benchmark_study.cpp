@@ -14,6 +14,7 @@
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
 #include "optimizer/front_thinning.hpp"
+#include "optimizer/decision.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 #include "studies/optimizer_fields.hpp"

@@ -15,6 +15,7 @@
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
 #include "optimizer/archive.hpp"
+#include "optimizer/decision.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 #include "studies/design_outputs_detail.hpp"
@@ -379,9 +380,14 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
     if (study.write_designs)
       files.emplace_back(directory + "/designs/" + design_id(k) + ".yaml", f.front[k].machine_file);
   }
-  const nlohmann::json knee = f.objectives.empty()
-                                  ? nlohmann::json(nullptr)
-                                  : nlohmann::json(design_id(knee_point(f.objectives)));
+  nlohmann::json knee = nullptr, compromise = nullptr;
+  nlohmann::json high_trade_off = nlohmann::json::array();
+  if (!f.objectives.empty()) {
+    knee = design_id(knee_point(f.objectives));
+    compromise = design_id(compromise_point(f.objectives));
+    for (std::size_t k : high_trade_off_points(f.objectives).points)
+      high_trade_off.push_back(design_id(k));
+  }
   std::vector<double> reference;  // the hypervolume's, internal sign
   if (!f.objectives.empty() && f.m >= 2) reference = reference_point_from(f.objectives);
 
@@ -405,6 +411,8 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
   pareto["task"] = task_json(study);
   pareto["designs"] = designs;
   pareto["knee"] = knee;
+  pareto["compromise"] = compromise;
+  pareto["high_trade_off"] = high_trade_off;
   if (facts.journal && f.m >= 2) {
     pareto["front_selection"] = {{"rule", front_rule_text(study.front_size, f.m)},
                                  {"evaluations", facts.journal->entries().size()},

@@ -375,6 +375,16 @@ ParetoDesign read_design(const ParetoReader& r, const json& d, const std::string
   return design;
 }
 
+// A design id or null at `where` (knee, compromise, an entry of high_trade_off).
+std::optional<std::string> read_design_id(const ParetoReader& r, const ParetoFront& front,
+                                          const json& value, const std::string& where) {
+  if (value.is_null()) return std::nullopt;
+  if (!value.is_string()) r.fail(where, "a design id or null", describe(value));
+  const std::string id = value.get<std::string>();
+  if (front.design_index(id) < 0) r.fail(where, "the id of a design in `designs`", quote_found(id));
+  return id;
+}
+
 }  // namespace
 
 ParetoFront read_pareto_json(const std::string& path) {
@@ -411,13 +421,18 @@ ParetoFront read_pareto_json(const std::string& path) {
     front.designs.push_back(
         read_design(r, d, where, front, parameter_names, objective_names, constraint_names));
   }
-  const json& knee = r.member(root, "", "knee", "a design id or null");
-  if (!knee.is_null()) {
-    if (!knee.is_string()) r.fail("knee", "a design id or null", describe(knee));
-    const std::string id = knee.get<std::string>();
-    if (front.design_index(id) < 0)
-      r.fail("knee", "the id of a design in `designs`", quote_found(id));
-    front.knee = id;
+  front.knee = read_design_id(r, front, r.member(root, "", "knee", "a design id or null"), "knee");
+  // compromise and high_trade_off are optional (files of earlier pkmopt versions lack them).
+  if (root.contains("compromise"))
+    front.compromise = read_design_id(r, front, root["compromise"], "compromise");
+  if (root.contains("high_trade_off")) {
+    const json& ids = r.array(root, "", "high_trade_off");
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const std::string where = ParetoReader::index("high_trade_off", i);
+      const std::optional<std::string> id = read_design_id(r, front, ids[i], where);
+      if (!id) r.fail(where, "a design id", "null");
+      front.high_trade_off.push_back(*id);
+    }
   }
   return front;
 }
@@ -523,6 +538,9 @@ std::string pareto_json(const ParetoFront& front) {
     root["designs"].push_back(design);
   }
   root["knee"] = front.knee ? nlohmann::ordered_json(*front.knee) : nlohmann::ordered_json();
+  root["compromise"] =
+      front.compromise ? nlohmann::ordered_json(*front.compromise) : nlohmann::ordered_json();
+  root["high_trade_off"] = front.high_trade_off;
   return root.dump(2) + "\n";
 }
 

@@ -96,7 +96,9 @@ struct ParetoFront {
   std::vector<ParetoConstraint> constraints;
   ParetoTask task;
   std::vector<ParetoDesign> designs;
-  std::optional<std::string> knee;  ///< id of the knee design
+  std::optional<std::string> knee;          ///< id of the knee design
+  std::optional<std::string> compromise;    ///< id of the design nearest the ideal point
+  std::vector<std::string> high_trade_off;  ///< ids of the high-trade-off designs
   /// The catalog actuators were chosen from (pareto.json "actuator_catalog"), if any.
   std::optional<std::string> actuator_catalog;
   std::optional<ParetoSelection> selection;
@@ -109,7 +111,8 @@ struct ParetoFront {
 };
 
 /// Reads and checks a pareto.json file. Every missing key, wrong type, unknown format, name
-/// that does not match the lists at the top, repeated id or unknown knee throws InputError
+/// that does not match the lists at the top, repeated id or unknown knee, compromise or
+/// high-trade-off id throws InputError
 /// "FILE: KEY: expected X, found Y" (JSON syntax errors: "FILE:LINE:COL: expected JSON, found
 /// ..."). Keys not in the schema are ignored.
 ParetoFront read_pareto_json(const std::string& path);

@@ -1,4 +1,4 @@
-// Tests of optimizer/indicators: exact hypervolume against brute force, IGD+, spacing, knee.
+// Tests of optimizer/indicators: exact hypervolume against brute force, IGD+, spacing.
 #include "optimizer/indicators.hpp"
 
 #include <gtest/gtest.h>
@@ -212,19 +212,6 @@ TEST(Spacing, EvenFrontHasZeroSpacing) {
   EXPECT_NEAR(spacing(even), 0.0, 1e-12);
   // Nearest L1 distances 1, 1, 3 (points 0, 1, 4): mean 5/3, sample deviation sqrt(4/3).
   EXPECT_NEAR(spacing({{0.0, 0.0}, {1.0, 0.0}, {4.0, 0.0}}), std::sqrt(4.0 / 3.0), 1e-12);
-}
-
-TEST(KneeAndWeights, TwoObjectives) {
-  // Extremes (0, 1) and (1, 0); (0.2, 0.2) is farthest from the line joining them.
-  const ObjectiveSet front{{0.0, 1.0}, {0.5, 0.45}, {0.2, 0.2}, {1.0, 0.0}};
-  EXPECT_EQ(knee_point(front), 2u);
-  const ObjectiveSet weights = pseudo_weights(front);
-  EXPECT_NEAR(weights[0][0], 1.0, 1e-12);  // best in f_1: all weight on f_1
-  EXPECT_NEAR(weights[3][1], 1.0, 1e-12);
-  EXPECT_NEAR(weights[2][0], 0.5, 1e-12);
-  for (const auto& w : weights) EXPECT_NEAR(w[0] + w[1], 1.0, 1e-12);
-  EXPECT_EQ(choose_by_weights(front, {1.0, 0.0}), 0u);
-  EXPECT_EQ(choose_by_weights(front, {0.0, 1.0}), 3u);
 }
 
 TEST(ReferencePoint, NadirPlusMargin) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/format/csv.hpp"
 #include "io/format/input_error.hpp"
@@ -64,6 +65,8 @@ TEST(ReadParetoJson, ReadsEveryField) {
   EXPECT_EQ(front.designs[1].machine_file, std::optional<std::string>("designs/d0001.yaml"));
   EXPECT_FALSE(front.designs[2].machine_file.has_value());
   EXPECT_EQ(front.knee, std::optional<std::string>("d0001"));
+  EXPECT_EQ(front.compromise, std::optional<std::string>("d0000"));
+  EXPECT_EQ(front.high_trade_off, std::vector<std::string>{"d0001"});
   EXPECT_FALSE(front.home_height_is_parameter());
 }
 
@@ -166,6 +169,18 @@ TEST(ReadParetoJson, TaskExtentSelectionAndConvergenceAreOptionalAndRoundTrip) {
             std::string::npos);
 }
 
+// Files written before the compromise and the high-trade-off designs were named read without them.
+TEST(ReadParetoJson, CompromiseAndHighTradeOffAreOptional) {
+  nlohmann::json root = load_json(kFixtures / "two/pareto.json");
+  root.erase("compromise");
+  root.erase("high_trade_off");
+  const scratch::ScratchDir dir;
+  const auto front = pkmopt::read_pareto_json(dir.write("pareto.json", root.dump(2)));
+  EXPECT_FALSE(front.compromise.has_value());
+  EXPECT_TRUE(front.high_trade_off.empty());
+  EXPECT_EQ(front.knee, std::optional<std::string>("d0001"));
+}
+
 // Writing a front read from a file gives the file's JSON again: every key, every number bit for
 // bit (null for the missing constraint value of "three").
 TEST(ParetoJson, WritesBackEveryValueOfTheFile) {
@@ -246,6 +261,16 @@ TEST(ReadParetoJson, ErrorsNameTheKey) {
   root["knee"] = "d0042";
   EXPECT_EQ(read_error(root.dump(2)),
             ": knee: expected the id of a design in `designs`, found 'd0042'");
+  root = nlohmann::json::parse(two);
+  root["compromise"] = 3;
+  EXPECT_EQ(read_error(root.dump(2)),
+            ": compromise: expected a design id or null, found the number 3");
+  root = nlohmann::json::parse(two);
+  root["high_trade_off"] = {"d0000", nullptr};
+  EXPECT_EQ(read_error(root.dump(2)), ": high_trade_off[1]: expected a design id, found null");
+  root["high_trade_off"] = {"x"};
+  EXPECT_EQ(read_error(root.dump(2)),
+            ": high_trade_off[0]: expected the id of a design in `designs`, found 'x'");
   root = nlohmann::json::parse(two);
   root["format"] = "pkmopt-pareto-9";
   EXPECT_EQ(read_error(root.dump(2)),
