@@ -47,6 +47,8 @@ json report_data(const ParetoFront& front, const std::map<std::string, std::stri
   json data;
   data["study"] = front.study;
   data["knee"] = front.knee ? json(*front.knee) : json(nullptr);
+  data["compromise"] = front.compromise ? json(*front.compromise) : json(nullptr);
+  data["high_trade_off"] = front.high_trade_off;
   data["home_free"] = front.home_height_is_parameter();
   data["home"] = quantity_json("home_height", "home_height", "m");
   data["parameters"] = json::array();
@@ -148,6 +150,22 @@ std::string study_table(const ParetoFront& front) {
                              xml_escape(sel->rule), sel->feasible_evaluations, sel->evaluations,
                              sel->archive_size, front.designs.size()));
   return out + "</table>\n";
+}
+
+// Choosing a design: the rule, its inputs and the chosen design (filled in by the script).
+std::string choose_section() {
+  return "<h2>Choose a design</h2>\n<p id=\"look-first\"></p>\n<p>A rule picks one feasible "
+         "design (inside the brushes, if any) and marks it orange everywhere: the <b>knee</b> "
+         "(smallest sum of normalised objectives), the <b>compromise</b> (nearest the ideal "
+         "point), <b>weights</b> (the design whose pseudo-weights, the importance it gives each "
+         "objective, are nearest yours; Deb 2001) or an <b>aspiration level</b> per objective "
+         "(the achievement scalarizing function of Wierzbicki 1980: the design where moving "
+         "every objective away from its aspiration by the same normalised amount meets the "
+         "front). Normalised: 0 is the best feasible value of an objective, 1 the worst.</p>\n"
+         "<div class=\"controls\">rule <select id=\"rule\"><option value=\"knee\">knee</option>"
+         "<option value=\"compromise\">compromise</option><option value=\"weights\" selected>"
+         "weights</option><option value=\"reference\">aspiration levels</option></select></div>\n"
+         "<table id=\"choose-inputs\"></table>\n<div id=\"chosen\"></div>\n";
 }
 
 // The knee section: the honest text, the table (by the script) and the slice.
@@ -333,15 +351,20 @@ std::string report_html(const ParetoFront& file_front, const WorkspaceSlice* kne
   out +=
       "<h2>Pareto front</h2>\n<p>Choose the objectives on the axes; click a point, a line or a "
       "table row to pin a design (up to four) and compare them below. Filled blue: feasible; open "
-      "grey: infeasible; red: the knee.</p>\n<div class=\"controls\">x <select id=\"x-axis\">"
-      "</select> y <select id=\"y-axis\"></select></div>\n<div class=\"plots\">\n"
-      "<div id=\"scatter-box\">" +
+      "grey: infeasible; red: the knee; orange: the design chosen below. Drag along an axis of "
+      "the parallel coordinates to keep only the designs inside the range (the scatter, the "
+      "table and the choice follow); click the axis to clear it.</p>\n"
+      "<div class=\"controls\">x <select id=\"x-axis\"></select> y <select id=\"y-axis\">"
+      "</select> <label><input type=\"checkbox\" id=\"normalised\"> normalised axes (0 = the "
+      "best feasible value, 1 = the worst)</label> <button id=\"clear-brushes\">clear "
+      "brushes</button></div>\n<div class=\"plots\">\n<div id=\"scatter-box\">" +
       scatter_svg(front, 0, front.objectives.size() > 1 ? 1 : 0, false) + "</div>\n";
   if (front.objectives.size() >= 3) out += parallel_svg(front);
   out += "</div>\n<div id=\"tip\"></div>\n";
   out +=
       "<h2>Pinned designs</h2>\n<div id=\"pinned\"><p class=\"hint\">No design pinned yet: "
       "click a point, a line or a row.</p></div>\n";
+  out += choose_section();
   out += knee_section(file_front, knee_slice);
   if (const std::string svg = convergence_svg(front); !svg.empty())
     out +=
@@ -357,7 +380,10 @@ std::string report_html(const ParetoFront& file_front, const WorkspaceSlice* kne
       "upper/lower bound.</p>\n<div id=\"designs-box\"></div>\n";
   out += "<h2>Study</h2>\n" + study_table(file_front);
   out += "<script type=\"application/json\" id=\"report-data\">\n" + data + "\n</script>\n";
-  out += fmt::format("<script>{}</script>\n</body>\n</html>\n", assets::kReportJs);
+  out += fmt::format(
+      "<script>{}</script>\n<script>{}</script>\n<script>{}</script>\n</body>\n"
+      "</html>\n",
+      assets::kReportDecisionJs, assets::kReportParallelJs, assets::kReportJs);
   return out;
 }
 

@@ -1,6 +1,7 @@
-// The report's script: the scatter of the chosen objectives, pinning and comparing designs, the
-// designs table (sort, filter), the knee table, hover. Data: #report-data (file units, with each
-// quantity's display unit and scale).
+// The report's script: the scatter of the chosen objectives, the parallel coordinates with
+// brushing (report_parallel.js), choosing a design by a rule (report_decision.js), pinning and
+// comparing designs, the designs table (sort, filter), the knee table, hover. Data: #report-data
+// (file units, with each quantity's display unit and scale).
 (function () {
   'use strict';
   const data = JSON.parse(document.getElementById('report-data').textContent);
@@ -9,6 +10,31 @@
   const tip = document.getElementById('tip');
   const pinned = [];
   const MAX_PINNED = 4;
+  const brushes = {};  // objective index -> [lo, hi] in file units (report_parallel.js)
+  let normalisedAxes = false;
+  let chosen = null;   // the id the choice panel's rule chose
+
+  // Objectives minimised (maximised ones negated) and their scale over the feasible designs with
+  // every objective finite: the frame of the rules and of the normalised axes.
+  const sign = data.objectives.map(function (o) { return o.sense === 'maximize' ? -1 : 1; });
+  function complete(d) {
+    return d.objectives.every(function (v) { return v !== null && isFinite(v); });
+  }
+  function minimised(d) { return d.objectives.map(function (v, k) { return sign[k] * v; }); }
+  const feasibleAll = data.designs.filter(function (d) { return d.feasible && complete(d); });
+  const scale = feasibleAll.length ? pkmoptDecision.frontScale(feasibleAll.map(minimised)) : null;
+  function normalisedValue(d, k) {
+    const v = d.objectives[k];
+    if (v === null || !scale) return null;
+    const range = scale.nadir[k] - scale.ideal[k];
+    return range > 0 ? (sign[k] * v - scale.ideal[k]) / range : 0;
+  }
+  function selected(d) {
+    return Object.keys(brushes).every(function (k) {
+      const v = d.objectives[k];
+      return v !== null && isFinite(v) && v >= brushes[k][0] && v <= brushes[k][1];
+    });
+  }
   // The SVG namespace, from the inline scatter the page was written with (no URL in the page).
   const SVG = document.querySelector('#scatter-box svg').namespaceURI;
 
@@ -128,6 +154,10 @@
     if (text !== undefined) e.textContent = text;
     return e;
   }
+  function axisLabel(sel, k, o) {
+    return (normalisedAxes && scale ? o.name + ' [0 = best, 1 = worst]' : sel.options[k].text) +
+           (o.sense === 'maximize' ? ' (max)' : ' (min)');
+  }
   function drawScatter() {
     const xi = +xSel.value, yi = +ySel.value;
     const ox = data.objectives[xi], oy = data.objectives[yi];
@@ -142,8 +172,11 @@
       const pad = 0.05 * (hi - lo);
       return [lo - pad, hi + pad];
     }
-    const xs = pts.map(function (d) { return shown(ox, d.objectives[xi]); });
-    const ys = pts.map(function (d) { return shown(oy, d.objectives[yi]); });
+    const vx = normalisedAxes && scale ? function (d) { return normalisedValue(d, xi); }
+                                       : function (d) { return shown(ox, d.objectives[xi]); };
+    const vy = normalisedAxes && scale ? function (d) { return normalisedValue(d, yi); }
+                                       : function (d) { return shown(oy, d.objectives[yi]); };
+    const xs = pts.map(vx), ys = pts.map(vy);
     const xr = pts.length ? range(xs) : [0, 1], yr = pts.length ? range(ys) : [0, 1];
     const sx = function (v) { return L + (W - L - R) * (v - xr[0]) / (xr[1] - xr[0]); };
     const sy = function (v) { return T + (H - T - B) * (1 - (v - yr[0]) / (yr[1] - yr[0])); };
@@ -162,28 +195,32 @@
                                 stroke: '#141414'}));
     const xLabel = el('text', {id: 'x-label', x: L + (W - L - R) / 2, y: H - 24,
                                'text-anchor': 'middle', 'font-size': 14},
-                      xSel.options[xi].text + (ox.sense === 'maximize' ? ' (max)' : ' (min)'));
+                      axisLabel(xSel, xi, ox));
     svg.appendChild(xLabel);
     svg.appendChild(el('text', {id: 'y-label', x: 8, y: T - 14, 'font-size': 14},
-                       ySel.options[yi].text + (oy.sense === 'maximize' ? ' (max)' : ' (min)')));
-    const order = pts.slice().sort(function (a, b) {
-      return (a.id === data.knee) - (b.id === data.knee);  // the knee on top
-    });
+                       axisLabel(ySel, yi, oy)));
+    const rank = function (d) {  // brushed-out below, the knee and the chosen design on top
+      return d.id === chosen ? 3 : d.id === data.knee ? 2 : selected(d) ? 1 : 0;
+    };
+    const order = pts.slice().sort(function (a, b) { return rank(a) - rank(b); });
     order.forEach(function (d) {
-      const knee = d.id === data.knee;
-      const c = el('circle', {cx: sx(shown(ox, d.objectives[xi])), cy: sy(shown(oy, d.objectives[yi])),
-                              r: knee ? 6.5 : 4.5, 'data-id': d.id,
-                              class: 'pt' + (pinned.indexOf(d.id) >= 0 ? ' pin' : ''),
-                              fill: d.feasible ? (knee ? '#d62728' : '#1f77b4') : 'none',
-                              stroke: d.feasible ? (knee ? '#d62728' : '#1f77b4') : '#8c8c8c',
+      const knee = d.id === data.knee, isChosen = d.id === chosen, inside = selected(d);
+      const colour = isChosen ? '#ff7f0e' : knee ? '#d62728' : '#1f77b4';
+      const c = el('circle', {cx: sx(vx(d)), cy: sy(vy(d)),
+                              r: knee || isChosen ? 6.5 : 4.5, 'data-id': d.id,
+                              class: 'pt' + (pinned.indexOf(d.id) >= 0 ? ' pin' : '') +
+                                     (inside ? '' : ' out') + (isChosen ? ' chosen' : ''),
+                              fill: d.feasible ? colour : 'none',
+                              stroke: d.feasible ? colour : '#8c8c8c',
                               'stroke-width': d.feasible ? 1 : 1.5});
       svg.appendChild(c);
       const p = pinned.indexOf(d.id);
-      if (p >= 0 || knee) {
+      if (p >= 0 || knee || isChosen) {
         svg.appendChild(el('text', {x: +c.getAttribute('cx') + 8, y: +c.getAttribute('cy') - 8,
-                                    fill: knee ? '#d62728' : '#000',
+                                    fill: isChosen ? '#c25e00' : knee ? '#d62728' : '#000',
                                     'font-weight': p >= 0 ? 'bold' : 'normal'},
-                           (p >= 0 ? (p + 1) + ': ' : '') + d.id + (knee ? ' knee' : '')));
+                           (p >= 0 ? (p + 1) + ': ' : '') + d.id + (knee ? ' knee' : '') +
+                           (isChosen ? ' chosen' : '')));
       }
     });
     const box = document.getElementById('scatter-box');
@@ -201,6 +238,7 @@
       pinned.push(id);
     }
     drawScatter();
+    drawParallel();
     drawPinned();
     document.querySelectorAll('#designs tr[data-id], polyline[data-id]').forEach(function (e) {
       e.classList.toggle('pin', pinned.indexOf(e.getAttribute('data-id')) >= 0);
@@ -270,7 +308,7 @@
   }
   function drawTable() {
     const f = parseFilter(document.getElementById('filter').value);
-    let rows = data.designs.filter(function (d) { return passes(d, f); });
+    let rows = data.designs.filter(function (d) { return passes(d, f) && selected(d); });
     if (sortColumn >= 0) {
       const col = columns[sortColumn];
       rows = rows.slice().sort(function (a, b) {
@@ -287,7 +325,8 @@
         '<th>feasible</th></tr>';
     rows.forEach(function (d) {
       h += '<tr data-id="' + esc(d.id) + '" class="' + (pinned.indexOf(d.id) >= 0 ? 'pin' : '') +
-           '"><td>' + esc(d.id) + (d.id === data.knee ? ' (knee)' : '') + '</td>' +
+           (d.id === chosen ? ' chosen' : '') + '"><td>' + esc(d.id) +
+           (d.id === data.knee ? ' (knee)' : '') + (d.id === chosen ? ' (chosen)' : '') + '</td>' +
            columns.map(function (c) { return '<td class="num">' + cell(c, d) + '</td>'; }).join('') +
            (d.actuator !== undefined ? '<td>' + (d.actuator ? esc(d.actuator.name) : '-') + '</td>' : '') +
            '<td>' + (d.feasible ? 'yes' : '<span class="bad">no</span>') + '</td></tr>';
@@ -295,8 +334,10 @@
     h += '</table>';
     const box = document.getElementById('designs-box');
     box.innerHTML = h;
+    const brushed = Object.keys(brushes).length;
     document.getElementById('shown').textContent =
-        rows.length + ' of ' + data.designs.length + ' designs shown';
+        rows.length + ' of ' + data.designs.length + ' designs shown' +
+        (brushed ? ' (' + brushed + ' brushed ' + (brushed > 1 ? 'axes' : 'axis') + ')' : '');
     box.querySelectorAll('th[data-sort]').forEach(function (th) {
       th.addEventListener('click', function () {
         const k = +th.getAttribute('data-sort');
@@ -335,13 +376,156 @@
     });
   }
 
+  // ---- parallel coordinates (report_parallel.js) --------------------------------------------
+  function drawParallel() {
+    const old = document.getElementById('parallel');
+    if (!old) return;  // fewer than three objectives
+    const svg = pkmoptParallel.draw({
+      data: data, shown: shown, num: num, el: el, brushes: brushes, scale: scale,
+      normalisedAxes: normalisedAxes && !!scale, selected: selected, chosen: chosen,
+      pinned: pinned, onBrush: redraw});
+    old.replaceWith(svg);
+    bindHover(svg);
+  }
+
+  // ---- choosing a design (report_decision.js; the rules of `pkmopt choose`) ------------------
+  const ruleSel = document.getElementById('rule');
+  function candidates() {
+    return data.designs.filter(function (d) { return d.feasible && complete(d) && selected(d); });
+  }
+  function ruleValues() {
+    const rule = ruleSel.value;
+    if (rule !== 'weights' && rule !== 'reference') return {ok: true, values: []};
+    const values = [];
+    let ok = true, total = 0;
+    document.querySelectorAll('#choose-inputs input.' + (rule === 'weights' ? 'w' : 'z'))
+      .forEach(function (input) {
+        const k = +input.getAttribute('data-k');
+        const text = input.value.trim();
+        let v = text === '' && rule === 'weights' ? 0 : Number(text);
+        if (text === '' && rule === 'reference') v = NaN;
+        if (!isFinite(v) || (rule === 'weights' && v < 0)) ok = false;
+        input.classList.toggle('bad-input', !isFinite(v) || (rule === 'weights' && v < 0));
+        // Aspiration levels are typed in display units: back to file units.
+        values[k] = rule === 'reference' ? v / data.objectives[k].scale : v;
+        total += rule === 'weights' && isFinite(v) ? v : 0;
+      });
+    if (rule === 'weights' && !(total > 0)) ok = false;
+    return {ok: ok, values: values};
+  }
+  function fileNumber(v) { return String(+v.toPrecision(12)); }
+  function commandLine(rule, values) {
+    if (rule === 'knee' || rule === 'compromise') return 'pkmopt choose DIR --' + rule;
+    const items = data.objectives.map(function (o, k) {
+      return o.name + '=' + fileNumber(values[k]);
+    }).filter(function (item, k) { return rule === 'reference' || values[k] > 0; });
+    return 'pkmopt choose DIR --' + rule + ' ' + items.join(',');
+  }
+  function computeChoice() {
+    const rule = ruleSel.value;
+    document.querySelectorAll('#choose-inputs .w, #choose-inputs .z').forEach(function (e) {
+      e.disabled = !((rule === 'weights' && e.classList.contains('w')) ||
+                     (rule === 'reference' && e.classList.contains('z')));
+    });
+    const box = document.getElementById('chosen');
+    const pool = candidates();
+    const input = ruleValues();
+    chosen = null;
+    if (!pool.length) {
+      box.innerHTML = '<p class="bad">No feasible design inside the brushes: nothing to choose ' +
+                      'from.</p>';
+      return;
+    }
+    if (!input.ok) {
+      box.innerHTML = '<p class="bad">' + (rule === 'weights'
+          ? 'Weights: numbers of at least 0, not all 0.'
+          : 'Aspiration levels: a number for every objective, in the units shown.') + '</p>';
+      return;
+    }
+    const values = rule === 'reference'
+        ? input.values.map(function (v, k) { return sign[k] * v; }) : input.values;
+    const c = pkmoptDecision.choose(pool.map(minimised), rule, values);
+    const d = pool[c.index];
+    chosen = d.id;
+    const brushed = Object.keys(brushes).length > 0;
+    let h = '<p><b id="chosen-id">' + esc(d.id) + '</b>, one of ' + pool.length +
+            ' feasible designs' + (brushed ? ' inside the brushes' : '') +
+            ' <button data-pin-chosen="1">pin</button></p><table><tr><th>objective</th>' +
+            '<th>value</th><th>normalised</th><th>pseudo-weight</th></tr>';
+    data.objectives.forEach(function (o, k) {
+      h += '<tr><th>' + esc(o.name) + (o.sense === 'maximize' ? ' (max)' : ' (min)') +
+           '</th><td class="num">' + withUnit(o, d.objectives[k]) + '</td><td class="num">' +
+           c.normalised[k].toFixed(3) + '</td><td class="num">' + c.weights[k].toFixed(3) +
+           '</td></tr>';
+    });
+    h += '</table><p>The same choice on the command line, writing the design\'s machine file' +
+         (brushed ? ' (without the brushes: it chooses among all feasible designs)' : '') +
+         ':<br><code id="chosen-command">' + esc(commandLine(rule, input.values)) +
+         '</code></p>';
+    box.innerHTML = h;
+    box.querySelector('[data-pin-chosen]').addEventListener('click', function () {
+      togglePin(d.id);
+    });
+  }
+  function buildChoosePanel() {
+    let h = '<tr><th>objective</th><th>weight</th><th>aspiration level</th></tr>';
+    data.objectives.forEach(function (o, k) {
+      h += '<tr><th>' + esc(o.name) + (o.sense === 'maximize' ? ' (max)' : ' (min)') + '</th>' +
+           '<td><input class="w" data-k="' + k + '" size="6" value="1"></td>' +
+           '<td><input class="z" data-k="' + k + '" size="10" value="' +
+           (scale ? num(shown(o, sign[k] * scale.ideal[k])) : '') + '"> ' + esc(o.unit) +
+           '</td></tr>';
+    });
+    document.getElementById('choose-inputs').innerHTML = h;
+    document.querySelectorAll('#choose-inputs input').forEach(function (e) {
+      e.addEventListener('input', redraw);
+    });
+    ruleSel.addEventListener('change', redraw);
+    const look = [], roles = {};
+    function role(id, what) {
+      if (!id) return;
+      if (!roles[id]) { roles[id] = []; look.push(id); }
+      roles[id].push(what);
+    }
+    role(data.knee, 'the knee');
+    role(data.compromise, 'the compromise, nearest the ideal point');
+    (data.high_trade_off || []).forEach(function (id) {
+      role(id, 'high trade-off: leaving it costs much for little');
+    });
+    document.getElementById('look-first').innerHTML = look.length
+        ? 'Designs to look at first: ' + look.map(function (id) {
+            return '<a href="#" data-look="' + esc(id) + '">' + esc(id) + '</a> (' +
+                   roles[id].join('; ') + ')';
+          }).join(', ') + '. Click one to pin it.'
+        : '';
+    document.querySelectorAll('[data-look]').forEach(function (a) {
+      a.addEventListener('click', function (ev) {
+        ev.preventDefault();
+        togglePin(a.getAttribute('data-look'));
+      });
+    });
+  }
+
+  function redraw() {
+    computeChoice();
+    drawScatter();
+    drawParallel();
+    drawTable();
+  }
+
   xSel.addEventListener('change', drawScatter);
   ySel.addEventListener('change', drawScatter);
   document.getElementById('filter').addEventListener('input', drawTable);
-  const parallel = document.getElementById('parallel');
-  if (parallel) bindHover(parallel);
+  document.getElementById('normalised').addEventListener('change', function (ev) {
+    normalisedAxes = ev.target.checked;
+    redraw();
+  });
+  document.getElementById('clear-brushes').addEventListener('click', function () {
+    Object.keys(brushes).forEach(function (k) { delete brushes[k]; });
+    redraw();
+  });
   const kneeBox = document.getElementById('knee-table');
   if (kneeBox && data.knee) kneeBox.innerHTML = '<table>' + detailRows(byId[data.knee]) + '</table>';
-  drawScatter();
-  drawTable();
+  buildChoosePanel();
+  redraw();
 })();

@@ -7,7 +7,14 @@ Runs a small hexapod study, exports its report and loads it in Chromium, then ch
   * clicking a point pins it, clicking a table row pins another: the comparison shows both, each
     with its machine drawing; clicking again unpins;
   * clicking a heading sorts the designs table; the filter hides designs;
-  * the knee table and the knee slice (with the task box) are on the page.
+  * the knee table and the knee slice (with the task box) are on the page;
+  * brushing: dragging along an axis of the parallel coordinates keeps exactly the designs inside
+    the brushed range in the table and fades the others in the scatter; a second axis narrows
+    it; the chosen design is among those kept; a click on the axis and "clear brushes" undo it;
+  * choosing: for weights, aspiration levels, the knee and the compromise, the design the page
+    chooses is the one `pkmopt choose` chooses when run with the command line the page shows
+    (the page's rules are a second implementation of optimizer/decision);
+  * normalised axes relabel the scatter.
 Writes a screenshot of the comparison of two pinned designs to SCRATCH/pinned.png.
 
 Usage: report_page_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR [--report DIR]
@@ -107,6 +114,94 @@ def click(selector):
     return (f"(function () {{ const e = document.querySelector({json.dumps(selector)}); "
             f"if (!e) return false; e.dispatchEvent(new MouseEvent('click', {{bubbles: true}})); "
             f"return true; }})()")
+
+
+BRUSH = ("(function (k, a, b) {"
+         " const hit = document.querySelector('#parallel .axis-hit[data-axis=\"' + k + '\"]');"
+         " if (!hit) return false;"
+         " const r = hit.getBoundingClientRect(), x = r.x + r.width / 2;"
+         " const ev = function (type, t) { return new MouseEvent(type, {bubbles: true,"
+         " clientX: x, clientY: r.y + t * r.height}); };"
+         " hit.dispatchEvent(ev('mousedown', a)); window.dispatchEvent(ev('mousemove', b));"
+         " window.dispatchEvent(ev('mouseup', b)); return true; })")
+BRUSH_RANGE = ("(function (k) { const b = document.querySelector("
+               "'#parallel rect.brush[data-axis=\"' + k + '\"]'); return b ? "
+               "[+b.getAttribute('data-lo'), +b.getAttribute('data-hi')] : null; })")
+
+
+def check_brushing(page, front, designs, check, order):
+    """Brushes on the parallel coordinates filter the table and fade the scatter."""
+    page.js("(function () { const f = document.getElementById('filter'); f.value = ''; "
+            "f.dispatchEvent(new Event('input')); })()")
+    names = [o["name"] for o in front["objectives"]]
+    check(page.js(BRUSH + "(0, 0.02, 0.5)"), "an axis to brush")
+    first = page.js(BRUSH_RANGE + "(0)")
+    check(first is not None, f"the brush is drawn: {first}")
+    if first is None:
+        return
+
+    def inside(d, k, r):
+        v = d["objectives"][names[k]]
+        return v is not None and r[0] <= v <= r[1]
+
+    kept = [d["id"] for d in front["designs"] if inside(d, 0, first)]
+    rows = page.js(order)
+    check(sorted(rows) == sorted(kept) and 0 < len(kept) < len(designs),
+          f"one brush keeps the {len(kept)} designs inside it in the table ({len(rows)} rows)")
+    faded = page.js("document.querySelectorAll('#scatter circle.pt.out').length")
+    check(faded == len(designs) - len(kept), f"the scatter fades the others ({faded})")
+    page.js(BRUSH + "(1, 0.0, 0.8)")
+    second = page.js(BRUSH_RANGE + "(1)")
+    both = [d["id"] for d in front["designs"] if inside(d, 0, first) and
+            (second is not None and inside(d, 1, second))]
+    rows = page.js(order)
+    check(second is not None and sorted(rows) == sorted(both) and len(both) <= len(kept),
+          f"a second brush keeps the {len(both)} designs inside both ({len(rows)} rows)")
+    chosen = page.js("(function () { const c = document.getElementById('chosen-id'); "
+                     "return c ? c.textContent : null; })()")
+    feasible_both = [d["id"] for d in front["designs"] if d["id"] in both and d["feasible"]]
+    check(chosen in feasible_both if feasible_both else chosen is None,
+          f"the chosen design {chosen} is a feasible one inside the brushes")
+    page.js(BRUSH + "(1, 0.4, 0.4)")  # a click: clears that axis
+    check(page.js(BRUSH_RANGE + "(1)") is None and sorted(page.js(order)) == sorted(kept),
+          "a click on the axis clears its brush")
+    page.js(click("#clear-brushes"))
+    check(len(page.js(order)) == len(designs), "clear brushes shows every design again")
+
+
+def check_choosing(page, front, binary, out, scratch, check):
+    """Each rule chooses in the page what `pkmopt choose` chooses with the command shown."""
+    data = page.js("JSON.parse(document.getElementById('report-data').textContent)")
+    m = len(front["objectives"])
+    feasible = [d for d in front["designs"] if d["feasible"]]
+    middle = []
+    for o in data["objectives"]:
+        values = [d["objectives"][o["name"]] for d in feasible]
+        middle.append(f"{0.5 * (min(values) + max(values)) * o['scale']:.6g}")
+    cases = [("weights", "w", ["2", "1", "0", "1"][:m] + ["1"] * max(0, m - 4)),
+             ("weights", "w", ["0", "0", "1"] + ["0"] * max(0, m - 3)),
+             ("reference", "z", middle), ("knee", None, None), ("compromise", None, None)]
+    for rule, cls, values in cases:
+        script = ("(function () { const r = document.getElementById('rule'); "
+                  f"r.value = '{rule}'; r.dispatchEvent(new Event('change'));")
+        if cls:
+            for k, v in enumerate(values):
+                script += (f" const i{k} = document.querySelector('#choose-inputs input.{cls}"
+                           f"[data-k=\"{k}\"]'); i{k}.value = '{v}';"
+                           f" i{k}.dispatchEvent(new Event('input'));")
+        script += (" return [document.getElementById('chosen-id').textContent,"
+                   " document.getElementById('chosen-command').textContent]; })()")
+        page_id, command = page.js(script)
+        args = [str(out) if a == "DIR" else a for a in command.split()[2:]]
+        r = subprocess.run([str(binary), "choose"] + args +
+                           ["--out", str(scratch / "chosen.yaml")], capture_output=True, text=True)
+        cli_id = r.stdout.split(",")[0].removeprefix("choose: ") if r.returncode == 0 else r.stderr
+        check(page_id == cli_id, f"{rule} {values}: the page chooses {page_id}, "
+                                 f"`{command}` chooses {cli_id}")
+        if rule in ("knee", "compromise"):
+            check(page_id == front[rule], f"the page's {rule} is pareto.json's ({front[rule]})")
+    look = page.js("document.getElementById('look-first').textContent")
+    check(front["compromise"] in look, f"the designs to look at first: {look}")
 
 
 def main():
@@ -218,6 +313,12 @@ def main():
         check(rows == 1, f"the filter leaves one design ({rows})")
         check(page.js("document.querySelectorAll('#knee-table tr').length") > 5, "the knee table")
         check(page.js("!!document.querySelector('img[alt^=\"workspace slice\"]')"), "the knee slice")
+        check_brushing(page, front, designs, check, order)
+        check_choosing(page, front, binary, out, scratch, check)
+        page.js(click("#normalised"))
+        x2 = page.js("document.getElementById('x-label').textContent")
+        check("[0 = best, 1 = worst]" in x2, f"normalised axes: {x2}")
+        page.js(click("#normalised"))
         check(not page.errors, f"no console error after the steps {page.errors}")
     finally:
         proc.kill()
