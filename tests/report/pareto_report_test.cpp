@@ -205,7 +205,7 @@ TEST_F(ExportTest, HtmlIsSelfContainedWithOnePointPerDesignAndTheKneeSlice) {
   EXPECT_NE(html.find("data:image/png;base64,iVBORw0KGgo"), std::string::npos);  // a PNG
   EXPECT_NE(html.find("&lt;b&gt; &amp; &quot;quotes&quot;"), std::string::npos);
   EXPECT_EQ(html.find("<b> & \"quotes\""), std::string::npos);
-  EXPECT_EQ(count(html, "<script"), 2u);
+  EXPECT_EQ(count(html, "<script"), 4u);  // the data, the decision rules, the parallel view, the page
   EXPECT_EQ(html.find("<script src"), std::string::npos);
   // The embedded data is the front in file units, each quantity with its display unit.
   const auto begin = html.find("id=\"report-data\">") + 17;
