@@ -8,6 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "optimizer/aspiration_directions.hpp"
 #include "optimizer/nsga2.hpp"
 #include "optimizer/nsga3_selection.hpp"
 #include "optimizer/population.hpp"
@@ -26,10 +27,16 @@ std::size_t tournament(const std::vector<Individual>& pop, Random& rng) {
   return rng.bernoulli(0.5) ? a : b;
 }
 
+std::size_t aspiration_divisions(const Nsga3Options& options, std::size_t m) {
+  return options.aspiration_divisions != 0 ? options.aspiration_divisions
+                                           : default_aspiration_divisions(m);
+}
+
 // The `size` survivors of `merged` (see the header comment).
 std::vector<Individual> survivors(std::vector<Individual>& merged, std::size_t size, std::size_t m,
-                                  const std::vector<std::vector<double>>& directions,
-                                  NormalizationMemory& memory, Random& rng) {
+                                  const std::vector<std::vector<double>>& fixed_directions,
+                                  const Nsga3Options& options, NormalizationMemory& memory,
+                                  Random& rng) {
   std::vector<std::size_t> kept;
   std::vector<std::size_t> last;
   for (const auto& front : sort_fronts(merged, m)) {
@@ -59,8 +66,13 @@ std::vector<Individual> survivors(std::vector<Individual>& merged, std::size_t s
     for (std::size_t k : last)
       f.emplace_back(merged[k].fitness.begin(),
                      merged[k].fitness.begin() + static_cast<std::ptrdiff_t>(m));
-    const std::vector<Association> a =
-        associate(normalized(normalize_objectives(f, &memory), f), directions);
+    const Normalization normalization = normalize_objectives(f, &memory);
+    const std::vector<std::vector<double>> directions =
+        options.aspiration_points.empty()
+            ? fixed_directions
+            : aspiration_directions(normalized(normalization, options.aspiration_points),
+                                    aspiration_divisions(options, m), options.aspiration_spread);
+    const std::vector<Association> a = associate(normalized(normalization, f), directions);
     std::vector<std::size_t> rho(directions.size(), 0);
     for (std::size_t i = 0; i < kept.size(); ++i) ++rho[a[i].direction];
     const std::vector<Association> last_a(a.begin() + static_cast<std::ptrdiff_t>(kept.size()),
@@ -84,12 +96,22 @@ std::optional<std::string> Nsga3Options::validate() const {
     return violated("population", population, "population 0 (automatic) or even and >= 4");
   if (reference_directions.empty() && divisions < 1)
     return violated("divisions", divisions, "divisions >= 1");
+  if (!(aspiration_spread > 0.0 && aspiration_spread <= 1.0))
+    return violated("aspiration_spread", aspiration_spread, "0 < aspiration_spread <= 1");
   return check_evolution_options(
       "Nsga3Options", {crossover_probability, crossover_eta, mutation_probability, mutation_eta},
       equality_tolerance, threads);
 }
 
 std::vector<std::vector<double>> nsga3_directions(const Nsga3Options& options, std::size_t m) {
+  if (!options.aspiration_points.empty()) {
+    for (const std::vector<double>& z : options.aspiration_points)
+      if (z.size() != m)
+        throw std::invalid_argument(
+            fmt::format("nsga3: expected aspiration points of {} objective values", m));
+    return aspiration_directions(options.aspiration_points, aspiration_divisions(options, m),
+                                 options.aspiration_spread);
+  }
   if (options.reference_directions.empty())
     return two_layer_directions(m, options.divisions, options.inner_divisions);
   for (const std::vector<double>& w : options.reference_directions) {
@@ -136,7 +158,7 @@ FrontResult run_nsga3(const Problem& problem, const Nsga3Options& options) {
         population, size, bounds, variation, [&] { return tournament(population, rng); }, rng,
         merged);
     evaluate_individuals(counted, merged, size, options.threads, options.equality_tolerance);
-    population = survivors(merged, size, m, directions, memory, rng);
+    population = survivors(merged, size, m, directions, options, memory, rng);
   }
 
   return population_front(problem, population, options.equality_tolerance, "nsga3", counted, start);

@@ -17,6 +17,12 @@
 // (`inner_divisions` > 0; optimizer/reference_directions.hpp). The population defaults to the
 // smallest multiple of 4 at least the number of directions (Deb & Jain 2014).
 //
+// Aspiration points (R-NSGA-III, optimizer/aspiration_directions.hpp): with
+// `aspiration_points` (objective units, minimised) the directions are instead, each generation,
+// small Das–Dennis sets around the aspiration points normalised by that generation's ideal point
+// and intercepts, plus the axis directions; the front gathers where the decision maker asked.
+// The population then defaults to the number of these directions rounded up to a multiple of 4.
+//
 // Every random draw comes from one pkmopt::Random stream on the calling thread: a seed gives
 // bit-identical fronts for any number of threads. Evaluations: population * (generations + 1).
 //
@@ -52,11 +58,16 @@ struct Nsga3Options {
   std::uint64_t seed = 1;
   int threads = 0;
   std::vector<std::vector<double>> initial_population;
+  /// Aspiration points in objective units (minimised), each of M values; empty: none.
+  std::vector<std::vector<double>> aspiration_points;
+  std::size_t aspiration_divisions = 0;  ///< H of each local set; 0: default_aspiration_divisions
+  double aspiration_spread = 0.1;        ///< the local sets' size on the normalised simplex, (0, 1]
 
   std::optional<std::string> validate() const;
 };
 
-/// The reference directions the options give for m objectives.
+/// The reference directions the options give for m objectives (with aspiration points: those of
+/// the points taken as already normalised, for their count).
 std::vector<std::vector<double>> nsga3_directions(const Nsga3Options& options, std::size_t m);
 
 /// Runs NSGA-III. Throws std::invalid_argument for invalid options or an unsupported problem

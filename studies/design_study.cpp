@@ -188,7 +188,12 @@ DesignStudy load_design_study(const YamlValue& root) {
   }
   study.parameters = machine->parameters;
   study.machine = std::move(machine);
-  study.optimizer = read_optimizer_section(optimizer, study.optimization_problem());
+  ObjectiveNaming naming;
+  for (const DesignObjective& o : study.objectives()) {
+    naming.names.emplace_back(design_metric_name(o.metric));
+    naming.maximize.push_back(o.sense == Sense::maximize);
+  }
+  study.optimizer = read_optimizer_section(optimizer, study.optimization_problem(), naming);
   OutputSection output;
   if (auto section = root.optional("output")) read_fields(*section, output);
   study.write_designs = output.designs;

@@ -69,6 +69,20 @@ void describe_fields(Fields& f, Nsga3Spec& s) {
            .max = 1000,
            .doc = "H2 of an inside layer of directions (Deb & Jain 2014, for 8 and more "
                   "objectives); 0: one layer"});
+  f.field("aspiration_divisions", o.aspiration_divisions,
+          {.min = 1,
+           .max = 100,
+           .zero_is_unset = true,
+           .default_text = "the largest giving at most 30 directions per point",
+           .doc = "with `aspiration`: H of the Das–Dennis set around each aspiration point",
+           .omit_when = [&s] { return s.aspiration.empty(); }});
+  f.field("aspiration_spread", o.aspiration_spread,
+          {.min = 0,
+           .max = 1,
+           .min_exclusive = true,
+           .doc = "with `aspiration`: the size of the set around each point on the normalised "
+                  "simplex (1: the whole simplex)",
+           .omit_when = [&s] { return s.aspiration.empty(); }});
   describe_variation_fields(f, o, "SBX distribution index (Deb & Jain 2014: 30)");
 }
 

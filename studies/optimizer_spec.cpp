@@ -55,8 +55,43 @@ void keep_acceptable_tolerance(IpoptOptions& options) {
   options.acceptable_tolerance = std::max(options.acceptable_tolerance, options.tolerance);
 }
 
+// nsga3's `aspiration`: a list of points, each a list of M numbers in objective order or a map
+// naming every objective; returned in the objectives' own sense.
+std::vector<std::vector<double>> read_aspiration(const YamlValue& value, std::size_t m,
+                                                 const ObjectiveNaming& objectives) {
+  std::vector<std::vector<double>> points;
+  const std::string names = [&] {
+    std::string text;
+    for (const std::string& n : objectives.names) text += (text.empty() ? "" : ", ") + n;
+    return text;
+  }();
+  const std::string expected =
+      objectives.names.empty()
+          ? fmt::format("a list of {} numbers (one per objective)", m)
+          : fmt::format(
+                "a map of every objective ({}) to its aspiration level, or a list of {} "
+                "numbers in that order",
+                names, m);
+  if (!value.is_sequence() || value.elements().empty())
+    value.fail("a list of aspiration points, each " + expected, value.describe());
+  for (const YamlValue& point : value.elements()) {
+    if (point.is_sequence()) {
+      points.push_back(point.as_doubles(static_cast<int>(m)));
+      continue;
+    }
+    if (!point.is_map() || objectives.names.empty()) point.fail(expected, point.describe());
+    std::vector<std::string> allowed(objectives.names.begin(), objectives.names.end());
+    point.check_keys(allowed);
+    std::vector<double> z;
+    for (const std::string& name : objectives.names) z.push_back(point.required(name).as_double());
+    points.push_back(std::move(z));
+  }
+  return points;
+}
+
 AlgorithmSpec read_algorithm(const std::string& name, const YamlValue& s, const Problem& problem,
-                             std::uint64_t seed, std::optional<std::string>& unsupported) {
+                             std::uint64_t seed, std::optional<std::string>& unsupported,
+                             const ObjectiveNaming& objectives) {
   if (name == "nsga2") {
     unsupported = nsga2_explain_unsupported(problem);
     Nsga2Spec spec = read_spec<Nsga2Spec>(s);
@@ -67,6 +102,19 @@ AlgorithmSpec read_algorithm(const std::string& name, const YamlValue& s, const 
     unsupported = nsga2_explain_unsupported(problem);
     Nsga3Spec spec = read_spec<Nsga3Spec>(s);
     spec.options.seed = seed;
+    if (auto v = s.optional("aspiration")) {
+      const std::size_t m = problem.num_objectives();
+      spec.aspiration = read_aspiration(*v, m, objectives);
+      spec.options.aspiration_points = spec.aspiration;
+      for (auto& z : spec.options.aspiration_points)
+        for (std::size_t i = 0; i < m && i < objectives.maximize.size(); ++i)
+          if (objectives.maximize[i]) z[i] = -z[i];
+    } else {
+      for (const char* key : {"aspiration_divisions", "aspiration_spread"})
+        if (auto v = s.optional(key))
+          v->fail("`aspiration` points beside it (it shapes the directions around them)",
+                  "no aspiration");
+    }
     if (spec.options.population == 0) {  // the directions' count rounded up to a multiple of 4
       std::size_t directions = 0;
       try {
@@ -162,7 +210,8 @@ long long OptimizerSpec::expected_requests() const {
   return 0;
 }
 
-OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& problem) {
+OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& problem,
+                                     const ObjectiveNaming& objectives) {
   section.expect_map();
   OptimizerSpec spec;
   const YamlValue algorithm = section.required("algorithm");
@@ -172,6 +221,7 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
     allowed = spec_keys<Nsga2Spec>();
   } else if (name == "nsga3") {
     allowed = spec_keys<Nsga3Spec>();
+    allowed.push_back("aspiration");
   } else if (name == "hybrid") {
     allowed = spec_keys<HybridSpec>();
   } else if (name == "epsilon_constraint") {
@@ -190,7 +240,7 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
   section.check_keys(allowed);
   if (auto v = section.optional("seed")) spec.seed = static_cast<std::uint64_t>(read_count(*v, 0));
   std::optional<std::string> unsupported;
-  spec.algorithm = read_algorithm(name, section, problem, spec.seed, unsupported);
+  spec.algorithm = read_algorithm(name, section, problem, spec.seed, unsupported, objectives);
   if (unsupported) algorithm.fail(*unsupported);
   return spec;
 }
@@ -202,6 +252,15 @@ std::string optimizer_section_yaml(const OptimizerSpec& spec) {
   std::string text = "algorithm: " + (name.starts_with("nlopt:") ? "\"" + name + "\"" : name) +
                      fmt::format(", seed: {}", spec.seed);
   for (const std::string& item : writer.items()) text += ", " + item;
+  if (const auto* s = std::get_if<Nsga3Spec>(&spec.algorithm); s && !s->aspiration.empty()) {
+    std::string points;
+    for (const std::vector<double>& z : s->aspiration) {
+      std::string values;
+      for (double v : z) values += (values.empty() ? "" : ", ") + format_number(v);
+      points += (points.empty() ? "[" : ", [") + values + "]";
+    }
+    text += ", aspiration: [" + points + "]";
+  }
   return "{" + text + "}";
 }
 

@@ -51,6 +51,9 @@ struct Nsga2Spec {
 /// resolved one (never 0 once read).
 struct Nsga3Spec {
   Nsga3Options options;
+  /// The `aspiration` points as the study file gives them (objective order, the objectives' own
+  /// sense and units); options.aspiration_points holds them minimised.
+  std::vector<std::vector<double>> aspiration;
 };
 /// NSGA-II, then every front point polished by Ipopt (optimizer/hybrid.hpp).
 struct HybridSpec {
@@ -102,9 +105,18 @@ struct RunOutcome {
   std::string status;  ///< "ok", "no_feasible_design", or the single solver's status
 };
 
+/// The problem's objectives as a study file names them (for nsga3's `aspiration` points): names
+/// (empty: the points are lists in objective order only) and which are maximised (the problem
+/// minimises their negative).
+struct ObjectiveNaming {
+  std::vector<std::string> names;
+  std::vector<bool> maximize;
+};
+
 /// The `optimizer:` section for a given problem (checks that the algorithm can take it; throws
 /// InputError naming the key otherwise).
-OptimizerSpec read_optimizer_section(const YamlValue& optimizer_section, const Problem& problem);
+OptimizerSpec read_optimizer_section(const YamlValue& optimizer_section, const Problem& problem,
+                                     const ObjectiveNaming& objectives = {});
 
 /// The resolved `optimizer:` section as a YAML flow map (every option of the algorithm with its
 /// value; reading it back gives the same OptimizerSpec).

@@ -20,13 +20,21 @@ std::string optimizer_text(const OptimizerSpec& spec) {
     return fmt::format("{} (population {}, generations {}, seed {}: {} evaluations)", spec.name(),
                        nsga2->population, nsga2->generations, spec.seed,
                        nsga2->population * (nsga2->generations + 1));
-  if (const Nsga3Options* nsga3 = spec.nsga3())
-    return fmt::format(
-        "{} (population {}, generations {}, reference directions H = {}{}, seed {}: {} "
-        "evaluations)",
-        spec.name(), nsga3->population, nsga3->generations, nsga3->divisions,
-        nsga3->inner_divisions > 0 ? fmt::format(" and inner H = {}", nsga3->inner_divisions) : "",
-        spec.seed, nsga3->population * (nsga3->generations + 1));
+  if (const Nsga3Options* nsga3 = spec.nsga3()) {
+    const std::string directions =
+        nsga3->aspiration_points.empty()
+            ? fmt::format("reference directions H = {}{}", nsga3->divisions,
+                          nsga3->inner_divisions > 0
+                              ? fmt::format(" and inner H = {}", nsga3->inner_divisions)
+                              : "")
+            : fmt::format("{} directions about {} aspiration point{} (spread {})",
+                          nsga3_directions(*nsga3, nsga3->aspiration_points.front().size()).size(),
+                          nsga3->aspiration_points.size(),
+                          nsga3->aspiration_points.size() > 1 ? "s" : "", nsga3->aspiration_spread);
+    return fmt::format("{} (population {}, generations {}, {}, seed {}: {} evaluations)",
+                       spec.name(), nsga3->population, nsga3->generations, directions, spec.seed,
+                       nsga3->population * (nsga3->generations + 1));
+  }
   return fmt::format("{} (seed {})", spec.name(), spec.seed);
 }
 

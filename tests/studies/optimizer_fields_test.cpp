@@ -7,7 +7,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include "io/format/input_error.hpp"
 #include "problems/benchmarks/benchmarks.hpp"
 #include "studies/benchmark_study.hpp"
 
@@ -46,6 +48,47 @@ TEST(OptimizerFields, Nsga3PopulationFollowsTheDirections) {
   EXPECT_EQ(spec.nsga3()->population, 8u);
   EXPECT_EQ(spec.expected_requests(), 8 * 3);
   EXPECT_NE(optimizer_section_yaml(spec).find("population: 8,"), std::string::npos);
+}
+
+// nsga3's aspiration points: by objective name or in objective order, in the objectives' own
+// sense (a maximised one is negated for the optimizer), written back as lists; the population
+// follows the directions about them (ZDT1: H = 29 by default, 30 + 2 directions, population 32).
+TEST(OptimizerFields, Nsga3AspirationPointsByNameAndSense) {
+  const auto problem = make_benchmark("zdt1", 4, 0);
+  const ObjectiveNaming naming{{"f1", "f2"}, {false, true}};
+  const OptimizerSpec spec = read_optimizer_section(
+      YamlValue::load_string("{algorithm: nsga3, generations: 2, aspiration: [{f2: 0.5, f1: 0.2}, "
+                             "[0.7, 0.1]], aspiration_spread: 0.25}",
+                             "o.yaml"),
+      *problem, naming);
+  ASSERT_NE(spec.nsga3(), nullptr);
+  const std::vector<std::vector<double>> minimised{{0.2, -0.5}, {0.7, -0.1}};
+  EXPECT_EQ(spec.nsga3()->aspiration_points, minimised);
+  EXPECT_EQ(spec.nsga3()->population, 64u);  // 2 x 30 + 2 = 62 directions
+  const std::string yaml = optimizer_section_yaml(spec);
+  EXPECT_NE(yaml.find("aspiration_spread: 0.25"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("aspiration: [[0.2, 0.5], [0.7, 0.1]]"), std::string::npos) << yaml;
+  const OptimizerSpec again =
+      read_optimizer_section(YamlValue::load_string(yaml, "o.yaml"), *problem, naming);
+  EXPECT_EQ(again.nsga3()->aspiration_points, minimised);
+  EXPECT_EQ(optimizer_section_yaml(again), yaml);
+  // Without names only lists; a map, a wrong length or a lone spread are refused.
+  EXPECT_THROW(read_optimizer_section(
+                   YamlValue::load_string("{algorithm: nsga3, aspiration: [{f1: 1, f2: 2}]}", "o"),
+                   *problem),
+               InputError);
+  EXPECT_THROW(read_optimizer_section(
+                   YamlValue::load_string("{algorithm: nsga3, aspiration: [[1]]}", "o"), *problem),
+               InputError);
+  EXPECT_THROW(
+      read_optimizer_section(
+          YamlValue::load_string("{algorithm: nsga3, aspiration_divisions: 3}", "o"), *problem),
+      InputError);
+  // Without aspiration points the keys are not written.
+  EXPECT_EQ(optimizer_section_yaml(
+                read_optimizer_section(YamlValue::load_string("{algorithm: nsga3}", "o"), *problem))
+                .find("aspiration"),
+            std::string::npos);
 }
 
 TEST(OptimizerFields, EveryAlgorithmKeyIsReadAndWrittenBack) {
