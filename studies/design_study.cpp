@@ -132,12 +132,12 @@ void read_formulation(const YamlValue& optimizer, const StudyMachine& machine, D
   optimizer.expect_map();
   const YamlValue algorithm_value = optimizer.required("algorithm");
   const std::string algorithm = algorithm_value.as_string();
-  const bool evolutionary = algorithm == "nsga2" || algorithm == "nsga3";
+  const bool evolutionary = algorithm == "nsga2" || algorithm == "nsga3" || algorithm == "moead";
   goals.formulation = evolutionary ? DesignFormulation::aggregate : DesignFormulation::smooth;
   if (!machine.smooth_formulation()) {
     if (!evolutionary && !derivative_free_nlopt(algorithm))
       algorithm_value.fail(
-          fmt::format("nsga2 or nsga3 (or a derivative-free nlopt:COBYLA, nlopt:ISRES, "
+          fmt::format("nsga2, nsga3 or moead (or a derivative-free nlopt:COBYLA, nlopt:ISRES, "
                       "nlopt:BOBYQA, ... "
                       "for one objective): a {} design study measures worst cases over the task "
                       "and has no gradients",

@@ -87,6 +87,48 @@ void describe_fields(Fields& f, Nsga3Spec& s) {
 }
 
 template <class Fields>
+void describe_fields(Fields& f, MoeadSpec& s) {
+  MoeadOptions& o = s.options;
+  f.field("generations", o.generations,
+          {.min = 0,
+           .max = 1e7,
+           .doc = "generations after the first; evaluations = weights × (generations + 1)"});
+  f.field("divisions", o.divisions,
+          {.min = 1,
+           .max = 1000,
+           .doc = "H of the Das–Dennis weight vectors, one population member each (H1 of the "
+                  "boundary layer with inner_divisions)"});
+  f.field("inner_divisions", o.inner_divisions,
+          {.min = 0, .max = 1000, .doc = "H2 of an inside layer of weight vectors; 0: one layer"});
+  f.field("neighbours", o.neighbours,
+          {.min = 2, .max = 1e6, .doc = "T, the nearest weight vectors a subproblem mates with"});
+  f.field("neighbourhood_probability", o.neighbourhood_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "δ, the probability that parents come from the neighbours (else from all)"});
+  f.field("max_replacements", o.max_replacements,
+          {.min = 1, .max = 1e6, .doc = "n_r, the most members one child replaces"});
+  f.field("differential_weight", o.differential_weight,
+          {.min = 0, .max = 2, .min_exclusive = true, .doc = "F of DE/rand/1"});
+  f.field("crossover_rate", o.crossover_rate,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "CR of DE's binomial crossover"});
+  f.field("mutation_probability", o.mutation_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
+  f.field("mutation_eta", o.mutation_eta,
+          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+  f.field("normalize", o.normalize,
+          {.doc = "Tchebycheff in objectives scaled by the ideal point and the population's "
+                  "nadir (false: raw units)"});
+}
+
+template <class Fields>
 void describe_fields(Fields& f, IpoptOptions& o) {
   f.field("max_iterations", o.max_iterations,
           {.min = 1, .max = 1e7, .doc = "Ipopt iterations per solve (max_iter)"});

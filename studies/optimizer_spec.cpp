@@ -126,6 +126,23 @@ AlgorithmSpec read_algorithm(const std::string& name, const YamlValue& s, const 
     }
     return spec;
   }
+  if (name == "moead") {
+    unsupported = nsga2_explain_unsupported(problem);
+    MoeadSpec spec = read_spec<MoeadSpec>(s);
+    spec.options.seed = seed;
+    try {
+      spec.population = moead_weights(spec.options, problem.num_objectives()).size();
+    } catch (const std::invalid_argument& e) {
+      s.required("divisions").fail("fewer weight vectors", e.what());
+    }
+    if (spec.population < 3) {
+      const auto key = s.optional("divisions");
+      (key ? *key : s)
+          .fail("at least 3 weight vectors (one member each)",
+                fmt::format("{} for this number of objectives", spec.population));
+    }
+    return spec;
+  }
   if (name == "hybrid") {
     unsupported = nsga2_explain_unsupported(problem);
     if (!unsupported && problem.num_objectives() < 2)
@@ -183,6 +200,7 @@ std::string OptimizerSpec::name() const {
   return std::visit(
       Overloaded{[](const Nsga2Spec&) { return std::string("nsga2"); },
                  [](const Nsga3Spec&) { return std::string("nsga3"); },
+                 [](const MoeadSpec&) { return std::string("moead"); },
                  [](const HybridSpec&) { return std::string("hybrid"); },
                  [](const EpsilonConstraintSpec&) { return std::string("epsilon_constraint"); },
                  [](const NbiSpec&) { return std::string("nbi"); },
@@ -202,11 +220,18 @@ const Nsga3Options* OptimizerSpec::nsga3() const {
   return nullptr;
 }
 
+const MoeadOptions* OptimizerSpec::moead() const {
+  if (const auto* s = std::get_if<MoeadSpec>(&algorithm)) return &s->options;
+  return nullptr;
+}
+
 long long OptimizerSpec::expected_requests() const {
   if (const auto* s = std::get_if<Nsga2Spec>(&algorithm))
     return static_cast<long long>(s->options.population * (s->options.generations + 1));
   if (const auto* s = std::get_if<Nsga3Spec>(&algorithm))
     return static_cast<long long>(s->options.population * (s->options.generations + 1));
+  if (const auto* s = std::get_if<MoeadSpec>(&algorithm))
+    return static_cast<long long>(s->population * (s->options.generations + 1));
   return 0;
 }
 
@@ -222,6 +247,8 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
   } else if (name == "nsga3") {
     allowed = spec_keys<Nsga3Spec>();
     allowed.push_back("aspiration");
+  } else if (name == "moead") {
+    allowed = spec_keys<MoeadSpec>();
   } else if (name == "hybrid") {
     allowed = spec_keys<HybridSpec>();
   } else if (name == "epsilon_constraint") {
@@ -233,8 +260,9 @@ OptimizerSpec read_optimizer_section(const YamlValue& section, const Problem& pr
   } else if (name.starts_with("nlopt:")) {
     allowed = spec_keys<NloptSpec>();
   } else {
-    algorithm.fail("one of nsga2, nsga3, epsilon_constraint, nbi, hybrid, ipopt, nlopt:<ALGORITHM>",
-                   quote_found(name));
+    algorithm.fail(
+        "one of nsga2, nsga3, moead, epsilon_constraint, nbi, hybrid, ipopt, nlopt:<ALGORITHM>",
+        quote_found(name));
   }
   allowed.insert(allowed.begin(), {"algorithm", "seed"});
   section.check_keys(allowed);
@@ -271,6 +299,9 @@ std::string optimizer_fields_markdown(std::string_view algorithm) {
     describe_fields(docs, spec);
   } else if (algorithm == "nsga3") {
     Nsga3Spec spec;
+    describe_fields(docs, spec);
+  } else if (algorithm == "moead") {
+    MoeadSpec spec;
     describe_fields(docs, spec);
   } else if (algorithm == "hybrid") {
     HybridSpec spec;
@@ -338,6 +369,11 @@ RunOutcome run_optimizer(const Problem& problem, const OptimizerSpec& spec, int 
             Nsga3Options options = s.options;
             options.threads = threads;
             return front_outcome(run_nsga3(problem, options));
+          },
+          [&](const MoeadSpec& s) {
+            MoeadOptions options = s.options;
+            options.threads = threads;
+            return front_outcome(run_moead(problem, options));
           },
           [&](const HybridSpec& s) {
             HybridOptions options = s.options;

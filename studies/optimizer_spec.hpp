@@ -34,6 +34,7 @@
 #include "optimizer/front_result.hpp"
 #include "optimizer/hybrid.hpp"
 #include "optimizer/ipopt_solver.hpp"
+#include "optimizer/moead.hpp"
 #include "optimizer/nbi.hpp"
 #include "optimizer/nlopt_solver.hpp"
 #include "optimizer/nsga2.hpp"
@@ -54,6 +55,11 @@ struct Nsga3Spec {
   /// The `aspiration` points as the study file gives them (objective order, the objectives' own
   /// sense and units); options.aspiration_points holds them minimised.
   std::vector<std::vector<double>> aspiration;
+};
+/// MOEA/D-DE (optimizer/moead.hpp); options.seed is the spec's seed.
+struct MoeadSpec {
+  MoeadOptions options;
+  std::size_t population = 0;  ///< the number of weight vectors, resolved when read
 };
 /// NSGA-II, then every front point polished by Ipopt (optimizer/hybrid.hpp).
 struct HybridSpec {
@@ -78,8 +84,8 @@ struct NloptSpec {
   std::vector<double> start;
 };
 
-using AlgorithmSpec = std::variant<Nsga2Spec, Nsga3Spec, HybridSpec, EpsilonConstraintSpec, NbiSpec,
-                                   IpoptSpec, NloptSpec>;
+using AlgorithmSpec = std::variant<Nsga2Spec, Nsga3Spec, MoeadSpec, HybridSpec,
+                                   EpsilonConstraintSpec, NbiSpec, IpoptSpec, NloptSpec>;
 
 /// The `optimizer:` section, resolved.
 struct OptimizerSpec {
@@ -93,6 +99,8 @@ struct OptimizerSpec {
   const Nsga2Options* nsga2() const;
   /// The NSGA-III options of nsga3; null for the other algorithms.
   const Nsga3Options* nsga3() const;
+  /// The MOEA/D options of moead; null for the other algorithms.
+  const MoeadOptions* moead() const;
   /// The number of fitness requests an nsga2 run makes (population x (generations + 1)); 0 when
   /// it is not known in advance.
   long long expected_requests() const;

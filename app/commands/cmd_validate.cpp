@@ -35,6 +35,12 @@ std::string optimizer_text(const OptimizerSpec& spec) {
                        spec.name(), nsga3->population, nsga3->generations, directions, spec.seed,
                        nsga3->population * (nsga3->generations + 1));
   }
+  if (const MoeadOptions* moead = spec.moead())
+    return fmt::format(
+        "{} (weight vectors H = {}{}, {} neighbours, generations {}, seed {}: {} evaluations)",
+        spec.name(), moead->divisions,
+        moead->inner_divisions > 0 ? fmt::format(" and inner H = {}", moead->inner_divisions) : "",
+        moead->neighbours, moead->generations, spec.seed, spec.expected_requests());
   return fmt::format("{} (seed {})", spec.name(), spec.seed);
 }
 

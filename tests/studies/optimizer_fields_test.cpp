@@ -28,7 +28,7 @@ std::string read_docs(const std::string& name) {
 TEST(OptimizerFields, DocsTablesMatchTheFieldLists) {
   const std::string docs = read_docs("optimizer.md");
   for (const char* algorithm :
-       {"nsga2", "nsga3", "hybrid", "epsilon_constraint", "nbi", "ipopt", "nlopt"}) {
+       {"nsga2", "nsga3", "moead", "hybrid", "epsilon_constraint", "nbi", "ipopt", "nlopt"}) {
     const std::string block = std::string("<!-- fields: ") + algorithm + " -->\n" +
                               optimizer_fields_markdown(algorithm) + "<!-- /fields -->\n";
     EXPECT_NE(docs.find(block), std::string::npos)
