@@ -213,8 +213,8 @@ def main():
         out = pathlib.Path(sys.argv[sys.argv.index("--report") + 1]).resolve()
     else:
         study = (source / "studies/library/hexapod-milling.yaml").read_text()
-        study = re.sub(r"population: \d+, generations: \d+", "population: 40, generations: 20",
-                       study)
+        study = re.sub(r"population: \d+", "population: 40", study)
+        study = re.sub(r"generations: \d+", "generations: 20", study)
         study = re.sub(r"resolution: [0-9.]+", "resolution: 0.1", study)
         (scratch / "study.yaml").write_text(study)
         out = scratch / "run"
