@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 #include "app/commands.hpp"
 #include "io/format/input_error.hpp"
@@ -75,5 +76,18 @@ CLI::Validator length_in_metres() {
 }
 
 }  // namespace cli
+
+void require_results_folder(const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(fs::path(dir)))
+    throw InputError(fmt::format("{}: expected a results folder of `pkmopt run`, found {}", dir,
+                                 fs::exists(fs::path(dir)) ? "a file" : "no such folder"));
+}
+
+void require_not_a_folder(std::string_view option, const std::string& path) {
+  if (!path.empty() && std::filesystem::is_directory(std::filesystem::path(path)))
+    throw InputError(
+        fmt::format("{}: expected a file name, found the folder {}", option, quote_found(path)));
+}
 
 }  // namespace pkmopt

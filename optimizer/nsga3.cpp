@@ -114,17 +114,7 @@ std::vector<std::vector<double>> nsga3_directions(const Nsga3Options& options, s
   }
   if (options.reference_directions.empty())
     return two_layer_directions(m, options.divisions, options.inner_divisions);
-  for (const std::vector<double>& w : options.reference_directions) {
-    double sum = 0.0;
-    bool ok = w.size() == m;
-    for (double v : w) {
-      ok = ok && std::isfinite(v) && v >= 0.0;
-      sum += v;
-    }
-    if (!ok || !(sum > 0.0))
-      throw std::invalid_argument(fmt::format(
-          "nsga3: expected reference directions of {} finite components >= 0, not all 0", m));
-  }
+  check_given_directions(options.reference_directions, m, "nsga3", "reference directions");
   return options.reference_directions;
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace pkmopt {
@@ -65,6 +66,21 @@ std::vector<std::vector<double>> two_layer_directions(std::size_t objectives,
     out.push_back(std::move(w));
   }
   return out;
+}
+
+void check_given_directions(const std::vector<std::vector<double>>& directions,
+                            std::size_t objectives, std::string_view who, std::string_view what) {
+  for (const std::vector<double>& w : directions) {
+    double sum = 0.0;
+    bool ok = w.size() == objectives;
+    for (double v : w) {
+      ok = ok && std::isfinite(v) && v >= 0.0;
+      sum += v;
+    }
+    if (!ok || !(sum > 0.0))
+      throw std::invalid_argument(fmt::format(
+          "{}: expected {} of {} finite components >= 0, not all 0", who, what, objectives));
+  }
 }
 
 }  // namespace pkmopt

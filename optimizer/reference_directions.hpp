@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string_view>
 #include <vector>
 
 namespace pkmopt {
@@ -38,5 +39,10 @@ std::vector<std::vector<double>> das_dennis_directions(std::size_t objectives,
 std::vector<std::vector<double>> two_layer_directions(std::size_t objectives,
                                                       std::size_t outer_divisions,
                                                       std::size_t inner_divisions);
+
+/// Checks directions a user gave: each of `objectives` finite components >= 0, not all 0; throws
+/// std::invalid_argument "WHO: expected WHAT of M finite components >= 0, not all 0" otherwise.
+void check_given_directions(const std::vector<std::vector<double>>& directions,
+                            std::size_t objectives, std::string_view who, std::string_view what);
 
 }  // namespace pkmopt

@@ -16,7 +16,19 @@
 
 namespace pkmopt {
 
-// SBX and polynomial mutation keys of the evolutionary algorithms (Nsga2Options, Nsga3Options).
+// Polynomial mutation keys of the evolutionary algorithms (NSGA-II, NSGA-III, MOEA/D).
+template <class Fields, class Options>
+void describe_mutation_fields(Fields& f, Options& o) {
+  f.field("mutation_probability", o.mutation_probability,
+          {.min = 0,
+           .max = 1,
+           .expected = "a probability in [0, 1]",
+           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
+  f.field("mutation_eta", o.mutation_eta,
+          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+}
+
+// SBX and polynomial mutation keys of NSGA-II and NSGA-III.
 template <class Fields, class Options>
 void describe_variation_fields(Fields& f, Options& o, std::string_view eta_doc) {
   f.field("crossover_probability", o.crossover_probability,
@@ -25,13 +37,7 @@ void describe_variation_fields(Fields& f, Options& o, std::string_view eta_doc) 
            .expected = "a probability in [0, 1]",
            .doc = "SBX crossover probability per pair"});
   f.field("crossover_eta", o.crossover_eta, {.min = 0, .min_exclusive = true, .doc = eta_doc});
-  f.field("mutation_probability", o.mutation_probability,
-          {.min = 0,
-           .max = 1,
-           .expected = "a probability in [0, 1]",
-           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
-  f.field("mutation_eta", o.mutation_eta,
-          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+  describe_mutation_fields(f, o);
 }
 
 template <class Fields>
@@ -116,13 +122,7 @@ void describe_fields(Fields& f, MoeadSpec& s) {
            .max = 1,
            .expected = "a probability in [0, 1]",
            .doc = "CR of DE's binomial crossover"});
-  f.field("mutation_probability", o.mutation_probability,
-          {.min = 0,
-           .max = 1,
-           .expected = "a probability in [0, 1]",
-           .doc = "polynomial mutation probability per variable; 0 means 1/n for n variables"});
-  f.field("mutation_eta", o.mutation_eta,
-          {.min = 0, .min_exclusive = true, .doc = "polynomial mutation distribution index"});
+  describe_mutation_fields(f, o);
   f.field("normalize", o.normalize,
           {.doc = "Tchebycheff in objectives scaled by the ideal point and the population's "
                   "nadir (false: raw units)"});

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "app/cli_args.hpp"
 #include "app/commands.hpp"
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
@@ -44,14 +45,8 @@ ChoiceRequest request_of(const ParetoFront& front, const ChooseCommandOptions& o
 void run_choose(const ChooseCommandOptions& opt) {
   namespace fs = std::filesystem;
   const fs::path dir(opt.results_dir);
-  if (!fs::is_directory(dir)) {
-    throw InputError(fmt::format("{}: expected a results folder of `pkmopt run`, found {}",
-                                 opt.results_dir, fs::exists(dir) ? "a file" : "no such folder"));
-  }
-  if (!opt.out.empty() && fs::is_directory(fs::path(opt.out))) {
-    throw InputError(
-        fmt::format("--out: expected a file name, found the folder {}", quote_found(opt.out)));
-  }
+  require_results_folder(opt.results_dir);
+  require_not_a_folder("--out", opt.out);
   const ParetoFront front = read_pareto_json((dir / "pareto.json").string());
   const ChoiceRequest request = request_of(front, opt);
   const DesignChoice choice = choose_design(front, request);

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/cli_args.hpp"
 #include "app/commands.hpp"
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
@@ -35,10 +36,7 @@ void run_compare(const CompareCommandOptions& opt) {
   if (!opt.svg.empty()) targets.emplace_back("--svg", opt.svg);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const auto& [option, path] = targets[i];
-    if (fs::is_directory(fs::path(path))) {
-      throw InputError(
-          fmt::format("{}: expected a file name, found the folder {}", option, quote_found(path)));
-    }
+    require_not_a_folder(option, path);
     const fs::path parent = fs::path(path).parent_path();
     if (!parent.empty() && !fs::is_directory(parent)) {
       throw InputError(fmt::format("{}: expected a file in an existing folder, found {}", option,

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "app/cli_args.hpp"
 #include "app/commands.hpp"
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
@@ -35,14 +36,8 @@ void run_export(const ExportCommandOptions& opt) {
         fmt::format("--format: expected csv, json or html, found {}", quote_found(opt.format)));
   }
   const fs::path dir(opt.results_dir);
-  if (!fs::is_directory(dir)) {
-    throw InputError(fmt::format("{}: expected a results folder of `pkmopt run`, found {}",
-                                 opt.results_dir, fs::exists(dir) ? "a file" : "no such folder"));
-  }
-  if (!opt.out.empty() && fs::is_directory(fs::path(opt.out))) {
-    throw InputError(
-        fmt::format("--out: expected a file name, found the folder {}", quote_found(opt.out)));
-  }
+  require_results_folder(opt.results_dir);
+  require_not_a_folder("--out", opt.out);
   CsvUnits csv_units = CsvUnits::kNone;
   if (!opt.units.empty()) {
     const std::optional<CsvUnits> units = parse_csv_units(opt.units);
