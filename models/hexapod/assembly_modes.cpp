@@ -1,0 +1,315 @@
+#include "models/hexapod/assembly_modes.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+
+namespace pkmopt {
+namespace {
+
+#include "models/hexapod/dietmaier_start.inc"
+
+using C = std::complex<double>;
+using Vec3c = Eigen::Matrix<C, 3, 1>;
+using Vec9 = Eigen::Matrix<C, 9, 1>;
+using Vec10 = Eigen::Matrix<C, 10, 1>;
+using Mat10 = Eigen::Matrix<C, 10, 10>;
+
+constexpr double kTracking = 1e-8;       // Newton step along a path, relative to |X|
+constexpr double kConverged = 1e-10;     // Newton step at a path's end, relative to |X|
+constexpr double kSolved = 1e-12;        // |G| at which a point solves (lengths scaled to ~1)
+constexpr double kSmallestStep = 1e-12;  // in the path parameter s
+constexpr double kLargestStep = 0.1;
+constexpr double kAtInfinity = 1e-8;  // |X0| / |X| below which an end is a solution at infinity
+constexpr double kRealTolerance = 1e-8;
+constexpr int kMaxSteps = 100000;
+
+// A geometry: base points a_i, platform points b_i, squared lengths.
+struct Params {
+  Eigen::Matrix<C, 3, 6> a, b;
+  Eigen::Matrix<C, 6, 1> l2;
+};
+
+Params operator-(const Params& x, const Params& y) { return {x.a - y.a, x.b - y.b, x.l2 - y.l2}; }
+Params along(const Params& p0, const Params& d, double s) {
+  return {p0.a + s * d.a, p0.b + s * d.b, p0.l2 + s * d.l2};
+}
+
+// u.v and u x v without conjugation (Eigen's cross conjugates complex results).
+C bilinear(const Vec3c& u, const Vec3c& v) { return u(0) * v(0) + u(1) * v(1) + u(2) * v(2); }
+Vec3c cross(const Vec3c& u, const Vec3c& v) {
+  return {u(1) * v(2) - u(2) * v(1), u(2) * v(0) - u(0) * v(2), u(0) * v(1) - u(1) * v(0)};
+}
+
+// The system in projective coordinates X = (X0, P, R1, R2), x = (P, R1, R2) / X0, so that paths
+// whose affine solutions grow without bound stay finite (they end at X0 = 0), on the random
+// patch c.X = 1:
+//   R1.R1 - X0^2,  R2.R2 - X0^2,  R1.R2,
+//   Q_i.Q_i - L_i^2 X0^4 with Q_i = X0 P + b_i,x X0 R1 + b_i,y X0 R2 + b_i,z R1 x R2 - a_i X0^2,
+//   c.X - 1.
+struct Homogeneous {
+  Vec10 patch;  // c
+
+  // The leg vector Q_i.
+  static Vec3c leg(const Vec10& X, const Params& P, int i) {
+    const C x0 = X(0);
+    const Vec3c p = X.segment<3>(1), r1 = X.segment<3>(4), r2 = X.segment<3>(7);
+    return x0 * (p + P.b(0, i) * r1 + P.b(1, i) * r2) + P.b(2, i) * cross(r1, r2) -
+           x0 * x0 * P.a.col(i);
+  }
+
+  void evaluate(const Vec10& X, const Params& P, Vec10& G, Mat10* J) const {
+    const C x0 = X(0);
+    const Vec3c p = X.segment<3>(1), r1 = X.segment<3>(4), r2 = X.segment<3>(7);
+    G(0) = bilinear(r1, r1) - x0 * x0;
+    G(1) = bilinear(r2, r2) - x0 * x0;
+    G(2) = bilinear(r1, r2);
+    if (J) {
+      J->setZero();
+      (*J)(0, 0) = -2.0 * x0;
+      J->block<1, 3>(0, 4) = 2.0 * r1.transpose();
+      (*J)(1, 0) = -2.0 * x0;
+      J->block<1, 3>(1, 7) = 2.0 * r2.transpose();
+      J->block<1, 3>(2, 4) = r2.transpose();
+      J->block<1, 3>(2, 7) = r1.transpose();
+    }
+    const C x0_2 = x0 * x0;
+    for (int i = 0; i < 6; ++i) {
+      const Vec3c q = leg(X, P, i);
+      G(3 + i) = bilinear(q, q) - P.l2(i) * x0_2 * x0_2;
+      if (J) {
+        const Vec3c dq0 = p + P.b(0, i) * r1 + P.b(1, i) * r2 - 2.0 * x0 * P.a.col(i);
+        (*J)(3 + i, 0) = 2.0 * bilinear(q, dq0) - 4.0 * P.l2(i) * x0_2 * x0;
+        J->block<1, 3>(3 + i, 1) = 2.0 * x0 * q.transpose();
+        J->block<1, 3>(3 + i, 4) =
+            2.0 * (P.b(0, i) * x0 * q + P.b(2, i) * cross(r2, q)).transpose();
+        J->block<1, 3>(3 + i, 7) =
+            2.0 * (P.b(1, i) * x0 * q + P.b(2, i) * cross(q, r1)).transpose();
+      }
+    }
+    G(9) = (patch.transpose() * X)(0) - 1.0;
+    if (J) J->row(9) = patch.transpose();
+  }
+
+  // dG/ds along P(s) = P0 + s d.
+  static Vec10 parameter_derivative(const Vec10& X, const Params& P, const Params& d) {
+    Vec10 dG = Vec10::Zero();
+    const C x0 = X(0);
+    const Vec3c r1 = X.segment<3>(4), r2 = X.segment<3>(7), c = cross(r1, r2);
+    for (int i = 0; i < 6; ++i) {
+      const Vec3c q = leg(X, P, i);
+      const Vec3c dq =
+          x0 * (d.b(0, i) * r1 + d.b(1, i) * r2) + d.b(2, i) * c - x0 * x0 * d.a.col(i);
+      dG(3 + i) = 2.0 * bilinear(q, dq) - d.l2(i) * x0 * x0 * x0 * x0;
+    }
+    return dG;
+  }
+
+  // dX/ds = -J^-1 dG/ds.
+  Vec10 tangent(const Vec10& X, const Params& P0, const Params& d, double s) const {
+    const Params P = along(P0, d, s);
+    Vec10 G;
+    Mat10 J;
+    evaluate(X, P, G, &J);
+    return Eigen::PartialPivLU<Mat10>(J).solve(-parameter_derivative(X, P, d));
+  }
+
+  // Newton's method at P from y: true when |G| is below kSolved or the steps contract to
+  // `tolerance` (relative to |y|) within `iterations`.
+  bool correct(Vec10& y, const Params& P, int iterations, double tolerance) const {
+    double previous = INFINITY;
+    for (int it = 0; it < iterations; ++it) {
+      Vec10 G;
+      Mat10 J;
+      evaluate(y, P, G, &J);
+      if (G.cwiseAbs().maxCoeff() < kSolved) return true;
+      const Vec10 dx = Eigen::PartialPivLU<Mat10>(J).solve(-G);
+      const double norm = dx.norm();
+      if (!std::isfinite(norm) || (it > 0 && norm > 0.5 * previous)) return false;
+      y += dx;
+      if (norm < tolerance * y.norm()) return true;
+      previous = norm;
+    }
+    return false;
+  }
+
+  // The projective point of an affine one, on the patch.
+  Vec10 lift(const Vec9& x) const {
+    Vec10 X;
+    X(0) = 1.0;
+    X.tail<9>() = x;
+    return X / (patch.transpose() * X)(0);
+  }
+};
+
+enum class PathEnd { reached, at_infinity, failed };
+
+struct Path {
+  Vec10 x;
+  PathEnd end = PathEnd::reached;
+  std::string why;
+};
+
+// Follows X from P0 (s = 0) to P1 (s = 1).
+Path track(const Homogeneous& H, Vec10 X, const Params& P0, const Params& P1) {
+  const Params d = P1 - P0;
+  double s = 0.0, h = 0.02;
+  int good = 0;
+  for (int step = 0; step < kMaxSteps; ++step) {
+    if (s >= 1.0) return {X, PathEnd::reached, ""};
+    h = std::min(h, 1.0 - s);
+    const Vec10 k1 = H.tangent(X, P0, d, s);
+    const Vec10 k2 = H.tangent(X + 0.5 * h * k1, P0, d, s + 0.5 * h);
+    const Vec10 k3 = H.tangent(X + 0.5 * h * k2, P0, d, s + 0.5 * h);
+    const Vec10 k4 = H.tangent(X + h * k3, P0, d, s + h);
+    Vec10 y = X + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+    const double t = s + h >= 1.0 ? 1.0 : s + h;
+    if (y.allFinite() && H.correct(y, along(P0, d, t), 3, kTracking)) {
+      X = y;
+      s = t;
+      if (++good >= 3) {
+        h = std::min(2.0 * h, kLargestStep);
+        good = 0;
+      }
+      continue;
+    }
+    h *= 0.5;
+    good = 0;
+    if (h < kSmallestStep) {
+      if (std::abs(X(0)) < 1e-4 * X.norm()) return {X, PathEnd::at_infinity, ""};
+      return {X, PathEnd::failed, fmt::format("the step fell below 1e-12 at s = {:.9f}", s)};
+    }
+  }
+  return {X, PathEnd::failed, fmt::format("no end after {} steps (s = {:.6f})", kMaxSteps, s)};
+}
+
+Params dietmaier() {
+  Params P;
+  for (int i = 0; i < 6; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      P.a(k, i) = kDietmaierBase[i][k];
+      P.b(k, i) = kDietmaierPlatform[i][k];
+    }
+    P.l2(i) = kDietmaierLengths[i] * kDietmaierLengths[i];
+  }
+  return P;
+}
+
+// The 40 solutions at a random complex geometry near Dietmaier's, tracked once from his, with
+// the random patch.
+struct Start {
+  Homogeneous H;
+  Params P;
+  std::vector<Vec10> X;
+};
+
+const Start& complex_start() {
+  static const Start start = [] {
+    Start s;
+    const Params Pd = dietmaier();
+    std::mt19937_64 engine(20261207);  // the stream is fixed by the standard
+    auto uniform = [&] { return static_cast<double>(engine() >> 11) * 0x1.0p-53 * 2.0 - 1.0; };
+    for (int k = 0; k < 10; ++k) s.H.patch(k) = C(uniform(), uniform());
+    s.P = Pd;
+    for (int i = 0; i < 6; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        s.P.a(k, i) += 0.3 * C(uniform(), uniform());
+        s.P.b(k, i) += 0.3 * C(uniform(), uniform());
+      }
+      s.P.l2(i) += 0.3 * C(uniform(), uniform());
+    }
+    for (const auto& row : kDietmaierSolutions) {
+      Vec9 x;
+      for (int k = 0; k < 9; ++k) x(k) = row[k];
+      Vec10 X = s.H.lift(x);
+      if (!s.H.correct(X, Pd, 8, kConverged))
+        throw std::logic_error("assembly modes: a start point does not solve");
+      const Path path = track(s.H, X, Pd, s.P);
+      if (path.end != PathEnd::reached)
+        throw std::logic_error("assembly modes: a start path did not reach the complex geometry: " +
+                               path.why);
+      s.X.push_back(path.x);
+    }
+    return s;
+  }();
+  return start;
+}
+
+}  // namespace
+
+AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
+                                 const Eigen::Matrix<double, 3, 6>& platform,
+                                 const Eigen::Matrix<double, 6, 1>& lengths) {
+  if (!base.allFinite() || !platform.allFinite() || !lengths.allFinite() ||
+      !(lengths.minCoeff() > 0.0))
+    throw std::invalid_argument("all_assembly_modes: expected finite points and lengths > 0");
+  const double scale = lengths.mean();
+  Params target;
+  target.a = (base / scale).cast<C>();
+  target.b = (platform / scale).cast<C>();
+  target.l2 = (lengths / scale).array().square().matrix().cast<C>();
+
+  const Start& start = complex_start();
+  AssemblyModes modes;
+  std::vector<Vec9> found;
+  std::vector<std::size_t> found_path;
+  for (std::size_t k = 0; k < start.X.size(); ++k) {
+    ++modes.paths;
+    Path path = track(start.H, start.X[k], start.P, target);
+    if (path.end == PathEnd::at_infinity ||
+        (path.end == PathEnd::reached && std::abs(path.x(0)) < kAtInfinity * path.x.norm())) {
+      ++modes.at_infinity;
+      continue;
+    }
+    if (path.end == PathEnd::failed || !start.H.correct(path.x, target, 8, kConverged)) {
+      ++modes.failed;
+      modes.failures.push_back(
+          fmt::format("path {}: {}", k + 1,
+                      path.end == PathEnd::failed ? path.why : "its end does not converge"));
+      continue;
+    }
+    const Vec9 x = path.x.tail<9>() / path.x(0);
+    const double size = 1.0 + x.norm();
+    if (x.imag().cwiseAbs().maxCoeff() > kRealTolerance * size) {
+      ++modes.complex_count;
+      continue;
+    }
+    Vec10 X = start.H.lift(x.real().cast<C>());
+    start.H.correct(X, target, 4, kConverged);
+    const Vec9 real = (X.tail<9>() / X(0)).real().cast<C>();
+    bool duplicate = false;
+    for (std::size_t j = 0; j < found.size() && !duplicate; ++j) {
+      if ((found[j] - real).norm() < 1e-6 * size) {
+        duplicate = true;
+        ++modes.failed;
+        modes.failures.push_back(fmt::format(
+            "paths {} and {} end at the same solution (a path jumped, or the solution is "
+            "singular)",
+            found_path[j] + 1, k + 1));
+      }
+    }
+    if (duplicate) continue;
+    found.push_back(real);
+    found_path.push_back(k);
+    AssemblyMode mode;
+    const Eigen::Vector3d r1 = real.segment<3>(3).real(), r2 = real.segment<3>(6).real();
+    mode.rotation << r1, r2, r1.cross(r2);
+    mode.position = scale * real.segment<3>(0).real();
+    for (int i = 0; i < 6; ++i)
+      mode.residual =
+          std::max(mode.residual,
+                   std::abs((mode.position + mode.rotation * platform.col(i) - base.col(i)).norm() -
+                            lengths(i)));
+    modes.real.push_back(mode);
+  }
+  return modes;
+}
+
+}  // namespace pkmopt

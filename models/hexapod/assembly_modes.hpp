@@ -1,0 +1,60 @@
+// Every assembly mode of a general Gough–Stewart platform: all solutions of its forward
+// kinematics for one set of leg lengths, by parameter homotopy (Morgan & Sommese, "Coefficient-
+// parameter polynomial continuation", Appl. Math. Comput. 29, 1989).
+//
+// Unknowns (9, complex): the platform position p and the first two columns r1, r2 of its
+// rotation R = [r1, r2, r1 x r2]. Equations (9):
+//   r1.r1 = 1,  r2.r2 = 1,  r1.r2 = 0,
+//   |p + R b_i - a_i|^2 = L_i^2   (i = 1..6; a_i base points, b_i platform points).
+// A general platform has 40 complex solutions (Raghavan 1993; Ronga & Vust; Lazard; Mourrain),
+// up to 40 of them real (Dietmaier 1998). The homotopy starts from Dietmaier's geometry, whose 40
+// solutions are all real and published (models/hexapod/dietmaier_start.inc), tracks them once to
+// a random complex geometry (seeded; kept for the process), and from there to the geometry asked
+// for, with the lengths divided by the mean leg length. Paths run in projective coordinates
+// X = (X0, X0 x) on a random complex patch, so that a solution that grows without bound stays
+// finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than 40 finite
+// solutions). Because the intermediate geometries are complex and random, the 40 paths avoid the
+// geometries where solutions meet with probability 1 (the "gamma trick"): every isolated
+// solution of the target is the end of one path. A path whose step falls below 1e-12 is reported
+// as failed, never hidden; so are two paths that end at the same solution. Each end is polished
+// by Newton's method; a solution is real when its imaginary parts are below 1e-8 (relative).
+//
+// Tracking: fourth-order Runge–Kutta predictor on dX/ds = -J^-1 dG/ds, Newton corrector (at
+// most 3 contracting steps, to 1e-8 relative), step doubled after 3 good steps and halved on a
+// failure.
+//
+// Example:
+//   const pkmopt::AssemblyModes modes = pkmopt::all_assembly_modes(a, b, lengths);
+//   for (const auto& m : modes.real) use(m.position, m.rotation);
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pkmopt {
+
+struct AssemblyMode {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< p, base frame (units of a_i)
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  double residual = 0.0;  ///< max_i | |p + R b_i - a_i| - L_i |
+};
+
+struct AssemblyModes {
+  std::vector<AssemblyMode> real;     ///< the real solutions, distinct
+  std::size_t complex_count = 0;      ///< solutions with imaginary parts (pairs of conjugates)
+  std::size_t at_infinity = 0;        ///< paths that grew without bound
+  std::size_t failed = 0;             ///< paths whose step fell below 1e-12 or did not converge
+  std::vector<std::string> failures;  ///< one line per failed path: which and why
+  std::size_t paths = 0;              ///< paths tracked (40)
+};
+
+/// All assembly modes of the platform with base points `base` (columns a_i), platform points
+/// `platform` (columns b_i, platform frame) and leg lengths `lengths` (> 0). Throws
+/// std::invalid_argument for non-finite input or a length <= 0.
+AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
+                                 const Eigen::Matrix<double, 3, 6>& platform,
+                                 const Eigen::Matrix<double, 6, 1>& lengths);
+
+}  // namespace pkmopt

@@ -1,0 +1,168 @@
+// Tests of models/hexapod/assembly_modes: Dietmaier's platform has exactly 40 real assembly
+// modes, the ones PHCpack published; on random geometries every real solution satisfies the leg
+// equations to 1e-10, their number is even and at most 40, every path is accounted for, and the
+// pose the lengths were made from is among them; relabelling the legs and moving the base frame
+// change nothing but the frame.
+#include "models/hexapod/assembly_modes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace pkmopt {
+namespace {
+
+#include "models/hexapod/dietmaier_start.inc"
+
+using Points = Eigen::Matrix<double, 3, 6>;
+using Lengths = Eigen::Matrix<double, 6, 1>;
+
+struct Geometry {
+  Points a, b;
+  Lengths L;
+};
+
+Geometry dietmaier_geometry() {
+  Geometry g;
+  for (int i = 0; i < 6; ++i) {
+    for (int k = 0; k < 3; ++k) {
+      g.a(k, i) = kDietmaierBase[i][k];
+      g.b(k, i) = kDietmaierPlatform[i][k];
+    }
+    g.L(i) = kDietmaierLengths[i];
+  }
+  return g;
+}
+
+// The distance between two poses: position difference plus the rotation difference's norm.
+double pose_distance(const AssemblyMode& x, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {
+  return (x.position - p).norm() + (x.rotation - R).norm();
+}
+
+// The index of the mode nearest (p, R), and its distance.
+std::pair<std::size_t, double> nearest(const AssemblyModes& modes, const Eigen::Vector3d& p,
+                                       const Eigen::Matrix3d& R) {
+  std::size_t best = 0;
+  double best_d = INFINITY;
+  for (std::size_t k = 0; k < modes.real.size(); ++k) {
+    const double d = pose_distance(modes.real[k], p, R);
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return {best, best_d};
+}
+
+TEST(AssemblyModes, DietmaiersPlatformHasFortyRealModes) {
+  const Geometry g = dietmaier_geometry();
+  const AssemblyModes modes = all_assembly_modes(g.a, g.b, g.L);
+  EXPECT_EQ(modes.paths, 40u);
+  EXPECT_EQ(modes.failed, 0u) << (modes.failures.empty() ? "" : modes.failures.front());
+  EXPECT_EQ(modes.complex_count, 0u);
+  EXPECT_EQ(modes.at_infinity, 0u);
+  ASSERT_EQ(modes.real.size(), 40u);
+  // Each of PHCpack's 40 solutions is found once. PHCpack solved the polynomials with their
+  // coefficients printed to 10 digits, and several of these modes are close to a singularity
+  // (PHCpack's rco down to 4e-6), so its solutions differ from the exact system's by up to a few
+  // 1e-6; ours solve the exact system to 1e-10 (the residual below).
+  std::vector<int> matched(40, 0);
+  for (const auto& row : kDietmaierSolutions) {
+    const Eigen::Vector3d n(row[0], row[1], row[2]), a1(row[3], row[4], row[5]),
+        a2(row[6], row[7], row[8]);
+    Eigen::Matrix3d R;
+    R << a1, a2, a1.cross(a2);
+    const auto [k, d] = nearest(modes, n, R);
+    EXPECT_LT(d, 2e-5);
+    ++matched[k];
+  }
+  for (int m : matched) EXPECT_EQ(m, 1);
+  for (const AssemblyMode& m : modes.real) EXPECT_LT(m.residual, 1e-10);
+}
+
+// A random platform (base and platform points in a 1 m cube, machine-like scale) and a random
+// pose; the lengths are those of the pose.
+Geometry random_geometry(std::mt19937_64& engine, Eigen::Vector3d& p, Eigen::Matrix3d& R) {
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  Geometry g;
+  for (int i = 0; i < 6; ++i)
+    for (int k = 0; k < 3; ++k) {
+      g.a(k, i) = u(engine);
+      g.b(k, i) = 0.5 * u(engine);
+    }
+  p = Eigen::Vector3d(u(engine), u(engine), 1.0 + u(engine));
+  R = Eigen::AngleAxisd(u(engine), Eigen::Vector3d(u(engine), u(engine), u(engine)).normalized())
+          .toRotationMatrix();
+  for (int i = 0; i < 6; ++i) g.L(i) = (p + R * g.b.col(i) - g.a.col(i)).norm();
+  return g;
+}
+
+TEST(AssemblyModes, RandomPlatformsGiveEveryRealModeAccountedFor) {
+  std::mt19937_64 engine(42);
+  for (int trial = 0; trial < 12; ++trial) {
+    Eigen::Vector3d p;
+    Eigen::Matrix3d R;
+    const Geometry g = random_geometry(engine, p, R);
+    const AssemblyModes modes = all_assembly_modes(g.a, g.b, g.L);
+    EXPECT_EQ(modes.failed, 0u) << trial << ": "
+                                << (modes.failures.empty() ? "" : modes.failures.front());
+    EXPECT_EQ(modes.real.size() + modes.complex_count + modes.at_infinity + modes.failed, 40u);
+    EXPECT_EQ(modes.real.size() % 2, 0u) << trial;
+    EXPECT_EQ(modes.complex_count % 2, 0u) << trial;
+    for (const AssemblyMode& m : modes.real) {
+      EXPECT_LT(m.residual, 1e-10) << trial;
+      EXPECT_LT((m.rotation.transpose() * m.rotation - Eigen::Matrix3d::Identity()).norm(), 1e-10);
+      EXPECT_GT(m.rotation.determinant(), 0.0);
+    }
+    EXPECT_LT(nearest(modes, p, R).second, 1e-8) << trial << ": the generating pose is missing";
+  }
+}
+
+TEST(AssemblyModes, RelabellingAndMovingTheBaseChangeOnlyTheFrame) {
+  std::mt19937_64 engine(7);
+  Eigen::Vector3d p;
+  Eigen::Matrix3d R;
+  const Geometry g = random_geometry(engine, p, R);
+  const AssemblyModes modes = all_assembly_modes(g.a, g.b, g.L);
+  ASSERT_GE(modes.real.size(), 2u);
+  // Legs relabelled.
+  const std::array<int, 6> order{3, 0, 5, 1, 4, 2};
+  Geometry h;
+  for (int i = 0; i < 6; ++i) {
+    h.a.col(i) = g.a.col(order[i]);
+    h.b.col(i) = g.b.col(order[i]);
+    h.L(i) = g.L(order[i]);
+  }
+  const AssemblyModes relabelled = all_assembly_modes(h.a, h.b, h.L);
+  ASSERT_EQ(relabelled.real.size(), modes.real.size());
+  for (const AssemblyMode& m : modes.real)
+    EXPECT_LT(nearest(relabelled, m.position, m.rotation).second, 1e-8);
+  // The base frame moved: a' = Q a + t; each mode (p, R) becomes (Q p + t, Q R).
+  const Eigen::Matrix3d Q =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d t(0.3, -1.2, 2.0);
+  Geometry moved = g;
+  for (int i = 0; i < 6; ++i) moved.a.col(i) = Q * g.a.col(i) + t;
+  const AssemblyModes in_moved = all_assembly_modes(moved.a, moved.b, moved.L);
+  ASSERT_EQ(in_moved.real.size(), modes.real.size());
+  for (const AssemblyMode& m : modes.real)
+    EXPECT_LT(nearest(in_moved, Q * m.position + t, Q * m.rotation).second, 1e-8);
+}
+
+TEST(AssemblyModes, BadInputIsRefused) {
+  Geometry g = dietmaier_geometry();
+  g.L(2) = 0.0;
+  EXPECT_THROW(all_assembly_modes(g.a, g.b, g.L), std::invalid_argument);
+  g = dietmaier_geometry();
+  g.a(1, 1) = NAN;
+  EXPECT_THROW(all_assembly_modes(g.a, g.b, g.L), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pkmopt
