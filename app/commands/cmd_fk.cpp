@@ -1,4 +1,4 @@
-// pkmopt fk MACHINE.yaml --q q1,...,qn [--guess x,y,z,rx,ry,rz]
+// pkmopt fk MACHINE.yaml --q q1,...,qn [--guess x,y,z,rx,ry,rz] [--all]
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -11,6 +11,7 @@
 #include "io/format/number_policy.hpp"
 #include "io/machine/machine_file.hpp"
 #include "io/results/fk_csv.hpp"
+#include "models/core/capabilities.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -20,7 +21,28 @@ struct FkCommandOptions {
   std::string q;
   std::string guess;
   int max_iterations = 100;
+  bool all = false;
 };
+
+// --all: every real solution, one row each; the counts on standard error; failed paths exit 3.
+void print_all_solutions(const Machine& machine, const Eigen::VectorXd& q,
+                         const std::optional<Pose>& guess) {
+  const Capability<AllForwardKinematics> solver = machine.all_forward_kinematics_solver();
+  if (!solver) throw InputError("--all: expected a hexapod machine file, found " + solver.reason());
+  const ForwardSolutions s = solver->all_forward_kinematics(q, guess);
+  std::cout << fk_all_csv(s);
+  std::cout.flush();
+  fmt::print(stderr,
+             "fk: {} real assembly modes, {} complex, {} at infinity, {} failed, of {} paths "
+             "(the first row is the one nearest the {})\n",
+             s.real.size(), s.complex_count, s.at_infinity, s.failed, s.paths,
+             guess ? "guess" : "home pose");
+  if (s.failed > 0)
+    throw ProbablyWrongResult(
+        fmt::format("fk --all: {} of {} paths failed ({}); real solutions "
+                    "may be missing",
+                    s.failed, s.paths, s.failures.front()));
+}
 
 void run_fk(const FkCommandOptions& opt) {
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
@@ -62,6 +84,10 @@ void run_fk(const FkCommandOptions& opt) {
     throw InputError(
         fmt::format("--max-iterations: expected an integer >= 1, found {}", opt.max_iterations));
   }
+  if (opt.all) {
+    print_all_solutions(*machine, q, guess);
+    return;
+  }
   FkOptions fk_options;
   fk_options.max_iterations = opt.max_iterations;
   const FkResult r = machine->forward_kinematics(q, guess, fk_options);
@@ -97,6 +123,9 @@ void add_fk_command(CLI::App& app) {
   cmd->add_option("--guess", opt->guess,
                   "Start pose x,y,z,rx,ry,rz (m, deg); default: the machine's home pose");
   cmd->add_option("--max-iterations", opt->max_iterations, "Iteration limit (default 100)");
+  cmd->add_flag("--all", opt->all,
+                "Every real solution (assembly mode) of a hexapod, one row each, nearest the "
+                "guess or home pose first, by a 40-path parameter homotopy");
   cmd->callback([opt] { run_fk(*opt); });
 }
 

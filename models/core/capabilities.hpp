@@ -7,6 +7,8 @@
 //                                           matrix, gravity and inertia wrench, inverse dynamics
 //                                           (docs/dynamics.md); missing with a reason
 //   translational_maps() TranslationalMaps  the TCP maps a hybrid machine needs of its module
+//   all_forward_kinematics_solver()  AllForwardKinematics  every real forward-kinematics
+//                                           solution (assembly mode) for given actuator values
 //
 // A model offers a capability by implementing its interface and returning itself from the
 // query:
@@ -27,8 +29,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstddef>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
@@ -160,6 +165,41 @@ class TranslationalMaps {
   virtual bool analyze_with_maps(MachineData& data, const Pose& pose, const Wrench& wrench,
                                  PoseMetrics& metrics, Eigen::Matrix3d& compliance_tt,
                                  Eigen::Matrix<double, 3, Eigen::Dynamic>& error_map) const = 0;
+};
+
+/// One real solution of the forward kinematics (AllForwardKinematics).
+struct ForwardSolution {
+  Pose pose;                          ///< the TCP pose
+  double residual = 0.0;              ///< max |q(pose) - q| (actuator units)
+  double jacobian_determinant = 0.0;  ///< det of the inverse Jacobian at the pose
+  bool reachable = false;             ///< within the strokes and joint limits
+  double nearest_other = INFINITY;    ///< pose distance to the nearest other real solution
+  double to_reference = INFINITY;     ///< pose distance to the reference pose
+};
+
+/// Every assembly mode for one set of actuator values.
+struct ForwardSolutions {
+  std::vector<ForwardSolution> real;  ///< by increasing distance to the reference pose
+  std::size_t complex_count = 0;      ///< solutions with imaginary parts
+  std::size_t at_infinity = 0;        ///< paths that ran to infinity (a special geometry)
+  std::size_t failed = 0;             ///< paths that failed (reported in `failures`)
+  std::size_t paths = 0;
+  std::vector<std::string> failures;
+  /// The length rho of the pose distance sqrt(|dp|^2 + (rho theta)^2), theta the angle of the
+  /// relative rotation (m): how far a rotation moves the platform's joints.
+  double distance_length = 0.0;
+};
+
+/// A capability (Machine::all_forward_kinematics_solver): all real forward-kinematics solutions
+/// by a method that is complete for the general geometry (the hexapod's 40-path parameter
+/// homotopy, models/hexapod/assembly_modes.hpp).
+class AllForwardKinematics {
+ public:
+  virtual ~AllForwardKinematics() = default;
+  /// The solutions for actuator values `q`, with their distances to `reference` (nullopt: the
+  /// model's home pose, the default guess of forward_kinematics).
+  virtual ForwardSolutions all_forward_kinematics(const Eigen::VectorXd& q,
+                                                  const std::optional<Pose>& reference) const = 0;
 };
 
 }  // namespace pkmopt

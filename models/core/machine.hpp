@@ -140,6 +140,7 @@ class BatchAnalysis;
 class ParasiticMotion;
 class Dynamics;
 class TranslationalMaps;
+class AllForwardKinematics;
 
 /// What a query for an optional capability answers (models/core/capabilities.hpp): the
 /// capability, or why the machine does not have it, in words a user can act on ("the machine
@@ -251,6 +252,14 @@ class Machine {
   /// matrix, inverse dynamics); missing, with the reason, when it has no mass model.
   virtual Capability<Dynamics> dynamics() const {
     return Capability<Dynamics>::missing(std::string(model()) + " machines have no mass model");
+  }
+  /// Every real forward-kinematics solution (AllForwardKinematics); missing, with the reason,
+  /// for models without a complete solver.
+  virtual Capability<AllForwardKinematics> all_forward_kinematics_solver() const {
+    return Capability<AllForwardKinematics>::missing(
+        std::string(model()) +
+        " machines: all forward-kinematics solutions are computed for the hexapod (the 6-6 "
+        "Gough–Stewart platform) only");
   }
   /// The translational maps at the TCP that put the machine in series with serial axes
   /// (TranslationalMaps, the module of a hybrid machine); null when the model has none.

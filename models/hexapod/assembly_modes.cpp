@@ -27,7 +27,8 @@ constexpr double kConverged = 1e-10;     // Newton step at a path's end, relativ
 constexpr double kSolved = 1e-12;        // |G| at which a point solves (lengths scaled to ~1)
 constexpr double kSmallestStep = 1e-12;  // in the path parameter s
 constexpr double kLargestStep = 0.1;
-constexpr double kAtInfinity = 1e-8;  // |X0| / |X| below which an end is a solution at infinity
+constexpr double kTowardInfinity = 1e-7;  // |X0| / |X| at which a path is taken to diverge
+constexpr double kAtInfinity = 1e-8;      // |X0| / |X| below which an end is a solution at infinity
 constexpr double kRealTolerance = 1e-8;
 constexpr int kMaxSteps = 100000;
 
@@ -174,6 +175,8 @@ Path track(const Homogeneous& H, Vec10 X, const Params& P0, const Params& P1) {
     if (y.allFinite() && H.correct(y, along(P0, d, t), 3, kTracking)) {
       X = y;
       s = t;
+      // Beyond 1e7 in lengths scaled to ~1: no machine's pose; the path runs to infinity.
+      if (std::abs(X(0)) < kTowardInfinity * X.norm()) return {X, PathEnd::at_infinity, ""};
       if (++good >= 3) {
         h = std::min(2.0 * h, kLargestStep);
         good = 0;

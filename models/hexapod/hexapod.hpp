@@ -162,7 +162,8 @@ inline constexpr std::string_view kHexapodModel = "hexapod";
 class Hexapod final : public Machine,
                       public BatchAnalysis,
                       public Dynamics,
-                      public TranslationalMaps {
+                      public TranslationalMaps,
+                      public AllForwardKinematics {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit Hexapod(const HexapodDesign& design);
@@ -211,6 +212,11 @@ class Hexapod final : public Machine,
   /// Legs from the base joints a_i to the platform joints at the pose, and the tool.
   bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;
   /// Present with a mass model (the machine file's `masses`).
+  Capability<AllForwardKinematics> all_forward_kinematics_solver() const override { return this; }
+  /// Every assembly mode (models/hexapod/assembly_modes.hpp); rho of the pose distance is the
+  /// mean distance of the platform joints from the TCP.
+  ForwardSolutions all_forward_kinematics(const Eigen::VectorXd& q,
+                                          const std::optional<Pose>& reference) const override;
   Capability<Dynamics> dynamics() const override {
     if (!design_.masses.present)
       return Capability<Dynamics>::missing("the machine file has no 'masses'");

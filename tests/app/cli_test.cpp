@@ -185,6 +185,43 @@ TEST_F(Cli, FkRecoversThePose) {
   EXPECT_EQ(pkmopt::parse_csv(guessed.out, "o").rows[0].cells[6], "1");
 }
 
+// --all: every real assembly mode, the pose the lengths came from first (nearest the guess);
+// each row solves the lengths, modes below the base are there (the base is planar), the
+// counts add up to 40 paths, and a model without the solver is refused with one line.
+TEST_F(Cli, FkAllListsEveryAssemblyMode) {
+  const pkmopt::Hexapod hexapod(sample_machines::conventions_hexapod_design());
+  const pkmopt::Pose pose{{0.05, 0.02, 0.88}, pkmopt::deg_to_rad(Eigen::Vector3d(3, -4, 12))};
+  const auto q = hexapod.inverse_kinematics(pose);
+  std::string qs;
+  for (int i = 0; i < 6; ++i) qs += (i ? "," : "") + pkmopt::format_number(q(i));
+  const CliRun r = run("fk " + machine_ + " --q " + qs + " --all --guess 0.05,0.02,0.9,0,0,0");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
+            "mode,x,y,z,rx,ry,rz,residual,det_j,reachable,nearest_other,to_reference");
+  const pkmopt::CsvTable t = pkmopt::parse_csv(r.out, "out");
+  ASSERT_GE(t.rows.size(), 2u);
+  EXPECT_EQ(t.rows.size() % 2, 0u);
+  EXPECT_NEAR(t.number(t.rows[0], t.require_column("x")), 0.05, 1e-9);
+  EXPECT_NEAR(t.number(t.rows[0], t.require_column("z")), 0.88, 1e-9);
+  EXPECT_NEAR(t.number(t.rows[0], t.require_column("rz")), 12.0, 1e-7);
+  EXPECT_EQ(t.rows[0].cells[t.require_column("reachable")], "1");
+  bool mirrored = false;
+  for (const auto& row : t.rows) {
+    const pkmopt::Pose p{
+        {t.number(row, 1), t.number(row, 2), t.number(row, 3)},
+        pkmopt::deg_to_rad(Eigen::Vector3d(t.number(row, 4), t.number(row, 5), t.number(row, 6)))};
+    EXPECT_LT((hexapod.inverse_kinematics(p) - q).cwiseAbs().maxCoeff(), 1e-9);
+    mirrored = mirrored || p.position.z() < 0.0;
+  }
+  EXPECT_TRUE(mirrored) << r.out;
+  EXPECT_NE(r.err.find("of 40 paths"), std::string::npos) << r.err;
+  const CliRun delta =
+      run("fk " + std::string(PKMOPT_SOURCE_DIR) + "/examples/delta.yaml --q 10,20,30 --all");
+  EXPECT_EQ(delta.status, 2);
+  EXPECT_NE(delta.err.find("--all: expected a hexapod machine file"), std::string::npos)
+      << delta.err;
+}
+
 // The row is written (converged = 0) and the exit status is 3: a result that is probably wrong.
 TEST_F(Cli, FkThatCannotConvergeIsAResultNotACrash) {
   const CliRun r = run("fk " + machine_ + " --q 0.01,0.01,0.01,0.01,0.01,0.01");
