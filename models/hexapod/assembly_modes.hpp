@@ -9,11 +9,16 @@
 // A general platform has 40 complex solutions (Raghavan 1993; Ronga & Vust; Lazard; Mourrain),
 // up to 40 of them real (Dietmaier 1998). The homotopy starts from Dietmaier's geometry, whose 40
 // solutions are all real and published (models/hexapod/dietmaier_start.inc), tracks them once to
-// a random complex geometry (seeded; kept for the process), and from there to the geometry asked
-// for, with the lengths divided by the mean leg length. Paths run in projective coordinates
+// a random complex geometry near a typical machine (joint circles of radius 0.6 and 0.25, legs of
+// 1, plus complex noise of 0.3; seeded; kept for the process), and from there to the geometry
+// asked for, with the lengths divided by the mean leg length. When a path fails (its step falls
+// below 1e-12, then below 1e-15 with smaller steps), all 40 paths are run again from a second
+// random complex geometry and the run with fewer failures is kept. Paths run in projective
+// coordinates
 // X = (X0, X0 x) on a random complex patch, so that a solution that grows without bound stays
 // finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than 40 finite
-// solutions). Because the intermediate geometries are complex and random, the 40 paths avoid the
+// solutions; a path is declared so beyond s = 0.95 when |X0| < 1e-7 |X|). Because the
+// intermediate geometries are complex and random, the 40 paths avoid the
 // geometries where solutions meet with probability 1 (the "gamma trick"): every isolated
 // solution of the target is the end of one path. A path whose step falls below 1e-12 is reported
 // as failed, never hidden; so are two paths that end at the same solution. Each end is polished
