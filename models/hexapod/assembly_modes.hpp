@@ -14,9 +14,8 @@
 // asked for, with the lengths divided by the mean leg length. When a path fails (its step falls
 // below 1e-12, then below 1e-15 with smaller steps), all 40 paths are run again from a second
 // random complex geometry and the run with fewer failures is kept. Paths run in projective
-// coordinates
-// X = (X0, X0 x) on a random complex patch, so that a solution that grows without bound stays
-// finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than 40 finite
+// coordinates X = (X0, X0 x) on a random complex patch, so that a solution that grows without
+// bound stays finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than 40 finite
 // solutions; a path is declared so beyond s = 0.95 when |X0| < 1e-7 |X|). Because the
 // intermediate geometries are complex and random, the 40 paths avoid the
 // geometries where solutions meet with probability 1 (the "gamma trick"): every isolated
