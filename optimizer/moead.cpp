@@ -148,9 +148,8 @@ FrontResult run_moead(const Problem& problem, const MoeadOptions& options) {
         "moead: expected at least 3 weight vectors (a population of 3), found {}", size));
   const std::vector<std::vector<std::size_t>> near =
       neighbourhoods(weights, std::min(options.neighbours, size));
-  const double mutation_probability = options.mutation_probability > 0.0
-                                          ? options.mutation_probability
-                                          : 1.0 / static_cast<double>(n);
+  const double mutation_probability =
+      resolved_mutation_probability(options.mutation_probability, n);
   Random rng(options.seed);
 
   std::vector<Individual> population =
@@ -161,6 +160,8 @@ FrontResult run_moead(const Problem& problem, const MoeadOptions& options) {
   std::vector<std::size_t> all(size);
   std::iota(all.begin(), all.end(), 0);
 
+  std::vector<double> nadir;  // of the population, kept until a member is replaced
+  bool nadir_current = false, nadir_feasible = false;
   for (std::size_t generation = 0; generation < options.generations; ++generation) {
     std::vector<std::size_t> order = all;
     rng.shuffle(order);
@@ -183,7 +184,12 @@ FrontResult run_moead(const Problem& problem, const MoeadOptions& options) {
       const std::vector<double>& z = frame.best();
       std::vector<double> scale(m, 1.0);
       if (options.normalize) {
-        const std::vector<double> nadir = population_nadir(population, m, frame.any_feasible);
+        // The nadir changes only when members are replaced or the first feasible design comes.
+        if (!nadir_current || nadir_feasible != frame.any_feasible) {
+          nadir = population_nadir(population, m, frame.any_feasible);
+          nadir_feasible = frame.any_feasible;
+          nadir_current = true;
+        }
         for (std::size_t j = 0; j < m; ++j) {
           const double range = nadir[j] - z[j];
           scale[j] = std::isfinite(range) && range > 0.0 ? range : 1.0;
@@ -201,6 +207,7 @@ FrontResult run_moead(const Problem& problem, const MoeadOptions& options) {
                                       tchebycheff(member, weights[j], z, scale);
         if (!better) continue;
         population[j] = child;
+        nadir_current = false;
         ++replaced;
       }
     }

@@ -86,9 +86,7 @@ FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
   const std::size_t m = problem.num_objectives();
   const std::size_t size = options.population;
   const VariationSettings variation{options.crossover_probability, options.crossover_eta,
-                                    options.mutation_probability > 0.0
-                                        ? options.mutation_probability
-                                        : 1.0 / static_cast<double>(n),
+                                    resolved_mutation_probability(options.mutation_probability, n),
                                     options.mutation_eta};
   Random rng(options.seed);
 

@@ -130,9 +130,7 @@ FrontResult run_nsga3(const Problem& problem, const Nsga3Options& options) {
   const std::size_t size =
       options.population != 0 ? options.population : (directions.size() + 3) / 4 * 4;
   const VariationSettings variation{options.crossover_probability, options.crossover_eta,
-                                    options.mutation_probability > 0.0
-                                        ? options.mutation_probability
-                                        : 1.0 / static_cast<double>(n),
+                                    resolved_mutation_probability(options.mutation_probability, n),
                                     options.mutation_eta};
   Random rng(options.seed);
 

@@ -48,6 +48,11 @@ struct VariationSettings {
   double mutation_eta = 20.0;
 };
 
+/// The mutation probability per variable an option gives: `probability`, or 1/n when it is 0.
+inline double resolved_mutation_probability(double probability, std::size_t n) {
+  return probability > 0.0 ? probability : 1.0 / static_cast<double>(n);
+}
+
 /// Appends `count` children (count even) to `out`: two parents by `select()` (an index into
 /// `parents`), SBX with the crossover probability, polynomial mutation of each; the random draws
 /// in that order, from `rng`.
