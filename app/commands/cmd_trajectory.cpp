@@ -1,6 +1,7 @@
 // pkmopt trajectory MACHINE.yaml (--path PATH.csv | --helix [--helix-* ...])
 //   [--t-start S] [--t-end S] [--samples N | --dt S] [--jacobian] [--out FILE.csv]
 //   [--singular-out FILE.csv] [--wrench fx,fy,fz,mx,my,mz] [--catalog CATALOG.yaml --drive NAME]
+//   [--assembly-modes [--mode-warning M]]
 // See docs/trajectory.md for the options, the helix formula and every output column.
 #include <fmt/format.h>
 
@@ -22,6 +23,7 @@
 #include "io/machine/machine_file.hpp"
 #include "io/results/trajectory_files.hpp"
 #include "models/motion/trajectory.hpp"
+#include "models/motion/trajectory_modes.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -48,6 +50,8 @@ struct TrajectoryCommandOptions {
   std::string wrench;
   std::string catalog_file;
   std::string drive;
+  bool assembly_modes = false;
+  std::optional<double> mode_warning;  // m
 };
 
 Eigen::Vector3d vector3_option(std::string_view option, const std::string& text,
@@ -107,6 +111,33 @@ void check_path_options(const TrajectoryCommandOptions& opt) {
   if (opt.samples && opt.dt) {
     throw InputError("--samples and --dt: expected one of them, found both");
   }
+  if (opt.mode_warning) {
+    if (!opt.assembly_modes)
+      throw InputError("--mode-warning: expected only together with --assembly-modes");
+    if (!(std::isfinite(*opt.mode_warning) && *opt.mode_warning >= 0.0 &&
+          *opt.mode_warning <= kMaxInputLength))
+      bad_option("--mode-warning", "a pose distance in m, 0 .. 1000", *opt.mode_warning);
+  }
+}
+
+// The assembly modes at every sample (--assembly-modes), and the summary lines about them.
+std::optional<TrajectoryModes> assembly_modes_of(const TrajectoryCommandOptions& opt,
+                                                 const Machine& machine,
+                                                 const TrajectoryResult& result,
+                                                 std::string& summary) {
+  if (!opt.assembly_modes) return std::nullopt;
+  const auto solver = machine.all_forward_kinematics_solver();
+  if (!solver)
+    throw InputError(
+        fmt::format("--assembly-modes: expected a machine whose forward kinematics "
+                    "can be solved completely (a hexapod), found {}: {}",
+                    opt.machine_file, solver.reason()));
+  TrajectoryModes modes = trajectory_assembly_modes(*solver.get(), result);
+  // By default a tenth of rho: the platform's joints within a tenth of its radius of another
+  // mode.
+  summary +=
+      assembly_modes_text(result, modes, opt.mode_warning.value_or(0.1 * modes.distance_length));
+  return modes;
 }
 
 // The helix of the --helix-* options and its sample times (--samples or --dt, within the limits;
@@ -252,11 +283,15 @@ void run_trajectory(const TrajectoryCommandOptions& opt) {
   const ActuatorEntry* drive = read_drive(opt, *machine, catalog);
   const TrajectoryResult result = evaluate_trajectory(*machine, *path, times, wrench);
 
-  const std::string table = trajectory_csv(*machine, result, opt.jacobian);
+  std::string modes_summary;
+  const std::optional<TrajectoryModes> modes =
+      assembly_modes_of(opt, *machine, result, modes_summary);
+  const std::string table =
+      trajectory_csv(*machine, result, opt.jacobian, modes ? &*modes : nullptr);
   // The summary: ranges along the path, the agreement of q_dot with the IK differences, and the
   // singular poses. On stdout when the table goes to a file, else on stderr.
   const TrajectorySummary reduced = summarize_trajectory(result, machine->num_actuators());
-  std::string summary = trajectory_summary_text(*machine, result, reduced);
+  std::string summary = trajectory_summary_text(*machine, result, reduced) + modes_summary;
   if (drive != nullptr) {
     bool carries = false;
     summary += drive_check_text(*drive, reduced, carries);
@@ -305,6 +340,12 @@ void add_trajectory_command(CLI::App& app) {
                   "Actuator catalog (YAML) holding the drive to check against the path's forces");
   cmd->add_option("--drive", opt->drive,
                   "Catalog entry to check: peak and RMS force, speed and stroke of every actuator");
+  cmd->add_flag("--assembly-modes", opt->assembly_modes,
+                "At every sample, solve the forward kinematics completely (hexapod) and give the "
+                "pose distance to the nearest other assembly mode (column mode_distance)");
+  cmd->add_option("--mode-warning", opt->mode_warning,
+                  "Warn where another assembly mode comes nearer than this pose distance (m); "
+                  "default a tenth of the platform's joint radius");
   cmd->callback([opt] { run_trajectory(*opt); });
 }
 

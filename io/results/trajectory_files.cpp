@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -37,7 +38,8 @@ SampledPath read_path_csv(const std::string& path) {
   return SampledPath(std::move(table.times), std::move(table.poses));
 }
 
-std::string trajectory_csv(const Machine& machine, const TrajectoryResult& result, bool jacobian) {
+std::string trajectory_csv(const Machine& machine, const TrajectoryResult& result, bool jacobian,
+                           const TrajectoryModes* modes) {
   const int na = machine.num_actuators();
   const Eigen::VectorXd q_scale = actuator_scales(machine);
   const Eigen::VectorXd unit = Eigen::VectorXd::Ones(na);
@@ -54,20 +56,22 @@ std::string trajectory_csv(const Machine& machine, const TrajectoryResult& resul
   out << ",singularity_margin,det_j";
   const bool interference = machine.checks_leg_interference();
   if (interference) out << ",leg_clearance,clearance_pair";
+  if (modes) out << ",mode_distance,real_modes,failed_paths";
   if (jacobian) {
     for (int r = 1; r <= na; ++r) {
       for (int c = 1; c <= 6; ++c) out << ",J_" << r << '_' << c;
     }
   }
   out << '\n';
-  for (const TrajectorySample& s : result.samples) {
+  for (std::size_t k = 0; k < result.samples.size(); ++k) {
+    const TrajectorySample& s = result.samples[k];
     std::string line = format_number(s.t);
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(s.pose.position(k));
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(rad_to_deg(s.pose.angles(k)));
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(s.twist(k));
-    for (int k = 3; k < 6; ++k) line += ',' + format_number(rad_to_deg(s.twist(k)));
-    for (int k = 0; k < 3; ++k) line += ',' + format_number(s.twist_rate(k));
-    for (int k = 3; k < 6; ++k) line += ',' + format_number(rad_to_deg(s.twist_rate(k)));
+    for (int i = 0; i < 3; ++i) line += ',' + format_number(s.pose.position(i));
+    for (int i = 0; i < 3; ++i) line += ',' + format_number(rad_to_deg(s.pose.angles(i)));
+    for (int i = 0; i < 3; ++i) line += ',' + format_number(s.twist(i));
+    for (int i = 3; i < 6; ++i) line += ',' + format_number(rad_to_deg(s.twist(i)));
+    for (int i = 0; i < 3; ++i) line += ',' + format_number(s.twist_rate(i));
+    for (int i = 3; i < 6; ++i) line += ',' + format_number(rad_to_deg(s.twist_rate(i)));
     line += s.metrics.reachable ? ",1" : ",0";
     line += s.metrics.singular ? ",1" : ",0";
     line += joined(s.metrics.q, q_scale);
@@ -80,6 +84,11 @@ std::string trajectory_csv(const Machine& machine, const TrajectoryResult& resul
     if (interference) {
       line += ',' + format_number(s.metrics.leg_clearance);
       line += ',' + clearance_pair_text(s.metrics.clearance_first, s.metrics.clearance_second);
+    }
+    if (modes) {
+      const AssemblyModeSample& m = modes->samples[k];
+      line +=
+          fmt::format(",{},{},{}", format_number(m.nearest_other), m.real_modes, m.failed_paths);
     }
     if (jacobian) {
       for (int r = 0; r < na; ++r) {
@@ -241,6 +250,50 @@ std::string drive_check_text(const ActuatorEntry& entry, const TrajectorySummary
   text += carries ? fmt::format("  {} carries every actuator along this path\n", entry.name)
                   : fmt::format("  WARNING: {} does NOT carry this path (EXCEEDED above)\n",
                                 entry.name);
+  return text;
+}
+
+}  // namespace pkmopt
+
+namespace pkmopt {
+
+std::string assembly_modes_text(const TrajectoryResult& result, const TrajectoryModes& modes,
+                                double warn_below) {
+  std::size_t nearest = 0, near_count = 0, not_found = 0, failed = 0;
+  std::size_t first_near = 0, first_not_found = 0, first_failed = 0;
+  std::size_t fewest = SIZE_MAX, most = 0;
+  for (std::size_t k = 0; k < modes.samples.size(); ++k) {
+    const AssemblyModeSample& m = modes.samples[k];
+    if (m.nearest_other < modes.samples[nearest].nearest_other) nearest = k;
+    fewest = std::min(fewest, m.real_modes);
+    most = std::max(most, m.real_modes);
+    if (m.nearest_other < warn_below && near_count++ == 0) first_near = k;
+    if (!m.tracked_found && !result.samples[k].metrics.singular && not_found++ == 0)
+      first_not_found = k;
+    if (m.failed_paths > 0 && failed++ == 0) first_failed = k;
+  }
+  if (modes.samples.empty()) return "";
+  auto t = [&](std::size_t k) { return format_number(result.samples[k].t); };
+  std::string text = fmt::format(
+      "  assembly modes: {} .. {} real; nearest other mode {:.4g} m, at t = {} s (pose distance "
+      "sqrt(|dp|^2 + (rho theta)^2), rho = {:.4g} m)\n",
+      fewest, most, modes.samples[nearest].nearest_other, t(nearest), modes.distance_length);
+  if (near_count > 0)
+    text += fmt::format(
+        "  WARNING: another assembly mode comes within {:.4g} m of the tracked pose (below "
+        "{:.4g} m) at {} samples, first at t = {} s: the path runs near a parallel singularity, "
+        "where a disturbance could carry the machine into that mode\n",
+        modes.samples[nearest].nearest_other, warn_below, near_count, t(first_near));
+  if (not_found > 0)
+    text += fmt::format(
+        "  WARNING: the tracked pose was not among the forward-kinematics solutions at {} samples, "
+        "first at t = {} s (mode_distance 0 there)\n",
+        not_found, t(first_not_found));
+  if (failed > 0)
+    text += fmt::format(
+        "  WARNING: forward-kinematics paths failed at {} samples, first at t = {} s: other modes "
+        "may be missing there (failed_paths)\n",
+        failed, t(first_failed));
   return text;
 }
 

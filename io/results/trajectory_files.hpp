@@ -13,6 +13,7 @@
 //                          (N or N*m, under the wrench), with masses tau_dyn_1..tau_dyn_n
 //                          (wrench, gravity and inertia), singularity_margin, det_j
 //                          [,leg_clearance,clearance_pair with a leg shape]
+//                          [,mode_distance (m),real_modes,failed_paths with `modes`]
 //                        and, with `jacobian`, J_r_c (r = 1..n, c = 1..6; SI units, +inf where
 //                        the Jacobian failed). q in m and m/s for prismatic actuators, deg and
 //                        deg/s for revolute ones.
@@ -25,6 +26,8 @@
 //                        actuator the peak |tau| and, with masses, the peak and RMS tau_dyn
 //                        and the peak power.
 //   drive_check_text     whether a catalog entry carries every actuator along the path.
+//   assembly_modes_text  the nearest other assembly mode along the path, and warnings where it
+//                        comes nearer than a threshold or where paths failed.
 // Numbers in the CSVs in the shortest text that reads back to the same double (format_number);
 // docs/trajectory.md describes every column.
 //
@@ -39,6 +42,7 @@
 
 #include "models/core/machine.hpp"
 #include "models/motion/trajectory.hpp"
+#include "models/motion/trajectory_modes.hpp"
 #include "problems/design/actuator_catalog.hpp"
 
 namespace pkmopt {
@@ -47,7 +51,8 @@ namespace pkmopt {
 SampledPath read_path_csv(const std::string& path);
 
 /// The sample table (header and one row per sample of `result`).
-std::string trajectory_csv(const Machine& machine, const TrajectoryResult& result, bool jacobian);
+std::string trajectory_csv(const Machine& machine, const TrajectoryResult& result, bool jacobian,
+                           const TrajectoryModes* modes = nullptr);
 
 /// The singular poses of `result` (header and one row per pose).
 std::string singular_poses_csv(const TrajectoryResult& result);
@@ -66,5 +71,12 @@ DriveDuty actuator_duty(const TrajectorySummary& summary, int i);
 /// to whether it carries every actuator. For machines with linear actuators.
 std::string drive_check_text(const ActuatorEntry& entry, const TrajectorySummary& summary,
                              bool& carries);
+
+/// The summary lines of the assembly modes along `result` (`modes` of the same samples): the
+/// smallest distance to another mode and where, the range of the real mode count, and a
+/// "warning:" line each for samples nearer than `warn_below` (m), for samples where the tracked
+/// pose was not found and for samples where paths failed.
+std::string assembly_modes_text(const TrajectoryResult& result, const TrajectoryModes& modes,
+                                double warn_below);
 
 }  // namespace pkmopt

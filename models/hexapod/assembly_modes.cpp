@@ -3,11 +3,11 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -32,8 +32,12 @@ constexpr double kTowardInfinity = 1e-7;  // |X0| / |X| at which a path is taken
 constexpr double kAtInfinity = 1e-8;      // |X0| / |X| below which an end is a solution at infinity
 constexpr double kRealTolerance = 1e-8;
 constexpr int kMaxSteps = 100000;
-constexpr double kEndgame = 0.95;    // s beyond which a path may be declared at infinity
-constexpr double kStartNoise = 0.3;  // size of the complex noise of the start geometry
+constexpr double kEndgame = 0.95;              // s beyond which a path may be declared at infinity
+constexpr double kStartNoise = 0.3;            // size of the complex noise of the start geometry
+constexpr std::uint64_t kGeometrySeed = 1989;  // the random lengths of a geometry's own start
+// Size of their complex part: small keeps the paths short (2.9 ms against 3.7 ms at 0.1 for 40
+// finite solutions), still far from the real singular lengths.
+constexpr double kGeometryNoise = 0.05;
 
 // A geometry: base points a_i, platform points b_i, squared lengths.
 struct Params {
@@ -50,6 +54,36 @@ Params along(const Params& p0, const Params& d, double s) {
 C bilinear(const Vec3c& u, const Vec3c& v) { return u(0) * v(0) + u(1) * v(1) + u(2) * v(2); }
 Vec3c cross(const Vec3c& u, const Vec3c& v) {
   return {u(1) * v(2) - u(2) * v(1), u(2) * v(0) - u(0) * v(2), u(0) * v(1) - u(1) * v(0)};
+}
+
+// J^-1 b by Gaussian elimination with partial pivoting (two fifths of Eigen's PartialPivLU time
+// for one right-hand side at this size); not finite when J is singular.
+Vec10 solve(Mat10 J, Vec10 b) {
+  for (int k = 0; k < 10; ++k) {
+    int pivot = k;
+    double largest = std::norm(J(k, k));
+    for (int i = k + 1; i < 10; ++i)
+      if (const double n = std::norm(J(i, k)); n > largest) {
+        largest = n;
+        pivot = i;
+      }
+    if (pivot != k) {
+      J.row(k).swap(J.row(pivot));
+      std::swap(b(k), b(pivot));
+    }
+    const C inverse = 1.0 / J(k, k);
+    for (int i = k + 1; i < 10; ++i) {
+      const C f = J(i, k) * inverse;
+      for (int j = k + 1; j < 10; ++j) J(i, j) -= f * J(k, j);
+      b(i) -= f * b(k);
+    }
+  }
+  for (int k = 9; k >= 0; --k) {
+    C sum = b(k);
+    for (int j = k + 1; j < 10; ++j) sum -= J(k, j) * b(j);
+    b(k) = sum / J(k, k);
+  }
+  return b;
 }
 
 // The system in projective coordinates X = (X0, P, R1, R2), x = (P, R1, R2) / X0, so that paths
@@ -102,10 +136,16 @@ struct Homogeneous {
     if (J) J->row(9) = patch.transpose();
   }
 
-  // dG/ds along P(s) = P0 + s d.
-  static Vec10 parameter_derivative(const Vec10& X, const Params& P, const Params& d) {
+  // dG/ds along P(s) = P0 + s d (d changes only the lengths when `lengths_only`).
+  static Vec10 parameter_derivative(const Vec10& X, const Params& P, const Params& d,
+                                    bool lengths_only) {
     Vec10 dG = Vec10::Zero();
     const C x0 = X(0);
+    if (lengths_only) {
+      const C x0_4 = (x0 * x0) * (x0 * x0);
+      for (int i = 0; i < 6; ++i) dG(3 + i) = -d.l2(i) * x0_4;
+      return dG;
+    }
     const Vec3c r1 = X.segment<3>(4), r2 = X.segment<3>(7), c = cross(r1, r2);
     for (int i = 0; i < 6; ++i) {
       const Vec3c q = leg(X, P, i);
@@ -117,12 +157,13 @@ struct Homogeneous {
   }
 
   // dX/ds = -J^-1 dG/ds.
-  Vec10 tangent(const Vec10& X, const Params& P0, const Params& d, double s) const {
+  Vec10 tangent(const Vec10& X, const Params& P0, const Params& d, double s,
+                bool lengths_only) const {
     const Params P = along(P0, d, s);
     Vec10 G;
     Mat10 J;
     evaluate(X, P, G, &J);
-    return Eigen::PartialPivLU<Mat10>(J).solve(-parameter_derivative(X, P, d));
+    return solve(J, -parameter_derivative(X, P, d, lengths_only));
   }
 
   // Newton's method at P from y: true when |G| is below kSolved or the steps contract to
@@ -134,7 +175,7 @@ struct Homogeneous {
       Mat10 J;
       evaluate(y, P, G, &J);
       if (G.cwiseAbs().maxCoeff() < kSolved) return true;
-      const Vec10 dx = Eigen::PartialPivLU<Mat10>(J).solve(-G);
+      const Vec10 dx = solve(J, -G);
       const double norm = dx.norm();
       if (!std::isfinite(norm) || (it > 0 && norm > 0.5 * previous)) return false;
       y += dx;
@@ -163,25 +204,30 @@ struct Path {
 
 // How carefully a path is followed: the first try, and the retry of a path that failed.
 struct Tracking {
+  double first_step = 0.02;
   double largest_step = kLargestStep;
   double smallest_step = kSmallestStep;
   int corrector_steps = 3;
+  int grow_after = 3;  // good steps after which the step is doubled
 };
-constexpr Tracking kCareful{0.01, 1e-15, 4};
+constexpr Tracking kCareful{0.01, 0.01, 1e-15, 4};
+// From a geometry's own start (paths in the lengths alone, short and smooth).
+Tracking kFromGeometry{0.1, 0.5, kSmallestStep, 3, 3};
 
 // Follows X from P0 (s = 0) to P1 (s = 1).
 Path track(const Homogeneous& H, Vec10 X, const Params& P0, const Params& P1,
            const Tracking& how = {}) {
   const Params d = P1 - P0;
-  double s = 0.0, h = std::min(0.02, how.largest_step);
+  const bool lengths_only = d.a.isZero(0.0) && d.b.isZero(0.0);
+  double s = 0.0, h = how.first_step;
   int good = 0;
   for (int step = 0; step < kMaxSteps; ++step) {
     if (s >= 1.0) return {X, PathEnd::reached, ""};
     h = std::min(h, 1.0 - s);
-    const Vec10 k1 = H.tangent(X, P0, d, s);
-    const Vec10 k2 = H.tangent(X + 0.5 * h * k1, P0, d, s + 0.5 * h);
-    const Vec10 k3 = H.tangent(X + 0.5 * h * k2, P0, d, s + 0.5 * h);
-    const Vec10 k4 = H.tangent(X + h * k3, P0, d, s + h);
+    const Vec10 k1 = H.tangent(X, P0, d, s, lengths_only);
+    const Vec10 k2 = H.tangent(X + 0.5 * h * k1, P0, d, s + 0.5 * h, lengths_only);
+    const Vec10 k3 = H.tangent(X + 0.5 * h * k2, P0, d, s + 0.5 * h, lengths_only);
+    const Vec10 k4 = H.tangent(X + h * k3, P0, d, s + h, lengths_only);
     Vec10 y = X + (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
     const double t = s + h >= 1.0 ? 1.0 : s + h;
     if (y.allFinite() && H.correct(y, along(P0, d, t), how.corrector_steps, kTracking)) {
@@ -191,7 +237,7 @@ Path track(const Homogeneous& H, Vec10 X, const Params& P0, const Params& P1,
       // infinity (earlier, a path may pass near infinity and come back).
       if (s > kEndgame && std::abs(X(0)) < kTowardInfinity * X.norm())
         return {X, PathEnd::at_infinity, ""};
-      if (++good >= 3) {
+      if (++good >= how.grow_after) {
         h = std::min(2.0 * h, how.largest_step);
         good = 0;
       }
@@ -226,6 +272,7 @@ struct Start {
   Homogeneous H;
   Params P;
   std::vector<Vec10> X;
+  Tracking how;  // of the first try of each path
 };
 
 Start make_start(std::uint64_t seed) {
@@ -273,7 +320,24 @@ const Start& complex_start(int which) {
   return second;
 }
 
-// The 40 paths from `start` to `target` (scaled by `scale`), classified (see the header).
+// The ends of the paths from `start` to `target`: each path is tried once more, carefully, when
+// it fails.
+std::vector<Path> track_all(const Start& start, const Params& target) {
+  std::vector<Path> ends;
+  ends.reserve(start.X.size());
+  for (const Vec10& X : start.X) {
+    Path path = track(start.H, X, start.P, target, start.how);
+    if (path.end == PathEnd::failed) path = track(start.H, X, start.P, target, kCareful);
+    if (path.end == PathEnd::reached && std::abs(path.x(0)) < kAtInfinity * path.x.norm())
+      path.end = PathEnd::at_infinity;
+    if (path.end == PathEnd::reached && !start.H.correct(path.x, target, 8, kConverged))
+      path = {path.x, PathEnd::failed, "its end does not converge"};
+    ends.push_back(std::move(path));
+  }
+  return ends;
+}
+
+// The paths from `start` to `target` (scaled by `scale`), classified (see the header).
 AssemblyModes solve_from(const Start& start, const Params& target,
                          const Eigen::Matrix<double, 3, 6>& base,
                          const Eigen::Matrix<double, 3, 6>& platform,
@@ -281,20 +345,17 @@ AssemblyModes solve_from(const Start& start, const Params& target,
   AssemblyModes modes;
   std::vector<Vec9> found;
   std::vector<std::size_t> found_path;
-  for (std::size_t k = 0; k < start.X.size(); ++k) {
+  const std::vector<Path> ends = track_all(start, target);
+  for (std::size_t k = 0; k < ends.size(); ++k) {
+    const Path& path = ends[k];
     ++modes.paths;
-    Path path = track(start.H, start.X[k], start.P, target);
-    if (path.end == PathEnd::failed) path = track(start.H, start.X[k], start.P, target, kCareful);
-    if (path.end == PathEnd::at_infinity ||
-        (path.end == PathEnd::reached && std::abs(path.x(0)) < kAtInfinity * path.x.norm())) {
+    if (path.end == PathEnd::at_infinity) {
       ++modes.at_infinity;
       continue;
     }
-    if (path.end == PathEnd::failed || !start.H.correct(path.x, target, 8, kConverged)) {
+    if (path.end == PathEnd::failed) {
       ++modes.failed;
-      modes.failures.push_back(
-          fmt::format("path {}: {}", k + 1,
-                      path.end == PathEnd::failed ? path.why : "its end does not converge"));
+      modes.failures.push_back(fmt::format("path {}: {}", k + 1, path.why));
       continue;
     }
     const Vec9 x = path.x.tail<9>() / path.x(0);
@@ -334,20 +395,36 @@ AssemblyModes solve_from(const Start& start, const Params& target,
   return modes;
 }
 
+// The geometry (base, platform) divided by `scale`, with squared lengths (lengths / scale)^2.
+Params scaled(const Eigen::Matrix<double, 3, 6>& base, const Eigen::Matrix<double, 3, 6>& platform,
+              const Eigen::Matrix<double, 6, 1>& lengths, double scale) {
+  Params P;
+  P.a = (base / scale).cast<C>();
+  P.b = (platform / scale).cast<C>();
+  P.l2 = (lengths / scale).array().square().matrix().cast<C>();
+  return P;
+}
+
+void check_geometry(const Eigen::Matrix<double, 3, 6>& base,
+                    const Eigen::Matrix<double, 3, 6>& platform, const char* who) {
+  if (!base.allFinite() || !platform.allFinite())
+    throw std::invalid_argument(fmt::format("{}: expected finite joint points", who));
+}
+
+void check_lengths(const Eigen::Matrix<double, 6, 1>& lengths, const char* who) {
+  if (!lengths.allFinite() || !(lengths.minCoeff() > 0.0))
+    throw std::invalid_argument(fmt::format("{}: expected finite leg lengths > 0", who));
+}
+
 }  // namespace
 
 AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
                                  const Eigen::Matrix<double, 3, 6>& platform,
                                  const Eigen::Matrix<double, 6, 1>& lengths) {
-  if (!base.allFinite() || !platform.allFinite() || !lengths.allFinite() ||
-      !(lengths.minCoeff() > 0.0))
-    throw std::invalid_argument("all_assembly_modes: expected finite points and lengths > 0");
+  check_geometry(base, platform, "all_assembly_modes");
+  check_lengths(lengths, "all_assembly_modes");
   const double scale = lengths.mean();
-  Params target;
-  target.a = (base / scale).cast<C>();
-  target.b = (platform / scale).cast<C>();
-  target.l2 = (lengths / scale).array().square().matrix().cast<C>();
-
+  const Params target = scaled(base, platform, lengths, scale);
   AssemblyModes modes = solve_from(complex_start(0), target, base, platform, lengths, scale);
   if (modes.failed > 0) {
     // Another random path for every solution: the failures of the first are reported only when
@@ -356,6 +433,76 @@ AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
     if (again.failed < modes.failed) modes = std::move(again);
   }
   return modes;
+}
+
+// The geometry's own start: its finite solutions at random complex squared lengths.
+struct AssemblyModeSolver::Geometry {
+  Eigen::Matrix<double, 3, 6> base, platform;
+  double scale = 1.0;
+  Start start;                  // no points when the geometry's start could not be made
+  std::size_t at_infinity = 0;  // paths that end at infinity for every set of lengths
+};
+
+AssemblyModeSolver::AssemblyModeSolver(const Eigen::Matrix<double, 3, 6>& base,
+                                       const Eigen::Matrix<double, 3, 6>& platform,
+                                       const Eigen::Matrix<double, 6, 1>& typical_lengths) {
+  check_geometry(base, platform, "AssemblyModeSolver");
+  check_lengths(typical_lengths, "AssemblyModeSolver");
+  auto g = std::make_shared<Geometry>();
+  g->base = base;
+  g->platform = platform;
+  g->scale = typical_lengths.mean();
+  Params P = scaled(base, platform, typical_lengths, g->scale);
+  std::mt19937_64 engine(kGeometrySeed);  // the stream is fixed by the standard
+  auto uniform = [&] { return static_cast<double>(engine() >> 11) * 0x1.0p-53 * 2.0 - 1.0; };
+  for (int i = 0; i < 6; ++i) P.l2(i) += kGeometryNoise * C(uniform(), uniform());
+  for (int which = 0; which < 2; ++which) {
+    // A solution beyond 1e7 leg lengths at these lengths (at infinity, as all_assembly_modes
+    // counts it) is dropped: it stays far from any machine's poses for lengths within a
+    // machine's range.
+    const Start& universal = complex_start(which);
+    const std::vector<Path> ends = track_all(universal, P);
+    if (std::any_of(ends.begin(), ends.end(),
+                    [](const Path& p) { return p.end == PathEnd::failed; }))
+      continue;
+    Start own{universal.H, P, {}, kFromGeometry};
+    std::size_t at_infinity = 0;
+    for (const Path& path : ends) {
+      if (path.end == PathEnd::at_infinity)
+        ++at_infinity;
+      else
+        own.X.push_back(path.x);
+    }
+    // Random complex lengths meet no singular solution (probability 1): two equal ends mean a
+    // path jumped, and this start is not used.
+    bool distinct = true;
+    for (std::size_t i = 0; i < own.X.size() && distinct; ++i) {
+      const Vec10 xi = own.X[i] / own.X[i](0);
+      for (std::size_t j = i + 1; j < own.X.size() && distinct; ++j)
+        distinct = (xi - own.X[j] / own.X[j](0)).norm() > 1e-6 * (1.0 + xi.norm());
+    }
+    if (!distinct) continue;
+    g->start = std::move(own);
+    g->at_infinity = at_infinity;
+    break;
+  }
+  geometry_ = std::move(g);
+}
+
+std::size_t AssemblyModeSolver::finite_solutions() const { return geometry_->start.X.size(); }
+
+AssemblyModes AssemblyModeSolver::solve(const Eigen::Matrix<double, 6, 1>& lengths) const {
+  check_lengths(lengths, "AssemblyModeSolver::solve");
+  const Geometry& g = *geometry_;
+  if (!g.start.X.empty()) {
+    const Params target = scaled(g.base, g.platform, lengths, g.scale);
+    AssemblyModes modes = solve_from(g.start, target, g.base, g.platform, lengths, g.scale);
+    modes.at_infinity += g.at_infinity;
+    modes.paths += g.at_infinity;
+    if (modes.failed == 0) return modes;
+  }
+  // The geometry's start failed, or one of its paths did: all 40 paths from the universal start.
+  return all_assembly_modes(g.base, g.platform, lengths);
 }
 
 }  // namespace pkmopt

@@ -15,8 +15,8 @@
 // below 1e-12, then below 1e-15 with smaller steps), all 40 paths are run again from a second
 // random complex geometry and the run with fewer failures is kept. Paths run in projective
 // coordinates X = (X0, X0 x) on a random complex patch, so that a solution that grows without
-// bound stays finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than 40 finite
-// solutions; a path is declared so beyond s = 0.95 when |X0| < 1e-7 |X|). Because the
+// bound stays finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than
+// 40 finite solutions; a path is declared so beyond s = 0.95 when |X0| < 1e-7 |X|). Because the
 // intermediate geometries are complex and random, the 40 paths avoid the
 // geometries where solutions meet with probability 1 (the "gamma trick"): every isolated
 // solution of the target is the end of one path. A path whose step falls below 1e-12 is reported
@@ -34,6 +34,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,5 +61,29 @@ struct AssemblyModes {
 AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
                                  const Eigen::Matrix<double, 3, 6>& platform,
                                  const Eigen::Matrix<double, 6, 1>& lengths);
+
+/// The assembly modes of one geometry for any leg lengths, faster than all_assembly_modes when
+/// the geometry is solved more than once. At construction, the 40 paths are tracked once to
+/// random complex squared lengths near `typical_lengths` (the coefficient-parameter theorem of
+/// Morgan & Sommese applied to the lengths alone): their finite ends are every isolated solution
+/// of this geometry for generic lengths (fewer than 40 for a special geometry; the others stay at
+/// infinity). Each solve then follows only those from there to the lengths asked for. When a
+/// path fails, the solve falls back to all_assembly_modes. Immutable; share it between threads.
+class AssemblyModeSolver {
+ public:
+  /// Throws std::invalid_argument for non-finite points or lengths <= 0.
+  AssemblyModeSolver(const Eigen::Matrix<double, 3, 6>& base,
+                     const Eigen::Matrix<double, 3, 6>& platform,
+                     const Eigen::Matrix<double, 6, 1>& typical_lengths);
+  /// The assembly modes for `lengths` (> 0; throws std::invalid_argument otherwise).
+  AssemblyModes solve(const Eigen::Matrix<double, 6, 1>& lengths) const;
+  /// Finite solutions of this geometry for generic lengths (0 when its start could not be made
+  /// and every solve runs all 40 paths).
+  std::size_t finite_solutions() const;
+
+ private:
+  struct Geometry;
+  std::shared_ptr<const Geometry> geometry_;
+};
 
 }  // namespace pkmopt

@@ -43,6 +43,7 @@
 
 #include <Eigen/Core>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -287,8 +288,14 @@ class Hexapod final : public Machine,
                                   const Vec6<double>& compliance, const Wrench& wrench,
                                   PoseMetrics& out) const;
 
+  /// The assembly-mode solver of this geometry (AssemblyModeSolver), made on the first
+  /// all_forward_kinematics and shared by copies.
+  struct AssemblyModeCache;
+  static std::shared_ptr<AssemblyModeCache> new_assembly_mode_cache();
+
   HexapodDesign design_;
   Eigen::Matrix<double, 3, 6> platform_rel_;
+  std::shared_ptr<AssemblyModeCache> assembly_modes_ = new_assembly_mode_cache();
   double characteristic_length_ = 1.0;
   double cos_base_limit_ = -2.0;      // cos of the base joint limit (-2: unlimited)
   double cos_platform_limit_ = -2.0;  // cos of the platform joint limit

@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 #include "models/hexapod/assembly_modes.hpp"
 #include "models/hexapod/hexapod.hpp"
@@ -20,11 +22,27 @@ double pose_distance(const Pose& a, const Pose& b, double rho) {
 
 }  // namespace
 
+struct Hexapod::AssemblyModeCache {
+  std::once_flag made;
+  std::unique_ptr<AssemblyModeSolver> solver;
+};
+
+std::shared_ptr<Hexapod::AssemblyModeCache> Hexapod::new_assembly_mode_cache() {
+  return std::make_shared<AssemblyModeCache>();
+}
+
 ForwardSolutions Hexapod::all_forward_kinematics(const Eigen::VectorXd& q,
                                                  const std::optional<Pose>& guess) const {
   const Eigen::Matrix<double, 6, 1> lengths = q.head<6>();
   const Pose reference = guess ? *guess : home_pose_for(lengths);
-  const AssemblyModes modes = all_assembly_modes(design_.base_joints, platform_rel_, lengths);
+  // The solver's own start: the lengths of the centred platform at mid-stroke.
+  std::call_once(assembly_modes_->made, [&] {
+    const Vec6<double> mid =
+        Vec6<double>::Constant(0.5 * (design_.min_length + design_.max_length));
+    assembly_modes_->solver = std::make_unique<AssemblyModeSolver>(
+        design_.base_joints, platform_rel_, inverse_kinematics(home_pose_for(mid)));
+  });
+  const AssemblyModes modes = assembly_modes_->solver->solve(lengths);
   ForwardSolutions out;
   out.complex_count = modes.complex_count;
   out.at_infinity = modes.at_infinity;

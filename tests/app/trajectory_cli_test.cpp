@@ -2,6 +2,7 @@
 // numbers checked against an independent computation or labelled as regression pins), a path
 // file giving the same rates as the built-in helix, and bad input exiting with status 2.
 // The library (models/motion/trajectory) is tested in tests/models/motion/trajectory_test.cpp.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -327,6 +328,55 @@ TEST_F(TrajectoryCli, BadInputExitsWithStatus2AndWritesNothing) {
       source_path("examples/delta.yaml") + " --helix --catalog " + catalog + " --drive CMS50S/70",
       "found " + source_path("examples/delta.yaml") + " with revolute ones");
   expect_input_error(machine_ + " --helix --wrench 1,2,3", "--wrench: expected 6");
+  expect_input_error(machine_ + " --helix --mode-warning 0.01",
+                     "--mode-warning: expected only together with --assembly-modes");
+  expect_input_error(machine_ + " --helix --assembly-modes --mode-warning -1",
+                     "--mode-warning: expected a pose distance");
+  expect_input_error(source_path("examples/delta.yaml") + " --helix --assembly-modes",
+                     "--assembly-modes: expected a machine whose forward kinematics can be solved "
+                     "completely");
+}
+
+// --assembly-modes: the sample hexapod turning toward Fichter's singularity (rz = 90 deg). The
+// distance column is the library's (tests/models/motion/trajectory_modes_test.cpp checks it
+// against the mirror mode found by hand); here: the columns, the summary and its warning.
+TEST_F(TrajectoryCli, AssemblyModesAlongAPathAndAWarningNearASingularity) {
+  const fs::path path = dir_ / "turn.csv", out = dir_ / "out.csv";
+  {
+    std::string text = "t,x,y,z,rx,ry,rz\n";
+    for (int k = 0; k <= 20; ++k) text += fmt::format("{},0,0,0.9,0,0,{}\n", k, 60 + 1.5 * k);
+    std::ofstream(path) << text;
+  }
+  const std::string args =
+      "trajectory " + source_path("examples/hexapod.yaml") + " --path " + path.string();
+  CliRun r = run(args + " --assembly-modes --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const CsvTable table = read_csv_file(out.string());
+  ASSERT_EQ(table.rows.size(), 21u);
+  const int distance = table.require_column("mode_distance");
+  double previous = INFINITY;
+  for (const CsvRow& row : table.rows) {
+    const double d = table.number(row, distance);
+    EXPECT_LT(d, previous);  // the mirror mode comes nearer with every degree
+    previous = d;
+    EXPECT_EQ(table.number(row, table.require_column("failed_paths")), 0.0);
+    EXPECT_GE(table.number(row, table.require_column("real_modes")), 2.0);
+  }
+  EXPECT_EQ(previous, 0.0);  // rz = 90 deg: the modes meet
+  // The default threshold is rho / 10 = 0.0269 m: the last two samples (d = 0.0153 m at
+  // 88.5 deg, 0 at 90 deg) are below it, the one before (0.0307 m at 87 deg) is not.
+  EXPECT_NE(r.out.find("assembly modes: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("WARNING: another assembly mode comes within 0 m of the tracked pose "
+                       "(below 0.02693 m) at 2 samples, first at t = 19 s"),
+            std::string::npos)
+      << r.out;
+  // A threshold of 0 warns of nothing; without the option there are no mode columns.
+  r = run(args + " --assembly-modes --mode-warning 0 --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out.find("WARNING: another assembly mode"), std::string::npos) << r.out;
+  r = run(args + " --out " + out.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_csv_file(out.string()).column("mode_distance"), -1);
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // modes, the ones PHCpack published; on random geometries every real solution satisfies the leg
 // equations to 1e-10, their number is even and at most 40, every path is accounted for, and the
 // pose the lengths were made from is among them; relabelling the legs and moving the base frame
-// change nothing but the frame.
+// change nothing but the frame. The solver of one geometry (AssemblyModeSolver) finds what the 40
+// paths find.
 #include "models/hexapod/assembly_modes.hpp"
 
 #include <gtest/gtest.h>
@@ -155,6 +156,55 @@ TEST(AssemblyModes, RelabellingAndMovingTheBaseChangeOnlyTheFrame) {
     EXPECT_LT(nearest(in_moved, Q * m.position + t, Q * m.rotation).second, 1e-8);
 }
 
+// The same solutions of two solves, matched one to one.
+void expect_same_modes(const AssemblyModes& x, const AssemblyModes& y, int trial) {
+  EXPECT_EQ(x.failed, 0u) << trial << ": " << (x.failures.empty() ? "" : x.failures.front());
+  EXPECT_EQ(y.failed, 0u) << trial << ": " << (y.failures.empty() ? "" : y.failures.front());
+  // A path to a complex solution beyond 1e7 leg lengths may end as complex in one solve and at
+  // infinity in the other (both count it so, header); the real ones and the total agree.
+  EXPECT_EQ(x.complex_count + x.at_infinity, y.complex_count + y.at_infinity) << trial;
+  EXPECT_EQ(x.paths, 40u) << trial;
+  EXPECT_EQ(y.paths, 40u) << trial;
+  ASSERT_EQ(x.real.size(), y.real.size()) << trial;
+  for (const AssemblyMode& m : x.real)
+    EXPECT_LT(nearest(y, m.position, m.rotation).second, 1e-8) << trial;
+}
+
+TEST(AssemblyModes, OneGeometrysSolverFindsWhatTheFortyPathsFind) {
+  std::mt19937_64 engine(1234);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::Vector3d p;
+    Eigen::Matrix3d R;
+    const Geometry g = random_geometry(engine, p, R);
+    const AssemblyModeSolver solver(g.a, g.b, g.L);
+    EXPECT_GE(solver.finite_solutions(), 38u) << trial;  // a general geometry: 40, some huge
+    for (int pose = 0; pose < 3; ++pose) {
+      // Another pose of the same machine, up to 0.2 m and 0.4 rad away.
+      const Eigen::Vector3d q = p + 0.4 * Eigen::Vector3d(u(engine), u(engine), u(engine));
+      const Eigen::Matrix3d S =
+          Eigen::AngleAxisd(0.8 * u(engine),
+                            Eigen::Vector3d(u(engine), u(engine), u(engine)).normalized()) *
+          R;
+      Lengths L;
+      for (int i = 0; i < 6; ++i) L(i) = (q + S * g.b.col(i) - g.a.col(i)).norm();
+      const AssemblyModes fast = solver.solve(L);
+      expect_same_modes(fast, all_assembly_modes(g.a, g.b, L), trial);
+      EXPECT_LT(nearest(fast, q, S).second, 1e-8) << trial << ": the generating pose is missing";
+      for (const AssemblyMode& m : fast.real) EXPECT_LT(m.residual, 1e-10);
+    }
+  }
+}
+
+TEST(AssemblyModes, SolverOfDietmaiersPlatformFindsItsFortyRealModes) {
+  const Geometry g = dietmaier_geometry();
+  // Started from other lengths: the 40 real modes are found at his lengths all the same.
+  const AssemblyModeSolver solver(g.a, g.b, 1.1 * g.L);
+  const AssemblyModes modes = solver.solve(g.L);
+  EXPECT_EQ(modes.failed, 0u);
+  EXPECT_EQ(modes.real.size(), 40u);
+}
+
 TEST(AssemblyModes, BadInputIsRefused) {
   Geometry g = dietmaier_geometry();
   g.L(2) = 0.0;
@@ -162,6 +212,14 @@ TEST(AssemblyModes, BadInputIsRefused) {
   g = dietmaier_geometry();
   g.a(1, 1) = NAN;
   EXPECT_THROW(all_assembly_modes(g.a, g.b, g.L), std::invalid_argument);
+  EXPECT_THROW(AssemblyModeSolver(g.a, g.b, g.L), std::invalid_argument);
+  g = dietmaier_geometry();
+  const AssemblyModeSolver solver(g.a, g.b, g.L);
+  Lengths L = g.L;
+  L(4) = -1.0;
+  EXPECT_THROW(solver.solve(L), std::invalid_argument);
+  L(4) = INFINITY;
+  EXPECT_THROW(solver.solve(L), std::invalid_argument);
 }
 
 }  // namespace
