@@ -1,7 +1,8 @@
 // pkmopt workspace MACHINE.yaml [--orientation rx,ry,rz] [--tilt DEG] [--yaw-range DEG]
 //   [--mode all|some] [--orientation-step DEG] [--resolution M | --tolerance T] [--min-margin X]
 //   [--min-stiffness K] [--wrench fx,fy,fz,mx,my,mz] [--slice-axis x|y|z] [--slice-at M]
-//   [--slice-metric NAME] [--slice-pixel M] [--out DIR]
+//   [--slice-metric NAME] [--slice-pixel M] [--certify [--certify-size M] [--certify-margin X]]
+//   [--out DIR]
 // See docs/workspace.md for the options, the files and every summary.json field.
 #include <fmt/format.h>
 
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -20,6 +22,8 @@
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
 #include "io/machine/machine_file.hpp"
+#include "io/results/certificate_files.hpp"
+#include "models/workspace/mode_certificate.hpp"
 #include "models/workspace/slice_plane.hpp"
 #include "models/workspace/volume_accuracy.hpp"
 #include "models/workspace/workspace.hpp"
@@ -45,6 +49,9 @@ struct WorkspaceCommandOptions {
   std::optional<double> slice_at;
   std::string slice_metric = "singularity_margin";
   std::optional<double> slice_pixel;
+  bool certify = false;
+  std::optional<double> certify_size;  // m
+  double certify_margin = 0.0;
   std::string out_dir;
 };
 
@@ -161,11 +168,51 @@ SlicePlane slice_plane_of(const WorkspaceResult& ws, const WorkspaceOptions& opt
   return plane;
 }
 
+// The --certify options, checked (InputError naming the option).
+void check_certify_options(const WorkspaceCommandOptions& opt) {
+  if (!opt.certify && (opt.certify_size || opt.certify_margin != 0.0))
+    throw InputError("--certify-size/--certify-margin: expected only together with --certify");
+  if (opt.certify_size &&
+      !(std::isfinite(*opt.certify_size) && *opt.certify_size > 0.0 && *opt.certify_size <= 1.0))
+    bad_option("--certify-size", "a box size in m, > 0 and <= 1", *opt.certify_size);
+  if (!(std::isfinite(opt.certify_margin) && opt.certify_margin >= 0.0 && opt.certify_margin < 1.0))
+    bad_option("--certify-margin", "a margin 0 <= X < 1", opt.certify_margin);
+}
+
+// The certificate of the workspace's cells times its orientation set (--certify), with the
+// settings it was made with.
+std::pair<ModeCertificate, CertificateSetting> certify_workspace(const WorkspaceCommandOptions& opt,
+                                                                 const Machine& machine,
+                                                                 const WorkspaceOptions& options,
+                                                                 const WorkspaceResult& ws) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto enclosure = machine.jacobian_enclosure();
+  CertificateSetting setting;
+  setting.first_boxes = static_cast<std::int64_t>(ws.points.size());
+  setting.region = fmt::format("the workspace's {} grid cells of {:.4g} mm", ws.points.size(),
+                               1e3 * ws.resolution);
+  setting.nominal_angles_deg = options.orientations.nominal_angles * (180.0 / std::numbers::pi);
+  setting.tilt_deg = opt.tilt_deg;
+  setting.yaw_range_deg = opt.yaw_range_deg;
+  setting.options.min_size = opt.certify_size.value_or(ws.resolution / 4.0);
+  setting.options.min_margin = opt.certify_margin;
+  ModeCertificate c;
+  if (!ws.points.empty())
+    c = certify_working_mode(
+        *enclosure.get(),
+        workspace_cells(ws.points, ws.resolution, orientation_box(options.orientations)),
+        setting.options);
+  setting.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {c, setting};
+}
+
 // Writes the result files (all or none), prints the summary line and says what is off.
 void report_workspace(const WorkspaceCommandOptions& opt, const Machine& machine,
                       const WorkspaceOptions& options, const VolumeAccuracy& accuracy,
                       const WorkspaceResult& ws, const WorkspaceSlice& slice, SliceMetric metric,
                       double seconds) {
+  std::optional<std::pair<ModeCertificate, CertificateSetting>> certificate;
+  if (opt.certify && ws.volume > 0.0) certificate = certify_workspace(opt, machine, options, ws);
   const std::filesystem::path out_dir(opt.out_dir);
   if (!opt.out_dir.empty()) {
     std::error_code ec;
@@ -186,6 +233,12 @@ void report_workspace(const WorkspaceCommandOptions& opt, const Machine& machine
     std::vector<std::pair<std::string, std::string>> files;
     for (const auto& [name, content] : workspace_files(ws, slice, metric, summary))
       files.emplace_back((out_dir / name).string(), content);
+    if (certificate) {
+      files.emplace_back((out_dir / "certificate.json").string(),
+                         certificate_json(certificate->first, certificate->second));
+      files.emplace_back((out_dir / "uncertified.csv").string(),
+                         uncertified_boxes_csv(certificate->first));
+    }
     write_files_together(files);  // the mesh, points, slice and summary, all of them or none
   }
   fmt::print(
@@ -195,6 +248,13 @@ void report_workspace(const WorkspaceCommandOptions& opt, const Machine& machine
       1e3 * ws.convex_hull_volume, ws.maps.global_conditioning_index,
       ws.envelope_ratio ? fmt::format("{:.4g}", *ws.envelope_ratio) : "n/a", 1e3 * ws.resolution,
       seconds, opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
+  if (certificate) {
+    fmt::print("{}", certificate_text(certificate->first, certificate->second));
+    if (options.orientations.mode == OrientationSet::Mode::kSome)
+      fmt::print(
+          "  (--mode some: the cells hold positions reachable with some orientation; the "
+          "certificate covers every orientation of the set)\n");
+  }
   // The search box of some models is their travel (a tripod's z stroke): touching it is then
   // no error, so it is a warning only.
   if (ws.touches_search_box)
@@ -224,7 +284,8 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
     throw InputError(
         fmt::format("--out: expected a folder, found the file {}", quote_found(opt.out_dir)));
   }
-  options.keep_points = !opt.out_dir.empty();
+  check_certify_options(opt);
+  options.keep_points = !opt.out_dir.empty() || opt.certify;
   const std::string invalid = validate(options);
   if (!invalid.empty()) throw InputError(invalid);
   const std::unique_ptr<Machine> machine = load_machine_file(opt.machine_file);
@@ -234,6 +295,11 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
         "'{}' without them",
         opt.machine_file, machine->model()));
   }
+  if (opt.certify && !machine->jacobian_enclosure())
+    throw InputError(
+        fmt::format("--certify: expected a machine whose Jacobian can be enclosed over boxes of "
+                    "poses, found {}: {}",
+                    opt.machine_file, machine->jacobian_enclosure().reason()));
   const auto box = workspace_search_box(*machine, sample_orientations(options.orientations));
   if (!box) {
     throw InputError(fmt::format("{}: model '{}' has no workspace search box yet", opt.machine_file,
@@ -315,6 +381,16 @@ void add_workspace_command(CLI::App& app) {
   cmd->add_option("--slice-pixel", opt->slice_pixel,
                   "Slice pixel size (m); default 1/300 of the larger slice side")
       ->check(length_in_metres());
+  cmd->add_flag("--certify", opt->certify,
+                "Prove that the workspace (its grid cells times the orientation set) holds no "
+                "parallel singularity: one working mode (hexapod; certificate.json, "
+                "uncertified.csv)");
+  cmd->add_option("--certify-size", opt->certify_size,
+                  "Boxes are split down to this size (m) before they are reported as not "
+                  "proved; default resolution/4")
+      ->check(length_in_metres());
+  cmd->add_option("--certify-margin", opt->certify_margin,
+                  "Certify only where the margin 1/||J_c^-1||_inf is proved >= X; default 0");
   cmd->add_option("--out", opt->out_dir,
                   "Folder for summary.json, boundary.ply/.stl, points.csv, slice_*.svg/.png "
                   "(default: print the summary line only)");

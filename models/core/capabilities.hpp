@@ -9,6 +9,9 @@
 //   translational_maps() TranslationalMaps  the TCP maps a hybrid machine needs of its module
 //   all_forward_kinematics_solver()  AllForwardKinematics  every real forward-kinematics
 //                                           solution (assembly mode) for given actuator values
+//   jacobian_enclosure() JacobianEnclosure  an interval matrix holding the inverse Jacobian over
+//                                           a box of poses (the proof that a region is free of
+//                                           parallel singularities)
 //
 // A model offers a capability by implementing its interface and returning itself from the
 // query:
@@ -29,14 +32,17 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "models/core/interval.hpp"
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
+#include "models/core/pose_box.hpp"
 
 namespace pkmopt {
 
@@ -200,6 +206,27 @@ class AllForwardKinematics {
   /// model's home pose, the default guess of forward_kinematics).
   virtual ForwardSolutions all_forward_kinematics(const Eigen::VectorXd& q,
                                                   const std::optional<Pose>& reference) const = 0;
+};
+
+using IntervalJacobian = std::array<std::array<Interval, 6>, 6>;
+/// The partial derivatives of J_c with respect to the six coordinates of a box (p_x, p_y, p_z,
+/// theta, phi, gamma; models/core/pose_box.hpp), each enclosed over the box.
+using IntervalJacobianSlopes = std::array<IntervalJacobian, 6>;
+
+/// A capability (Machine::jacobian_enclosure): the inverse Jacobian over a box of poses.
+class JacobianEnclosure {
+ public:
+  virtual ~JacobianEnclosure() = default;
+  /// rho (m): the length the Jacobian's angular columns are divided by, so that its entries
+  /// have no unit (the hexapod: the mean distance of the platform joints from the TCP).
+  virtual double enclosure_length() const = 0;
+  /// An interval matrix holding, for every pose x of `box`, J_c(x): the inverse Jacobian
+  /// (twist_jacobian, [v; omega] to actuator rates) with its angular columns divided by
+  /// enclosure_length(). det J_c has the sign of det J. With `slopes`, also the derivatives of
+  /// J_c over the box, for the mean-value form J_c(x) in J_c(x_mid) + sum_k slopes[k] (X_k -
+  /// x_mid,k). False when the box holds a pose where J is not defined (a leg of length 0).
+  virtual bool enclose_jacobian(const PoseBox& box, IntervalJacobian& J,
+                                IntervalJacobianSlopes* slopes = nullptr) const = 0;
 };
 
 }  // namespace pkmopt

@@ -141,6 +141,7 @@ class ParasiticMotion;
 class Dynamics;
 class TranslationalMaps;
 class AllForwardKinematics;
+class JacobianEnclosure;
 
 /// What a query for an optional capability answers (models/core/capabilities.hpp): the
 /// capability, or why the machine does not have it, in words a user can act on ("the machine
@@ -260,6 +261,13 @@ class Machine {
         std::string(model()) +
         " machines: all forward-kinematics solutions are computed for the hexapod (the 6-6 "
         "Gough–Stewart platform) only");
+  }
+  /// An interval enclosure of the inverse Jacobian over a box of poses (JacobianEnclosure);
+  /// missing, with the reason, for models without one.
+  virtual Capability<JacobianEnclosure> jacobian_enclosure() const {
+    return Capability<JacobianEnclosure>::missing(
+        std::string(model()) +
+        " machines: the Jacobian is enclosed over boxes of poses for the hexapod only");
   }
   /// The translational maps at the TCP that put the machine in series with serial axes
   /// (TranslationalMaps, the module of a hybrid machine); null when the model has none.

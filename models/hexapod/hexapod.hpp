@@ -164,7 +164,8 @@ class Hexapod final : public Machine,
                       public BatchAnalysis,
                       public Dynamics,
                       public TranslationalMaps,
-                      public AllForwardKinematics {
+                      public AllForwardKinematics,
+                      public JacobianEnclosure {
  public:
   /// Validates the design; throws std::invalid_argument naming the offending field.
   explicit Hexapod(const HexapodDesign& design);
@@ -218,6 +219,13 @@ class Hexapod final : public Machine,
   /// mean distance of the platform joints from the TCP.
   ForwardSolutions all_forward_kinematics(const Eigen::VectorXd& q,
                                           const std::optional<Pose>& reference) const override;
+  Capability<JacobianEnclosure> jacobian_enclosure() const override { return this; }
+  /// rho: the mean distance of the platform joints from the TCP (m).
+  double enclosure_length() const override;
+  /// Row i: [s_i^T, (r_i x s_i)^T / rho], s_i = l_i / |l_i|, l_i = p + r_i - a_i, r_i = R (b_i -
+  /// tcp); with r_i x l_i = r_i x (p - a_i) for the moment (models/hexapod/hexapod_enclosure.cpp).
+  bool enclose_jacobian(const PoseBox& box, IntervalJacobian& J,
+                        IntervalJacobianSlopes* slopes = nullptr) const override;
   Capability<Dynamics> dynamics() const override {
     if (!design_.masses.present)
       return Capability<Dynamics>::missing("the machine file has no 'masses'");
