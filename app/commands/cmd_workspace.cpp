@@ -250,6 +250,11 @@ void report_workspace(const WorkspaceCommandOptions& opt, const Machine& machine
       seconds, opt.out_dir.empty() ? "" : " -> " + opt.out_dir);
   if (certificate) {
     fmt::print("{}", certificate_text(certificate->first, certificate->second));
+    if (!certificate->first.certified())
+      fmt::print(stderr,
+                 "pkmopt: warning: the workspace is not certified free of parallel singularities "
+                 "(see the certificate lines{})\n",
+                 opt.out_dir.empty() ? "" : " and certificate.json");
     if (options.orientations.mode == OrientationSet::Mode::kSome)
       fmt::print(
           "  (--mode some: the cells hold positions reachable with some orientation; the "

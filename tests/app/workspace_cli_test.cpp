@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/machine/machine_file.hpp"
+#include "models/workspace/mode_certificate.hpp"
 #include "models/workspace/workspace.hpp"
 #include "tests/cli_runner.hpp"
 #include "tests/scratch_dir.hpp"
@@ -191,6 +192,79 @@ TEST_F(WorkspaceCli, BadOptionsFailWithStatusTwoAndWriteNothing) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--out"), std::string::npos) << r.err;
   EXPECT_EQ(read_text(file), "x");
+}
+
+// --certify on the sample hexapod: one working mode over its constant-orientation workspace,
+// the same certificate as the library's over the same cells; on a long-legged variant turned
+// near Fichter's singularity (90 degrees about z), not certified, every cell reported.
+TEST_F(WorkspaceCli, CertifyProvesOneWorkingModeOrSaysWhereItCannot) {
+  const fs::path out_dir = dir_ / "cert";
+  CliRun r = run(machine_ + " --resolution 0.04 --certify --out " + out_dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("certificate: one working mode (det J < 0) over the workspace's "),
+            std::string::npos)
+      << r.out;
+  const nlohmann::json c = nlohmann::json::parse(read_text(out_dir / "certificate.json"));
+  EXPECT_TRUE(c.at("certified").get<bool>());
+  EXPECT_EQ(c.at("det_j_sign").get<int>(), -1);
+  EXPECT_EQ(c.at("uncertified_first_boxes").get<int>(), 0);
+  EXPECT_EQ(c.at("settings").at("min_size_m").get<double>(), 0.01);  // resolution / 4
+  EXPECT_EQ(read_text(out_dir / "uncertified.csv"),
+            "x_lo,x_hi,y_lo,y_hi,z_lo,z_hi,tilt_lo,tilt_hi,azimuth_lo,azimuth_hi,yaw_lo,yaw_hi,"
+            "parts,uncertified_fraction,centre_margin,centre_det_sign,budget\n");
+  // The library over the same cells gives the same boxes and margin.
+  const auto machine = pkmopt::load_machine_file(machine_);
+  pkmopt::WorkspaceOptions options;
+  options.resolution = 0.04;
+  options.keep_points = true;
+  const pkmopt::WorkspaceResult ws = pkmopt::compute_workspace(*machine, options);
+  pkmopt::CertifyOptions certify;
+  certify.min_size = 0.01;
+  const pkmopt::ModeCertificate library = pkmopt::certify_working_mode(
+      *machine->jacobian_enclosure().get(),
+      pkmopt::workspace_cells(ws.points, ws.resolution,
+                              pkmopt::orientation_box(options.orientations)),
+      certify);
+  EXPECT_EQ(c.at("region").at("first_boxes").get<std::size_t>(), ws.points.size());
+  EXPECT_EQ(c.at("certified_boxes").at("det_j_negative").get<std::int64_t>(),
+            library.negative_boxes);
+  EXPECT_EQ(c.at("certified_margin_min").get<double>(), library.min_margin);
+
+  // Legs to 1.4 m, joints to 80 degrees; turned 85 +- 10 degrees about z.
+  const fs::path long_legged = dir_ / "long.yaml";
+  std::ofstream(long_legged) << "model: hexapod\n"
+                                "base: {radius: 0.60, pair_separation_deg: 20}\n"
+                                "platform: {radius: 0.25, pair_separation_deg: 20}\n"
+                                "legs: {min_length: 0.70, max_length: 1.40, E: 2.1e11, area: "
+                                "3.0e-4, actuator_stiffness: 2.0e8}\n"
+                                "joints: {base_max_angle_deg: 80, platform_max_angle_deg: 80}\n"
+                                "tool: {tcp: [0, 0, -0.10]}\n";
+  const fs::path near = dir_ / "near";
+  r = run(long_legged.string() +
+          " --orientation 0,0,85 --yaw-range 10 --orientation-step 4 --resolution 0.1 --certify "
+          "--certify-size 0.03 --out " +
+          near.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("certificate: NOT certified over the workspace's "), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.err.find("pkmopt: warning: the workspace is not certified"), std::string::npos)
+      << r.err;
+  const nlohmann::json n = nlohmann::json::parse(read_text(near / "certificate.json"));
+  EXPECT_FALSE(n.at("certified").get<bool>());
+  const int cells = n.at("region").at("first_boxes").get<int>();
+  EXPECT_EQ(n.at("uncertified_first_boxes").get<int>(), cells);
+  const std::string csv = read_text(near / "uncertified.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), cells + 1);
+  // Near the singularity: every reported cell's smallest centre margin is below 0.05.
+  EXPECT_LT(n.at("uncertified_centre_margin_min").get<double>(), 0.05);
+}
+
+TEST_F(WorkspaceCli, CertifyOptionsAreChecked) {
+  expect_input_error(machine_ + " --certify-size 0.01", "expected only together with --certify");
+  expect_input_error(machine_ + " --certify --certify-size 0", "--certify-size");
+  expect_input_error(machine_ + " --certify --certify-margin 1.5", "--certify-margin");
+  expect_input_error((fs::path(PKMOPT_SOURCE_DIR) / "examples/delta.yaml").string() + " --certify",
+                     "--certify: expected a machine whose Jacobian can be enclosed");
 }
 
 }  // namespace

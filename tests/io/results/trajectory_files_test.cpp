@@ -101,6 +101,38 @@ TEST(TrajectoryCsv, JacobianColumnsAndInfWhereItFailed) {
   EXPECT_EQ(csv.substr(csv.size() - infinities.size() - 1), infinities + "\n");
 }
 
+// With assembly modes: three columns after det_j, and the summary lines with their warnings.
+TEST(TrajectoryCsv, AssemblyModeColumnsAndSummary) {
+  TrajectoryResult r;
+  r.samples.push_back(regular_sample());
+  r.samples.push_back(regular_sample());
+  r.samples[1].t = 1.0;
+  r.samples.push_back(regular_sample());
+  r.samples[2].t = 1.5;
+  pkmopt::TrajectoryModes modes;
+  modes.distance_length = 0.25;
+  modes.samples.resize(3);
+  modes.samples[0] = {0.5, 4, 0, true};
+  modes.samples[1] = {0.01, 4, 0, true};
+  modes.samples[2] = {0.0, 2, 1, false};
+  const std::string csv = pkmopt::trajectory_csv(hexapod(), r, false, &modes);
+  EXPECT_NE(csv.find("singularity_margin,det_j,mode_distance,real_modes,failed_paths\n"),
+            std::string::npos);
+  EXPECT_NE(csv.find(",0.125,-2.5,0.5,4,0\n1,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",0.125,-2.5,0,2,1\n"), std::string::npos) << csv;
+  const std::string text = pkmopt::assembly_modes_text(r, modes, 0.025);
+  EXPECT_EQ(text,
+            "  assembly modes: 2 .. 4 real; nearest other mode 0 m, at t = 1.5 s (pose distance "
+            "sqrt(|dp|^2 + (rho theta)^2), rho = 0.25 m)\n"
+            "  WARNING: another assembly mode comes within 0 m of the tracked pose (below 0.025 m) "
+            "at 2 samples, first at t = 1 s: the path runs near a parallel singularity, where a "
+            "disturbance could carry the machine into that mode\n"
+            "  WARNING: the tracked pose was not among the forward-kinematics solutions at 1 "
+            "samples, first at t = 1.5 s (mode_distance 0 there)\n"
+            "  WARNING: forward-kinematics paths failed at 1 samples, first at t = 1.5 s: other "
+            "modes may be missing there (failed_paths)\n");
+}
+
 TEST(SingularPosesCsv, BothKinds) {
   TrajectoryResult r;
   SingularPose a;
