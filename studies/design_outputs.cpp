@@ -52,6 +52,7 @@ std::string_view design_metric_unit(DesignMetric metric) {
     case DesignMetric::singularity_margin:
     case DesignMetric::conditioning_index:
     case DesignMetric::actuator_cost:
+    case DesignMetric::task_singularity_free:
       return "";
   }
   return "";

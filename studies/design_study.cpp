@@ -92,9 +92,16 @@ void read_constraints(const YamlValue& root, const std::string& path, StudyMachi
   if (auto constraints = root.optional("constraints")) {
     for (const YamlValue& c : constraints->elements()) {
       if (c.is_scalar()) {
+        if (c.as_string() == "task_singularity_free") {
+          // The task region proved free of parallel singularities: the share must be 1.
+          limits.push_back({DesignMetric::task_singularity_free, Relation::greater_equal, 1.0});
+          constraint_yaml += "  - {metric: task_singularity_free, min: 1}\n";
+          continue;
+        }
         if (c.as_string() != "task_reachable")
           c.fail(
-              "task_reachable, {metric: NAME, max|min: VALUE} or {actuator: NAME, catalog: FILE}",
+              "task_reachable, task_singularity_free, {metric: NAME, max|min: VALUE} or "
+              "{actuator: NAME, catalog: FILE}",
               c.describe());
         require_reachable = true;
         continue;

@@ -32,6 +32,9 @@
 //     - {metric: leg_force_max, max: 10500}   # metric <= 10500
 //     - {metric: singularity_margin, min: 0.05}
 //     - task_reachable
+//     - task_singularity_free                 # the task region proved free of parallel
+//                                             # singularities (hexapod; = {metric:
+//                                             # task_singularity_free, min: 1})
 //   optimizer: {algorithm: nsga2, population: 24, generations: 20, seed: 1}
 //   output: {designs: true}                   # optional: write designs/<id>.yaml
 //

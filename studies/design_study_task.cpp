@@ -15,6 +15,7 @@
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
 #include "io/machine/machine_file.hpp"
+#include "models/workspace/mode_certificate.hpp"
 #include "optimizer/indicators.hpp"
 #include "pkmopt/version.hpp"
 #include "studies/design_study_sections.hpp"
@@ -68,6 +69,16 @@ std::string installation_space_yaml(const InstallationSpace& s) {
          "}}";
 }
 
+// The task as a region of poses: positions lo..hi times the orientation set (the region
+// task_singularity_free certifies).
+PoseBox task_region(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                    const OrientationSet& set) {
+  PoseBox box = orientation_box(set);
+  box.position_lo = lo;
+  box.position_hi = hi;
+  return box;
+}
+
 }  // namespace
 
 void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
@@ -106,6 +117,8 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
                        tilt, yaw, step);
     study.task_centre = box.centre;
     study.task_positions = static_cast<std::size_t>(counts.prod());
+    const Eigen::Vector3d half = 0.5 * Eigen::Vector3d(box.size[0], box.size[1], box.size[2]);
+    task_spec.region = task_region(centre - half, centre + half, orientation_set);
     yaml += "  region: {shape: box, " + fields_flow_map(box).substr(1) + "\n";
   } else if (shape.as_string() == "cylinder") {
     CylinderRegionSection cylinder;
@@ -120,6 +133,9 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
                                           cylinder.per_ring, cylinder.layers, tilt, yaw, step);
     study.task_centre = cylinder.centre;
     study.task_region = "cylinder";
+    // The cylinder's bounding box: a region a little larger than the task.
+    const Eigen::Vector3d half(cylinder.radius, cylinder.radius, 0.5 * cylinder.height);
+    task_spec.region = task_region(centre - half, centre + half, orientation_set);
     study.task_positions =
         static_cast<std::size_t>((1 + cylinder.rings * cylinder.per_ring) * cylinder.layers);
     yaml += "  region: {shape: cylinder, " + fields_flow_map(cylinder).substr(1) + "\n";

@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <deque>
 #include <numbers>
 #include <stdexcept>
 
@@ -157,10 +158,11 @@ Part certify_box(const JacobianEnclosure& enclosure, const PoseBox& first,
   const double rho = enclosure.enclosure_length();
   Part part;
   part.uncertified.box = first;
-  std::vector<PoseBox> stack{first};
-  while (!stack.empty()) {
-    const PoseBox box = stack.back();
-    stack.pop_back();
+  // Breadth first: when the budget runs out, what is proved is spread over the whole box.
+  std::deque<PoseBox> queue{first};
+  while (!queue.empty()) {
+    const PoseBox box = queue.front();
+    queue.pop_front();
     const auto s = sides(box, rho);
     const double widest = *std::max_element(s.begin(), s.end());
     const bool out_of_budget = part.evaluations >= budget;
@@ -191,8 +193,8 @@ Part certify_box(const JacobianEnclosure& enclosure, const PoseBox& first,
     }
     const int side = static_cast<int>(std::max_element(s.begin(), s.end()) - s.begin());
     const auto [lo, hi] = split(box, side);
-    stack.push_back(hi);
-    stack.push_back(lo);
+    queue.push_back(lo);
+    queue.push_back(hi);
   }
   return part;
 }
@@ -223,6 +225,17 @@ void check_region(const std::vector<PoseBox>& region, const CertifyOptions& opti
 }
 
 }  // namespace
+
+double singularity_free_share(const JacobianEnclosure& enclosure, const PoseBox& region,
+                              std::int64_t budget) {
+  const auto s = sides(region, enclosure.enclosure_length());
+  CertifyOptions options;
+  options.min_size = std::max(*std::max_element(s.begin(), s.end()) / 16.0, 1e-6);
+  options.max_evaluations = budget;
+  const ModeCertificate c = certify_working_mode(enclosure, {region}, options);
+  if (c.certified()) return 1.0;
+  return std::max(c.positive_fraction, c.negative_fraction);
+}
 
 PoseBox orientation_box(const OrientationSet& set) {
   PoseBox box;

@@ -27,7 +27,8 @@ constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
     "actuator_force_dynamic_max",
     "leg_clearance_min",
     "swept_volume",
-    "footprint"};
+    "footprint",
+    "task_singularity_free"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -133,6 +134,11 @@ NeededMetrics check_design_goals(const std::string& where,
     throw std::invalid_argument(fmt::format(
         "{}: actuator_force_dynamic_max needs the task's a_max (m/s^2, e.g. a_max: 9.81 for 1 g), "
         "found none",
+        where));
+  if (needed[static_cast<int>(DesignMetric::task_singularity_free)] && !task.region)
+    throw std::invalid_argument(fmt::format(
+        "{}: task_singularity_free needs the task as a region (a box or cylinder task), found "
+        "task poses only",
         where));
   if (needed[static_cast<int>(DesignMetric::workspace_volume)] ||
       needed[static_cast<int>(DesignMetric::conditioning_index)]) {

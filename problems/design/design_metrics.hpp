@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "models/core/machine.hpp"
+#include "models/core/pose_box.hpp"
 #include "models/geometry/installation_space.hpp"
 #include "models/workspace/workspace.hpp"
 
@@ -64,9 +65,13 @@ enum class DesignMetric {
   /// pose.
   swept_volume,
   /// The area of that hull's projection on the base's x-y plane (m^2; hexapod studies).
-  footprint
+  footprint,
+  /// The share of the task region proved free of parallel singularities with one working mode
+  /// (0..1; 1: certified; hexapod studies with a box or cylinder task;
+  /// models/workspace/mode_certificate.hpp).
+  task_singularity_free
 };
-inline constexpr int kNumDesignMetrics = 17;
+inline constexpr int kNumDesignMetrics = 18;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
@@ -107,6 +112,9 @@ struct DesignTask {
   /// For workspace_volume and conditioning_index (hull off; maps only for the index); coarse
   /// for speed by default: 0.05 m and 4 bisections of the boundary cells.
   WorkspaceOptions workspace = coarse_design_workspace();
+  /// The task as a region of poses (box or cylinder tasks: the positions' bounding box times the
+  /// orientation set, before the home_height lift), for task_singularity_free.
+  std::optional<PoseBox> region;
   /// The space the whole machine must fit in at every task pose (hexapod problems: legs with
   /// their shape, base and platform joints; models/geometry/installation_space.hpp); part of the
   /// reachability row.

@@ -15,6 +15,7 @@
 #include "models/dynamics/acceleration_capability.hpp"
 #include "models/hexapod/swept_envelope.hpp"
 #include "models/sample_machines.hpp"
+#include "models/workspace/mode_certificate.hpp"
 
 namespace pkmopt {
 namespace {
@@ -564,6 +565,12 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     ev.actuator = choice.entry;
     metric(DesignMetric::actuator_cost) = choice.cost;
     metric(DesignMetric::actuator_overload) = choice.overload;
+  }
+  if (need(DesignMetric::task_singularity_free)) {
+    PoseBox region = *spec_.task.region;  // check_design_goals: present when needed
+    region.position_lo.z() += p[kHomeHeight];
+    region.position_hi.z() += p[kHomeHeight];
+    metric(DesignMetric::task_singularity_free) = singularity_free_share(*hexapod, region);
   }
   if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
     std::vector<Pose> poses = spec_.task.poses;

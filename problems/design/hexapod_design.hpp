@@ -29,6 +29,9 @@
 //   swept_volume        the convex hull of the base joints, the platform joints at every task
 //                       pose and the solids (models/hexapod/swept_envelope.hpp)  m^3
 //   footprint           the area of its projection on the base's x-y plane  m^2
+//   task_singularity_free  singularity_free_share of the task region lifted by home_height
+//                       (models/workspace/mode_certificate.hpp): 1 when it is proved free of
+//                       parallel singularities with one working mode       0..1
 //   actuator_cost       (spec.actuator_catalog set: the optimiser chooses the legs' actuator)
 //                       the relative cost (actuator_costs: the catalog's costs, or the rank by
 //                       force rating when it has none) of choose_actuator(catalog, {force =

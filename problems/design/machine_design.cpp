@@ -100,6 +100,11 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
   if (spec_.task.installation_space.present())
     throw std::invalid_argument(fmt::format(
         "{}: task installation_space is checked only in hexapod design problems", where));
+  if (needed_[static_cast<int>(DesignMetric::task_singularity_free)])
+    throw std::invalid_argument(fmt::format(
+        "{}: task_singularity_free is computed only in hexapod design problems (an interval "
+        "enclosure of the hexapod's Jacobian over the task region)",
+        where));
   for (const DesignMetric m : {DesignMetric::swept_volume, DesignMetric::footprint})
     if (needed_[static_cast<int>(m)])
       throw std::invalid_argument(fmt::format(

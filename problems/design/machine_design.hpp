@@ -29,6 +29,7 @@
 //   moving_mass         platform plus every leg's moving bodies (needs masses)  kg
 //   leg_clearance_min   min_k leg_clearance(pose k) (needs the legs' shape)   m
 //   swept_volume, footprint   hexapod studies only (hexapod_design.hpp)      m^3, m^2
+//   task_singularity_free     hexapod studies only (hexapod_design.hpp)      0..1
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1
 //   machine_size        the family's machine_size (above)                m^3

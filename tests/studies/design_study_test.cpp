@@ -111,6 +111,30 @@ TEST_F(DesignStudy, LoadsTheProblemItDescribes) {
   EXPECT_EQ(study.optimizer.seed, 5u);
 }
 
+// `- task_singularity_free` under constraints: the task region (the box times the 10 deg cone)
+// is certified for every design; it resolves to {metric: task_singularity_free, min: 1}.
+TEST_F(DesignStudy, TaskSingularityFreeConstraintCertifiesTheTaskBox) {
+  const fs::path dir = write_study(
+      "certify",
+      replaced(kStudy, "  - task_reachable\n", "  - task_reachable\n  - task_singularity_free\n"));
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
+  EXPECT_EQ(study.problem->num_inequality(), 3u);
+  const auto& region = study.problem->task().region;
+  ASSERT_TRUE(region.has_value());
+  EXPECT_TRUE(region->position_lo.isApprox(Eigen::Vector3d(-0.1, -0.1, 0.85)));
+  EXPECT_TRUE(region->position_hi.isApprox(Eigen::Vector3d(0.1, 0.1, 0.95)));
+  EXPECT_EQ(region->theta.hi, deg_to_rad(10));
+  EXPECT_NE(study.resolved_yaml.find("  - {metric: task_singularity_free, min: 1}\n"),
+            std::string::npos)
+      << study.resolved_yaml;
+  const fs::path again = write_study("certify_resolved", study.resolved_yaml);
+  EXPECT_EQ(load_design_study((again / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
+  EXPECT_NE(load_error("certify_bad",
+                       replaced(kStudy, "  - task_reachable\n", "  - task_singularity_freee\n"))
+                .find("task_reachable, task_singularity_free, {metric: NAME"),
+            std::string::npos);
+}
+
 TEST_F(DesignStudy, ActuatorFromACatalogBoundsForceAndStroke) {
   const std::string catalog =
       std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/sew-cms.yaml";
@@ -339,7 +363,7 @@ TEST_F(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
           "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
           "conditioning_index, machine_size, actuator_cost, actuator_overload, tcp_deflection_max, "
           "stiffness_min_loaded, natural_frequency_min, moving_mass, actuator_force_dynamic_max, "
-          "leg_clearance_min, swept_volume, footprint, found "
+          "leg_clearance_min, swept_volume, footprint, task_singularity_free, found "
           "'stifness'");
   const std::string file3 = (dir_ / "e3" / "study.yaml").string();
   EXPECT_EQ(load_error("e3", replaced(kStudy, "{min: 0.5, max: 0.7}", "{min: 0.7, max: 0.5}")),

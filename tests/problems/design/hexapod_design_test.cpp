@@ -18,6 +18,7 @@
 
 #include "models/dynamics/acceleration_capability.hpp"
 #include "models/hexapod/swept_envelope.hpp"
+#include "models/workspace/mode_certificate.hpp"
 #include "tests/problems/design/hexapod_design_specs.hpp"
 #include "tests/sample_catalogs.hpp"
 #include "tests/sample_machines.hpp"
@@ -394,6 +395,50 @@ TEST(HexapodDesign, SweptVolumeAndFootprintAreTheEnvelopeOverTheTask) {
   EXPECT_GT(
       HexapodDesignProblem(spec).evaluate({}).metrics[static_cast<int>(DesignMetric::swept_volume)],
       e.volume);
+}
+
+// task_singularity_free is singularity_free_share of the task region lifted by the home height:
+// 1 for a box about the home pose; below 1 when the yaw range reaches the turn of 90 degrees
+// about z (Fichter's singularity); a task without a region is refused.
+TEST(HexapodDesign, TaskSingularityFreeCertifiesTheTaskRegion) {
+  HexapodDesignSpec spec;
+  spec.objectives = {{DesignMetric::machine_size, Sense::minimize}};
+  spec.constraints = {{DesignMetric::task_singularity_free, Relation::greater_equal, 1.0}};
+  spec.task.poses = box_task_poses({0, 0, 0.85}, {0.05, 0.05, 0.05}, {2, 2, 2}, 0.0, 0.0);
+  PoseBox region;
+  region.position_lo = {-0.05, -0.05, 0.8};
+  region.position_hi = {0.05, 0.05, 0.9};
+  region.gamma = Interval(-10 * kDegToRad, 10 * kDegToRad);
+  spec.task.region = region;
+  spec.parameters[kHomeHeight] = {0.05, 0.05};
+  const HexapodDesignProblem problem(spec);
+  const DesignEvaluation ev = problem.evaluate({});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::task_singularity_free)], 1.0);
+  const Hexapod hexapod(problem.design_of(ev.parameters));
+  PoseBox lifted = region;
+  lifted.position_lo.z() += 0.05;
+  lifted.position_hi.z() += 0.05;
+  EXPECT_TRUE(certify_working_mode(hexapod, {lifted}, {}).certified());
+  EXPECT_LE(problem.aggregate_fitness(ev)[1], 0.0);  // rows: objective, constraint, ...
+
+  // Turned up to 100 degrees each way: the region holds Fichter's singular poses.
+  spec.task.region->gamma = Interval(-100 * kDegToRad, 100 * kDegToRad);
+  const DesignEvaluation turned = HexapodDesignProblem(spec).evaluate({});
+  ASSERT_TRUE(turned.ok()) << turned.failure;
+  const double share = turned.metrics[static_cast<int>(DesignMetric::task_singularity_free)];
+  EXPECT_LT(share, 1.0);
+  EXPECT_GT(share, 0.0);
+  EXPECT_EQ(share, singularity_free_share(hexapod, [&] {
+              PoseBox b = *spec.task.region;
+              b.position_lo.z() += 0.05;
+              b.position_hi.z() += 0.05;
+              return b;
+            }()));
+  EXPECT_GT(HexapodDesignProblem(spec).aggregate_fitness(turned)[1], 0.0);  // violated
+
+  spec.task.region.reset();
+  EXPECT_THROW(HexapodDesignProblem{spec}, std::invalid_argument);
 }
 
 TEST(HexapodDesign, FailingDesignsAreRecordedWithAReasonAndFiniteRows) {
