@@ -37,6 +37,11 @@ void print_all_solutions(const Machine& machine, const Eigen::VectorXd& q,
              "(the first row is the one nearest the {})\n",
              s.real.size(), s.complex_count, s.at_infinity, s.failed, s.paths,
              guess ? "guess" : "home pose");
+  if (s.architecture_singular)
+    throw ProbablyWrongResult(
+        "fk --all: the machine is singular at every pose (architecture singularity: e.g. base and "
+        "platform similar planar hexagons): its forward kinematics has curves of solutions "
+        "(self-motions), not a finite set of assembly modes");
   if (s.failed > 0)
     throw ProbablyWrongResult(
         fmt::format("fk --all: {} of {} paths failed ({}); real solutions "

@@ -191,6 +191,8 @@ struct ForwardSolutions {
   std::size_t failed = 0;             ///< paths that failed (reported in `failures`)
   std::size_t paths = 0;
   std::vector<std::string> failures;
+  /// The geometry is singular at every pose: the solutions are curves, not a finite set.
+  bool architecture_singular = false;
   /// The length rho of the pose distance sqrt(|dp|^2 + (rho theta)^2), theta the angle of the
   /// relative rotation (m): how far a rotation moves the platform's joints.
   double distance_length = 0.0;

@@ -29,7 +29,10 @@ constexpr double kSolved = 1e-12;        // |G| at which a point solves (lengths
 constexpr double kSmallestStep = 1e-12;  // in the path parameter s
 constexpr double kLargestStep = 0.1;
 constexpr double kTowardInfinity = 1e-7;  // |X0| / |X| at which a path is taken to diverge
-constexpr double kAtInfinity = 1e-8;      // |X0| / |X| below which an end is a solution at infinity
+// |X0| / |X| below which an end counts as at infinity: beyond 1e4 leg lengths. No real solution
+// lies there (|p| <= |a_i| + |b_i| + L_i), and a path to a solution at infinity, singular there,
+// converges slowly and may stop at |X0| ~ 1e-6 |X| (the 6-3 platform's 24 such paths).
+constexpr double kAtInfinity = 1e-4;
 constexpr double kRealTolerance = 1e-8;
 constexpr int kMaxSteps = 100000;
 constexpr double kEndgame = 0.95;              // s beyond which a path may be declared at infinity
@@ -416,6 +419,32 @@ void check_lengths(const Eigen::Matrix<double, 6, 1>& lengths, const char* who) 
     throw std::invalid_argument(fmt::format("{}: expected finite leg lengths > 0", who));
 }
 
+// Whether det J vanishes at three generic poses: an architecture-singular geometry (every pose
+// singular, e.g. similar planar base and platform; Ma & Angeles 1991, Karger 2003), whose
+// forward kinematics has curves of solutions (self-motions) for any lengths.
+bool singular_at_every_pose(const Eigen::Matrix<double, 3, 6>& base,
+                            const Eigen::Matrix<double, 3, 6>& platform) {
+  const double size =
+      std::max({base.colwise().norm().maxCoeff(), platform.colwise().norm().maxCoeff(), 1e-9});
+  const double rho = std::max(platform.colwise().norm().mean(), 1e-9 * size);
+  const Eigen::Vector3d positions[3] = {{0.13, -0.07, 1.0}, {-0.21, 0.05, 0.8}, {0.04, 0.17, 1.3}};
+  const Eigen::Vector3d axes[3] = {{0.3, -0.5, 0.8}, {-0.7, 0.2, 0.4}, {0.1, 0.9, -0.3}};
+  const double angles[3] = {0.37, -0.52, 0.81};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(angles[k], axes[k].normalized()).toRotationMatrix();
+    const Eigen::Vector3d p = size * positions[k];
+    Eigen::Matrix<double, 6, 6> J;
+    for (int i = 0; i < 6; ++i) {
+      const Eigen::Vector3d r = R * platform.col(i), l = p + r - base.col(i);
+      const Eigen::Vector3d s = l / l.norm();
+      J.block<1, 3>(i, 0) = s.transpose();
+      J.block<1, 3>(i, 3) = r.cross(s).transpose() / rho;
+    }
+    if (!(std::abs(J.determinant()) < 1e-10)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
@@ -432,6 +461,7 @@ AssemblyModes all_assembly_modes(const Eigen::Matrix<double, 3, 6>& base,
     AssemblyModes again = solve_from(complex_start(1), target, base, platform, lengths, scale);
     if (again.failed < modes.failed) modes = std::move(again);
   }
+  modes.architecture_singular = singular_at_every_pose(base, platform);
   return modes;
 }
 
@@ -441,6 +471,7 @@ struct AssemblyModeSolver::Geometry {
   double scale = 1.0;
   Start start;                  // no points when the geometry's start could not be made
   std::size_t at_infinity = 0;  // paths that end at infinity for every set of lengths
+  bool architecture_singular = false;
 };
 
 AssemblyModeSolver::AssemblyModeSolver(const Eigen::Matrix<double, 3, 6>& base,
@@ -452,6 +483,7 @@ AssemblyModeSolver::AssemblyModeSolver(const Eigen::Matrix<double, 3, 6>& base,
   g->base = base;
   g->platform = platform;
   g->scale = typical_lengths.mean();
+  g->architecture_singular = singular_at_every_pose(base, platform);
   Params P = scaled(base, platform, typical_lengths, g->scale);
   std::mt19937_64 engine(kGeometrySeed);  // the stream is fixed by the standard
   auto uniform = [&] { return static_cast<double>(engine() >> 11) * 0x1.0p-53 * 2.0 - 1.0; };
@@ -499,6 +531,7 @@ AssemblyModes AssemblyModeSolver::solve(const Eigen::Matrix<double, 6, 1>& lengt
     AssemblyModes modes = solve_from(g.start, target, g.base, g.platform, lengths, g.scale);
     modes.at_infinity += g.at_infinity;
     modes.paths += g.at_infinity;
+    modes.architecture_singular = g.architecture_singular;
     if (modes.failed == 0) return modes;
   }
   // The geometry's start failed, or one of its paths did: all 40 paths from the universal start.

@@ -15,17 +15,27 @@
 // below 1e-12, then below 1e-15 with smaller steps), all 40 paths are run again from a second
 // random complex geometry and the run with fewer failures is kept. Paths run in projective
 // coordinates X = (X0, X0 x) on a random complex patch, so that a solution that grows without
-// bound stays finite and ends at X0 = 0: a solution at infinity (a special geometry has fewer than
-// 40 finite solutions; a path is declared so beyond s = 0.95 when |X0| < 1e-7 |X|). Because the
-// intermediate geometries are complex and random, the 40 paths avoid the
+// bound stays finite and ends at X0 = 0: a solution at infinity (a path is declared so beyond
+// s = 0.95 when |X0| < 1e-7 |X|, and an end beyond 1e4 leg lengths counts so: no real pose lies
+// there). Because the intermediate geometries are complex and random, the 40 paths avoid the
 // geometries where solutions meet with probability 1 (the "gamma trick"): every isolated
 // solution of the target is the end of one path. A path whose step falls below 1e-12 is reported
 // as failed, never hidden; so are two paths that end at the same solution. Each end is polished
 // by Newton's method; a solution is real when its imaginary parts are below 1e-8 (relative).
 //
+// Special geometries. A planar base and platform with joints in symmetric pairs (the sample
+// machines) has 28 finite solutions, 12 at infinity; a 6-3 platform (joints coinciding in pairs
+// on the platform) 16 finite ones, as Nanua, Waldron & Murthy found ("Direct kinematic solution
+// of a Stewart platform", IEEE Trans. Robotics and Automation 6(4), 1990), 24 at infinity. A
+// geometry singular at every pose (architecture singularity, e.g. similar planar base and
+// platform; Ma & Angeles 1991) has curves of solutions for any lengths: its paths fail, and
+// `architecture_singular` says why (checked by det J at three generic poses).
+//
 // Tracking: fourth-order Runge–Kutta predictor on dX/ds = -J^-1 dG/ds, Newton corrector (at
 // most 3 contracting steps, to 1e-8 relative), step doubled after 3 good steps and halved on a
-// failure.
+// failure. One geometry solved many times (AssemblyModeSolver, below) starts from its own
+// solutions at random complex lengths: about 2 ms per solve against 30 ms from the universal
+// start (bench/assembly_modes_bench.cpp).
 //
 // Example:
 //   const pkmopt::AssemblyModes modes = pkmopt::all_assembly_modes(a, b, lengths);
@@ -49,10 +59,13 @@ struct AssemblyMode {
 struct AssemblyModes {
   std::vector<AssemblyMode> real;     ///< the real solutions, distinct
   std::size_t complex_count = 0;      ///< solutions with imaginary parts (pairs of conjugates)
-  std::size_t at_infinity = 0;        ///< paths that grew without bound
+  std::size_t at_infinity = 0;        ///< paths that grew without bound (or beyond 1e4 lengths)
   std::size_t failed = 0;             ///< paths whose step fell below 1e-12 or did not converge
   std::vector<std::string> failures;  ///< one line per failed path: which and why
   std::size_t paths = 0;              ///< paths tracked (40)
+  /// det J = 0 at every pose (e.g. similar planar base and platform): the solutions form curves
+  /// (self-motions), not a finite set; the paths that end on them fail.
+  bool architecture_singular = false;
 };
 
 /// All assembly modes of the platform with base points `base` (columns a_i), platform points

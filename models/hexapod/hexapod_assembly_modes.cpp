@@ -49,6 +49,7 @@ ForwardSolutions Hexapod::all_forward_kinematics(const Eigen::VectorXd& q,
   out.failed = modes.failed;
   out.paths = modes.paths;
   out.failures = modes.failures;
+  out.architecture_singular = modes.architecture_singular;
   out.distance_length = platform_rel_.colwise().norm().mean();
   std::unique_ptr<MachineData> data = make_data();
   for (const AssemblyMode& m : modes.real) {

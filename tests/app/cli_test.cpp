@@ -1,8 +1,10 @@
 // Tests of the pkmopt binary: analyze and fk end to end, and every kind of bad input giving
 // one clear message, exit status 2 and no output file.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -220,6 +222,33 @@ TEST_F(Cli, FkAllListsEveryAssemblyMode) {
   EXPECT_EQ(delta.status, 2);
   EXPECT_NE(delta.err.find("--all: expected a hexapod machine file"), std::string::npos)
       << delta.err;
+}
+
+// A machine whose platform is its base scaled by 1/2 (similar planar hexagons) is singular at
+// every pose: --all says its solutions are curves, not a finite set, and exits 3.
+TEST_F(Cli, FkAllSaysWhenTheSolutionsAreCurves) {
+  std::string base = "[", platform = "[";
+  for (int i = 0; i < 6; ++i) {
+    const double angle = (i / 2) * 2.0 * M_PI / 3.0 + (i % 2 ? 0.17 : -0.17);
+    base +=
+        fmt::format("{}[{}, {}, 0]", i ? ", " : "", 0.6 * std::cos(angle), 0.6 * std::sin(angle));
+    platform +=
+        fmt::format("{}[{}, {}, 0]", i ? ", " : "", 0.3 * std::cos(angle), 0.3 * std::sin(angle));
+  }
+  const fs::path file = dir_ / "similar.yaml";
+  std::ofstream(file) << "model: hexapod\nbase_joints: " << base
+                      << "]\nplatform_joints: " << platform
+                      << "]\nlegs: {min_length: 0.3, max_length: 1.5, axial_stiffness: 1e8}\n";
+  // The leg lengths at a pose, from the machine as loaded.
+  const auto machine = pkmopt::load_machine_file(file.string());
+  const auto& hexapod = dynamic_cast<const pkmopt::Hexapod&>(*machine);
+  const auto q = hexapod.inverse_kinematics(pkmopt::Pose{{0.02, -0.01, 0.8}, {0.05, 0.0, 0.1}});
+  std::string qs;
+  for (int i = 0; i < 6; ++i) qs += (i ? "," : "") + pkmopt::format_number(q(i));
+  const CliRun r = run("fk " + file.string() + " --q " + qs + " --all");
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_NE(r.err.find("singular at every pose"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not a finite set of assembly modes"), std::string::npos) << r.err;
 }
 
 // The row is written (converged = 0) and the exit status is 3: a result that is probably wrong.

@@ -205,6 +205,66 @@ TEST(AssemblyModes, SolverOfDietmaiersPlatformFindsItsFortyRealModes) {
   EXPECT_EQ(modes.real.size(), 40u);
 }
 
+// Joints on two circles in symmetric pairs (the sample machines' layout): base 0.6, platform
+// 0.25; with `triangle` the platform joints coincide in pairs (a 6-3 platform).
+Geometry paired_geometry(bool triangle, const Eigen::Vector3d& p, const Eigen::Matrix3d& R) {
+  Geometry g;
+  for (int i = 0; i < 6; ++i) {
+    const double base_angle = (i / 2) * 2.0 * M_PI / 3.0 + (i % 2 ? 0.17 : -0.17);
+    g.a.col(i) << 0.6 * std::cos(base_angle), 0.6 * std::sin(base_angle), 0.0;
+    const double platform_angle =
+        triangle ? ((i + 1) % 6 / 2) * 2.0 * M_PI / 3.0 + M_PI / 3.0
+                 : (i / 2) * 2.0 * M_PI / 3.0 + M_PI / 3.0 + (i % 2 ? -0.17 : 0.17);
+    g.b.col(i) << 0.25 * std::cos(platform_angle), 0.25 * std::sin(platform_angle), 0.0;
+  }
+  for (int i = 0; i < 6; ++i) g.L(i) = (p + R * g.b.col(i) - g.a.col(i)).norm();
+  return g;
+}
+
+TEST(AssemblyModes, SpecialGeometriesGiveTheirOwnCountOrSayTheSetIsNotFinite) {
+  const Eigen::Vector3d p(0.02, -0.01, 0.9);
+  const Eigen::Matrix3d R =
+      Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  // The 6-3 platform: 16 finite solutions (Nanua, Waldron & Murthy 1990), the pose among them;
+  // with a planar base every solution has its mirror image in the base plane.
+  const Geometry six_three = paired_geometry(true, p, R);
+  for (const AssemblyModes& modes :
+       {all_assembly_modes(six_three.a, six_three.b, six_three.L),
+        AssemblyModeSolver(six_three.a, six_three.b, six_three.L).solve(six_three.L)}) {
+    EXPECT_EQ(modes.failed, 0u);
+    EXPECT_EQ(modes.real.size() + modes.complex_count, 16u);
+    EXPECT_EQ(modes.at_infinity, 24u);
+    EXPECT_FALSE(modes.architecture_singular);
+    EXPECT_LT(nearest(modes, p, R).second, 1e-8);
+    for (const AssemblyMode& m : modes.real) {
+      const Eigen::Matrix3d mirror = Eigen::Vector3d(1, 1, -1).asDiagonal() * m.rotation *
+                                     Eigen::Vector3d(1, 1, -1).asDiagonal();
+      EXPECT_LT(
+          nearest(modes, Eigen::Vector3d(m.position.x(), m.position.y(), -m.position.z()), mirror)
+              .second,
+          1e-8);
+    }
+  }
+  // Planar with symmetric pairs: 28 finite solutions, 12 at infinity (a regression pin of this
+  // solver's count, the same from both starts).
+  const Geometry planar = paired_geometry(false, p, R);
+  const AssemblyModes planar_modes = all_assembly_modes(planar.a, planar.b, planar.L);
+  EXPECT_EQ(planar_modes.failed, 0u);
+  EXPECT_EQ(planar_modes.real.size() + planar_modes.complex_count, 28u);
+  EXPECT_EQ(AssemblyModeSolver(planar.a, planar.b, planar.L).finite_solutions(), 28u);
+  // Similar base and platform (the platform the base scaled by 1/2): singular at every pose, the
+  // solutions form curves; said, and the paths that end on them fail.
+  Geometry similar = planar;
+  similar.b = 0.5 * planar.a;
+  for (int i = 0; i < 6; ++i) similar.L(i) = (p + R * similar.b.col(i) - similar.a.col(i)).norm();
+  const AssemblyModes curves = all_assembly_modes(similar.a, similar.b, similar.L);
+  EXPECT_TRUE(curves.architecture_singular);
+  EXPECT_GT(curves.failed, 0u);
+  EXPECT_TRUE(
+      AssemblyModeSolver(similar.a, similar.b, similar.L).solve(similar.L).architecture_singular);
+  EXPECT_FALSE(all_assembly_modes(planar.a, planar.b, planar.L).architecture_singular);
+}
+
 TEST(AssemblyModes, BadInputIsRefused) {
   Geometry g = dietmaier_geometry();
   g.L(2) = 0.0;
