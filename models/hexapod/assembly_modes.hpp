@@ -34,7 +34,7 @@
 // Tracking: fourth-order Runge–Kutta predictor on dX/ds = -J^-1 dG/ds, Newton corrector (at
 // most 3 contracting steps, to 1e-8 relative), step doubled after 3 good steps and halved on a
 // failure. One geometry solved many times (AssemblyModeSolver, below) starts from its own
-// solutions at random complex lengths: about 2 ms per solve against 30 ms from the universal
+// solutions at random complex lengths: about 1.4 ms per solve against 30 ms from the universal
 // start (bench/assembly_modes_bench.cpp).
 //
 // Example:
