@@ -11,7 +11,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -23,6 +22,7 @@
 #include "io/format/output_file.hpp"
 #include "io/machine/machine_file.hpp"
 #include "io/results/certificate_files.hpp"
+#include "models/core/pose.hpp"
 #include "models/workspace/mode_certificate.hpp"
 #include "models/workspace/slice_plane.hpp"
 #include "models/workspace/volume_accuracy.hpp"
@@ -179,8 +179,8 @@ void check_certify_options(const WorkspaceCommandOptions& opt) {
     bad_option("--certify-margin", "a margin 0 <= X < 1", opt.certify_margin);
 }
 
-// The certificate of the workspace's cells times its orientation set (--certify), with the
-// settings it was made with.
+// The certificate of the workspace's cells (not empty) times its orientation set (--certify),
+// with the settings it was made with.
 std::pair<ModeCertificate, CertificateSetting> certify_workspace(const WorkspaceCommandOptions& opt,
                                                                  const Machine& machine,
                                                                  const WorkspaceOptions& options,
@@ -191,28 +191,25 @@ std::pair<ModeCertificate, CertificateSetting> certify_workspace(const Workspace
   setting.first_boxes = static_cast<std::int64_t>(ws.points.size());
   setting.region = fmt::format("the workspace's {} grid cells of {:.4g} mm", ws.points.size(),
                                1e3 * ws.resolution);
-  setting.nominal_angles_deg = options.orientations.nominal_angles * (180.0 / std::numbers::pi);
+  setting.nominal_angles_deg = rad_to_deg(options.orientations.nominal_angles);
   setting.tilt_deg = opt.tilt_deg;
   setting.yaw_range_deg = opt.yaw_range_deg;
   setting.options.min_size = opt.certify_size.value_or(ws.resolution / 4.0);
   setting.options.min_margin = opt.certify_margin;
-  ModeCertificate c;
-  if (!ws.points.empty())
-    c = certify_working_mode(
-        *enclosure.get(),
-        workspace_cells(ws.points, ws.resolution, orientation_box(options.orientations)),
-        setting.options);
+  const ModeCertificate c = certify_working_mode(
+      *enclosure.get(),
+      workspace_cells(ws.points, ws.resolution, orientation_box(options.orientations)),
+      setting.options);
   setting.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return {c, setting};
 }
 
 // Writes the result files (all or none), prints the summary line and says what is off.
-void report_workspace(const WorkspaceCommandOptions& opt, const Machine& machine,
-                      const WorkspaceOptions& options, const VolumeAccuracy& accuracy,
-                      const WorkspaceResult& ws, const WorkspaceSlice& slice, SliceMetric metric,
-                      double seconds) {
-  std::optional<std::pair<ModeCertificate, CertificateSetting>> certificate;
-  if (opt.certify && ws.volume > 0.0) certificate = certify_workspace(opt, machine, options, ws);
+void report_workspace(
+    const WorkspaceCommandOptions& opt, const Machine& machine, const WorkspaceOptions& options,
+    const VolumeAccuracy& accuracy, const WorkspaceResult& ws, const WorkspaceSlice& slice,
+    SliceMetric metric, double seconds,
+    const std::optional<std::pair<ModeCertificate, CertificateSetting>>& certificate) {
   const std::filesystem::path out_dir(opt.out_dir);
   if (!opt.out_dir.empty()) {
     std::error_code ec;
@@ -339,7 +336,10 @@ void run_workspace(const WorkspaceCommandOptions& opt) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  report_workspace(opt, *machine, options, accuracy, ws, slice, metric, seconds);
+  std::optional<std::pair<ModeCertificate, CertificateSetting>> certificate;
+  if (opt.certify && !ws.points.empty())
+    certificate = certify_workspace(opt, *machine, options, ws);
+  report_workspace(opt, *machine, options, accuracy, ws, slice, metric, seconds, certificate);
 }
 
 }  // namespace

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "io/format/csv.hpp"
+#include "models/core/pose.hpp"
 
 namespace pkmopt {
 namespace {
@@ -15,8 +15,6 @@ namespace {
 nlohmann::json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
-
-double degrees(double rad) { return rad * 180.0 / std::numbers::pi; }
 
 // The sign all certified boxes share: 1, -1, or 0 when there are both or none.
 int common_sign(const ModeCertificate& c) {
@@ -75,7 +73,7 @@ std::string uncertified_boxes_csv(const ModeCertificate& c) {
     for (int k = 0; k < 3; ++k)
       out += format_number(b.position_lo(k)) + ',' + format_number(b.position_hi(k)) + ',';
     for (const Interval& i : {b.theta, b.phi, b.gamma})
-      out += format_number(degrees(i.lo)) + ',' + format_number(degrees(i.hi)) + ',';
+      out += format_number(rad_to_deg(i.lo)) + ',' + format_number(rad_to_deg(i.hi)) + ',';
     out += fmt::format("{},{},{},{},{}\n", u.parts, format_number(u.fraction),
                        format_number(u.centre_margin), u.centre_sign, u.budget ? 1 : 0);
   }

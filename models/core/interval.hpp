@@ -194,14 +194,6 @@ IntervalGradient<N> operator/(const IntervalGradient<N>& a, const IntervalGradie
   return r;
 }
 template <int N>
-IntervalGradient<N>& operator+=(IntervalGradient<N>& a, const IntervalGradient<N>& b) {
-  return a = a + b;
-}
-template <int N>
-IntervalGradient<N>& operator-=(IntervalGradient<N>& a, const IntervalGradient<N>& b) {
-  return a = a - b;
-}
-template <int N>
 IntervalGradient<N> square(const IntervalGradient<N>& a) {
   IntervalGradient<N> r(square(a.v));
   for (int k = 0; k < N; ++k) r.d[k] = Interval(2.0) * a.v * a.d[k];

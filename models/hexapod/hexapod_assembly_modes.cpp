@@ -50,7 +50,7 @@ ForwardSolutions Hexapod::all_forward_kinematics(const Eigen::VectorXd& q,
   out.paths = modes.paths;
   out.failures = modes.failures;
   out.architecture_singular = modes.architecture_singular;
-  out.distance_length = platform_rel_.colwise().norm().mean();
+  out.distance_length = enclosure_length();  // rho, as in the working-mode certificate
   std::unique_ptr<MachineData> data = make_data();
   for (const AssemblyMode& m : modes.real) {
     ForwardSolution s;

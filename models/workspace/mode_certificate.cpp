@@ -232,8 +232,8 @@ double singularity_free_share(const JacobianEnclosure& enclosure, const PoseBox&
   CertifyOptions options;
   options.min_size = std::max(*std::max_element(s.begin(), s.end()) / 16.0, 1e-6);
   options.max_evaluations = budget;
+  // Certified: one sign's share is positive / positive, exactly 1.
   const ModeCertificate c = certify_working_mode(enclosure, {region}, options);
-  if (c.certified()) return 1.0;
   return std::max(c.positive_fraction, c.negative_fraction);
 }
 
