@@ -76,55 +76,102 @@ std::optional<std::string> nsga2_explain_unsupported(const Problem& problem) {
   return std::nullopt;
 }
 
-FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
+struct Nsga2Search::State {
+  State(const Problem& p, const Nsga2Options& o)
+      : problem(p),
+        options(o),
+        start(std::chrono::steady_clock::now()),
+        counted(p),
+        bounds(p.bounds()),
+        m(p.num_objectives()),
+        rng(o.seed) {}
+  const Problem& problem;
+  Nsga2Options options;
+  std::chrono::steady_clock::time_point start;
+  CountingProblem counted;
+  Bounds bounds;
+  std::size_t m;
+  Random rng;
+  VariationSettings variation;
+  std::vector<Individual> population;
+  std::size_t generations = 0;
+
+  void generation();
+};
+
+// One generation: offspring by tournament, SBX and mutation; parents and children merged and
+// truncated by front and crowding distance.
+void Nsga2Search::State::generation() {
+  const std::size_t size = options.population;
+  std::vector<Individual> merged = population;
+  merged.reserve(2 * size);
+  append_offspring(
+      population, size, bounds, variation, [&] { return tournament(population, rng); }, rng,
+      merged);
+  evaluate_individuals(counted, merged, size, options.threads, options.equality_tolerance);
+
+  std::vector<Individual> next;
+  next.reserve(size);
+  for (const auto& front : sort_fronts(merged, m)) {
+    assign_crowding(merged, front, m);
+    if (next.size() + front.size() <= size) {
+      for (std::size_t k : front) next.push_back(std::move(merged[k]));
+      if (next.size() == size) break;
+      continue;
+    }
+    std::vector<std::size_t> order = front;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return merged[a].crowding > merged[b].crowding;
+    });
+    for (std::size_t k = 0; next.size() < size; ++k) next.push_back(std::move(merged[order[k]]));
+    break;
+  }
+  population = std::move(next);
+  // Ranks and crowding of the survivors, for the next tournaments.
+  for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
+  ++generations;
+}
+
+Nsga2Search::Nsga2Search(const Problem& problem, const Nsga2Options& options) {
   if (auto error = options.validate()) throw std::invalid_argument(*error);
   if (auto reason = nsga2_explain_unsupported(problem)) throw std::invalid_argument(*reason);
-  const auto start = std::chrono::steady_clock::now();
-  CountingProblem counted(problem);
-  const Bounds bounds = problem.bounds();
-  const std::size_t n = bounds.lower.size();
-  const std::size_t m = problem.num_objectives();
-  const std::size_t size = options.population;
-  const VariationSettings variation{options.crossover_probability, options.crossover_eta,
-                                    resolved_mutation_probability(options.mutation_probability, n),
-                                    options.mutation_eta};
-  Random rng(options.seed);
+  state_ = std::make_unique<State>(problem, options);
+  State& s = *state_;
+  const std::size_t n = s.bounds.lower.size();
+  s.variation = {options.crossover_probability, options.crossover_eta,
+                 resolved_mutation_probability(options.mutation_probability, n),
+                 options.mutation_eta};
+  s.population =
+      initial_individuals(problem, options.population, options.initial_population, s.rng, "nsga2");
+  evaluate_individuals(s.counted, s.population, 0, options.threads, options.equality_tolerance);
+  for (const auto& front : sort_fronts(s.population, s.m))
+    assign_crowding(s.population, front, s.m);
+}
 
-  std::vector<Individual> population =
-      initial_individuals(problem, size, options.initial_population, rng, "nsga2");
-  evaluate_individuals(counted, population, 0, options.threads, options.equality_tolerance);
-  for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
+Nsga2Search::~Nsga2Search() = default;
+Nsga2Search::Nsga2Search(Nsga2Search&&) noexcept = default;
+Nsga2Search& Nsga2Search::operator=(Nsga2Search&&) noexcept = default;
 
-  for (std::size_t generation = 0; generation < options.generations; ++generation) {
-    std::vector<Individual> merged = population;
-    merged.reserve(2 * size);
-    append_offspring(
-        population, size, bounds, variation, [&] { return tournament(population, rng); }, rng,
-        merged);
-    evaluate_individuals(counted, merged, size, options.threads, options.equality_tolerance);
+void Nsga2Search::advance(std::size_t generations) {
+  for (std::size_t g = 0; g < generations; ++g) state_->generation();
+}
 
-    std::vector<Individual> next;
-    next.reserve(size);
-    for (const auto& front : sort_fronts(merged, m)) {
-      assign_crowding(merged, front, m);
-      if (next.size() + front.size() <= size) {
-        for (std::size_t k : front) next.push_back(std::move(merged[k]));
-        if (next.size() == size) break;
-        continue;
-      }
-      std::vector<std::size_t> order = front;
-      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return merged[a].crowding > merged[b].crowding;
-      });
-      for (std::size_t k = 0; next.size() < size; ++k) next.push_back(std::move(merged[order[k]]));
-      break;
-    }
-    population = std::move(next);
-    // Ranks and crowding of the survivors, for the next tournaments.
-    for (const auto& front : sort_fronts(population, m)) assign_crowding(population, front, m);
-  }
+std::size_t Nsga2Search::generations() const { return state_->generations; }
 
-  return population_front(problem, population, options.equality_tolerance, "nsga2", counted, start);
+long long Nsga2Search::fitness_evaluations() const {
+  return state_->counted.fitness_evaluations();
+}
+
+FrontResult Nsga2Search::front() const {
+  const State& s = *state_;
+  return population_front(s.problem, s.population, s.options.equality_tolerance, "nsga2",
+                          s.counted, s.start);
+}
+
+FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options) {
+  Nsga2Search search(problem, options);
+  search.advance(options.generations);
+  return search.front();
 }
 
 }  // namespace pkmopt

@@ -16,6 +16,12 @@
 // thread, so a seed gives bit-identical fronts for any number of threads.
 // Evaluations: population * (generations + 1).
 //
+// Nsga2Search runs the same algorithm a few generations at a time (the architecture synthesis
+// gives each structure generations in rounds): constructing it draws and evaluates the initial
+// population, advance(g) runs g more generations, and after advance(a) then advance(b) the
+// population is bit-identical to run_nsga2 with generations = a + b (options.generations is not
+// read by the search).
+//
 // Example:
 //   pkmopt::Nsga2Options options;
 //   options.population = 100;
@@ -26,6 +32,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,5 +66,29 @@ std::optional<std::string> nsga2_explain_unsupported(const Problem& problem);
 /// The result is the feasible non-dominated part of the final population (empty if no design
 /// is feasible; `message` says so).
 FrontResult run_nsga2(const Problem& problem, const Nsga2Options& options);
+
+/// NSGA-II a few generations at a time (see the header comment). The problem must outlive the
+/// search.
+class Nsga2Search {
+ public:
+  /// Draws and evaluates the initial population. Throws std::invalid_argument as run_nsga2.
+  Nsga2Search(const Problem& problem, const Nsga2Options& options);
+  ~Nsga2Search();
+  Nsga2Search(Nsga2Search&&) noexcept;
+  Nsga2Search& operator=(Nsga2Search&&) noexcept;
+
+  /// Runs `generations` more generations.
+  void advance(std::size_t generations);
+  /// Generations run so far (0 after construction).
+  std::size_t generations() const;
+  /// Fitness evaluations so far (population * (generations() + 1)).
+  long long fitness_evaluations() const;
+  /// The feasible non-dominated part of the current population, as run_nsga2 returns it.
+  FrontResult front() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 }  // namespace pkmopt

@@ -70,6 +70,37 @@ TEST(Nsga2, SameSeedSameFrontForOneAndTwoThreads) {
   EXPECT_NE(run_nsga2(problem, options).x, one.x);
 }
 
+TEST(Nsga2, SearchInStepsEqualsOneRun) {
+  // advance(7) then advance(13) is run_nsga2 with 20 generations, bit for bit, for the same
+  // seed, and the evaluation count is population * (generations + 1).
+  Zdt problem(2, 8);
+  Nsga2Options options;
+  options.population = 24;
+  options.generations = 20;
+  options.seed = 11;
+  const FrontResult whole = run_nsga2(problem, options);
+  Nsga2Search search(problem, options);
+  EXPECT_EQ(search.generations(), 0u);
+  EXPECT_EQ(search.fitness_evaluations(), 24);
+  search.advance(7);
+  search.advance(0);
+  search.advance(13);
+  EXPECT_EQ(search.generations(), 20u);
+  const FrontResult stepped = search.front();
+  EXPECT_EQ(stepped.fitness_evaluations, whole.fitness_evaluations);
+  EXPECT_EQ(stepped.fitness_evaluations, 24 * 21);
+  EXPECT_EQ(stepped.x, whole.x);
+  EXPECT_EQ(stepped.fitness, whole.fitness);
+  // A different split gives the same population too; a different seed does not.
+  Nsga2Search other(problem, options);
+  for (int g = 0; g < 20; ++g) other.advance(1);
+  EXPECT_EQ(other.front().x, whole.x);
+  options.seed = 12;
+  Nsga2Search reseeded(problem, options);
+  reseeded.advance(20);
+  EXPECT_NE(reseeded.front().x, whole.x);
+}
+
 TEST(Nsga2, InitialPopulationIsUsed) {
   Zdt problem(1, 5);
   Nsga2Options options = small_run();
