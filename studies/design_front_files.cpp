@@ -24,48 +24,7 @@ namespace pkmopt {
 
 using namespace design_outputs_detail;
 
-namespace {
-
-// Why the run's designs were infeasible: failures by reason and violated constraint rows by
-// name, counted over the distinct evaluations (summary.json "infeasibility" and the warning of a
-// run without a feasible design).
-struct Infeasibility {
-  std::size_t evaluations = 0;
-  std::size_t feasible = 0;
-  std::vector<std::pair<std::string, std::size_t>> failures;  // reason, count (most first)
-  std::vector<std::pair<std::string, std::size_t>> violated;  // constraint, count (most first)
-
-  nlohmann::json json() const {
-    nlohmann::json j;
-    j["evaluations"] = evaluations;
-    j["feasible"] = feasible;
-    j["failed"] = nlohmann::json::object();
-    for (const auto& [reason, n] : failures) j["failed"][reason] = n;
-    j["violated"] = nlohmann::json::object();
-    for (const auto& [name, n] : violated) j["violated"][name] = n;
-    return j;
-  }
-  // "g_task_reachable > 0 in 4412, g_leg_force_max_max > 0 in 311 of 4880 evaluations; 57
-  // failed ('...' 40, ...)": the three most frequent of each.
-  std::string text() const {
-    std::string t;
-    for (std::size_t k = 0; k < violated.size() && k < 3; ++k)
-      t += fmt::format("{}{} > 0 in {}", k ? ", " : "", violated[k].first, violated[k].second);
-    t += fmt::format("{}{} evaluations", t.empty() ? "" : " of ", evaluations);
-    std::size_t failed = 0;
-    for (const auto& f : failures) failed += f.second;
-    if (failed > 0) {
-      t += fmt::format("; {} failed (", failed);
-      for (std::size_t k = 0; k < failures.size() && k < 3; ++k)
-        t += fmt::format("{}{} {}", k ? ", " : "", quote_found(failures[k].first),
-                         failures[k].second);
-      t += failures.size() > 3 ? ", ...)" : ")";
-    }
-    return t;
-  }
-};
-
-Infeasibility count_infeasibility(const DesignStudy& study,
+Infeasibility design_outputs_detail::count_infeasibility(const DesignStudy& study,
                                   const std::vector<JournalEntry>& entries) {
   const std::size_t m = study.objectives().size();
   const std::vector<std::string> names =
@@ -100,6 +59,9 @@ Infeasibility count_infeasibility(const DesignStudy& study,
   std::sort(result.violated.begin(), result.violated.end(), by_count);
   return result;
 }
+
+namespace {
+
 
 // What the writers of one front share.
 struct FrontFiles {
@@ -354,10 +316,13 @@ DesignOutputSummary make_summary(std::string& text, const DesignStudy& study,
 
 }  // namespace
 
-DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
-                                         const RunOutcome& outcome, const DesignRunFacts& facts,
-                                         const OutputFiles& also) {
-  const FrontSelection selection = select_design_front(study, outcome, facts);
+namespace design_outputs_detail {
+
+DesignFiles design_output_files(const std::string& directory, const DesignStudy& study,
+                                const RunOutcome& outcome, const DesignRunFacts& facts) {
+  DesignFiles out;
+  out.selection = select_design_front(study, outcome, facts);
+  const FrontSelection& selection = out.selection;
   FrontFiles f{.study = study, .front = selection.designs};
   f.m = study.objectives().size();
   f.free = free_parameter_indices(study);
@@ -371,7 +336,7 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
 
   std::string csv = pareto_csv_header(f);
   nlohmann::json designs = nlohmann::json::array();
-  OutputFiles files = also;
+  OutputFiles& files = out.files;
   if (study.write_designs) std::filesystem::create_directories(directory + "/designs");
   for (std::size_t k = 0; k < f.front.size(); ++k) {
     auto [row, design] = design_row(f, k);
@@ -423,13 +388,25 @@ DesignOutputSummary write_design_outputs(const std::string& directory, const Des
   }
 
   std::string summary;
-  const DesignOutputSummary result =
+  out.summary =
       make_summary(summary, study, outcome, facts, selection, f.objectives, reference, knee);
   files.emplace_back(directory + "/pareto.csv", std::move(csv));
   files.emplace_back(directory + "/pareto.json", pareto.dump(2) + "\n");
   files.emplace_back(directory + "/summary.json", std::move(summary));
+  return out;
+}
+
+}  // namespace design_outputs_detail
+
+DesignOutputSummary write_design_outputs(const std::string& directory, const DesignStudy& study,
+                                         const RunOutcome& outcome, const DesignRunFacts& facts,
+                                         const OutputFiles& also) {
+  design_outputs_detail::DesignFiles out =
+      design_outputs_detail::design_output_files(directory, study, outcome, facts);
+  OutputFiles files = also;
+  files.insert(files.end(), out.files.begin(), out.files.end());
   write_files_together(files);
-  return result;
+  return out.summary;
 }
 
 }  // namespace pkmopt

@@ -4,10 +4,15 @@
 #pragma once
 
 #include <cstddef>
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "io/format/csv.hpp"
+#include "io/format/output_file.hpp"
 #include "studies/design_study.hpp"
 
 namespace pkmopt::design_outputs_detail {
@@ -50,5 +55,57 @@ struct FrontSelection {
 /// solver's answer.
 FrontSelection select_design_front(const DesignStudy& study, const RunOutcome& outcome,
                                    const DesignRunFacts& facts);
+
+/// The files write_design_outputs writes (pareto.csv, pareto.json, summary.json and
+/// designs/<id>.yaml in `directory`), not yet written, with the front they show.
+struct DesignFiles {
+  OutputFiles files;
+  DesignOutputSummary summary;
+  FrontSelection selection;
+};
+DesignFiles design_output_files(const std::string& directory, const DesignStudy& study,
+                                const RunOutcome& outcome, const DesignRunFacts& facts);
+
+// Why the run's designs were infeasible: failures by reason and violated constraint rows by
+// name, counted over the distinct evaluations (summary.json "infeasibility" and the warning of a
+// run without a feasible design).
+struct Infeasibility {
+  std::size_t evaluations = 0;
+  std::size_t feasible = 0;
+  std::vector<std::pair<std::string, std::size_t>> failures;  // reason, count (most first)
+  std::vector<std::pair<std::string, std::size_t>> violated;  // constraint, count (most first)
+
+  nlohmann::json json() const {
+    nlohmann::json j;
+    j["evaluations"] = evaluations;
+    j["feasible"] = feasible;
+    j["failed"] = nlohmann::json::object();
+    for (const auto& [reason, n] : failures) j["failed"][reason] = n;
+    j["violated"] = nlohmann::json::object();
+    for (const auto& [name, n] : violated) j["violated"][name] = n;
+    return j;
+  }
+  // "g_task_reachable > 0 in 4412, g_leg_force_max_max > 0 in 311 of 4880 evaluations; 57
+  // failed ('...' 40, ...)": the three most frequent of each.
+  std::string text() const {
+    std::string t;
+    for (std::size_t k = 0; k < violated.size() && k < 3; ++k)
+      t += fmt::format("{}{} > 0 in {}", k ? ", " : "", violated[k].first, violated[k].second);
+    t += fmt::format("{}{} evaluations", t.empty() ? "" : " of ", evaluations);
+    std::size_t failed = 0;
+    for (const auto& f : failures) failed += f.second;
+    if (failed > 0) {
+      t += fmt::format("; {} failed (", failed);
+      for (std::size_t k = 0; k < failures.size() && k < 3; ++k)
+        t += fmt::format("{}{} {}", k ? ", " : "", quote_found(failures[k].first),
+                         failures[k].second);
+      t += failures.size() > 3 ? ", ...)" : ")";
+    }
+    return t;
+  }
+};
+
+Infeasibility count_infeasibility(const DesignStudy& study,
+                                  const std::vector<JournalEntry>& entries);
 
 }  // namespace pkmopt::design_outputs_detail

@@ -157,17 +157,23 @@ void read_formulation(const YamlValue& optimizer, const StudyMachine& machine, D
 }  // namespace
 
 DesignStudy load_design_study(const YamlValue& root) {
-  const std::string& path = root.file();
   root.check_keys({"study", "description", "machine", "task", "objectives", "constraints",
                    "optimizer", "output"});
+  return load_design_study_part(root, root.required("study").as_string(), root.required("machine"),
+                                {});
+}
+
+DesignStudy load_design_study_part(const YamlValue& root, const std::string& name,
+                                   const YamlValue& machine_section,
+                                   const std::array<double, 3>& placement) {
+  const std::string& path = root.file();
   DesignStudy study;
-  study.name = root.required("study").as_string();
+  study.name = name;
   if (auto v = root.optional("description")) study.description = v->as_string();
   std::string yaml = fmt::format("# {} resolved: every default filled in (pkmopt {})\n",
                                  nlohmann::json(study.name).dump(), kVersion);
   yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
   yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
-  const YamlValue machine_section = root.required("machine");
   std::unique_ptr<StudyMachine> machine = read_study_machine(machine_section);
   study.model = machine->model;
   yaml += machine->resolved_yaml;
@@ -175,7 +181,7 @@ DesignStudy load_design_study(const YamlValue& root) {
   goals.name = study.name;
   DesignTask& task = goals.task;
   const YamlValue task_section = root.required("task");
-  read_task(task_section, task, study, yaml);
+  read_task(task_section, task, study, yaml, placement);
   if (machine->translational && (study.task_tilt_deg > 0.0 || study.task_yaw_deg > 0.0))
     task_section.required("orientations")
         .fail(fmt::format("tilt_deg: 0 and yaw_deg: 0 (the {} platform keeps its orientation)",

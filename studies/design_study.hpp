@@ -134,6 +134,13 @@ DesignStudy load_design_study(const std::string& path);
 /// relative to the folder of root.file(); a study built in memory names no folder, so they are
 /// taken relative to the working directory).
 DesignStudy load_design_study(const YamlValue& root);
+/// One machine's design study from a study's shared sections (root: task, objectives,
+/// constraints, optimizer, output; its other keys are not read): named `name`, the machine of
+/// `machine_section`, the task region's centre moved by `placement` (m). The architecture
+/// synthesis (studies/synthesis_study.hpp) makes one per candidate structure.
+DesignStudy load_design_study_part(const YamlValue& root, const std::string& name,
+                                   const YamlValue& machine_section,
+                                   const std::array<double, 3>& placement);
 
 /// The unit of a metric in outputs ("N/m", "m^3", "" for the dimensionless ones).
 std::string_view design_metric_unit(DesignMetric metric);

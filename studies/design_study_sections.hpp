@@ -160,7 +160,9 @@ void describe_fields(Fields& f, OutputSection& o) {
   front_size_field(f, o.front_size);
 }
 
-/// The `task:` section; appends its resolved YAML to `yaml`.
-void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study, std::string& yaml);
+/// The `task:` section; appends its resolved YAML to `yaml`. `placement` (m) is added to the
+/// region's centre (an architecture synthesis places one task in each candidate's frame).
+void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study, std::string& yaml,
+               const std::array<double, 3>& placement = {});
 
 }  // namespace pkmopt::design_study_detail

@@ -81,8 +81,8 @@ PoseBox task_region(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
 
 }  // namespace
 
-void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
-               std::string& yaml) {
+void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study, std::string& yaml,
+               const std::array<double, 3>& placement) {
   task.check_keys({"region", "orientations", "wrench", "a_max", "workspace", "installation_space"});
   TaskOrientationsSection orientations;
   if (auto o = task.optional("orientations")) read_fields(*o, orientations);
@@ -105,6 +105,7 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   if (shape.as_string() == "box") {
     BoxRegionSection box;
     read_fields(region, box);
+    for (int a = 0; a < 3; ++a) box.centre[a] += placement[a];
     const Eigen::Vector3d centre(box.centre[0], box.centre[1], box.centre[2]);
     const Eigen::Vector3i counts(box.points[0], box.points[1], box.points[2]);
     const double total = static_cast<double>(box.points[0]) * box.points[1] * box.points[2] *
@@ -123,6 +124,7 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   } else if (shape.as_string() == "cylinder") {
     CylinderRegionSection cylinder;
     read_fields(region, cylinder);
+    for (int a = 0; a < 3; ++a) cylinder.centre[a] += placement[a];
     const Eigen::Vector3d centre(cylinder.centre[0], cylinder.centre[1], cylinder.centre[2]);
     const double total = (1.0 + static_cast<double>(cylinder.rings) * cylinder.per_ring) *
                          cylinder.layers * orientations_per_position;

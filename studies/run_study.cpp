@@ -15,70 +15,13 @@
 #include "studies/benchmark_study.hpp"
 #include "studies/design_study.hpp"
 #include "studies/journal.hpp"
-#include "studies/run_lock.hpp"
+#include "studies/run_folder.hpp"
+#include "studies/synthesis_run.hpp"
 
 namespace pkmopt {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Checks DIR against --resume / --force, creates it and locks it (studies/run_lock.hpp) for the
-// run; then (with the lock held) clears a replaced run and the temporaries a killed run left.
-struct PreparedDirectory {
-  std::unique_ptr<RunLock> lock;
-  bool resumed = false;  ///< a journal is resumed
-};
-
-PreparedDirectory prepare_output_directory(const StudyRunOptions& opt) {
-  const fs::path dir(opt.out);
-  const bool has_journal = fs::exists(dir / "journal.txt");
-  const bool holds_run =
-      has_journal || fs::exists(dir / "summary.json") || fs::exists(dir / "pareto.csv");
-  if (!holds_run && fs::is_directory(dir)) {
-    // A folder of something else (a home folder, a source tree) is never written into: --force
-    // would remove files there. A folder a killed run left before its journal has its lock.
-    std::error_code error;
-    for (const fs::directory_entry& e : fs::directory_iterator(dir, error)) {
-      const std::string name = e.path().filename().string();
-      if (name == "run.lock" || name == "study.resolved.yaml" ||
-          name.find(".tmp.") != std::string::npos)
-        continue;
-      throw InputError(fmt::format(
-          "--out: expected a new or empty folder or a previous run, found the folder '{}' holding "
-          "other files (such as {}); give another folder",
-          opt.out, quote_found(name)));
-    }
-  }
-  if (holds_run && !opt.resume && !opt.force)
-    throw InputError(fmt::format(
-        "--out: '{}' holds a previous run ({}); continue it with --resume or replace it with "
-        "--force",
-        opt.out, has_journal ? "journal.txt" : "summary.json or pareto.csv"));
-  std::error_code error;
-  fs::create_directories(dir, error);
-  if (error || !fs::is_directory(dir))
-    throw InputError(fmt::format("--out: cannot create the folder '{}': {}", opt.out,
-                                 error ? error.message() : "not a folder"));
-  PreparedDirectory prepared;
-  prepared.lock = std::make_unique<RunLock>(opt.out);
-  if (opt.force) {
-    for (const char* name : {"journal.txt", "evaluations.csv", "pareto.csv", "pareto.json",
-                             "summary.json", "study.resolved.yaml", "journal.damaged.txt"})
-      fs::remove(dir / name);
-    if (fs::is_directory(dir / "designs"))
-      for (const fs::directory_entry& e : fs::directory_iterator(dir / "designs"))
-        if (e.path().extension() == ".yaml" && e.path().filename().string().starts_with("d"))
-          fs::remove(e.path());
-  }
-  if (const std::size_t stale = remove_stale_temporaries(opt.out); stale > 0)
-    opt.message(fmt::format("removed {} temporary file{} left in '{}' by an interrupted run", stale,
-                            stale == 1 ? "" : "s", opt.out));
-  const bool journal_now = fs::exists(dir / "journal.txt");
-  if (opt.resume && !journal_now)
-    opt.message(fmt::format("no journal in '{}': starting a new run", opt.out));
-  prepared.resumed = opt.resume && journal_now;
-  return prepared;
-}
 
 // study.resolved.yaml goes into place with the run's results, never without them.
 std::string resolved_path(const StudyRunOptions& opt) {
@@ -285,12 +228,18 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
                     kMaxStudyThreads, opt.threads));
   if (opt.resume && opt.force)
     throw InputError("--resume and --force: expected one of them, found both");
+  if (is_synthesis_study(root) && opt.mpi != nullptr && opt.mpi->size() > 1)
+    throw InputError(fmt::format(
+        "mpirun: expected one process for a synthesis study (its structures are searched one "
+        "after another on the threads of one process), found {} processes",
+        opt.mpi->size()));
   if (opt.mpi != nullptr && opt.mpi->rank() > 0) {
     serve_as_worker([&root] { return load_evaluator(root); }, opt.threads);
     StudyRunResult worker;
     worker.worker = true;
     return worker;
   }
+  if (is_synthesis_study(root)) return run_synthesis_study(root, opt, wall_start);
   if (root.is_map() && root.has("machine")) return run_design_study(root, opt, wall_start);
   return run_benchmark_study(root, opt, wall_start);
 }

@@ -49,6 +49,8 @@ struct StudyRunOptions {
 /// What a finished run says about itself (the files in `out` hold the results).
 struct StudyRunResult {
   bool design_study = false;
+  bool synthesis = false;        ///< an architecture synthesis (studies/synthesis_study.hpp)
+  std::string candidates_table;  ///< synthesis: the candidates in a terminal table
   std::string name;       ///< the study's name
   std::string algorithm;  ///< as in the study file (nsga2, nlopt:SLSQP, ...)
   std::string problem;    ///< the problem's name (benchmark studies)

@@ -55,7 +55,13 @@ void run_study(const RunCommandOptions& opt) {
 }
 
 void report_result(const StudyRunResult& r) {
-  if (r.design_study)
+  if (r.synthesis)
+    std::cout << fmt::format(
+        "{}: synthesis ({} per structure): {} design(s) on the merged front, {} evaluations ({} "
+        "from the cache, {} failed), {:.3f} s, status {}\n{}",
+        r.name, r.algorithm, r.designs, r.evaluations, r.from_cache, r.failed, r.wall_seconds,
+        r.status, r.candidates_table);
+  else if (r.design_study)
     std::cout << fmt::format(
         "{}: {}: {} design(s), {} evaluations ({} from the cache, {} failed), {:.3f} s, status "
         "{}\n",
@@ -77,8 +83,11 @@ void report_result(const StudyRunResult& r) {
       r.status == "no_feasible_design"
           ? "no feasible design: every evaluated design failed or violates a constraint" +
                 (r.infeasibility.empty() ? std::string() : " (" + r.infeasibility + ")") +
-                "; see evaluations.csv (columns feasible and failure) and summary.json "
-                "(infeasibility); relax the constraints, widen the parameter ranges or check the "
+                (r.synthesis ? "; see candidates.csv (failures) and each structure's "
+                               "candidates/NAME/evaluations.csv"
+                             : "; see evaluations.csv (columns feasible and failure) and "
+                               "summary.json (infeasibility)") +
+                "; relax the constraints, widen the parameter ranges or check the "
                 "task"
           : "the solver ended with status " + r.status + ": its point is not a usable result";
   if (!r.message.empty()) what += " (" + r.message + ")";

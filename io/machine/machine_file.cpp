@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -155,6 +157,40 @@ std::unique_ptr<Machine> load_machine(const YamlValue& root) {
   return machine_model(root.required("model")).load(root);
 }
 
+namespace {
+
+// The hexapod of an architecture synthesis: the compare-300 design space (a 300 mm task) scaled
+// by the task's size, steel legs, actuators of 2e8 N/m, 45 deg joints, the TCP 0.1 m below the
+// platform; the task 0.9 scale above the base.
+std::vector<SynthesisTemplate> hexapod_synthesis(const SynthesisScale& scale) {
+  const double s = std::max(scale.size, 0.1) / 0.3;
+  auto range = [s](double lo, double hi) {
+    return fmt::format("{{min: {:.4g}, max: {:.4g}}}", lo * s, hi * s);
+  };
+  SynthesisTemplate t;
+  t.name = "hexapod";
+  t.structure = "Gough–Stewart hexapod (6-UPS)";
+  t.machine_yaml = fmt::format(
+      "model: hexapod\n"
+      "parameters:\n"
+      "  base_radius: {}\n"
+      "  platform_radius: {}\n"
+      "  base_pair_separation_deg: 20\n"
+      "  platform_pair_separation_deg: 20\n"
+      "  min_length: {}\n"
+      "  stroke: {}\n"
+      "  home_height: {}\n"
+      "legs: {{E: 2.1e11, area: 3.0e-4, actuator_stiffness: 2.0e8}}\n"
+      "joints: {{base_max_angle_deg: 45, platform_max_angle_deg: 45}}\n"
+      "tool: {{tcp: [0, 0, -0.10]}}\n",
+      range(0.35, 0.75), range(0.15, 0.30), range(0.35, 0.90), range(0.25, 0.70),
+      range(-0.60, 0.20));
+  t.task_centre = {0.0, 0.0, 0.9 * s};
+  return {t};
+}
+
+}  // namespace
+
 ModelEntry hexapod_model_entry() {
   ModelEntry entry;
   entry.name = kHexapodModel;
@@ -165,6 +201,7 @@ ModelEntry hexapod_model_entry() {
   entry.platform_dofs = [](const YamlValue&) { return PlatformDofs{3, 3}; };
   entry.study_machine = read_hexapod_study_machine;
   entry.study_fields_markdown = hexapod_study_machine_markdown;
+  entry.synthesis = hexapod_synthesis;
   return entry;
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -317,6 +318,114 @@ PlatformDofs generic_leg_chain_dofs(const YamlValue& root) {
   return {3, 3};
 }
 
+// Architecture synthesis: each model's design space scaled from the task's size (s = 1 for a
+// 300 mm task; studies/library/compare-300 and tripod-z3 are the unscaled ones), the same
+// engineering assumptions for all (steel links, drives of 2e8 N/m, the TCP 0.1 m from the
+// platform), and where the task sits in the model's frame.
+double synthesis_factor(const SynthesisScale& scale) { return std::max(scale.size, 0.1) / 0.3; }
+
+std::string synthesis_range(double s, double lo, double hi) {
+  return fmt::format("{{min: {:.4g}, max: {:.4g}}}", lo * s, hi * s);
+}
+
+std::vector<SynthesisTemplate> delta_synthesis(const SynthesisScale& scale) {
+  const double s = synthesis_factor(scale);
+  SynthesisTemplate t;
+  t.name = "delta";
+  t.structure = "delta robot (3-RUU parallelograms, rotary drives)";
+  t.machine_yaml = fmt::format(
+      "model: delta\n"
+      "parameters:\n"
+      "  base_radius: {}\n"
+      "  platform_radius: {:.4g}\n"
+      "  upper_arm: {}\n"
+      "  rod: {}\n"
+      "  drive_min_deg: -60\n"
+      "  drive_max_deg: 100\n"
+      "  home_height: {}\n"
+      "rods: {{E: 2.1e11, area: 1.5e-4}}\n"
+      "drive_stiffness: 2.0e6\n"
+      "joints: {{elbow_max_angle_deg: 60, platform_max_angle_deg: 60}}\n"
+      "tool: {{tcp: [0, 0, -0.10]}}\n",
+      synthesis_range(s, 0.10, 0.30), 0.06 * s, synthesis_range(s, 0.20, 0.60),
+      synthesis_range(s, 0.50, 1.20), synthesis_range(s, -0.30, 0.30));
+  t.task_centre = {0.0, 0.0, -0.8 * s};
+  return {t};
+}
+
+std::vector<SynthesisTemplate> linear_delta_synthesis(const SynthesisScale& scale) {
+  const double s = synthesis_factor(scale);
+  SynthesisTemplate t;
+  t.name = "linear_delta";
+  t.structure = "linear delta (3-PUU parallelograms on guides)";
+  t.machine_yaml = fmt::format(
+      "model: linear_delta\n"
+      "parameters:\n"
+      "  guide_radius: {}\n"
+      "  platform_radius: {:.4g}\n"
+      "  rod: {}\n"
+      "  stroke: {}\n"
+      "  inclination_deg: {{min: 0, max: 30}}\n"
+      "  home_height: {}\n"
+      "rods: {{E: 2.1e11, area: 1.5e-4}}\n"
+      "carriage_stiffness: 2.0e8\n"
+      "joints: {{carriage_max_angle_deg: 60, platform_max_angle_deg: 60}}\n"
+      "tool: {{tcp: [0, 0, -0.10]}}\n",
+      synthesis_range(s, 0.25, 0.70), 0.06 * s, synthesis_range(s, 0.40, 1.10),
+      synthesis_range(s, 0.30, 0.90), synthesis_range(s, -0.30, 0.30));
+  t.task_centre = {0.0, 0.0, -0.4 * s};
+  return {t};
+}
+
+std::vector<SynthesisTemplate> hexaglide_synthesis(const SynthesisScale& scale) {
+  const double s = synthesis_factor(scale);
+  SynthesisTemplate t;
+  t.name = "hexaglide";
+  t.structure = "hexaglide (6-PUS, carriages on parallel guides)";
+  t.machine_yaml = fmt::format(
+      "model: hexaglide\n"
+      "parameters:\n"
+      "  platform_radius: {}\n"
+      "  pair_separation_deg: 20\n"
+      "  guide_offset: {}\n"
+      "  strut: {}\n"
+      "  stroke: {}\n"
+      "  inclination_deg: {{min: -30, max: 30}}\n"
+      "  home_height: {}\n"
+      "struts: {{E: 2.1e11, area: 3.0e-4}}\n"
+      "carriage_stiffness: 2.0e8\n"
+      "joints: {{carriage_max_angle_deg: 60, platform_max_angle_deg: 60}}\n"
+      "tool: {{tcp: [0, 0, -0.10]}}\n",
+      synthesis_range(s, 0.15, 0.40), synthesis_range(s, 0.05, 0.60),
+      synthesis_range(s, 0.50, 1.30), synthesis_range(s, 0.80, 2.60),
+      synthesis_range(s, -0.20, 0.20));
+  t.task_centre = {0.0, 0.0, 0.4 * s};
+  return {t};
+}
+
+std::vector<SynthesisTemplate> tripod_3prs_synthesis(const SynthesisScale& scale) {
+  const double s = synthesis_factor(scale);
+  SynthesisTemplate t;
+  t.name = "tripod_3prs";
+  t.structure = "3-PRS tripod head";
+  t.machine_yaml = fmt::format(
+      "model: tripod_3prs\n"
+      "parameters:\n"
+      "  base_radius: {}\n"
+      "  platform_radius: {}\n"
+      "  strut: {}\n"
+      "  stroke: {:.4g}\n"
+      "  home_height: {}\n"
+      "tool_length: 0.10\n"
+      "struts: {{section: {{E: 2.1e11, G: 8.1e10, outer_diameter: 0.08, inner_diameter: 0.06}}}}\n"
+      "slide_stiffness: 2.0e8\n"
+      "joints: {{revolute_max_angle_deg: 50, platform_max_angle_deg: 70}}\n",
+      synthesis_range(s, 0.20, 0.45), synthesis_range(s, 0.08, 0.25),
+      synthesis_range(s, 0.35, 0.80), 0.95 * s, synthesis_range(s, 0.0, 0.6));
+  t.task_centre = {0.0, 0.0, 0.9 * s};
+  return {t};
+}
+
 }  // namespace
 
 std::vector<ModelEntry> leg_chain_model_entries() {
@@ -329,6 +438,10 @@ std::vector<ModelEntry> leg_chain_model_entries() {
                                     hexaglide_family, hexaglide_machine_file));
   entries.push_back(leg_chain_entry("tripod_3prs", read_tripod_3prs_design, make_tripod_3prs,
                                     {1, 2}, tripod_3prs_family, tripod_3prs_machine_file));
+  entries[0].synthesis = delta_synthesis;
+  entries[1].synthesis = linear_delta_synthesis;
+  entries[2].synthesis = hexaglide_synthesis;
+  entries[3].synthesis = tripod_3prs_synthesis;
   ModelEntry generic;
   generic.name = "leg_chain";
   generic.load = [](const YamlValue& root) -> std::unique_ptr<Machine> {

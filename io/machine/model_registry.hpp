@@ -13,6 +13,8 @@
 //                   platform_dofs and the actuators of the loaded machine
 //   design_family or study_machine   how it takes part in design studies
 //   (io/design/study_machine.hpp)
+//   synthesis       the candidate structures it offers an architecture synthesis, with design
+//                   spaces scaled from the task (studies/synthesis_study.hpp)
 // Commands, the study engine, the Python package and the docs tables find models here; a
 // model's own files (its machine, its field list, its design family) hold everything else
 // about it, and no other file names it.
@@ -31,6 +33,7 @@
 //   std::unique_ptr<Machine> m = load_machine(YamlValue::load_file("rpr.yaml"));
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <string>
@@ -52,6 +55,24 @@ struct PlatformDofs {
   int rotations = 0;
 };
 
+/// The size of a task an architecture synthesis dimensions machines for
+/// (studies/synthesis_study.hpp).
+struct SynthesisScale {
+  double size = 0.3;      ///< the task region's largest edge (box) or diameter (cylinder), m
+  double height = 0.2;    ///< its extent along z, m
+  double tilt_deg = 0.0;  ///< the tool's tilt cone
+  double yaw_deg = 0.0;   ///< the yaw range (+-)
+};
+
+/// A candidate structure a model offers an architecture synthesis: the study's machine section
+/// with a design space scaled from the task, and where the task sits in the model's frame.
+struct SynthesisTemplate {
+  std::string name;          ///< the candidate's name ("hexapod", "linear_delta")
+  std::string structure;     ///< in words: "Gough–Stewart hexapod (6-UPS)"
+  std::string machine_yaml;  ///< the `machine:` section's map, as YAML text
+  std::array<double, 3> task_centre{};  ///< m, the task region's centre before home_height
+};
+
 /// One model of the registry (see the header comment).
 struct ModelEntry {
   std::string name;
@@ -67,6 +88,10 @@ struct ModelEntry {
   /// a reader of its own for a study's `machine:` section, with its docs table.
   std::function<std::unique_ptr<StudyMachine>(const YamlValue& machine)> study_machine;
   std::function<std::string()> study_fields_markdown;
+
+  /// The candidates it offers an architecture synthesis for a task of this size; empty (or
+  /// unset) for a model that takes no part in it.
+  std::function<std::vector<SynthesisTemplate>(const SynthesisScale&)> synthesis;
 };
 
 /// The model named `name`; nullptr when none is registered.
