@@ -11,6 +11,8 @@
 #include "app/commands.hpp"
 #include "studies/benchmark_study.hpp"
 #include "studies/design_study.hpp"
+#include "studies/synthesis_run.hpp"
+#include "studies/synthesis_study.hpp"
 
 namespace pkmopt::cli {
 namespace {
@@ -128,7 +130,52 @@ std::string task_text(const DesignStudy& study) {
   return text;
 }
 
+// A synthesis: the task's motions, the candidates searched (with their design spaces) and those
+// dropped (with why), and the budget's rounds.
+std::string synthesis_text(const std::string& path, const SynthesisStudy& study) {
+  const std::vector<std::size_t> searched = study.searched();
+  std::string text = fmt::format(
+      "{}: synthesis study '{}' is valid\n  task motion: {} ({})\n  candidates: {} searched, {} "
+      "dropped\n",
+      path, study.name, study.motion.type(), study.motion.words(), searched.size(),
+      study.candidates.size() - searched.size());
+  for (const SynthesisCandidate& c : study.candidates) {
+    if (!c.searched) {
+      text += fmt::format("    dropped  {} ({}): {}\n", c.name, c.structure, c.dropped);
+      continue;
+    }
+    std::size_t free = 0;
+    for (const StudyParameter& p : c.study->parameters) free += p.free() ? 1 : 0;
+    text += fmt::format(
+        "    search   {} ({}; {}): {} free parameters, task centre [{:.6g}, {:.6g}, {:.6g}] m; "
+        "mobility: {}\n",
+        c.name, c.structure, c.origin, free, c.task_centre[0], c.task_centre[1], c.task_centre[2],
+        c.mobility);
+  }
+  const DesignStudy& first = *study.candidates[searched.front()].study;
+  std::string task = task_text(first);
+  if (task.starts_with("  task: "))
+    task = fmt::format("  task (in the frame of {}): ", study.candidates[searched.front()].name) +
+           task.substr(8);
+  text += objectives_text(first) + task;
+  const AllocationPlan plan = plan_allocation(searched.size(), study.nsga2.population,
+                                              study.nsga2.generations, study.allocation);
+  text += fmt::format(
+      "  optimizer: nsga2 per structure, population {}, seed {}; budget {} evaluations ({} "
+      "structures x {} x ({} + 1))\n  allocation: {}",
+      study.nsga2.population, study.nsga2.seed, plan.budget, searched.size(),
+      study.nsga2.population, study.nsga2.generations, study.allocation.rule);
+  for (std::size_t r = 0; r < plan.structures.size(); ++r)
+    text += fmt::format("{} round {}: {} structure(s) x {} generations", r == 0 ? ";" : ",", r + 1,
+                        plan.structures[r], plan.generations[r]);
+  return text + "\n";
+}
+
 void validate_study(const std::string& path) {
+  if (const YamlValue root = YamlValue::load_file(path); is_synthesis_study(root)) {
+    std::cout << synthesis_text(path, load_synthesis_study(root));
+    return;
+  }
   if (is_design_study_file(path)) {
     const DesignStudy study = load_design_study(path);
     std::string text =

@@ -168,7 +168,7 @@ std::vector<SynthesisTemplate> hexapod_synthesis(const SynthesisScale& scale) {
     return fmt::format("{{min: {:.4g}, max: {:.4g}}}", lo * s, hi * s);
   };
   SynthesisTemplate t;
-  t.name = "hexapod";
+  t.name = std::string(kHexapodModel);
   t.structure = "Gough–Stewart hexapod (6-UPS)";
   t.machine_yaml = fmt::format(
       "model: hexapod\n"
