@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -76,9 +77,12 @@ void describe_serial(Fields& g, HybridDesign& d) {
 
 template <class Fields>
 void describe_parallel(Fields& g, HybridDesign& d) {
-  g.note("file", "a machine file", "", "required",
+  g.note("file", "a machine file", "", "required (or machine)",
          "the module's machine file, relative to this file (not serial or hybrid, prismatic "
          "drives)");
+  g.note("machine", "a map", "", "none",
+         "the module's machine file written inline (its keys as in its own file), instead of "
+         "file");
   g.field(
       "home", d.home,
       {.required = true, .unit = "m", .doc = "module-local reference point h of the follow rule"});
@@ -150,6 +154,19 @@ void check_keys_of(const YamlValue& map, Describe&& describe) {
 
 }  // namespace
 
+// A module's machine file (its root map): refused when it is not a parallel machine. A hybrid or
+// serial module (this file itself, say) is refused before anything reads it further, so a file
+// naming itself cannot recurse.
+YamlValue checked_module(YamlValue module_root, const YamlValue& where, const std::string& what) {
+  module_root.expect_map();
+  const std::string module_model = module_root.required("model").as_string();
+  // Parallel machines are the models with a platform (ModelEntry::platform_dofs).
+  const ModelEntry* entry = find_model(module_model);
+  if (entry != nullptr && !entry->platform_dofs)
+    where.fail("a parallel machine file", what + " (model: " + module_model + ")");
+  return module_root;
+}
+
 YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybrid_file) {
   const std::filesystem::path module =
       std::filesystem::path(hybrid_file).parent_path() / file.as_string();
@@ -161,16 +178,17 @@ YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybr
                                                                           : "no such file") +
                   ")");
   }
-  // A hybrid or serial module (this file itself, say) is refused before anything reads it
-  // further, so a file naming itself cannot recurse.
-  YamlValue module_root = YamlValue::load_file(module.string());
-  module_root.expect_map();
-  const std::string module_model = module_root.required("model").as_string();
-  // Parallel machines are the models with a platform (ModelEntry::platform_dofs).
-  const ModelEntry* entry = find_model(module_model);
-  if (entry != nullptr && !entry->platform_dofs)
-    file.fail("a parallel machine file", "'" + module.string() + "' (model: " + module_model + ")");
-  return module_root;
+  return checked_module(YamlValue::load_file(module.string()), file, "'" + module.string() + "'");
+}
+
+YamlValue read_hybrid_module(const YamlValue& parallel, const std::string& hybrid_file) {
+  const bool file = parallel.has("file"), inline_machine = parallel.has("machine");
+  if (file == inline_machine)
+    parallel.fail("exactly one of file (the module's machine file) and machine (the module inline)",
+                  file ? "both" : "neither");
+  if (file) return read_hybrid_module_file(parallel.required("file"), hybrid_file);
+  const YamlValue machine = parallel.required("machine");
+  return checked_module(machine, machine, "the inline module");
 }
 
 HybridDesign read_hybrid_design(const YamlValue& root) {
@@ -214,11 +232,10 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
 
   const YamlValue parallel = root.required("parallel");
   check_keys_of(parallel, [&](auto& keys) { describe_parallel(keys, design); });
-  const YamlValue file = parallel.required("file");
-  const YamlValue module_root = read_hybrid_module_file(file, root.file());
+  const YamlValue module_root = read_hybrid_module(parallel, root.file());
   design.module = load_machine(module_root);
   if (design.module->revolute_actuators()) {
-    file.fail(
+    parallel.required(parallel.has("file") ? "file" : "machine").fail(
         "a parallel machine with prismatic actuators (revolute drives would mix degrees "
         "with the axes' metres in q)",
         "'" + module_root.file() + "' (model: " + module_root.required("model").as_string() +
@@ -264,7 +281,8 @@ std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root) {
   return std::make_unique<HybridMachine>(read_hybrid_design(root));
 }
 
-std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file) {
+std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file,
+                                  const std::string& module_yaml) {
   HybridDesign copy = design;
   std::string out = "model: hybrid\nserial:\n";
   // By hand, as the reader takes them: the code (with the constants), the axis names.
@@ -280,8 +298,15 @@ std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string&
   FieldWriter serial;  // range, stiffness, error
   describe_serial(serial, copy);
   out += serial.block(2);
-  out += "parallel:\n  file: " + yaml_scalar(module_file) + "\n";  // by hand
-  FieldWriter parallel;                                            // home
+  if (module_yaml.empty()) {
+    out += "parallel:\n  file: " + yaml_scalar(module_file) + "\n";  // by hand
+  } else {
+    out += "parallel:\n  machine:\n";  // the module's file, inline
+    std::istringstream lines(module_yaml);
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty() && line[0] != '#') out += "    " + line + "\n";
+  }
+  FieldWriter parallel;  // home
   describe_parallel(parallel, copy);
   out += parallel.block(2);
   if (copy.gravity != Eigen::Vector3d(0, 0, -9.81)) {
@@ -309,14 +334,14 @@ void describe_hybrid(const YamlValue& root, MachineDescription& d) {
   // The numbers by the rules `analyze` reads them with: one reader, one verdict.
   check_hybrid_numbers(root, axes);
   const YamlValue parallel = root.required("parallel");
-  parallel.check_keys({"file", "home"});
-  const YamlValue file = parallel.required("file");
-  const YamlValue module_root = read_hybrid_module_file(file, root.file());
+  parallel.check_keys({"file", "machine", "home"});
+  const YamlValue module_root = read_hybrid_module(parallel, root.file());
   const MachineDescription inner = describe_machine(module_root);
   d.translations += inner.translations;
   d.rotations += inner.rotations;
   d.parallel_drives = inner.parallel_drives;
-  d.details.push_back(fmt::format("parallel: {} ({})", inner.model, module_root.file()));
+  d.details.push_back(fmt::format("parallel: {} ({})", inner.model,
+                                  parallel.has("file") ? module_root.file() : "inline"));
 }
 
 }  // namespace

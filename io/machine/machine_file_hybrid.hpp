@@ -42,8 +42,10 @@ namespace pkmopt {
 
 /// The design of a `model: hybrid` map; module file paths are relative to root.file().
 HybridDesign read_hybrid_design(const YamlValue& root);
-/// The machine file of a design, `module_file` as its parallel.file (relative to the written file).
-std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file);
+/// The machine file of a design, `module_file` as its parallel.file (relative to the written file),
+/// or, when `module_yaml` is given, the module's machine file inline (parallel.machine).
+std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string& module_file,
+                                  const std::string& module_yaml = "");
 /// The machine of a `model: hybrid` map.
 std::unique_ptr<Machine> load_hybrid_machine(const YamlValue& root);
 
@@ -55,6 +57,9 @@ void check_hybrid_numbers(const YamlValue& root, int num_variables);
 /// The module file a hybrid's `parallel.file` names (relative to `hybrid_file`), parsed; throws
 /// InputError at `file` when it is missing, not a regular file, or a hybrid or serial machine.
 YamlValue read_hybrid_module_file(const YamlValue& file, const std::string& hybrid_file);
+/// The module of a hybrid's `parallel` section: its `file` (as read_hybrid_module_file) or its
+/// inline `machine` map (exactly one of them).
+YamlValue read_hybrid_module(const YamlValue& parallel, const std::string& hybrid_file);
 
 /// The docs table of the hybrid machine file's keys, from the field list its reader uses.
 std::string hybrid_machine_fields_markdown();

@@ -248,5 +248,58 @@ TEST(HybridMachineFileWriter, ModuleFileIsResolvedFromTheWrittenFile) {
                InputError);
 }
 
+TEST(HybridMachineFileWriter, InlineModuleReadsAsItsFile) {
+  // The module written inside the hybrid's file (parallel.machine) gives the same machine as the
+  // module file it copies, at every pose; the writer's inline form reads back to the same design.
+  const std::string example = kExamples + "hybrid_gantry_3prs.yaml";
+  const HybridDesign from_file = read_hybrid_design(YamlValue::load_file(example));
+  std::ifstream module_in(kExamples + "tripod_3prs.yaml");
+  std::stringstream module_text;
+  module_text << module_in.rdbuf();
+  const std::string text = hybrid_design_to_yaml(from_file, "", module_text.str());
+  EXPECT_NE(text.find("parallel:\n  machine:\n    model: tripod_3prs\n"), std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("file:"), std::string::npos) << text;
+  const HybridDesign inline_design =
+      read_hybrid_design(YamlValue::load_string(text, "/nowhere/inline.yaml"));
+  expect_same_design(from_file, inline_design);
+  const HybridMachine a(from_file), b(inline_design);
+  auto da = a.make_data(), db = b.make_data();
+  int reached = 0;
+  for (const Pose& pose : {Pose{{0.1, -0.2, 1.15}, {0.05, -0.08, 0}},
+                           Pose{{-0.4, 0.3, 1.25}, {-0.1, 0.0, 0}}}) {
+    PoseMetrics ma, mb;
+    a.analyze(*da, pose, Wrench::Zero(), ma);
+    b.analyze(*db, pose, Wrench::Zero(), mb);
+    EXPECT_EQ(ma.reachable, mb.reachable);
+    reached += ma.reachable ? 1 : 0;
+    EXPECT_EQ(ma.q, mb.q);
+    EXPECT_EQ(ma.stiffness_min, mb.stiffness_min);
+  }
+  EXPECT_EQ(reached, 2);
+  // Exactly one of file and machine; an inline serial or hybrid module is refused.
+  auto error = [](const std::string& t) {
+    try {
+      (void)read_hybrid_design(YamlValue::load_string(t, "h.yaml"));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string head = "model: hybrid\nserial: {code: \"1\", range: [[-1, 1]]}\n";
+  EXPECT_NE(error(head + "parallel: {home: [0, 0, 1]}\n")
+                .find("parallel: expected exactly one of file (the module's machine file) and "
+                      "machine (the module inline), found neither"),
+            std::string::npos);
+  EXPECT_NE(error(head + "parallel: {file: a.yaml, machine: {model: hexapod}, home: [0, 0, 1]}\n")
+                .find("found both"),
+            std::string::npos);
+  EXPECT_NE(error(head + "parallel: {machine: {model: serial, code: \"1\"}, home: [0, 0, 1]}\n")
+                .find("parallel.machine: expected a parallel machine file, found the inline module "
+                      "(model: serial)"),
+            std::string::npos)
+      << error(head + "parallel: {machine: {model: serial, code: \"1\"}, home: [0, 0, 1]}\n");
+}
+
 }  // namespace
 }  // namespace pkmopt
