@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/format/csv.hpp"
 #include "io/format/input_error.hpp"
+#include "io/machine/machine_description.hpp"
 #include "io/machine/machine_file.hpp"
 #include "io/machine/model_registry.hpp"
 #include "pkmopt/version.hpp"
@@ -24,8 +26,8 @@ using namespace design_study_detail;
 
 namespace {
 
-constexpr std::array<const char*, 6> kMotionNames = {"x",           "y",           "z",
-                                                     "tilt about x", "tilt about y", "yaw about z"};
+constexpr std::array<const char*, 6> kMotionNames = {
+    "x", "y", "z", "tilt about x", "tilt about y", "yaw about z"};
 
 // The allocation section in file units (0: the default floor).
 struct AllocationSection {
@@ -105,7 +107,8 @@ SynthesisScale scale_of(const DesignTask& task, double tilt_deg, double yaw_deg)
 }
 
 // The candidates a model offers for this task, with their generated machine sections.
-std::vector<CandidateSource> model_candidates(const ModelEntry& entry, const SynthesisScale& scale) {
+std::vector<CandidateSource> model_candidates(const ModelEntry& entry,
+                                              const SynthesisScale& scale) {
   std::vector<CandidateSource> out;
   for (const SynthesisTemplate& t : entry.synthesis(scale)) {
     CandidateSource source;
@@ -211,11 +214,8 @@ std::vector<CandidateSource> read_candidates(const YamlValue& list, const Synthe
   return sources;
 }
 
-// The reason the rules drop a candidate, or "".
-std::string rule_reason(const CandidateSource& source, const TaskMotion& motion) {
-  const ModelEntry* entry = find_model(source.candidate.model);
-  if (entry == nullptr || !entry->platform_dofs) return "";
-  const PlatformDofs dofs = entry->platform_dofs(*source.machine);
+// The reason the rules drop a structure whose platform has these degrees of freedom, or "".
+std::string rule_reason(const PlatformDofs& dofs, const TaskMotion& motion) {
   const std::array<bool, 6> makes = platform_motions(dofs);
   std::array<bool, 6> missing{};
   bool any = false;
@@ -229,24 +229,55 @@ std::string rule_reason(const CandidateSource& source, const TaskMotion& motion)
                      motion_type(makes));
 }
 
-// The numeric mobility check of a loaded candidate (see the header comment): "" when it may be
-// searched, else why not; `note` says what was found.
-std::string rank_reason(const DesignStudy& study, const TaskMotion& motion, std::string& note) {
+// The platform's degrees of freedom from the model's study section (models that give them
+// whatever the file, as the parallel ones); nullopt when the model describes its files instead.
+std::optional<PlatformDofs> section_dofs(const CandidateSource& source) {
+  const ModelEntry* entry = find_model(source.candidate.model);
+  if (entry == nullptr || !entry->platform_dofs) return std::nullopt;
+  return entry->platform_dofs(*source.machine);
+}
+
+// The middle design (every free parameter at the middle of its range) of a loaded candidate.
+std::unique_ptr<Machine> middle_machine(const DesignStudy& study, std::string* file = nullptr,
+                                        double* lift = nullptr) {
   const DesignProblem& problem = *study.problem;
   const Bounds bounds = problem.bounds();
   std::vector<double> x(bounds.lower.size());
   for (std::size_t j = 0; j < x.size(); ++j) x[j] = 0.5 * (bounds.lower[j] + bounds.upper[j]);
-  std::unique_ptr<Machine> machine;
-  std::vector<double> parameters;
+  const std::vector<double> parameters = problem.design_parameters(x);
+  const std::string text = study.machine->machine_file(parameters);
+  if (file) *file = text;
+  if (lift) *lift = problem.home_height(parameters);
+  return load_machine(YamlValue::load_string(text, "the middle design"));
+}
+
+// The degrees of freedom `pkmopt describe` gives the middle design (serial and hybrid machines).
+std::optional<PlatformDofs> described_dofs(const DesignStudy& study) {
+  const ModelEntry* entry = find_model(study.model);
+  if (entry == nullptr || !entry->describe) return std::nullopt;
   try {
-    parameters = problem.design_parameters(x);
-    machine = load_machine(
-        YamlValue::load_string(study.machine->machine_file(parameters), "the middle design"));
+    std::string text;
+    (void)middle_machine(study, &text);
+    MachineDescription d;
+    entry->describe(YamlValue::load_string(text, "the middle design"), d);
+    return PlatformDofs{d.translations, d.rotations};
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// The numeric mobility check of a loaded candidate (see the header comment): "" when it may be
+// searched, else why not; `note` says what was found.
+std::string rank_reason(const DesignStudy& study, const TaskMotion& motion, std::string& note) {
+  const DesignProblem& problem = *study.problem;
+  std::unique_ptr<Machine> machine;
+  double lift = 0.0;
+  try {
+    machine = middle_machine(study, nullptr, &lift);
   } catch (const std::exception& error) {
     note = fmt::format("not checked: the middle design cannot be built ({})", error.what());
     return "";
   }
-  const double lift = problem.home_height(parameters);
   std::vector<std::size_t> needed;
   for (std::size_t k = 0; k < 6; ++k)
     if (motion.needed[k]) needed.push_back(k);
@@ -356,11 +387,18 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
   std::string goals, dropped_text;
   for (CandidateSource& source : sources) {
     SynthesisCandidate& c = source.candidate;
-    c.dropped = rule_reason(source, study.motion);
+    const std::optional<PlatformDofs> dofs = section_dofs(source);
+    if (dofs) c.dropped = rule_reason(*dofs, study.motion);
     if (c.dropped.empty()) {
       auto design = std::make_shared<DesignStudy>(
           load_design_study_part(root, study.name + "/" + c.name, *source.machine, c.task_centre));
-      c.dropped = rank_reason(*design, study.motion, c.mobility);
+      if (!dofs)
+        if (const std::optional<PlatformDofs> described = described_dofs(*design))
+          c.dropped = rule_reason(*described, study.motion);
+      if (c.dropped.empty())
+        c.dropped = rank_reason(*design, study.motion, c.mobility);
+      else
+        c.mobility = "dropped by the rules";
       if (goals.empty()) goals = goals_yaml(design->resolved_yaml);
       if (design->optimizer.nsga2() != nullptr) study.nsga2 = *design->optimizer.nsga2();
       c.study = std::move(design);
@@ -383,7 +421,8 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
   for (SynthesisCandidate& c : study.candidates) {
     c.seed = candidate_seed(seed, c.name);
     if (!c.study) continue;
-    if (auto* spec = std::get_if<Nsga2Spec>(&c.study->optimizer.algorithm)) spec->options.seed = c.seed;
+    if (auto* spec = std::get_if<Nsga2Spec>(&c.study->optimizer.algorithm))
+      spec->options.seed = c.seed;
     c.study->optimizer.seed = c.seed;
   }
 

@@ -116,6 +116,7 @@ class FamilyStudyMachine final : public StudyMachine {
   std::string machine_file(const std::vector<double>& p) const override {
     return family.machine_file(p);
   }
+  const DesignFamily* design_family() const override { return &family; }
 
   DesignFamily family;
   std::optional<ActuatorCatalog> catalog;  // from an {actuator, catalog} constraint
@@ -123,6 +124,18 @@ class FamilyStudyMachine final : public StudyMachine {
 };
 
 }  // namespace
+
+std::unique_ptr<StudyMachine> make_family_study_machine(std::string model, DesignFamily family,
+                                                        std::vector<StudyParameter> parameters,
+                                                        std::string resolved_yaml) {
+  auto study = std::make_unique<FamilyStudyMachine>();
+  study->model = std::move(model);
+  study->translational = family.translational;
+  study->family = std::move(family);
+  study->parameters = std::move(parameters);
+  study->resolved_yaml = std::move(resolved_yaml);
+  return study;
+}
 
 std::string family_parameters_markdown(const DesignFamily& family) {
   std::vector<StudyParameter> parameters = default_study_parameters(family);

@@ -75,6 +75,9 @@ class StudyMachine {
   virtual std::unique_ptr<DesignProblem> make_problem(DesignGoals goals) const = 0;
   /// The machine file of a design (every parameter, internal units), for `pkmopt analyze`.
   virtual std::string machine_file(const std::vector<double>& parameters) const = 0;
+  /// The design family behind it (design-family models, as a hybrid's module); null for a model
+  /// with a reader of its own.
+  virtual const DesignFamily* design_family() const { return nullptr; }
 };
 
 /// Reads a study's `machine:` section through the model it names. Throws InputError (a model
@@ -89,6 +92,11 @@ std::string study_machine_fields_markdown(std::string_view model);
 /// The StudyMachine of a design-family model (io/design/family_study_machine.cpp).
 std::unique_ptr<StudyMachine> read_family_study_machine(const ModelEntry& entry,
                                                         const YamlValue& machine);
+/// The StudyMachine of a design family with its parameters (file units) and resolved section
+/// (a model whose study section holds another model's, as a hybrid's module).
+std::unique_ptr<StudyMachine> make_family_study_machine(std::string model, DesignFamily family,
+                                                        std::vector<StudyParameter> parameters,
+                                                        std::string resolved_yaml);
 /// The docs table of a design family's parameters.
 std::string family_parameters_markdown(const DesignFamily& family);
 

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "io/design/hybrid_study_machine.hpp"
 #include "io/format/csv.hpp"
 #include "io/format/field_list.hpp"
 #include "io/machine/machine_description.hpp"
@@ -105,46 +106,6 @@ void describe_fields(Fields& f, HybridDesign& d) {
            .omit_when = [&d] { return d.gravity == Eigen::Vector3d(0, 0, -9.81); }});
 }
 
-// A constant rotation (rad) as the degrees the reader converts back to exactly that value when
-// one exists (any value read from a file): 12 significant digits if they do, else the shortest
-// text of the double nearest to it among the neighbours of rad_to_deg(rad).
-std::string degrees_text(double rad) {
-  auto back = [](const std::string& text) {
-    return deg_to_rad(std::strtod(text.c_str(), nullptr));
-  };
-  const double deg = rad_to_deg(rad);
-  const std::string twelve = fmt::format("{:.12g}", deg);
-  if (back(twelve) == rad) return twelve;
-  std::string best = format_number(deg);
-  double best_miss = std::abs(back(best) - rad);
-  double up = deg;
-  double down = deg;
-  for (int k = 0; k < 8 && best_miss > 0.0; ++k) {
-    up = std::nextafter(up, std::numeric_limits<double>::infinity());
-    down = std::nextafter(down, -std::numeric_limits<double>::infinity());
-    for (const double x : {up, down}) {
-      const std::string text = format_number(x);
-      const double miss = std::abs(back(text) - rad);
-      if (miss < best_miss) {
-        best = text;
-        best_miss = miss;
-      }
-    }
-  }
-  return best;
-}
-
-// The chain as the reader's `serial.code`: a digit per element, constants as "k:v" (m, deg).
-std::string code_text(const SerialChain& chain) {
-  std::string code;
-  for (const ChainElement& e : chain.elements()) {
-    if (!code.empty()) code += ' ';
-    code += static_cast<char>('0' + e.motion);
-    if (!e.variable) code += ":" + (e.motion >= 4 ? degrees_text(e.value) : format_number(e.value));
-  }
-  return code;
-}
-
 template <class Describe>
 void check_keys_of(const YamlValue& map, Describe&& describe) {
   FieldKeys keys;
@@ -235,11 +196,12 @@ HybridDesign read_hybrid_design(const YamlValue& root) {
   const YamlValue module_root = read_hybrid_module(parallel, root.file());
   design.module = load_machine(module_root);
   if (design.module->revolute_actuators()) {
-    parallel.required(parallel.has("file") ? "file" : "machine").fail(
-        "a parallel machine with prismatic actuators (revolute drives would mix degrees "
-        "with the axes' metres in q)",
-        "'" + module_root.file() + "' (model: " + module_root.required("model").as_string() +
-            ", revolute drives)");
+    parallel.required(parallel.has("file") ? "file" : "machine")
+        .fail(
+            "a parallel machine with prismatic actuators (revolute drives would mix degrees "
+            "with the axes' metres in q)",
+            "'" + module_root.file() + "' (model: " + module_root.required("model").as_string() +
+                ", revolute drives)");
   }
   {
     FieldReader reader(parallel);  // home
@@ -286,7 +248,7 @@ std::string hybrid_design_to_yaml(const HybridDesign& design, const std::string&
   HybridDesign copy = design;
   std::string out = "model: hybrid\nserial:\n";
   // By hand, as the reader takes them: the code (with the constants), the axis names.
-  out += "  code: \"" + code_text(copy.chain) + "\"\n";
+  out += "  code: \"" + serial_code_text(copy.chain) + "\"\n";
   std::string names;
   bool named = false;
   for (const ChainElement& e : copy.chain.elements()) {
@@ -344,6 +306,40 @@ void describe_hybrid(const YamlValue& root, MachineDescription& d) {
                                   parallel.has("file") ? module_root.file() : "inline"));
 }
 
+// Architecture synthesis: an X/Y gantry carrying each parallel structure that cannot move its
+// tool along x and y (a 3-PRS head: the Sprint Z3 on a gantry), its travel the task's size plus
+// half of it for the head's parasitic motion and the tilted tool, ball-screw axes of 1.5e8 N/m
+// and 5 um; the head works about its own task place (the follow rule's home).
+std::vector<SynthesisTemplate> hybrid_synthesis(const SynthesisScale& scale) {
+  std::vector<SynthesisTemplate> out;
+  for (const ModelEntry* module : registered_models()) {
+    if (module->name == "hybrid" || !module->synthesis || !module->platform_dofs ||
+        !module->design_family)
+      continue;
+    for (const SynthesisTemplate& head : module->synthesis(scale)) {
+      const YamlValue section = YamlValue::load_string(head.machine_yaml, head.name);
+      if (module->platform_dofs(section).translations >= 2) continue;
+      const double travel = std::max(scale.size, 0.1);
+      SynthesisTemplate t;
+      t.name = "xy_" + head.name;
+      t.structure = "X/Y gantry carrying a " + head.structure;
+      t.task_centre = head.task_centre;
+      t.machine_yaml = fmt::format(
+          "model: hybrid\n"
+          "serial: {{code: \"12\", axes: [X, Y], range: [[{0:.4g}, {1:.4g}], [{0:.4g}, {1:.4g}]], "
+          "stiffness: [1.5e8, 1.5e8], error: [5.0e-6, 5.0e-6]}}\n"
+          "parallel:\n"
+          "  home: [{2:.4g}, {3:.4g}, {4:.4g}]\n"
+          "  machine:\n",
+          -travel, travel, head.task_centre[0], head.task_centre[1], head.task_centre[2]);
+      std::istringstream lines(head.machine_yaml);
+      for (std::string line; std::getline(lines, line);) t.machine_yaml += "    " + line + "\n";
+      out.push_back(std::move(t));
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 ModelEntry hybrid_model_entry() {
@@ -352,6 +348,9 @@ ModelEntry hybrid_model_entry() {
   entry.load = load_hybrid_machine;
   entry.fields_markdown = hybrid_machine_fields_markdown;
   entry.describe = describe_hybrid;
+  entry.study_machine = read_hybrid_study_machine;
+  entry.study_fields_markdown = hybrid_study_machine_markdown;
+  entry.synthesis = hybrid_synthesis;
   return entry;
 }
 

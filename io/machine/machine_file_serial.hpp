@@ -22,6 +22,8 @@
 // the other readers: every bad value throws InputError naming file, line, column and key.
 #pragma once
 
+#include <string>
+
 #include "io/format/yaml_reader.hpp"
 #include "io/machine/machine_description.hpp"
 #include "models/serial/serial_chain.hpp"
@@ -36,6 +38,16 @@ SerialDesign read_serial_design(const YamlValue& root);
 /// policy (io/format/number_policy.hpp): a translation within +-1000 m, a rotation (degrees) within
 /// +-1e15 and not below 1e-30 in magnitude; throws InputError at `code`.
 SerialChain chain_of_code(const YamlValue& code);
+
+/// The chain as a file's `code`: a digit per element, constants as "k:v" (m; degrees for
+/// rotations, written so that the reader gets the same radians back).
+std::string serial_code_text(const SerialChain& chain);
+/// A rotation (rad) as the degrees the readers convert back to exactly that value when one
+/// exists (12 significant digits, else the nearest shortest text).
+std::string degrees_text(double rad);
+/// The machine file of a serial design (every key; read_serial_design reads it back to the same
+/// design).
+std::string serial_design_to_yaml(const SerialDesign& design);
 
 /// Reads the serial axes of `map` ({code, axes} and, with `allow_spindle`, spindle) into the
 /// description: drives, degrees of freedom and the details lines. Returns the number of

@@ -367,4 +367,20 @@ bool HybridMachine::sketch(MachineData& data, const Pose& pose, MachineSketch& o
   return true;
 }
 
+std::optional<double> HybridMachine::envelope_volume() const {
+  const std::optional<double> module_volume = design_.module->envelope_volume();
+  if (!module_volume) return std::nullopt;
+  const double side = std::cbrt(*module_volume);
+  double volume = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    double travel = 0.0;
+    for (int i = 0; i < num_serial_; ++i) {
+      const HybridAxis& a = design_.axes[static_cast<std::size_t>(i)];
+      travel += (a.max - a.min) * std::abs(A_(k, i));
+    }
+    volume *= side + travel;
+  }
+  return volume;
+}
+
 }  // namespace pkmopt

@@ -83,7 +83,10 @@
 // machine can make; a twist with another rz rate than the head's parasitic one is projected.
 // Workspace search box: the module's box for the local orientations R0^T R, moved by R0, t0 and
 // every vertex of the serial range box (the bounding box of the transformed corners).
-// envelope_volume: unknown (nullopt).
+// envelope_volume: the module's envelope swept over the axes' travel, with the module's envelope
+// taken as the cube of its volume V: prod_k (V^(1/3) + L_k) over the world axes k, L_k =
+// sum_i (max_i - min_i) |A_ki| (the travel box's extent along k); nullopt when the module has
+// no envelope.
 //
 // Units: m, rad, N, N/m inside the code.
 //
@@ -188,6 +191,7 @@ class HybridMachine final : public Machine, public Dynamics {
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;
+  std::optional<double> envelope_volume() const override;
   /// The module's sketch at the split's local pose carried by the axes, each axis's travel a
   /// guide line from the mount.
   bool sketch(MachineData& data, const Pose& pose, MachineSketch& out) const override;

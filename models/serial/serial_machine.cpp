@@ -328,6 +328,15 @@ std::optional<double> SerialMachine::reach_excess(const Pose& pose) const {
   return branch->excess;
 }
 
+std::optional<double> SerialMachine::envelope_volume() const {
+  const double reach = design_.tool_point.norm();
+  double volume = 1.0;
+  for (std::size_t i = 0; i < design_.axes.size(); ++i)
+    if (!revolute_actuator(static_cast<int>(i)))
+      volume *= design_.axes[i].max - design_.axes[i].min + 2.0 * reach;
+  return volume;
+}
+
 std::optional<Eigen::AlignedBox3d> SerialMachine::workspace_search_box(
     const std::vector<Eigen::Matrix3d>& /*orientations*/) const {
   // From the tool back to the workpiece: p_before = A_k(v) p_after over the element's values.

@@ -48,6 +48,9 @@
 //   tcp_error_max  max over |dq_i| <= e_i of |J_f,t dq| (the translational rows), exact (a vertex
 //             of the box).
 //   Natural frequencies: none (no mass model).
+// envelope_volume: the box of the three linear travels grown by the tool's reach |r_tool| (from
+// the last frame's origin to the tool point) on every side, prod_i (max_i - min_i + 2 |r_tool|)
+// over the linear feed axes: the space the tool sweeps, a lower bound of the machine's frame.
 //
 // Units: m, rad, N, N*m inside; the machine file gives rotary values in degrees.
 //
@@ -119,6 +122,7 @@ class SerialMachine final : public Machine {
   std::optional<Eigen::AlignedBox3d> workspace_search_box(
       const std::vector<Eigen::Matrix3d>& orientations) const override;
   std::string actuator_coordinates_requirement(const Eigen::VectorXd& q) const override;
+  std::optional<double> envelope_volume() const override;
   /// The feed rows of M^-1 (see the header comment); false at a singular pose or when the tool
   /// axis cannot be reached.
   bool twist_jacobian(MachineData& data, const Pose& pose, Eigen::MatrixXd& J) const override;

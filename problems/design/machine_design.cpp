@@ -220,7 +220,12 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     machine->analyze(*data, pose, spec_.task.wrench, m);
     if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
     if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
-    if (m.singular && ev.failure.empty())
+    // A singular pose fails the design when its statics blow up (a parallel machine: forces
+    // and compliance without bound); a serial machine's free rotary axis (the tool along it)
+    // loses a motion, not the statics, and is measured (singularity_margin 0 there).
+    const bool statics_finite =
+        std::isfinite(m.stiffness_min) && m.stiffness_min > 0.0 && m.tau.allFinite();
+    if (m.singular && !statics_finite && ev.failure.empty())
       ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
                                pose.position.x(), pose.position.y(), pose.position.z());
     worst.add(m);

@@ -44,7 +44,10 @@
 //                       entry (N; <= 0 exactly when some entry carries the drives)
 // Reduced over the poses where the machine can be analysed: a pose that is unreachable and
 // singular (typically a leg that cannot close at all) has no metrics and only counts in the
-// reachability row. A reachable singular pose makes the evaluation fail (as for the hexapod).
+// reachability row. A reachable singular pose makes the evaluation fail (as for the hexapod)
+// when its statics blow up (stiffness_min 0 or a force without bound, as at a parallel
+// machine's singularity); a serial machine's free rotary axis (the tool along the C axis) keeps
+// finite statics and is measured, with singularity_margin 0.
 // Task reachability (optional, default on) is one row, the mean over the N task poses
 //   g_reach = (1/N) sum_k v_k,  v_k = 0 for a reachable pose (Machine::reachable: actuator
 //   ranges, joint limits, no rotation of a translational platform), else

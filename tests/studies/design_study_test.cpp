@@ -570,7 +570,8 @@ TEST_F(LegChainDesignStudy, SchemaErrors) {
       load_error("lc_e1", replaced(kLinearDeltaStudy, "model: linear_delta", "model: tripod")),
       file +
           ":3:10: machine.model: expected one of hexapod, delta, linear_delta, hexaglide, "
-          "tripod_3prs, lathe_16k20f3 (the models with a design family), found 'tripod'");
+          "tripod_3prs, lathe_16k20f3, hybrid, serial (the models with a design family), found "
+          "'tripod'");
   const std::string file2 = (dir_ / "lc_e2" / "study.yaml").string();
   EXPECT_EQ(load_error("lc_e2", replaced(kLinearDeltaStudy, "    rod:", "    rods:")),
             file2 +

@@ -258,7 +258,8 @@ TEST_F(SynthesisCli, MergedFrontCandidatesTableAndOwnFolders) {
   const auto front = read_csv(out / "pareto.csv");
   ASSERT_GT(front.size(), 1u);
   const std::size_t s = column(front[0], "stiffness_min"), v = column(front[0], "machine_size"),
-                    arch = column(front[0], "architecture"), file = column(front[0], "machine_file");
+                    arch = column(front[0], "architecture"),
+                    file = column(front[0], "machine_file");
   std::map<std::string, std::size_t> per_architecture;
   for (std::size_t k = 1; k < front.size(); ++k) {
     const double stiffness = std::stod(front[k][s]), size = std::stod(front[k][v]);
@@ -276,10 +277,10 @@ TEST_F(SynthesisCli, MergedFrontCandidatesTableAndOwnFolders) {
   for (std::size_t k : non_dominated_indices(minimised)) {
     bool on_front = false;
     for (std::size_t j = 1; j < front.size(); ++j)
-      on_front = on_front || (std::abs(std::stod(front[j][s]) - feasible[k][0]) <=
-                                  1e-12 * std::abs(feasible[k][0]) &&
-                              std::abs(std::stod(front[j][v]) - feasible[k][1]) <=
-                                  1e-12 * std::abs(feasible[k][1]));
+      on_front =
+          on_front ||
+          (std::abs(std::stod(front[j][s]) - feasible[k][0]) <= 1e-12 * std::abs(feasible[k][0]) &&
+           std::abs(std::stod(front[j][v]) - feasible[k][1]) <= 1e-12 * std::abs(feasible[k][1]));
     EXPECT_TRUE(on_front) << feasible[k][0] << " N/m, " << feasible[k][1] << " m^3";
   }
 
@@ -296,13 +297,13 @@ TEST_F(SynthesisCli, MergedFrontCandidatesTableAndOwnFolders) {
     EXPECT_TRUE(fs::exists(out / table[k][folder] / "pareto.json"));
   }
   EXPECT_EQ(total, front.size() - 1);
-  const nlohmann::json candidates =
-      nlohmann::json::parse(std::ifstream(out / "candidates.json"));
+  const nlohmann::json candidates = nlohmann::json::parse(std::ifstream(out / "candidates.json"));
   EXPECT_EQ(candidates["task_motion"], "3T0R");
   const nlohmann::json summary = nlohmann::json::parse(std::ifstream(out / "summary.json"));
   EXPECT_EQ(summary["kind"], "synthesis");
   EXPECT_EQ(summary["allocation"]["rounds_structures"], (std::vector<int>{3, 2, 1}));
-  EXPECT_LE(summary["evaluations"].get<long long>(), summary["allocation"]["budget"].get<long long>());
+  EXPECT_LE(summary["evaluations"].get<long long>(),
+            summary["allocation"]["budget"].get<long long>());
 
   // Each structure's folder is its own study: run alone from its study.resolved.yaml (its seed
   // and the generations this run gave it), it writes the same front.
@@ -341,11 +342,11 @@ TEST_F(SynthesisCli, ValidateListsCandidatesAndDrops) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("synthesis study 'small' is valid"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("task motion: 3T0R (x, y, z)"), std::string::npos);
-  EXPECT_NE(r.out.find("candidates: 4 searched, 1 dropped"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("candidates: 7 searched, 1 dropped"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("search   hexaglide"), std::string::npos);
   EXPECT_NE(r.out.find("dropped  tripod_3prs (3-PRS tripod head): no x, y"), std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("round 1: 4 structure(s) x 3 generations"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("round 1: 7 structure(s) x 3 generations"), std::string::npos) << r.out;
   // Bad input: one line, exit 2, nothing written.
   text.replace(text.find("auto"), 4, "[hexapod, cube]");
   const fs::path out = dir_ / "bad";

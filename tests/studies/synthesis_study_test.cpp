@@ -65,15 +65,19 @@ TEST(SynthesisStudy, ThreeAxisTaskKeepsTheTranslationalStructures) {
   EXPECT_EQ(s.motion.type(), "3T0R");
   EXPECT_EQ(s.motion.words(), "x, y, z");
   EXPECT_EQ(searched_names(s),
-            (std::set<std::string>{"hexapod", "delta", "linear_delta", "hexaglide"}));
+            (std::set<std::string>{"hexapod", "delta", "linear_delta", "hexaglide",
+                                   "xy_tripod_3prs", "serial_table_ca", "serial_head_ca"}));
   const SynthesisCandidate& tripod = candidate(s, "tripod_3prs");
   EXPECT_FALSE(tripod.searched);
   EXPECT_NE(tripod.dropped.find("no x, y:"), std::string::npos) << tripod.dropped;
   EXPECT_NE(tripod.dropped.find("(1T2R)"), std::string::npos) << tripod.dropped;
-  // Every searched structure passed the numeric check with full rank at every checked pose.
+  // Every searched structure passed the numeric check with full rank at every checked pose
+  // (the 5-axis machines have their tool along the C axis there: no Jacobian, not checked).
   for (std::size_t k : s.searched())
-    EXPECT_NE(s.candidates[k].mobility.find("rank 3 of 3 at 8 of 8"), std::string::npos)
-        << s.candidates[k].name << ": " << s.candidates[k].mobility;
+    if (s.candidates[k].model != "serial") {
+      EXPECT_NE(s.candidates[k].mobility.find("rank 3 of 3 at 8 of 8"), std::string::npos)
+          << s.candidates[k].name << ": " << s.candidates[k].mobility;
+    }
   // The task sits where each model works: the region's centre (the offset) plus its place.
   const SynthesisCandidate& hexapod = candidate(s, "hexapod");
   EXPECT_NEAR(hexapod.study->task_centre[2], 0.9, 1e-12);
@@ -83,10 +87,15 @@ TEST(SynthesisStudy, ThreeAxisTaskKeepsTheTranslationalStructures) {
 TEST(SynthesisStudy, SixDofTaskKeepsOnlySixDofStructures) {
   // Tilt and yaw: only a platform with six degrees of freedom can make the task; every other
   // structure carries the motions it lacks.
-  const SynthesisStudy s =
-      load(study_text("auto", kBoxTask + "  orientations: {tilt_deg: 15, yaw_deg: 10, step_deg: 15}\n"));
+  const SynthesisStudy s = load(
+      study_text("auto", kBoxTask + "  orientations: {tilt_deg: 15, yaw_deg: 10, step_deg: 15}\n"));
   EXPECT_EQ(s.motion.type(), "3T3R");
   EXPECT_EQ(searched_names(s), (std::set<std::string>{"hexapod", "hexaglide"}));
+  // The 5-axis machines leave the turn about the tool axis to the spindle; the gantry's head
+  // cannot turn its tool either.
+  for (const char* name : {"serial_table_ca", "serial_head_ca", "xy_tripod_3prs"})
+    EXPECT_NE(candidate(s, name).dropped.find("no yaw about z:"), std::string::npos)
+        << candidate(s, name).dropped;
   for (const char* name : {"delta", "linear_delta"}) {
     const SynthesisCandidate& c = candidate(s, name);
     EXPECT_FALSE(c.searched);
@@ -103,20 +112,23 @@ TEST(SynthesisStudy, SixDofTaskKeepsOnlySixDofStructures) {
 TEST(SynthesisStudy, TiltingColumnTaskKeepsTheTripod) {
   // A column of z with a tilt cone (1T2R): the 3-PRS head makes it, and so do the six-DOF
   // machines; the translational ones cannot tilt.
-  const SynthesisStudy s = load(study_text(
-      "auto",
-      "  region: {shape: box, centre: [0, 0, 0], size: [0, 0, 0.2], points: [1, 1, 3]}\n"
-      "  orientations: {tilt_deg: 20, yaw_deg: 0, step_deg: 20}\n"));
+  const SynthesisStudy s = load(
+      study_text("auto",
+                 "  region: {shape: box, centre: [0, 0, 0], size: [0, 0, 0.2], points: [1, 1, 3]}\n"
+                 "  orientations: {tilt_deg: 20, yaw_deg: 0, step_deg: 20}\n"));
   EXPECT_EQ(s.motion.type(), "1T2R");
-  EXPECT_EQ(searched_names(s), (std::set<std::string>{"hexapod", "hexaglide", "tripod_3prs"}));
+  EXPECT_EQ(searched_names(s),
+            (std::set<std::string>{"hexapod", "hexaglide", "tripod_3prs", "xy_tripod_3prs",
+                                   "serial_table_ca", "serial_head_ca"}));
   EXPECT_TRUE(candidate(s, "delta").dropped.starts_with("no tilt about x, tilt about y:"));
 }
 
 TEST(SynthesisStudy, ArchitectureSingularHexapodIsDroppedByItsRank) {
   // Semi-regular layouts with base and platform separations adding to 120 deg put the platform
   // joints at the base joints' azimuths: similar hexagons, a Gough–Stewart platform singular at
-  // every pose (Ma & Angeles 1991, "Architecture singularities of platform manipulators"). The rules pass
-  // it (six degrees of freedom), the rank check drops it; 20 + 20 deg is an ordinary hexapod.
+  // every pose (Ma & Angeles 1991, "Architecture singularities of platform manipulators"). The
+  // rules pass it (six degrees of freedom), the rank check drops it; 20 + 20 deg is an ordinary
+  // hexapod.
   const std::string legs = "legs: {E: 2.1e11, area: 3.0e-4, actuator_stiffness: 2.0e8}";
   auto entry = [&](const std::string& name, int platform_separation) {
     return "{name: " + name +
@@ -125,9 +137,9 @@ TEST(SynthesisStudy, ArchitectureSingularHexapodIsDroppedByItsRank) {
            std::to_string(platform_separation) +
            ", min_length: {min: 0.5, max: 0.9}, stroke: 0.6, home_height: 0}, " + legs + "}}";
   };
-  const SynthesisStudy s = load(study_text(
-      "\n  - " + entry("similar", 100) + "\n  - " + entry("ordinary", 20),
-      kBoxTask + "  orientations: {tilt_deg: 10, yaw_deg: 10, step_deg: 10}\n"));
+  const SynthesisStudy s =
+      load(study_text("\n  - " + entry("similar", 100) + "\n  - " + entry("ordinary", 20),
+                      kBoxTask + "  orientations: {tilt_deg: 10, yaw_deg: 10, step_deg: 10}\n"));
   const SynthesisCandidate& similar = candidate(s, "similar");
   EXPECT_FALSE(similar.searched);
   EXPECT_NE(similar.dropped.find("has rank 5 of 6 at every checked task pose"), std::string::npos)
@@ -153,9 +165,9 @@ TEST(SynthesisStudy, SeedsDependOnTheStudySeedAndTheNameOnly) {
 }
 
 TEST(SynthesisStudy, ResolvedFileLoadsToTheSameStudy) {
-  const SynthesisStudy s = load(study_text(
-      "auto", kBoxTask + "  wrench: [300, 300, -1000, 0, 0, 0]\n",
-      "allocation: {floor_generations: 3}\noutput: {designs: false, front_size: 20}\n"));
+  const SynthesisStudy s = load(
+      study_text("auto", kBoxTask + "  wrench: [300, 300, -1000, 0, 0, 0]\n",
+                 "allocation: {floor_generations: 3}\noutput: {designs: false, front_size: 20}\n"));
   const SynthesisStudy again = load(s.resolved_yaml);
   EXPECT_EQ(again.resolved_yaml, s.resolved_yaml);
   ASSERT_EQ(again.candidates.size(), s.candidates.size());
@@ -184,7 +196,7 @@ TEST(SynthesisStudy, BadInputSaysWhereAndWhat) {
       {study_text("[]", kBoxTask), "expected auto or a list of at least one candidate"},
       {study_text("[hexapod, cube]", kBoxTask),
        "candidates[1]: expected a model that offers structures to a synthesis (hexapod, delta, "
-       "linear_delta, hexaglide, tripod_3prs)"},
+       "linear_delta, hexaglide, tripod_3prs, hybrid, serial)"},
       {study_text("[hexapod, hexapod]", kBoxTask), "expected a candidate name not used before"},
       {study_text("[{name: a/b, machine: {model: hexapod}}]", kBoxTask),
        "expected a name of letters, digits, '-' and '_'"},
@@ -194,14 +206,13 @@ TEST(SynthesisStudy, BadInputSaysWhereAndWhat) {
       {study_text("[hexapod]", kBoxTask, "allocation: {floor_generations: 9}\n"),
        "allocation.floor_generations: expected at most the optimizer's generations (8)"},
       {study_text("[hexapod]", kBoxTask, "allocation: {rule: greedy}\n"), "allocation.rule"},
-      {study_text("[delta, linear_delta]",
-                  kBoxTask + "  orientations: {tilt_deg: 20}\n"),
+      {study_text("[delta, linear_delta]", kBoxTask + "  orientations: {tilt_deg: 20}\n"),
        "expected at least one structure that makes the task's motions (3T2R"},
   };
   for (const Case& c : cases) {
     const std::string error = load_error(c.text);
-    EXPECT_NE(error.find(c.expected), std::string::npos) << "expected '" << c.expected
-                                                         << "' in '" << error << "'";
+    EXPECT_NE(error.find(c.expected), std::string::npos)
+        << "expected '" << c.expected << "' in '" << error << "'";
   }
   std::string text = study_text("[hexapod]", kBoxTask);
   text.replace(text.find("algorithm: nsga2"), 16, "algorithm: nsga3");
