@@ -55,9 +55,9 @@ std::vector<std::string> constraint_words(const DesignStudy& study) {
   std::vector<std::string> words;
   for (const DesignConstraint& c : study.constraints()) {
     const std::string_view unit = design_metric_unit(c.metric);
-    words.push_back(fmt::format("{} {} {}{}", design_metric_name(c.metric),
-                                c.relation == Relation::less_equal ? "≤" : "≥",
-                                format_number(c.bound), unit.empty() ? "" : " " + std::string(unit)));
+    words.push_back(fmt::format(
+        "{} {} {}{}", design_metric_name(c.metric), c.relation == Relation::less_equal ? "≤" : "≥",
+        format_number(c.bound), unit.empty() ? "" : " " + std::string(unit)));
   }
   if (study.require_reachable()) words.emplace_back("task reachable");
   return words;
@@ -120,15 +120,48 @@ nlohmann::json binding_json(const Part& part, std::size_t m, std::string& text) 
   return list;
 }
 
+// The design-space bounds a structure's front presses on: a free parameter within 1 % of its
+// range from a bound in at least half of the front's designs ("the search wants more room").
+nlohmann::json bounds_json(const Part& part, std::string& text) {
+  const DesignStudy& study = *part.candidate->study;
+  const std::vector<MeasuredDesign>& front = part.files.selection.designs;
+  nlohmann::json list = nlohmann::json::array();
+  text.clear();
+  if (front.empty()) return list;
+  for (std::size_t i = 0; i < study.parameters.size(); ++i) {
+    const StudyParameter& p = study.parameters[i];
+    if (!p.free()) continue;
+    const double slack = 0.01 * (p.max - p.min);
+    std::size_t low = 0, high = 0;
+    for (const MeasuredDesign& d : front) {
+      low += d.parameters.at(i) <= p.min + slack ? 1 : 0;
+      high += d.parameters.at(i) >= p.max - slack ? 1 : 0;
+    }
+    for (const auto& [count, lower] : {std::pair{low, true}, std::pair{high, false}}) {
+      const double share = static_cast<double>(count) / static_cast<double>(front.size());
+      if (share < 0.5) continue;
+      const double bound = lower ? p.min : p.max;
+      list.push_back({{"parameter", p.name},
+                      {"bound", lower ? "min" : "max"},
+                      {"value", bound},
+                      {"unit", p.unit},
+                      {"share", share}});
+      text += fmt::format("{}{} at its {} {} {} ({:.0f}% of its front)", text.empty() ? "" : "; ",
+                          p.name, lower ? "lower bound" : "upper bound", format_number(bound),
+                          p.unit, 100.0 * share);
+    }
+  }
+  return list;
+}
+
 // The best value of each objective on a structure's own front (user sign), NaN when empty.
 std::vector<double> best_values(const Part& part, const std::vector<DesignObjective>& objectives) {
   std::vector<double> best(objectives.size(), std::numeric_limits<double>::quiet_NaN());
   for (const MeasuredDesign& d : part.files.selection.designs)
     for (std::size_t i = 0; i < objectives.size(); ++i) {
       const double v = sense_sign(objectives[i].sense) * d.aggregate[i];
-      const bool better = std::isnan(best[i]) || (objectives[i].sense == Sense::maximize
-                                                      ? v > best[i]
-                                                      : v < best[i]);
+      const bool better = std::isnan(best[i]) ||
+                          (objectives[i].sense == Sense::maximize ? v > best[i] : v < best[i]);
       if (better) best[i] = v;
     }
   return best;
@@ -155,8 +188,7 @@ std::string table_row(const std::vector<std::string>& cells, const std::vector<s
 std::string terminal_table(const std::vector<std::vector<std::string>>& rows) {
   std::vector<std::size_t> widths(rows.front().size(), 0);
   for (const auto& r : rows)
-    for (std::size_t k = 0; k + 1 < r.size(); ++k)
-      widths[k] = std::max(widths[k], r[k].size());
+    for (std::size_t k = 0; k + 1 < r.size(); ++k) widths[k] = std::max(widths[k], r[k].size());
   std::string out;
   for (const auto& r : rows) out += table_row(r, widths);
   return out;
@@ -164,8 +196,8 @@ std::string terminal_table(const std::vector<std::vector<std::string>>& rows) {
 
 }  // namespace
 
-SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
-                                               SynthesisStudy& study, const SynthesisSearch& search,
+SynthesisOutputSummary write_synthesis_outputs(const std::string& directory, SynthesisStudy& study,
+                                               const SynthesisSearch& search,
                                                const SynthesisFacts& facts,
                                                const OutputFiles& also) {
   OutputFiles files = also;
@@ -207,11 +239,13 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
       origin.emplace_back(k, j);
     }
   std::size_t non_dominated = 0;
-  const std::vector<std::size_t> keep =
-      pool.empty() ? std::vector<std::size_t>{} : select_front(pool, study.front_size, &non_dominated);
+  const std::vector<std::size_t> keep = pool.empty()
+                                            ? std::vector<std::size_t>{}
+                                            : select_front(pool, study.front_size, &non_dominated);
 
   std::string csv = "id,architecture,model";
-  for (const DesignObjective& o : objectives) csv += "," + std::string(design_metric_name(o.metric));
+  for (const DesignObjective& o : objectives)
+    csv += "," + std::string(design_metric_name(o.metric));
   for (const std::string& g : g_names) csv += "," + g;
   csv += ",home_height,parameters,machine_file,structure_design\n";
   nlohmann::json designs = nlohmann::json::array();
@@ -254,8 +288,8 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
                                     s.parameters[p].name, format_number(d.parameters[p]));
     }
     design["parameters"] = parameters;
-    design["structure_design"] = "candidates/" + part.candidate->name + "/pareto.json#" +
-                                 structure_id(j);
+    design["structure_design"] =
+        "candidates/" + part.candidate->name + "/pareto.json#" + structure_id(j);
     row += "," + format_number(d.home_height) + "," + csv_field(parameter_text);
     if (study.write_designs) {
       design["machine_file"] = "designs/" + id + ".yaml";
@@ -286,8 +320,9 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
                              {"structure", part.candidate->structure}});
   pareto["architectures"] = architectures;
   pareto["designs"] = designs;
-  pareto["knee"] = merged_objectives.empty() ? nlohmann::json(nullptr)
-                                             : nlohmann::json(merged_id(knee_point(merged_objectives)));
+  pareto["knee"] = merged_objectives.empty()
+                       ? nlohmann::json(nullptr)
+                       : nlohmann::json(merged_id(knee_point(merged_objectives)));
   pareto["compromise"] = merged_objectives.empty()
                              ? nlohmann::json(nullptr)
                              : nlohmann::json(merged_id(compromise_point(merged_objectives)));
@@ -301,7 +336,7 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
       "feasible_evaluations,own_front,merged_front,merged_share,exclusive_hypervolume";
   for (const DesignObjective& o : objectives)
     candidates_csv += ",best_" + std::string(design_metric_name(o.metric));
-  candidates_csv += ",binding,failures,folder\n";
+  candidates_csv += ",binding,at_bounds,failures,folder\n";
   nlohmann::json candidates = nlohmann::json::array();
   std::vector<std::vector<std::string>> table;
   {
@@ -311,7 +346,7 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
                                  design_metric_unit(o.metric).empty()
                                      ? std::string("-")
                                      : std::string(design_metric_unit(o.metric))));
-    head.emplace_back("binding / failures / reason");
+    head.emplace_back("binding constraints, bounds / failures / reason");
     table.push_back(head);
   }
   const double merged_total = static_cast<double>(std::max<std::size_t>(1, keep.size()));
@@ -330,11 +365,11 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
     if (part == nullptr) {
       j["status"] = "dropped";
       j["reason"] = c.dropped;
-      candidates_csv += fmt::format("{},{},{},dropped,{},{},,,,,,,,,", csv_field(c.name), c.model,
-                                    csv_field(c.structure), csv_field(c.dropped),
-                                    csv_field(c.mobility));
+      candidates_csv +=
+          fmt::format("{},{},{},dropped,{},{},,,,,,,,,", csv_field(c.name), c.model,
+                      csv_field(c.structure), csv_field(c.dropped), csv_field(c.mobility));
       for (std::size_t i = 0; i < m; ++i) candidates_csv += ",";
-      candidates_csv += ",,,\n";
+      candidates_csv += ",,,,\n";
       std::vector<std::string> row = {c.name, "dropped", "-", "-"};
       for (std::size_t i = 0; i < m; ++i) row.emplace_back("-");
       row.push_back(c.dropped);
@@ -343,8 +378,9 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
       continue;
     }
     const StructureRun& run = *part->run;
-    std::string binding_text, failure_text;
+    std::string binding_text, failure_text, bounds_text;
     const nlohmann::json binding = binding_json(*part, m, binding_text);
+    const nlohmann::json at_bounds = bounds_json(*part, bounds_text);
     const nlohmann::json failures = failure_json(*part, failure_text);
     const std::vector<double> best = best_values(*part, objectives);
     const double share = static_cast<double>(part->merged) / merged_total;
@@ -367,21 +403,23 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
       best_json[std::string(design_metric_name(objectives[i].metric))] = json_number(best[i]);
     j["best"] = best_json;
     j["constraints"] = binding;
+    j["at_bounds"] = at_bounds;
     j["failures"] = failures;
     j["folder"] = "candidates/" + c.name;
-    candidates_csv += fmt::format(
-        "{},{},{},searched,,{},{},{},{},{},{},{},{},{},{}", csv_field(c.name), c.model,
-        csv_field(c.structure), csv_field(c.mobility), run.generations, run.evaluations, run.rounds,
-        run.kept ? 1 : 0, part->infeasibility.feasible, own, part->merged, format_number(share),
-        format_number(exclusive));
+    candidates_csv +=
+        fmt::format("{},{},{},searched,,{},{},{},{},{},{},{},{},{},{}", csv_field(c.name), c.model,
+                    csv_field(c.structure), csv_field(c.mobility), run.generations, run.evaluations,
+                    run.rounds, run.kept ? 1 : 0, part->infeasibility.feasible, own, part->merged,
+                    format_number(share), format_number(exclusive));
     for (double b : best) candidates_csv += "," + (std::isfinite(b) ? format_number(b) : "");
-    candidates_csv += fmt::format(",{},{},candidates/{}\n", csv_field(binding_text),
-                                  csv_field(failure_text), c.name);
+    candidates_csv += fmt::format(",{},{},{},candidates/{}\n", csv_field(binding_text),
+                                  csv_field(bounds_text), csv_field(failure_text), c.name);
     std::vector<std::string> row = {c.name, run.kept ? "searched" : "dropped by budget",
                                     std::to_string(run.generations),
                                     fmt::format("{} ({:.0f}%)", part->merged, 100.0 * share)};
     for (double b : best) row.push_back(std::isfinite(b) ? fmt::format("{:.4g}", b) : "-");
     std::string note = own == 0 ? "no feasible design: " + failure_text : binding_text;
+    if (own > 0 && !bounds_text.empty()) note += (note.empty() ? "" : "; ") + bounds_text;
     row.push_back(note.empty() ? "-" : note);
     table.push_back(row);
     if (own == 0)

@@ -7,8 +7,9 @@
 //   DIR/designs/<id>.yaml         each merged-front design's machine file
 //   DIR/candidates.csv, .json     every candidate: searched or dropped (and why), its budget, its
 //                                 share of the merged front, its best value of each objective,
-//                                 its binding constraints with their margins, why its designs
-//                                 failed (with counts), and its folder
+//                                 its binding constraints with their margins, the design-space
+//                                 bounds its front presses on, why its designs failed (with
+//                                 counts), and its folder
 //   DIR/summary.json              the run's facts and the allocation rounds
 //   DIR/candidates/NAME/          each searched structure's own result folder, as a design study
 //                                 writes it (pareto.csv, pareto.json, summary.json, designs/,
@@ -45,8 +46,8 @@ struct SynthesisOutputSummary {
 
 /// Writes the files above into `directory`, with the files `also` names (all or none). Sets each
 /// searched candidate's optimizer generations to those it ran (its study.resolved.yaml).
-SynthesisOutputSummary write_synthesis_outputs(const std::string& directory,
-                                               SynthesisStudy& study, const SynthesisSearch& search,
+SynthesisOutputSummary write_synthesis_outputs(const std::string& directory, SynthesisStudy& study,
+                                               const SynthesisSearch& search,
                                                const SynthesisFacts& facts,
                                                const OutputFiles& also = {});
 

@@ -17,8 +17,8 @@
 #include "io/machine/leg_chain_fields.hpp"
 #include "io/machine/mass_fields.hpp"
 #include "io/machine/model_registry.hpp"
-#include "problems/design/leg_chain_design.hpp"
 #include "models/hexapod/hexapod.hpp"
+#include "problems/design/leg_chain_design.hpp"
 
 namespace pkmopt {
 using namespace leg_chain_fields;  // NOLINT: the shared rules of the field lists
@@ -320,8 +320,8 @@ PlatformDofs generic_leg_chain_dofs(const YamlValue& root) {
 
 // Architecture synthesis: each model's design space scaled from the task's size (s = 1 for a
 // 300 mm task; studies/library/compare-300 and tripod-z3 are the unscaled ones), the same
-// engineering assumptions for all (steel links, drives of 2e8 N/m, the TCP 0.1 m from the
-// platform), and where the task sits in the model's frame.
+// engineering assumptions for all (steel links, drives of 2e8 N/m with 5 um errors, the TCP 0.1 m
+// from the platform), and where the task sits in the model's frame.
 double synthesis_factor(const SynthesisScale& scale) { return std::max(scale.size, 0.1) / 0.3; }
 
 std::string synthesis_range(double s, double lo, double hi) {
@@ -370,7 +370,8 @@ std::vector<SynthesisTemplate> linear_delta_synthesis(const SynthesisScale& scal
       "rods: {{E: 2.1e11, area: 1.5e-4}}\n"
       "carriage_stiffness: 2.0e8\n"
       "joints: {{carriage_max_angle_deg: 60, platform_max_angle_deg: 60}}\n"
-      "tool: {{tcp: [0, 0, -0.10]}}\n",
+      "tool: {{tcp: [0, 0, -0.10]}}\n"
+      "actuator_error: 5.0e-6\n",
       synthesis_range(s, 0.25, 0.70), 0.06 * s, synthesis_range(s, 0.40, 1.10),
       synthesis_range(s, 0.30, 0.90), synthesis_range(s, -0.30, 0.30));
   t.task_centre = {0.0, 0.0, -0.4 * s};
@@ -395,10 +396,11 @@ std::vector<SynthesisTemplate> hexaglide_synthesis(const SynthesisScale& scale) 
       "struts: {{E: 2.1e11, area: 3.0e-4}}\n"
       "carriage_stiffness: 2.0e8\n"
       "joints: {{carriage_max_angle_deg: 60, platform_max_angle_deg: 60}}\n"
-      "tool: {{tcp: [0, 0, -0.10]}}\n",
-      synthesis_range(s, 0.15, 0.40), synthesis_range(s, 0.05, 0.60),
+      "tool: {{tcp: [0, 0, -0.10]}}\n"
+      "actuator_error: 5.0e-6\n",
+      synthesis_range(s, 0.10, 0.40), synthesis_range(s, 0.02, 0.60),
       synthesis_range(s, 0.50, 1.30), synthesis_range(s, 0.80, 2.60),
-      synthesis_range(s, -0.20, 0.20));
+      synthesis_range(s, -0.20, 0.80));
   t.task_centre = {0.0, 0.0, 0.4 * s};
   return {t};
 }
@@ -419,9 +421,10 @@ std::vector<SynthesisTemplate> tripod_3prs_synthesis(const SynthesisScale& scale
       "tool_length: 0.10\n"
       "struts: {{section: {{E: 2.1e11, G: 8.1e10, outer_diameter: 0.08, inner_diameter: 0.06}}}}\n"
       "slide_stiffness: 2.0e8\n"
-      "joints: {{revolute_max_angle_deg: 50, platform_max_angle_deg: 70}}\n",
+      "joints: {{revolute_max_angle_deg: 50, platform_max_angle_deg: 70}}\n"
+      "actuator_error: 5.0e-6\n",
       synthesis_range(s, 0.20, 0.45), synthesis_range(s, 0.08, 0.25),
-      synthesis_range(s, 0.35, 0.80), 0.95 * s, synthesis_range(s, 0.0, 0.6));
+      synthesis_range(s, 0.25, 0.80), 0.95 * s, synthesis_range(s, -0.3, 0.6));
   t.task_centre = {0.0, 0.0, 0.9 * s};
   return {t};
 }

@@ -60,18 +60,6 @@ std::vector<Eigen::Vector3d> swept_points(const Hexapod& hexapod, const std::vec
   return out;
 }
 
-double footprint_area(const std::vector<Eigen::Vector3d>& points) {
-  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Point = Kernel::Point_2;
-  std::vector<Point> in;
-  in.reserve(points.size());
-  for (const auto& p : points) in.emplace_back(p.x(), p.y());
-  std::vector<Point> hull;
-  CGAL::convex_hull_2(in.begin(), in.end(), std::back_inserter(hull));
-  if (hull.size() < 3) return 0.0;
-  return std::abs(CGAL::to_double(CGAL::polygon_area_2(hull.begin(), hull.end(), Kernel())));
-}
-
 SweptEnvelope swept_envelope(const Hexapod& hexapod, const std::vector<Pose>& poses) {
   const std::vector<Eigen::Vector3d> points = swept_points(hexapod, poses);
   return {convex_hull_volume(points), footprint_area(points)};

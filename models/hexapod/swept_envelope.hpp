@@ -17,6 +17,7 @@
 
 #include "models/core/pose.hpp"
 #include "models/hexapod/hexapod.hpp"
+#include "models/workspace/workspace.hpp"  // convex_hull_volume, footprint_area
 
 namespace pkmopt {
 
@@ -35,8 +36,5 @@ std::vector<Eigen::Vector3d> swept_points(const Hexapod& hexapod, const std::vec
 
 /// The hexapod's swept envelope over the poses (CGAL convex_hull_3 and convex_hull_2).
 SweptEnvelope swept_envelope(const Hexapod& hexapod, const std::vector<Pose>& poses);
-
-/// Area (m^2) of the convex hull of the points' (x, y); 0 for fewer than 3 or collinear points.
-double footprint_area(const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace pkmopt

@@ -4,11 +4,14 @@
 // in its last bits. The exact sum (rounded once to double) is the same for every triangulation.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mpzf.h>
+#include <CGAL/Polygon_2_algorithms.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_hull_2.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 #include "models/workspace/workspace.hpp"
@@ -48,6 +51,18 @@ double convex_hull_volume(const std::vector<Eigen::Vector3d>& points) {
                   c[0][2] * (c[1][0] * c[2][1] - c[1][1] * c[2][0]);
   }
   return std::abs(CGAL::to_double(six_volume)) / 6.0;
+}
+
+double footprint_area(const std::vector<Eigen::Vector3d>& points) {
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Point = Kernel::Point_2;
+  std::vector<Point> in;
+  in.reserve(points.size());
+  for (const auto& p : points) in.emplace_back(p.x(), p.y());
+  std::vector<Point> hull;
+  CGAL::convex_hull_2(in.begin(), in.end(), std::back_inserter(hull));
+  if (hull.size() < 3) return 0.0;
+  return std::abs(CGAL::to_double(CGAL::polygon_area_2(hull.begin(), hull.end(), Kernel())));
 }
 
 }  // namespace pkmopt

@@ -251,6 +251,9 @@ MeshTopology mesh_topology(const TriangleMesh& mesh);
 /// Volume of the convex hull of points (CGAL convex_hull_3), m^3; 0 for fewer than 4 points or
 /// coplanar points.
 double convex_hull_volume(const std::vector<Eigen::Vector3d>& points);
+/// Area (m^2) of the convex hull of the points' (x, y) (CGAL convex_hull_2); 0 for fewer than 3
+/// or collinear points.
+double footprint_area(const std::vector<Eigen::Vector3d>& points);
 
 /// A plane section through the workspace sampled on a pixel grid: pixel (i, j) is at
 /// origin + i * pixel * axis_u + j * pixel * axis_v (pixel centres).

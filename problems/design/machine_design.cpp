@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "models/core/require.hpp"
+#include "models/geometry/sketch_envelope.hpp"
 
 namespace pkmopt {
 
@@ -105,12 +106,6 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
         "{}: task_singularity_free is computed only in hexapod design problems (an interval "
         "enclosure of the hexapod's Jacobian over the task region)",
         where));
-  for (const DesignMetric m : {DesignMetric::swept_volume, DesignMetric::footprint})
-    if (needed_[static_cast<int>(m)])
-      throw std::invalid_argument(fmt::format(
-          "{}: {} is computed only in hexapod design problems (the convex hull of the joints "
-          "over the task); this family has machine_size",
-          where, design_metric_name(m)));
   if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)]) {
     // The template's shape is every design's (the family's parameters are dimensions).
     const std::vector<double> middle = [&] {
@@ -231,6 +226,19 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     worst.add(m);
     drive_force = drive_force.cwiseMax(m.tau.cwiseAbs());
     ++ev.analysed_poses;
+  }
+  if (needed_[static_cast<int>(DesignMetric::swept_volume)] ||
+      needed_[static_cast<int>(DesignMetric::footprint)]) {
+    std::vector<Pose> lifted = spec_.task.poses;
+    for (Pose& pose : lifted) pose.position.z() += h;
+    const SketchEnvelope envelope = sketch_envelope(*machine, lifted);
+    const bool drawn = envelope.drawn > 0;
+    metric(DesignMetric::swept_volume) =
+        drawn ? envelope.volume : std::numeric_limits<double>::quiet_NaN();
+    metric(DesignMetric::footprint) =
+        drawn ? envelope.footprint : std::numeric_limits<double>::quiet_NaN();
+    if (!drawn && ev.failure.empty())
+      ev.failure = "the machine cannot be drawn at any task pose (swept_volume, footprint)";
   }
   ev.reach_violation = reach_sum / static_cast<double>(spec_.task.poses.size());
   ev.reachable = reach_sum == 0.0;

@@ -768,9 +768,9 @@ TEST(DesignStudyFields, DocsTablesMatchTheFieldLists) {
   for (const char* section :
        {"machine hexapod", "machine.parameters delta", "machine.parameters linear_delta",
         "machine.parameters hexaglide", "machine.parameters tripod_3prs",
-        "machine.parameters lathe_16k20f3", "task.region box", "task.region cylinder",
-        "task.orientations", "task.workspace", "objectives[]", "constraints[]",
-        "constraints[] actuator", "output"}) {
+        "machine.parameters lathe_16k20f3", "machine hybrid", "machine.parameters serial",
+        "task.region box", "task.region cylinder", "task.orientations", "task.workspace",
+        "objectives[]", "constraints[]", "constraints[] actuator", "output"}) {
     const std::string block = std::string("<!-- fields: ") + section + " -->\n" +
                               design_study_fields_markdown(section) + "<!-- /fields -->\n";
     EXPECT_NE(docs.str().find(block), std::string::npos)

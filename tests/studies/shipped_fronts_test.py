@@ -71,8 +71,36 @@ def non_dominated(points):
     return keep
 
 
+def check_synthesis(out):
+    """A synthesis: the merged front against every structure's evaluations, each structure's own
+    folder as a design study's."""
+    problems = []
+    names, signs = objective_columns(out)
+    evals = []
+    for folder in sorted((out / "candidates").iterdir()):
+        eh, erows = read_csv(folder / "evaluations.csv")
+        feasible_rows = [r for r in erows if r[eh.index("feasible")] == "1"]
+        if feasible_rows:
+            evals.append(matrix(eh, feasible_rows, names, signs))
+        problems += [f"candidates/{folder.name}: {p}" for p in check_run(folder)
+                     if "pareto.csv is empty" not in p and "hypervolume None" not in p]
+    evals = np.vstack(evals) if evals else np.zeros((0, len(names)))
+    ph, prows = read_csv(out / "pareto.csv")
+    front = matrix(ph, prows, names, signs)
+    if len(prows) == 0:
+        problems.append("the merged pareto.csv is empty")
+    for k, p in enumerate(front):
+        if np.any(np.all(evals <= p, axis=1) & np.any(evals < p, axis=1)):
+            problems.append(f"merged pareto.csv row {k + 1} is dominated by an evaluation")
+        if not np.any(np.all(evals == p, axis=1)):
+            problems.append(f"merged pareto.csv row {k + 1} is not a feasible evaluation")
+    return problems
+
+
 def check_run(out):
     problems = []
+    if (out / "candidates").is_dir():
+        return check_synthesis(out)
     names, signs = objective_columns(out)
     if len(names) < 2:
         return problems  # a single-objective run: its solver's answer
