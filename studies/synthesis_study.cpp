@@ -156,13 +156,25 @@ std::vector<CandidateSource> read_candidates(const YamlValue& list, const Synthe
   for (const YamlValue& e : entries) {
     std::vector<CandidateSource> from_entry;
     if (e.is_scalar()) {
-      const ModelEntry* entry = find_model(e.as_string());
-      if (entry == nullptr || !entry->synthesis)
-        e.fail(fmt::format("a model that offers structures to a synthesis ({}) or a map {{name, "
-                           "machine, task_centre}}",
-                           synthesis_model_names()),
-               quote_found(e.as_string()));
-      from_entry = model_candidates(*entry, scale);
+      // A model (every structure it offers) or one structure by its name.
+      const std::string name = e.as_string();
+      const ModelEntry* entry = find_model(name);
+      if (entry != nullptr && entry->synthesis) {
+        from_entry = model_candidates(*entry, scale);
+      } else {
+        std::string structures;
+        for (const ModelEntry* model : registered_models())
+          if (model->synthesis)
+            for (CandidateSource& s : model_candidates(*model, scale)) {
+              structures += (structures.empty() ? "" : ", ") + s.candidate.name;
+              if (s.candidate.name == name) from_entry.push_back(std::move(s));
+            }
+        if (from_entry.empty())
+          e.fail(fmt::format("a model that offers structures to a synthesis ({}), one of its "
+                             "structures ({}) or a map {{name, machine, task_centre}}",
+                             synthesis_model_names(), structures),
+                 quote_found(name));
+      }
     } else {
       e.check_keys({"name", "machine", "task_centre"});
       const YamlValue machine = e.required("machine");

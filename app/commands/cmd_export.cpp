@@ -14,6 +14,7 @@
 #include "app/commands.hpp"
 #include "io/format/input_error.hpp"
 #include "io/format/output_file.hpp"
+#include "report/synthesis_report.hpp"
 #include "io/results/pareto_json.hpp"
 #include "report/pareto_export.hpp"
 
@@ -50,6 +51,21 @@ void run_export(const ExportCommandOptions& opt) {
                       "in it), found --format {}",
                       opt.format, opt.format));
     csv_units = *units;
+  }
+  if (is_synthesis_folder(dir.string())) {
+    // A synthesis: its merged front is DIR/pareto.csv and pareto.json already; the page shows
+    // every structure's front, the candidates and one drawing per structure.
+    if (*format != ExportFormat::kHtml)
+      throw InputError(fmt::format(
+          "--format: expected html for the synthesis folder '{}' (its merged front is "
+          "pareto.csv and pareto.json; each structure's own folder candidates/NAME exports as a "
+          "design study), found {}",
+          dir.string(), opt.format));
+    const fs::path out_file = opt.out.empty() ? dir / "report.html" : fs::path(opt.out);
+    write_files_together({{out_file.string(), synthesis_report_html(dir.string())}});
+    fmt::print("export: synthesis report -> {}\n", out_file.string());
+    std::fflush(stdout);
+    return;
   }
   const ParetoFront front = read_pareto_json((dir / "pareto.json").string());
   const fs::path out_file =

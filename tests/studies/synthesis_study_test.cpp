@@ -152,6 +152,15 @@ TEST(SynthesisStudy, ArchitectureSingularHexapodIsDroppedByItsRank) {
   EXPECT_TRUE(candidate(s, "ordinary").searched) << candidate(s, "ordinary").dropped;
 }
 
+TEST(SynthesisStudy, ListNamesModelsOrStructures) {
+  // A model's name takes every structure it offers; a structure's name that one.
+  const SynthesisStudy s = load(study_text("[serial, xy_tripod_3prs]", kBoxTask));
+  std::set<std::string> names;
+  for (const SynthesisCandidate& c : s.candidates) names.insert(c.name);
+  EXPECT_EQ(names, (std::set<std::string>{"serial_table_ca", "serial_head_ca", "xy_tripod_3prs"}));
+  EXPECT_EQ(candidate(s, "xy_tripod_3prs").model, "hybrid");
+}
+
 TEST(SynthesisStudy, SeedsDependOnTheStudySeedAndTheNameOnly) {
   const SynthesisStudy a = load(study_text("[hexapod, linear_delta]", kBoxTask));
   const SynthesisStudy b = load(study_text("[linear_delta, delta, hexapod]", kBoxTask));
@@ -211,7 +220,9 @@ TEST(SynthesisStudy, BadInputSaysWhereAndWhat) {
       {study_text("[]", kBoxTask), "expected auto or a list of at least one candidate"},
       {study_text("[hexapod, cube]", kBoxTask),
        "candidates[1]: expected a model that offers structures to a synthesis (hexapod, delta, "
-       "linear_delta, hexaglide, tripod_3prs, hybrid, serial)"},
+       "linear_delta, hexaglide, tripod_3prs, hybrid, serial), one of its structures (hexapod, "
+       "delta, linear_delta, hexaglide, tripod_3prs, xy_tripod_3prs, serial_table_ca, "
+       "serial_head_ca)"},
       {study_text("[hexapod, hexapod]", kBoxTask), "expected a candidate name not used before"},
       {study_text("[{name: a/b, machine: {model: hexapod}}]", kBoxTask),
        "expected a name of letters, digits, '-' and '_'"},
