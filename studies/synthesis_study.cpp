@@ -397,13 +397,28 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
 
   std::vector<CandidateSource> sources = read_candidates(root.required("candidates"), scale);
   std::string goals, dropped_text;
+  std::optional<InputError> first_error;  // of a structure that could not be loaded
+  bool loaded_any = false;
   for (CandidateSource& source : sources) {
     SynthesisCandidate& c = source.candidate;
     const std::optional<PlatformDofs> dofs = section_dofs(source);
     if (dofs) c.dropped = rule_reason(*dofs, study.motion);
+    std::shared_ptr<DesignStudy> design;
     if (c.dropped.empty()) {
-      auto design = std::make_shared<DesignStudy>(
-          load_design_study_part(root, study.name + "/" + c.name, *source.machine, c.task_centre));
+      // A structure generated from the registry that cannot measure the study's goals (a metric
+      // its model does not compute) is dropped with the reason; an error in a section the user
+      // wrote stops the study.
+      try {
+        design = std::make_shared<DesignStudy>(load_design_study_part(
+            root, study.name + "/" + c.name, *source.machine, c.task_centre));
+      } catch (const InputError& error) {
+        if (c.origin != "scaled from the task") throw;
+        if (!first_error) first_error = error;
+        c.dropped = std::string("cannot be measured: ") + error.what();
+        c.mobility = "not checked";
+      }
+    }
+    if (design) {
       if (!dofs)
         if (const std::optional<PlatformDofs> described = described_dofs(*design))
           c.dropped = rule_reason(*described, study.motion);
@@ -413,8 +428,9 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
         c.mobility = "dropped by the rules";
       if (goals.empty()) goals = goals_yaml(design->resolved_yaml);
       if (design->optimizer.nsga2() != nullptr) study.nsga2 = *design->optimizer.nsga2();
+      loaded_any = true;
       c.study = std::move(design);
-    } else {
+    } else if (c.mobility.empty()) {
       c.mobility = "dropped by the rules";
     }
     c.searched = c.dropped.empty();
@@ -424,6 +440,8 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
     }
     study.candidates.push_back(c);
   }
+  // No structure could be loaded: the shared sections are wrong (the same error for all).
+  if (!loaded_any && first_error) throw *first_error;
   if (study.searched().empty())
     root.required("candidates")
         .fail(fmt::format("at least one structure that makes the task's motions ({}: {})",

@@ -152,6 +152,34 @@ TEST(SynthesisStudy, ArchitectureSingularHexapodIsDroppedByItsRank) {
   EXPECT_TRUE(candidate(s, "ordinary").searched) << candidate(s, "ordinary").dropped;
 }
 
+TEST(SynthesisStudy, StructuresThatCannotMeasureTheGoalsAreDropped) {
+  // task_singularity_free is proved for hexapods only: every other structure says why it is not
+  // searched, and the study goes on with the hexapod.
+  std::string text = study_text("auto", kBoxTask);
+  const std::string reachable = "  - task_reachable\n";
+  text.replace(text.find(reachable), reachable.size(), reachable + "  - task_singularity_free\n");
+  const SynthesisStudy s = load(text);
+  EXPECT_EQ(searched_names(s), (std::set<std::string>{"hexapod"}));
+  const SynthesisCandidate& glide = candidate(s, "hexaglide");
+  EXPECT_TRUE(glide.dropped.starts_with("cannot be measured: ")) << glide.dropped;
+  EXPECT_NE(glide.dropped.find("task_singularity_free is computed only in hexapod design problems"),
+            std::string::npos)
+      << glide.dropped;
+  // A mistake in the shared sections stops the study with its own message, not as drops.
+  std::string typo = study_text("auto", kBoxTask);
+  typo.replace(typo.find("minimize: machine_size"), 22, "minimize: machine_sise");
+  EXPECT_NE(load_error(typo).find("objectives[1].minimize: expected one of stiffness_min"),
+            std::string::npos)
+      << load_error(typo);
+  // A structure the study file writes is the user's: its mistakes stop the study.
+  const std::string own = study_text(
+      "[hexapod, {name: mine, task_centre: [0, 0, -0.4], machine: {model: linear_delta, "
+      "parameters: {rod: {min: 0.4, max: 1.1}}, rods: {E: -1, area: 1.5e-4}}}]",
+      kBoxTask);
+  EXPECT_NE(load_error(own).find("candidates[1].machine.rods.E"), std::string::npos)
+      << load_error(own);
+}
+
 TEST(SynthesisStudy, ListNamesModelsOrStructures) {
   // A model's name takes every structure it offers; a structure's name that one.
   const SynthesisStudy s = load(study_text("[serial, xy_tripod_3prs]", kBoxTask));
