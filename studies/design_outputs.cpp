@@ -31,6 +31,7 @@ std::string_view design_metric_unit(DesignMetric metric) {
       return "N/m";
     case DesignMetric::tcp_deflection_max:
     case DesignMetric::leg_clearance_min:
+    case DesignMetric::task_margin:
       return "m";
     case DesignMetric::leg_force_max:
     case DesignMetric::actuator_force_dynamic_max:

@@ -28,7 +28,8 @@ constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
     "leg_clearance_min",
     "swept_volume",
     "footprint",
-    "task_singularity_free"};
+    "task_singularity_free",
+    "task_margin"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -233,6 +234,54 @@ std::vector<double> aggregate_design_rows(const std::vector<DesignObjective>& ob
   }
   if (require_reachable) f.push_back(failed ? kFailurePenalty : reach_violation);
   return f;
+}
+
+namespace {
+
+// The task's poses moved outwards by d (see task_margin).
+bool grown_task_reachable(const Machine& machine, MachineData& data, const std::vector<Pose>& poses,
+                          const Eigen::Vector3d& centre, const Eigen::Vector3d& tolerance,
+                          double d) {
+  for (Pose pose : poses) {
+    for (int a = 0; a < 3; ++a) {
+      const double off = pose.position(a) - centre(a);
+      if (std::abs(off) > tolerance(a)) pose.position(a) += off > 0.0 ? d : -d;
+    }
+    if (!machine.reachable(data, pose)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+double task_margin(const Machine& machine, const std::vector<Pose>& poses, double d_max) {
+  if (poses.empty()) return 0.0;
+  Eigen::Vector3d lo = poses.front().position, hi = lo;
+  for (const Pose& pose : poses) {
+    lo = lo.cwiseMin(pose.position);
+    hi = hi.cwiseMax(pose.position);
+  }
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  const Eigen::Vector3d tolerance = 1e-9 * (hi - lo).cwiseMax(Eigen::Vector3d::Constant(1.0));
+  const std::unique_ptr<MachineData> data = machine.make_data();
+  if (!grown_task_reachable(machine, *data, poses, centre, tolerance, 0.0)) return 0.0;
+  if (grown_task_reachable(machine, *data, poses, centre, tolerance, d_max)) return d_max;
+  double good = 0.0, bad = d_max;
+  for (int k = 0; k < 16; ++k) {
+    const double mid = 0.5 * (good + bad);
+    (grown_task_reachable(machine, *data, poses, centre, tolerance, mid) ? good : bad) = mid;
+  }
+  return good;
+}
+
+double task_margin_limit(const std::vector<Pose>& poses) {
+  if (poses.empty()) return 0.1;
+  Eigen::Vector3d lo = poses.front().position, hi = lo;
+  for (const Pose& pose : poses) {
+    lo = lo.cwiseMin(pose.position);
+    hi = hi.cwiseMax(pose.position);
+  }
+  return std::max(0.1, (hi - lo).maxCoeff());
 }
 
 }  // namespace pkmopt

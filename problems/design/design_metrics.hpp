@@ -60,18 +60,21 @@ enum class DesignMetric {
   /// min over the task of the legs' clearance (m; needs the legs' shape, models/
   /// leg_interference.hpp; negative when legs intersect).
   leg_clearance_min,
-  /// The volume of the convex hull of the machine over the task (m^3; hexapod studies;
-  /// models/hexapod/swept_envelope.hpp): base joints, platform joints and the solids at every task
-  /// pose.
+  /// The volume of the convex hull of the machine over the task (m^3): the hexapod's base joints,
+  /// platform joints and solids at every task pose (models/hexapod/swept_envelope.hpp), other
+  /// models' drawings (models/geometry/sketch_envelope.hpp).
   swept_volume,
-  /// The area of that hull's projection on the base's x-y plane (m^2; hexapod studies).
+  /// The area of that hull's projection on the base's x-y plane (m^2).
   footprint,
   /// The share of the task region proved free of parallel singularities with one working mode
   /// (0..1; 1: certified; hexapod studies with a box or cylinder task;
   /// models/workspace/mode_certificate.hpp).
-  task_singularity_free
+  task_singularity_free,
+  /// How far the task could grow and stay reachable (m; task_margin below): the workspace
+  /// margin around the task, for any model.
+  task_margin
 };
-inline constexpr int kNumDesignMetrics = 18;
+inline constexpr int kNumDesignMetrics = 19;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
 /// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
@@ -171,6 +174,15 @@ struct TaskWorstCase {
 void measure_workspace_metrics(const Machine& machine, const WorkspaceOptions& options,
                                const NeededMetrics& needed, DesignMetrics& metrics,
                                std::string& failure);
+
+/// task_margin (m): the largest d in [0, d_max] such that every task pose moved outwards by d
+/// along each base axis on which it lies off the centre of the poses' bounding box (the pose
+/// keeps its orientation; a coordinate at the centre stays) is reachable (Machine::reachable);
+/// bisected to d_max / 2^16. 0 when a task pose itself is unreachable; d_max when every pose
+/// moved by d_max is reachable. `poses` are the task poses after the home_height lift.
+double task_margin(const Machine& machine, const std::vector<Pose>& poses, double d_max);
+/// The d_max of design studies: the largest extent of the task's positions, at least 0.1 m.
+double task_margin_limit(const std::vector<Pose>& poses);
 
 /// Replaces every non-finite needed metric by kFailurePenalty; the first one sets `failure` when
 /// it is empty ("stiffness_min is not finite").

@@ -572,12 +572,18 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     region.position_hi.z() += p[kHomeHeight];
     metric(DesignMetric::task_singularity_free) = singularity_free_share(*hexapod, region);
   }
-  if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
+  if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint) ||
+      need(DesignMetric::task_margin)) {
     std::vector<Pose> poses = spec_.task.poses;
     for (Pose& pose : poses) pose.position.z() += p[kHomeHeight];
-    const SweptEnvelope envelope = swept_envelope(*hexapod, poses);
-    metric(DesignMetric::swept_volume) = envelope.volume;
-    metric(DesignMetric::footprint) = envelope.footprint;
+    if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
+      const SweptEnvelope envelope = swept_envelope(*hexapod, poses);
+      metric(DesignMetric::swept_volume) = envelope.volume;
+      metric(DesignMetric::footprint) = envelope.footprint;
+    }
+    if (need(DesignMetric::task_margin))
+      metric(DesignMetric::task_margin) =
+          task_margin(*hexapod, poses, task_margin_limit(spec_.task.poses));
   }
   measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);

@@ -227,6 +227,12 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     drive_force = drive_force.cwiseMax(m.tau.cwiseAbs());
     ++ev.analysed_poses;
   }
+  if (needed_[static_cast<int>(DesignMetric::task_margin)]) {
+    std::vector<Pose> lifted = spec_.task.poses;
+    for (Pose& pose : lifted) pose.position.z() += h;
+    metric(DesignMetric::task_margin) =
+        task_margin(*machine, lifted, task_margin_limit(spec_.task.poses));
+  }
   if (needed_[static_cast<int>(DesignMetric::swept_volume)] ||
       needed_[static_cast<int>(DesignMetric::footprint)]) {
     std::vector<Pose> lifted = spec_.task.poses;

@@ -28,7 +28,9 @@
 //   natural_frequency_min min_k natural_frequency_1(pose k) (needs masses)  Hz
 //   moving_mass         platform plus every leg's moving bodies (needs masses)  kg
 //   leg_clearance_min   min_k leg_clearance(pose k) (needs the legs' shape)   m
-//   swept_volume, footprint   hexapod studies only (hexapod_design.hpp)      m^3, m^2
+//   swept_volume, footprint   the convex hull of the machine's drawing over the task and its
+//                       area seen from above (models/geometry/sketch_envelope.hpp)  m^3, m^2
+//   task_margin         how far the task could grow and stay reachable (design_metrics.hpp)  m
 //   task_singularity_free     hexapod studies only (hexapod_design.hpp)      0..1
 //   workspace_volume    workspace_volume(machine, task.workspace)        m^3
 //   conditioning_index  mean singularity margin over the workspace grid  0..1

@@ -363,7 +363,7 @@ TEST_F(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
           "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
           "conditioning_index, machine_size, actuator_cost, actuator_overload, tcp_deflection_max, "
           "stiffness_min_loaded, natural_frequency_min, moving_mass, actuator_force_dynamic_max, "
-          "leg_clearance_min, swept_volume, footprint, task_singularity_free, found "
+          "leg_clearance_min, swept_volume, footprint, task_singularity_free, task_margin, found "
           "'stifness'");
   const std::string file3 = (dir_ / "e3" / "study.yaml").string();
   EXPECT_EQ(load_error("e3", replaced(kStudy, "{min: 0.5, max: 0.7}", "{min: 0.7, max: 0.5}")),
