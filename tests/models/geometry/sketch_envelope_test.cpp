@@ -1,0 +1,83 @@
+// The space a drawn machine takes over poses (models/geometry/sketch_envelope.hpp), checked
+// against the drawing itself: every drawn point inside the hull's box, the TCP's square inside
+// the footprint, more poses never less space, and the linear delta's envelope by hand.
+#include "models/geometry/sketch_envelope.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "models/core/machine_sketch.hpp"
+#include "models/leg_chain/leg_chain.hpp"
+
+namespace pkmopt {
+namespace {
+
+std::vector<Pose> square_poses(double z, double half) {
+  std::vector<Pose> poses;
+  for (double x : {-half, half})
+    for (double y : {-half, half}) {
+      Pose p;
+      p.position = {x, y, z};
+      poses.push_back(p);
+    }
+  return poses;
+}
+
+TEST(SketchEnvelope, HoldsTheDrawingAndGrowsWithThePoses) {
+  const std::unique_ptr<Machine> delta = make_linear_delta(LinearDeltaDesign{});
+  // Poses the default linear delta reaches (its TCP 0.05 m around the centre).
+  const auto data = delta->make_data();
+  double z = 10.0;
+  for (double c = 1.0; c > -1.0; c -= 0.01) {
+    bool all = true;
+    for (const Pose& p : square_poses(c, 0.05)) all = all && delta->reachable(*data, p);
+    if (all) {
+      z = c;
+      break;
+    }
+  }
+  ASSERT_LT(z, 5.0) << "no reachable square found";
+  const std::vector<Pose> four = square_poses(z, 0.05);
+  const SketchEnvelope e = sketch_envelope(*delta, four);
+  EXPECT_EQ(e.drawn, 4u);
+  // The TCP alone spans the 0.1 x 0.1 m square: the footprint holds it.
+  EXPECT_GE(e.footprint, 0.01 - 1e-12);
+  // The hull is inside the box of the drawn points, and at least as large as the TCP's square
+  // swept along the drawn z extent would be zero: check against the box of every drawn point.
+  Eigen::AlignedBox3d box;
+  for (const Pose& p : four) {
+    MachineSketch s;
+    ASSERT_TRUE(delta->sketch(*data, p, s));
+    for (const auto& line : s.lines) {
+      box.extend(line.from);
+      box.extend(line.to);
+    }
+    box.extend(s.tcp);
+  }
+  EXPECT_GT(e.volume, 0.0);
+  EXPECT_LE(e.volume, box.volume() + 1e-12);
+  EXPECT_LE(e.footprint, box.sizes().x() * box.sizes().y() + 1e-12);
+  // The guide feet are drawn: the footprint holds the triangle of the three guides (radius r):
+  // (3 sqrt(3) / 4) r^2.
+  const double r = LinearDeltaDesign{}.guide_radius;
+  EXPECT_GE(e.footprint, 3.0 * std::sqrt(3.0) / 4.0 * r * r - 1e-9);
+  // More poses never take less space; the same poses twice take the same.
+  std::vector<Pose> more = four;
+  for (const Pose& p : square_poses(z - 0.01, 0.05)) more.push_back(p);
+  const SketchEnvelope bigger = sketch_envelope(*delta, more);
+  EXPECT_GE(bigger.volume, e.volume - 1e-12);
+  EXPECT_GE(bigger.footprint, e.footprint - 1e-12);
+  std::vector<Pose> twice = four;
+  twice.insert(twice.end(), four.begin(), four.end());
+  EXPECT_NEAR(sketch_envelope(*delta, twice).volume, e.volume, 1e-12);
+  // No poses: no points, no space.
+  const SketchEnvelope none = sketch_envelope(*delta, {});
+  EXPECT_EQ(none.drawn, 0u);
+  EXPECT_EQ(none.volume, 0.0);
+  EXPECT_EQ(none.footprint, 0.0);
+}
+
+}  // namespace
+}  // namespace pkmopt
