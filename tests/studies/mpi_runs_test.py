@@ -13,7 +13,8 @@
   * `pkmopt analyze` (compliance and mode-shape columns, a quoted pass-through column, to a file
     and to stdout) and `pkmopt workspace` (fixed resolution; tilt cone with the volume tolerance)
     under mpirun write the files the run on one process writes;
-  * a bad study file under mpirun gives one `pkmopt: error:` line and exit status 2.
+  * a bad study file under mpirun gives one `pkmopt: error:` line and exit status 2, and so does
+    a synthesis study (it runs on one process).
 
 Usage: mpi_runs_test.py PKMOPT_BINARY SOURCE_DIR SCRATCH_DIR
 mpirun runs with --oversubscribe (more ranks than cores) and --allow-run-as-root.
@@ -305,6 +306,20 @@ def test_bad_study_gives_one_line():
     check(not (SCRATCH / "bad-out").exists(), "bad: a refused study left its --out folder")
 
 
+def test_synthesis_runs_on_one_process():
+    path = SCRATCH / "synthesis.yaml"
+    path.write_text("study: syn\ncandidates: [hexapod, linear_delta]\n"
+                    "task: {region: {shape: box, centre: [0, 0, 0], size: [0.3, 0.3, 0.2]}}\n"
+                    "objectives: [{minimize: tcp_deflection_max}, {minimize: swept_volume}]\n"
+                    "optimizer: {algorithm: nsga2, population: 8, generations: 2, seed: 1}\n")
+    r = run(["run", path, "--out", SCRATCH / "syn-out", "--no-progress"], ranks=2)
+    lines = pkmopt_lines(r.stderr)
+    check(r.returncode == 2, f"synthesis: expected exit 2, found {r.returncode}")
+    check(len(lines) == 1 and "expected one process for a synthesis study" in lines[0],
+          f"synthesis: expected one error line, found {lines}")
+    check(not (SCRATCH / "syn-out").exists(), "synthesis: a refused run left its --out folder")
+
+
 def main():
     if shutil.which("mpirun") is None:
         print("mpirun not found (scripts/install-deps.sh installs openmpi-bin)")
@@ -316,7 +331,8 @@ def main():
              test_killed_worker_is_named_and_the_journal_resumes,
              test_silent_worker_stops_the_run_with_status_4,
              test_analyze_and_workspace_write_the_files_of_one_process,
-             test_bad_study_gives_one_line]
+             test_bad_study_gives_one_line,
+             test_synthesis_runs_on_one_process]
     for test in tests:
         start = time.monotonic()
         test()
