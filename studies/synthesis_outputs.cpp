@@ -194,13 +194,10 @@ std::string terminal_table(const std::vector<std::vector<std::string>>& rows) {
   return out;
 }
 
-}  // namespace
-
-SynthesisOutputSummary write_synthesis_outputs(const std::string& directory, SynthesisStudy& study,
-                                               const SynthesisSearch& search,
-                                               const SynthesisFacts& facts,
-                                               const OutputFiles& also) {
-  OutputFiles files = also;
+// Each searched structure's own result folder (its files appended to `files`).
+std::vector<Part> structure_parts(const std::string& directory, SynthesisStudy& study,
+                                  const SynthesisSearch& search, const SynthesisFacts& facts,
+                                  OutputFiles& files) {
   const std::vector<std::size_t> searched = study.searched();
   std::vector<Part> parts(searched.size());
   for (std::size_t k = 0; k < searched.size(); ++k) {
@@ -224,12 +221,70 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory, Syn
     files.emplace_back(folder + "/study.resolved.yaml", c.study->resolved_yaml);
     part.infeasibility = count_infeasibility(*c.study, part.journal->entries());
   }
+  return parts;
+}
+
+// The merged front: every structure's front, non-dominated together, thinned if asked.
+struct MergedFront {
+  std::string csv;
+  nlohmann::json pareto;
+  ObjectiveSet objectives;  // minimised, of the kept designs
+  std::size_t designs = 0;
+};
+
+// One merged-front design: its pareto.csv row and pareto.json entry (its machine file appended to
+// `files`).
+std::pair<std::string, nlohmann::json> merged_design(const std::string& directory,
+                                                     const SynthesisStudy& study, const Part& part,
+                                                     std::size_t j, std::size_t n, std::size_t m,
+                                                     std::size_t constraints, OutputFiles& files) {
+  const std::vector<DesignObjective>& objectives = part.candidate->study->objectives();
+  const MeasuredDesign& d = part.files.selection.designs[j];
+  const DesignStudy& s = *part.candidate->study;
+  const std::string id = merged_id(n);
+  std::string row = id + "," + csv_field(part.candidate->name) + "," + s.model;
+  nlohmann::json design = {{"id", id}, {"architecture", part.candidate->name}, {"model", s.model}};
+  nlohmann::json values = nlohmann::json::array(), g = nlohmann::json::array();
+  for (std::size_t i = 0; i < m; ++i) {
+    const double v = sense_sign(objectives[i].sense) * d.aggregate[i];
+    values.push_back(json_number(v));
+    row += "," + format_number(v);
+  }
+  for (std::size_t i = 0; i < constraints; ++i) {
+    const double v = m + i < d.aggregate.size() ? d.aggregate[m + i] : 0.0;
+    g.push_back(json_number(v));
+    row += "," + format_number(v);
+  }
+  design["objectives"] = values;
+  design["constraints"] = g;
+  design["home_height"] = d.home_height;
+  nlohmann::json parameters = nlohmann::json::object();
+  std::string parameter_text;
+  for (std::size_t p = 0; p < s.parameters.size() && p < d.parameters.size(); ++p) {
+    parameters[s.parameters[p].name] = d.parameters[p];
+    parameter_text += fmt::format("{}{}={}", parameter_text.empty() ? "" : " ",
+                                  s.parameters[p].name, format_number(d.parameters[p]));
+  }
+  design["parameters"] = parameters;
+  design["structure_design"] =
+      "candidates/" + part.candidate->name + "/pareto.json#" + structure_id(j);
+  row += "," + format_number(d.home_height) + "," + csv_field(parameter_text) + ",";
+  if (study.write_designs) {
+    design["machine_file"] = "designs/" + id + ".yaml";
+    files.emplace_back(directory + "/designs/" + id + ".yaml",
+                       "# " + part.candidate->structure + ", design " + structure_id(j) +
+                           " of candidates/" + part.candidate->name + "\n" + d.machine_file);
+    row += "designs/" + id + ".yaml";
+  }
+  return {row + "," + structure_id(j) + "\n", design};
+}
+
+MergedFront merged_front(const std::string& directory, const SynthesisStudy& study,
+                         std::vector<Part>& parts, OutputFiles& files) {
   const DesignStudy& first = *parts.front().candidate->study;
   const std::vector<DesignObjective>& objectives = first.objectives();
   const std::size_t m = objectives.size();
   const std::vector<std::string> g_names = constraint_names(first);
-
-  // The merged front: every structure's front, non-dominated together, thinned if asked.
   std::vector<std::vector<double>> pool;
   std::vector<std::pair<std::size_t, std::size_t>> origin;  // (part, design on its front)
   for (std::size_t k = 0; k < parts.size(); ++k)
@@ -242,248 +297,236 @@ SynthesisOutputSummary write_synthesis_outputs(const std::string& directory, Syn
   const std::vector<std::size_t> keep = pool.empty()
                                             ? std::vector<std::size_t>{}
                                             : select_front(pool, study.front_size, &non_dominated);
-
-  std::string csv = "id,architecture,model";
+  MergedFront out;
+  out.designs = keep.size();
+  out.csv = "id,architecture,model";
   for (const DesignObjective& o : objectives)
-    csv += "," + std::string(design_metric_name(o.metric));
-  for (const std::string& g : g_names) csv += "," + g;
-  csv += ",home_height,parameters,machine_file,structure_design\n";
+    out.csv += "," + std::string(design_metric_name(o.metric));
+  for (const std::string& g : g_names) out.csv += "," + g;
+  out.csv += ",home_height,parameters,machine_file,structure_design\n";
   nlohmann::json designs = nlohmann::json::array();
-  ObjectiveSet merged_objectives;
   if (study.write_designs && !keep.empty())
     std::filesystem::create_directories(directory + "/designs");
   for (std::size_t n = 0; n < keep.size(); ++n) {
     const auto [k, j] = origin[keep[n]];
-    Part& part = parts[k];
-    ++part.merged;
-    const MeasuredDesign& d = part.files.selection.designs[j];
-    const DesignStudy& s = *part.candidate->study;
-    const std::string id = merged_id(n);
-    merged_objectives.push_back(pool[keep[n]]);
-    std::string row = id + "," + csv_field(part.candidate->name) + "," + s.model;
-    nlohmann::json design;
-    design["id"] = id;
-    design["architecture"] = part.candidate->name;
-    design["model"] = s.model;
-    nlohmann::json values = nlohmann::json::array();
-    for (std::size_t i = 0; i < m; ++i) {
-      const double v = sense_sign(objectives[i].sense) * d.aggregate[i];
-      values.push_back(json_number(v));
-      row += "," + format_number(v);
-    }
-    design["objectives"] = values;
-    nlohmann::json g = nlohmann::json::array();
-    for (std::size_t i = 0; i < g_names.size(); ++i) {
-      const double v = m + i < d.aggregate.size() ? d.aggregate[m + i] : 0.0;
-      g.push_back(json_number(v));
-      row += "," + format_number(v);
-    }
-    design["constraints"] = g;
-    design["home_height"] = d.home_height;
-    nlohmann::json parameters = nlohmann::json::object();
-    std::string parameter_text;
-    for (std::size_t p = 0; p < s.parameters.size() && p < d.parameters.size(); ++p) {
-      parameters[s.parameters[p].name] = d.parameters[p];
-      parameter_text += fmt::format("{}{}={}", parameter_text.empty() ? "" : " ",
-                                    s.parameters[p].name, format_number(d.parameters[p]));
-    }
-    design["parameters"] = parameters;
-    design["structure_design"] =
-        "candidates/" + part.candidate->name + "/pareto.json#" + structure_id(j);
-    row += "," + format_number(d.home_height) + "," + csv_field(parameter_text);
-    if (study.write_designs) {
-      design["machine_file"] = "designs/" + id + ".yaml";
-      files.emplace_back(directory + "/designs/" + id + ".yaml",
-                         "# " + part.candidate->structure + ", design " + structure_id(j) +
-                             " of candidates/" + part.candidate->name + "\n" + d.machine_file);
-      row += ",designs/" + id + ".yaml";
-    } else {
-      row += ",";
-    }
-    row += "," + structure_id(j) + "\n";
-    csv += row;
+    ++parts[k].merged;
+    out.objectives.push_back(pool[keep[n]]);
+    auto [row, design] = merged_design(directory, study, parts[k], j, n, m, g_names.size(), files);
+    out.csv += row;
     designs.push_back(std::move(design));
   }
-
-  nlohmann::json pareto;
-  pareto["format"] = "pkmopt-synthesis-front-1";
-  pareto["pkmopt_version"] = kVersion;
-  pareto["study"] = study.name;
-  pareto["description"] = study.description;
-  pareto["task_motion"] = study.motion.type();
-  pareto["objectives"] = objectives_json(objectives);
-  pareto["constraints"] = g_names;
   nlohmann::json architectures = nlohmann::json::array();
   for (const Part& part : parts)
     architectures.push_back({{"name", part.candidate->name},
                              {"model", part.candidate->model},
                              {"structure", part.candidate->structure}});
-  pareto["architectures"] = architectures;
-  pareto["designs"] = designs;
-  pareto["knee"] = merged_objectives.empty()
-                       ? nlohmann::json(nullptr)
-                       : nlohmann::json(merged_id(knee_point(merged_objectives)));
-  pareto["compromise"] = merged_objectives.empty()
-                             ? nlohmann::json(nullptr)
-                             : nlohmann::json(merged_id(compromise_point(merged_objectives)));
-  pareto["front_selection"] = {{"rule", front_rule_text(study.front_size, m)},
-                               {"candidate_designs", pool.size()},
-                               {"non_dominated", non_dominated}};
+  auto id_of = [&](std::size_t k) { return nlohmann::json(merged_id(k)); };
+  out.pareto = {{"format", "pkmopt-synthesis-front-1"},
+                {"pkmopt_version", kVersion},
+                {"study", study.name},
+                {"description", study.description},
+                {"task_motion", study.motion.type()},
+                {"objectives", objectives_json(objectives)},
+                {"constraints", g_names},
+                {"architectures", architectures},
+                {"designs", designs},
+                {"knee", out.objectives.empty() ? nlohmann::json(nullptr)
+                                                : id_of(knee_point(out.objectives))},
+                {"compromise", out.objectives.empty() ? nlohmann::json(nullptr)
+                                                      : id_of(compromise_point(out.objectives))},
+                {"front_selection",
+                 {{"rule", front_rule_text(study.front_size, m)},
+                  {"candidate_designs", pool.size()},
+                  {"non_dominated", non_dominated}}}};
+  return out;
+}
 
-  // The candidates table.
-  std::string candidates_csv =
+// The candidates table: candidates.csv, candidates.json and the terminal's rows.
+struct CandidatesTable {
+  std::string csv;
+  nlohmann::json json = nlohmann::json::array();
+  std::vector<std::vector<std::string>> terminal;
+  std::string infeasibility;  // the structures without a feasible design, their main causes
+};
+
+void add_dropped(const SynthesisCandidate& c, std::size_t m, nlohmann::json& j,
+                 CandidatesTable& table) {
+  j["status"] = "dropped";
+  j["reason"] = c.dropped;
+  table.csv += fmt::format("{},{},{},dropped,{},{},,,,,,,,,", csv_field(c.name), c.model,
+                           csv_field(c.structure), csv_field(c.dropped), csv_field(c.mobility));
+  for (std::size_t i = 0; i < m; ++i) table.csv += ",";
+  table.csv += ",,,,\n";
+  std::vector<std::string> row = {c.name, "dropped", "-", "-"};
+  for (std::size_t i = 0; i < m; ++i) row.emplace_back("-");
+  row.push_back(c.dropped);
+  table.terminal.push_back(row);
+}
+
+void add_searched(const SynthesisCandidate& c, const Part& part, std::size_t merged_total,
+                  nlohmann::json& j, CandidatesTable& table) {
+  const std::vector<DesignObjective>& objectives = c.study->objectives();
+  const std::size_t m = objectives.size();
+  const StructureRun& run = *part.run;
+  std::string binding_text, failure_text, bounds_text;
+  const nlohmann::json binding = binding_json(part, m, binding_text);
+  const nlohmann::json at_bounds = bounds_json(part, bounds_text);
+  const nlohmann::json failures = failure_json(part, failure_text);
+  const std::vector<double> best = best_values(part, objectives);
+  const double share = static_cast<double>(part.merged) /
+                       static_cast<double>(std::max<std::size_t>(1, merged_total));
+  const double exclusive = run.exclusive.empty() ? 0.0 : run.exclusive.back();
+  const std::size_t own = part.files.selection.designs.size();
+  nlohmann::json best_json = nlohmann::json::object();
+  for (std::size_t i = 0; i < m; ++i)
+    best_json[std::string(design_metric_name(objectives[i].metric))] = json_number(best[i]);
+  j.update({{"status", "searched"},
+            {"seed", c.seed},
+            {"generations", run.generations},
+            {"evaluations", run.evaluations},
+            {"rounds", run.rounds},
+            {"kept_to_the_end", run.kept},
+            {"exclusive_hypervolume_by_round", run.exclusive},
+            {"feasible_evaluations", part.infeasibility.feasible},
+            {"distinct_evaluations", part.infeasibility.evaluations},
+            {"own_front", own},
+            {"merged_front", part.merged},
+            {"merged_share", share},
+            {"best", best_json},
+            {"constraints", binding},
+            {"at_bounds", at_bounds},
+            {"failures", failures},
+            {"folder", "candidates/" + c.name}});
+  table.csv +=
+      fmt::format("{},{},{},searched,,{},{},{},{},{},{},{},{},{},{}", csv_field(c.name), c.model,
+                  csv_field(c.structure), csv_field(c.mobility), run.generations, run.evaluations,
+                  run.rounds, run.kept ? 1 : 0, part.infeasibility.feasible, own, part.merged,
+                  format_number(share), format_number(exclusive));
+  for (double b : best) table.csv += "," + (std::isfinite(b) ? format_number(b) : "");
+  table.csv += fmt::format(",{},{},{},candidates/{}\n", csv_field(binding_text),
+                           csv_field(bounds_text), csv_field(failure_text), c.name);
+  std::vector<std::string> row = {c.name, run.kept ? "searched" : "dropped by budget",
+                                  std::to_string(run.generations),
+                                  fmt::format("{} ({:.0f}%)", part.merged, 100.0 * share)};
+  for (double b : best) row.push_back(std::isfinite(b) ? fmt::format("{:.4g}", b) : "-");
+  std::string note = own == 0 ? "no feasible design: " + failure_text : binding_text;
+  if (own > 0 && !bounds_text.empty()) note += (note.empty() ? "" : "; ") + bounds_text;
+  row.push_back(note.empty() ? "-" : note);
+  table.terminal.push_back(row);
+  if (own == 0)
+    table.infeasibility += fmt::format("{}{}: {}", table.infeasibility.empty() ? "" : "; ", c.name,
+                                       part.infeasibility.text());
+}
+
+CandidatesTable candidates_table(const SynthesisStudy& study, const std::vector<Part>& parts,
+                                 const std::vector<DesignObjective>& objectives,
+                                 std::size_t merged_total) {
+  CandidatesTable table;
+  table.csv =
       "candidate,model,structure,status,reason,mobility,generations,evaluations,rounds,kept,"
       "feasible_evaluations,own_front,merged_front,merged_share,exclusive_hypervolume";
   for (const DesignObjective& o : objectives)
-    candidates_csv += ",best_" + std::string(design_metric_name(o.metric));
-  candidates_csv += ",binding,at_bounds,failures,folder\n";
-  nlohmann::json candidates = nlohmann::json::array();
-  std::vector<std::vector<std::string>> table;
-  {
-    std::vector<std::string> head = {"candidate", "status", "generations", "merged front"};
-    for (const DesignObjective& o : objectives)
-      head.push_back(fmt::format("best {} ({})", design_metric_name(o.metric),
-                                 design_metric_unit(o.metric).empty()
-                                     ? std::string("-")
-                                     : std::string(design_metric_unit(o.metric))));
-    head.emplace_back("binding constraints, bounds / failures / reason");
-    table.push_back(head);
+    table.csv += ",best_" + std::string(design_metric_name(o.metric));
+  table.csv += ",binding,at_bounds,failures,folder\n";
+  std::vector<std::string> head = {"candidate", "status", "generations", "merged front"};
+  for (const DesignObjective& o : objectives) {
+    const std::string_view unit = design_metric_unit(o.metric);
+    head.push_back(fmt::format("best {} ({})", design_metric_name(o.metric),
+                               unit.empty() ? std::string("-") : std::string(unit)));
   }
-  const double merged_total = static_cast<double>(std::max<std::size_t>(1, keep.size()));
-  std::string infeasibility;
+  head.emplace_back("binding constraints, bounds / failures / reason");
+  table.terminal.push_back(head);
   for (const SynthesisCandidate& c : study.candidates) {
-    nlohmann::json j;
-    j["candidate"] = c.name;
-    j["model"] = c.model;
-    j["structure"] = c.structure;
-    j["origin"] = c.origin;
-    j["task_centre"] = c.task_centre;
-    j["mobility"] = c.mobility;
+    nlohmann::json j = {{"candidate", c.name},          {"model", c.model},
+                        {"structure", c.structure},     {"origin", c.origin},
+                        {"task_centre", c.task_centre}, {"mobility", c.mobility}};
     const Part* part = nullptr;
     for (const Part& p : parts)
       if (p.candidate == &c) part = &p;
-    if (part == nullptr) {
-      j["status"] = "dropped";
-      j["reason"] = c.dropped;
-      candidates_csv +=
-          fmt::format("{},{},{},dropped,{},{},,,,,,,,,", csv_field(c.name), c.model,
-                      csv_field(c.structure), csv_field(c.dropped), csv_field(c.mobility));
-      for (std::size_t i = 0; i < m; ++i) candidates_csv += ",";
-      candidates_csv += ",,,,\n";
-      std::vector<std::string> row = {c.name, "dropped", "-", "-"};
-      for (std::size_t i = 0; i < m; ++i) row.emplace_back("-");
-      row.push_back(c.dropped);
-      table.push_back(row);
-      candidates.push_back(std::move(j));
-      continue;
-    }
-    const StructureRun& run = *part->run;
-    std::string binding_text, failure_text, bounds_text;
-    const nlohmann::json binding = binding_json(*part, m, binding_text);
-    const nlohmann::json at_bounds = bounds_json(*part, bounds_text);
-    const nlohmann::json failures = failure_json(*part, failure_text);
-    const std::vector<double> best = best_values(*part, objectives);
-    const double share = static_cast<double>(part->merged) / merged_total;
-    const double exclusive = run.exclusive.empty() ? 0.0 : run.exclusive.back();
-    const std::size_t own = part->files.selection.designs.size();
-    j["status"] = "searched";
-    j["seed"] = c.seed;
-    j["generations"] = run.generations;
-    j["evaluations"] = run.evaluations;
-    j["rounds"] = run.rounds;
-    j["kept_to_the_end"] = run.kept;
-    j["exclusive_hypervolume_by_round"] = run.exclusive;
-    j["feasible_evaluations"] = part->infeasibility.feasible;
-    j["distinct_evaluations"] = part->infeasibility.evaluations;
-    j["own_front"] = own;
-    j["merged_front"] = part->merged;
-    j["merged_share"] = share;
-    nlohmann::json best_json = nlohmann::json::object();
-    for (std::size_t i = 0; i < m; ++i)
-      best_json[std::string(design_metric_name(objectives[i].metric))] = json_number(best[i]);
-    j["best"] = best_json;
-    j["constraints"] = binding;
-    j["at_bounds"] = at_bounds;
-    j["failures"] = failures;
-    j["folder"] = "candidates/" + c.name;
-    candidates_csv +=
-        fmt::format("{},{},{},searched,,{},{},{},{},{},{},{},{},{},{}", csv_field(c.name), c.model,
-                    csv_field(c.structure), csv_field(c.mobility), run.generations, run.evaluations,
-                    run.rounds, run.kept ? 1 : 0, part->infeasibility.feasible, own, part->merged,
-                    format_number(share), format_number(exclusive));
-    for (double b : best) candidates_csv += "," + (std::isfinite(b) ? format_number(b) : "");
-    candidates_csv += fmt::format(",{},{},{},candidates/{}\n", csv_field(binding_text),
-                                  csv_field(bounds_text), csv_field(failure_text), c.name);
-    std::vector<std::string> row = {c.name, run.kept ? "searched" : "dropped by budget",
-                                    std::to_string(run.generations),
-                                    fmt::format("{} ({:.0f}%)", part->merged, 100.0 * share)};
-    for (double b : best) row.push_back(std::isfinite(b) ? fmt::format("{:.4g}", b) : "-");
-    std::string note = own == 0 ? "no feasible design: " + failure_text : binding_text;
-    if (own > 0 && !bounds_text.empty()) note += (note.empty() ? "" : "; ") + bounds_text;
-    row.push_back(note.empty() ? "-" : note);
-    table.push_back(row);
-    if (own == 0)
-      infeasibility += fmt::format("{}{}: {}", infeasibility.empty() ? "" : "; ", c.name,
-                                   part->infeasibility.text());
-    candidates.push_back(std::move(j));
+    if (part == nullptr)
+      add_dropped(c, objectives.size(), j, table);
+    else
+      add_searched(c, *part, merged_total, j, table);
+    table.json.push_back(std::move(j));
   }
+  return table;
+}
 
-  nlohmann::json summary;
-  summary["study"] = study.name;
-  summary["description"] = study.description;
-  summary["version"] = kVersion;
-  summary["kind"] = "synthesis";
-  summary["task_motion"] = study.motion.type();
-  summary["algorithm"] = "nsga2";
-  summary["seed"] = study.nsga2.seed;
-  summary["population"] = study.nsga2.population;
-  summary["generations"] = study.nsga2.generations;
-  summary["threads"] = resolve_thread_count(facts.threads);
-  summary["resumed"] = facts.resumed;
-  summary["allocation"] = {{"rule", study.allocation.rule},
-                           {"floor_generations", study.allocation.floor_generations},
-                           {"budget", search.plan.budget},
-                           {"planned", search.plan.planned()},
-                           {"rounds_structures", search.plan.structures},
-                           {"rounds_generations", search.plan.generations}};
+// summary.json of the synthesis.
+nlohmann::json summary_json(const SynthesisStudy& study, const SynthesisSearch& search,
+                            const SynthesisFacts& facts, const MergedFront& front,
+                            const std::vector<DesignObjective>& objectives) {
+  const std::size_t m = objectives.size();
   long long evaluations = 0;
   for (const StructureRun& run : search.runs) evaluations += run.evaluations;
-  summary["evaluations"] = evaluations;
-  summary["searched"] = searched.size();
-  summary["dropped"] = study.candidates.size() - searched.size();
-  summary["points"] = keep.size();
-  summary["objectives"] = objectives_json(objectives);
-  const bool empty = keep.empty();
-  summary["status"] = empty ? "no_feasible_design" : "ok";
-  if (!empty && m >= 2) {
-    const std::vector<double> reference = reference_point_from(merged_objectives);
+  const std::size_t searched = study.searched().size();
+  nlohmann::json summary = {{"study", study.name},
+                            {"description", study.description},
+                            {"version", kVersion},
+                            {"kind", "synthesis"},
+                            {"task_motion", study.motion.type()},
+                            {"algorithm", "nsga2"},
+                            {"seed", study.nsga2.seed},
+                            {"population", study.nsga2.population},
+                            {"generations", study.nsga2.generations},
+                            {"threads", resolve_thread_count(facts.threads)},
+                            {"resumed", facts.resumed},
+                            {"allocation",
+                             {{"rule", study.allocation.rule},
+                              {"floor_generations", study.allocation.floor_generations},
+                              {"budget", search.plan.budget},
+                              {"planned", search.plan.planned()},
+                              {"rounds_structures", search.plan.structures},
+                              {"rounds_generations", search.plan.generations}}},
+                            {"evaluations", evaluations},
+                            {"searched", searched},
+                            {"dropped", study.candidates.size() - searched},
+                            {"points", front.designs},
+                            {"objectives", objectives_json(objectives)},
+                            {"status", front.designs == 0 ? "no_feasible_design" : "ok"}};
+  if (front.designs > 0 && m >= 2) {
+    const std::vector<double> reference = reference_point_from(front.objectives);
     std::vector<double> user(m);
     for (std::size_t i = 0; i < m; ++i) user[i] = sense_sign(objectives[i].sense) * reference[i];
     summary["reference_point"] = user;
-    summary["hypervolume"] = json_number(hypervolume(merged_objectives, reference));
+    summary["hypervolume"] = json_number(hypervolume(front.objectives, reference));
   }
-  summary["knee"] = pareto["knee"];
+  summary["knee"] = front.pareto["knee"];
   summary["search_seconds"] = search.seconds;
   summary["wall_seconds"] = facts.wall_seconds;
+  return summary;
+}
 
-  files.emplace_back(directory + "/pareto.csv", std::move(csv));
-  files.emplace_back(directory + "/pareto.json", pareto.dump(2) + "\n");
-  files.emplace_back(directory + "/candidates.csv", std::move(candidates_csv));
+}  // namespace
+
+SynthesisOutputSummary write_synthesis_outputs(const std::string& directory, SynthesisStudy& study,
+                                               const SynthesisSearch& search,
+                                               const SynthesisFacts& facts,
+                                               const OutputFiles& also) {
+  OutputFiles files = also;
+  std::vector<Part> parts = structure_parts(directory, study, search, facts, files);
+  const std::vector<DesignObjective>& objectives = parts.front().candidate->study->objectives();
+  const MergedFront front = merged_front(directory, study, parts, files);
+  const CandidatesTable table = candidates_table(study, parts, objectives, front.designs);
+  const nlohmann::json summary = summary_json(study, search, facts, front, objectives);
+  files.emplace_back(directory + "/pareto.csv", front.csv);
+  files.emplace_back(directory + "/pareto.json", front.pareto.dump(2) + "\n");
+  files.emplace_back(directory + "/candidates.csv", table.csv);
   files.emplace_back(directory + "/candidates.json",
                      nlohmann::json({{"study", study.name},
                                      {"task_motion", study.motion.type()},
                                      {"task_motions", study.motion.words()},
-                                     {"candidates", candidates}})
+                                     {"candidates", table.json}})
                              .dump(2) +
                          "\n");
   files.emplace_back(directory + "/summary.json", summary.dump(2) + "\n");
   write_files_together(files);
 
   SynthesisOutputSummary result;
-  result.designs = keep.size();
-  result.status = empty ? "no_feasible_design" : "ok";
-  result.infeasibility = infeasibility;
-  result.table = terminal_table(table);
+  result.designs = front.designs;
+  result.status = front.designs == 0 ? "no_feasible_design" : "ok";
+  result.infeasibility = table.infeasibility;
+  result.table = terminal_table(table.terminal);
   return result;
 }
 
