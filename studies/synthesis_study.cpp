@@ -374,6 +374,129 @@ std::uint64_t candidate_seed(std::uint64_t study_seed, const std::string& name) 
   return z == 0 ? 1 : z;
 }
 
+namespace {
+
+// What screening the candidates gathers on the way.
+struct Screening {
+  std::string goals;                      // the shared objectives and constraints, resolved
+  std::string dropped;                    // "name: why; ..." of the dropped ones
+  std::optional<InputError> first_error;  // of a registry structure that could not be loaded
+  bool loaded_any = false;
+};
+
+// Rules, loading and the rank check for one candidate (see the header comment); appends it to
+// study.candidates.
+void screen_candidate(const YamlValue& root, SynthesisStudy& study, CandidateSource& source,
+                      Screening& screening) {
+  SynthesisCandidate& c = source.candidate;
+  const std::optional<PlatformDofs> dofs = section_dofs(source);
+  if (dofs) c.dropped = rule_reason(*dofs, study.motion);
+  std::shared_ptr<DesignStudy> design;
+  if (c.dropped.empty()) {
+    // A structure generated from the registry that cannot measure the study's goals (a metric
+    // its model does not compute) is dropped with the reason; an error in a section the user
+    // wrote stops the study.
+    try {
+      design = std::make_shared<DesignStudy>(
+          load_design_study_part(root, study.name + "/" + c.name, *source.machine, c.task_centre));
+    } catch (const InputError& error) {
+      if (c.origin != "scaled from the task") throw;
+      if (!screening.first_error) screening.first_error = error;
+      c.dropped = std::string("cannot be measured: ") + error.what();
+      c.mobility = "not checked";
+    }
+  }
+  if (design) {
+    if (!dofs)
+      if (const std::optional<PlatformDofs> described = described_dofs(*design))
+        c.dropped = rule_reason(*described, study.motion);
+    if (c.dropped.empty())
+      c.dropped = rank_reason(*design, study.motion, c.mobility);
+    else
+      c.mobility = "dropped by the rules";
+    if (screening.goals.empty()) screening.goals = goals_yaml(design->resolved_yaml);
+    if (design->optimizer.nsga2() != nullptr) study.nsga2 = *design->optimizer.nsga2();
+    screening.loaded_any = true;
+    c.study = std::move(design);
+  } else if (c.mobility.empty()) {
+    c.mobility = "dropped by the rules";
+  }
+  c.searched = c.dropped.empty();
+  if (!c.searched) {
+    c.study.reset();
+    screening.dropped +=
+        fmt::format("{}{}: {}", screening.dropped.empty() ? "" : "; ", c.name, c.dropped);
+  }
+  study.candidates.push_back(c);
+}
+
+// Every candidate's seed (its design study carries it).
+void seed_candidates(SynthesisStudy& study) {
+  for (SynthesisCandidate& c : study.candidates) {
+    c.seed = candidate_seed(study.nsga2.seed, c.name);
+    if (!c.study) continue;
+    if (auto* spec = std::get_if<Nsga2Spec>(&c.study->optimizer.algorithm))
+      spec->options.seed = c.seed;
+    c.study->optimizer.seed = c.seed;
+  }
+}
+
+// `allocation:` (the floor defaults to a quarter of the generations) and `output:`.
+void read_allocation_and_output(const YamlValue& root, SynthesisStudy& study,
+                                AllocationSection& allocation, OutputSection& output) {
+  if (auto a = root.optional("allocation")) read_fields(*a, allocation);
+  study.allocation.rule = allocation.rule == 0 ? "successive_halving" : "equal";
+  const std::size_t generations = study.nsga2.generations;
+  if (allocation.floor_generations == 0)
+    allocation.floor_generations = static_cast<int>((generations + 3) / 4);
+  if (static_cast<std::size_t>(allocation.floor_generations) > generations)
+    root.required("allocation")
+        .required("floor_generations")
+        .fail(fmt::format("at most the optimizer's generations ({})", generations),
+              std::to_string(allocation.floor_generations));
+  study.allocation.floor_generations = static_cast<std::size_t>(allocation.floor_generations);
+  if (auto section = root.optional("output")) read_fields(*section, output);
+  study.write_designs = output.designs;
+  study.front_size = static_cast<std::size_t>(output.front_size);
+}
+
+// study.resolved.yaml: the candidates (searched ones with their resolved sections, dropped ones
+// as written, with why), then the shared sections.
+std::string resolved_synthesis_yaml(const SynthesisStudy& study,
+                                    const std::vector<CandidateSource>& sources,
+                                    const std::string& task_yaml, const std::string& goals,
+                                    const AllocationSection& allocation,
+                                    const OutputSection& output) {
+  std::string yaml = fmt::format("# {} resolved: every default filled in (pkmopt {})\n",
+                                 nlohmann::json(study.name).dump(), kVersion);
+  yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
+  yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
+  yaml += fmt::format("# task motion type {} ({})\n", study.motion.type(), study.motion.words());
+  yaml += "candidates:\n";
+  for (std::size_t k = 0; k < study.candidates.size(); ++k) {
+    const SynthesisCandidate& c = study.candidates[k];
+    if (!c.searched) {
+      yaml += "  # dropped: " + c.dropped + "\n";
+      yaml += "  - " + sources[k].entry_yaml + "\n";
+      continue;
+    }
+    yaml += "  - name: " + nlohmann::json(c.name).dump() + "\n";
+    yaml += fmt::format("    task_centre: [{}, {}, {}]\n", format_number(c.task_centre[0]),
+                        format_number(c.task_centre[1]), format_number(c.task_centre[2]));
+    yaml += indented_machine(c.study->machine->resolved_yaml);
+  }
+  yaml += task_yaml + goals;
+  OptimizerSpec spec;
+  spec.seed = study.nsga2.seed;
+  spec.algorithm = Nsga2Spec{study.nsga2};
+  yaml += "optimizer: " + optimizer_section_yaml(spec) + "\n";
+  yaml += "allocation: " + fields_flow_map(allocation) + "\n";
+  yaml += "output: " + fields_flow_map(output) + "\n";
+  return yaml;
+}
+
+}  // namespace
+
 SynthesisStudy load_synthesis_study(const YamlValue& root) {
   root.check_keys({"study", "description", "candidates", "task", "objectives", "constraints",
                    "optimizer", "allocation", "output"});
@@ -396,113 +519,21 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
     algorithm.fail("nsga2 (a synthesis runs NSGA-II on every structure)", algorithm.describe());
 
   std::vector<CandidateSource> sources = read_candidates(root.required("candidates"), scale);
-  std::string goals, dropped_text;
-  std::optional<InputError> first_error;  // of a structure that could not be loaded
-  bool loaded_any = false;
-  for (CandidateSource& source : sources) {
-    SynthesisCandidate& c = source.candidate;
-    const std::optional<PlatformDofs> dofs = section_dofs(source);
-    if (dofs) c.dropped = rule_reason(*dofs, study.motion);
-    std::shared_ptr<DesignStudy> design;
-    if (c.dropped.empty()) {
-      // A structure generated from the registry that cannot measure the study's goals (a metric
-      // its model does not compute) is dropped with the reason; an error in a section the user
-      // wrote stops the study.
-      try {
-        design = std::make_shared<DesignStudy>(load_design_study_part(
-            root, study.name + "/" + c.name, *source.machine, c.task_centre));
-      } catch (const InputError& error) {
-        if (c.origin != "scaled from the task") throw;
-        if (!first_error) first_error = error;
-        c.dropped = std::string("cannot be measured: ") + error.what();
-        c.mobility = "not checked";
-      }
-    }
-    if (design) {
-      if (!dofs)
-        if (const std::optional<PlatformDofs> described = described_dofs(*design))
-          c.dropped = rule_reason(*described, study.motion);
-      if (c.dropped.empty())
-        c.dropped = rank_reason(*design, study.motion, c.mobility);
-      else
-        c.mobility = "dropped by the rules";
-      if (goals.empty()) goals = goals_yaml(design->resolved_yaml);
-      if (design->optimizer.nsga2() != nullptr) study.nsga2 = *design->optimizer.nsga2();
-      loaded_any = true;
-      c.study = std::move(design);
-    } else if (c.mobility.empty()) {
-      c.mobility = "dropped by the rules";
-    }
-    c.searched = c.dropped.empty();
-    if (!c.searched) {
-      c.study.reset();
-      dropped_text += fmt::format("{}{}: {}", dropped_text.empty() ? "" : "; ", c.name, c.dropped);
-    }
-    study.candidates.push_back(c);
-  }
+  Screening screening;
+  for (CandidateSource& source : sources) screen_candidate(root, study, source, screening);
   // No structure could be loaded: the shared sections are wrong (the same error for all).
-  if (!loaded_any && first_error) throw *first_error;
+  if (!screening.loaded_any && screening.first_error) throw *screening.first_error;
   if (study.searched().empty())
     root.required("candidates")
         .fail(fmt::format("at least one structure that makes the task's motions ({}: {})",
                           study.motion.type(), study.motion.words()),
-              "every candidate dropped (" + dropped_text + ")");
-  const std::uint64_t seed = study.nsga2.seed;
-  for (SynthesisCandidate& c : study.candidates) {
-    c.seed = candidate_seed(seed, c.name);
-    if (!c.study) continue;
-    if (auto* spec = std::get_if<Nsga2Spec>(&c.study->optimizer.algorithm))
-      spec->options.seed = c.seed;
-    c.study->optimizer.seed = c.seed;
-  }
-
+              "every candidate dropped (" + screening.dropped + ")");
+  seed_candidates(study);
   AllocationSection allocation;
-  if (auto a = root.optional("allocation")) read_fields(*a, allocation);
-  study.allocation.rule = allocation.rule == 0 ? "successive_halving" : "equal";
-  const std::size_t generations = study.nsga2.generations;
-  if (allocation.floor_generations == 0)
-    allocation.floor_generations = static_cast<int>((generations + 3) / 4);
-  if (static_cast<std::size_t>(allocation.floor_generations) > generations)
-    root.required("allocation")
-        .required("floor_generations")
-        .fail(fmt::format("at most the optimizer's generations ({})", generations),
-              std::to_string(allocation.floor_generations));
-  study.allocation.floor_generations = static_cast<std::size_t>(allocation.floor_generations);
-
   OutputSection output;
-  if (auto section = root.optional("output")) read_fields(*section, output);
-  study.write_designs = output.designs;
-  study.front_size = static_cast<std::size_t>(output.front_size);
-
-  std::string yaml = fmt::format("# {} resolved: every default filled in (pkmopt {})\n",
-                                 nlohmann::json(study.name).dump(), kVersion);
-  yaml += "study: " + nlohmann::json(study.name).dump() + "\n";
-  yaml += "description: " + nlohmann::json(study.description).dump() + "\n";
-  yaml += fmt::format("# task motion type {} ({})\n", study.motion.type(), study.motion.words());
-  yaml += "candidates:\n";
-  for (std::size_t k = 0; k < study.candidates.size(); ++k) {
-    const SynthesisCandidate& c = study.candidates[k];
-    if (!c.searched) {
-      yaml += "  # dropped: " + c.dropped + "\n";
-      yaml += "  - " + sources[k].entry_yaml + "\n";
-      continue;
-    }
-    yaml += "  - name: " + nlohmann::json(c.name).dump() + "\n";
-    yaml += fmt::format("    task_centre: [{}, {}, {}]\n", format_number(c.task_centre[0]),
-                        format_number(c.task_centre[1]), format_number(c.task_centre[2]));
-    yaml += indented_machine(c.study->machine->resolved_yaml);
-  }
-  yaml += task_yaml + goals;
-  OptimizerSpec spec;
-  spec.seed = seed;
-  Nsga2Spec nsga2{study.nsga2};
-  nsga2.options.seed = seed;
-  spec.algorithm = nsga2;
-  yaml += "optimizer: " + optimizer_section_yaml(spec) + "\n";
-  yaml += "allocation: " + fields_flow_map(allocation) + "\n";
-  yaml += "output: " + fields_flow_map(output) + "\n";
-  study.resolved_yaml = yaml;
-  study.nsga2.seed = seed;
+  read_allocation_and_output(root, study, allocation, output);
+  study.resolved_yaml =
+      resolved_synthesis_yaml(study, sources, task_yaml, screening.goals, allocation, output);
   return study;
 }
 
