@@ -31,7 +31,9 @@ class ArchivingProblem final : public ForwardingProblem {
   }
   std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
                                                  int threads) const override {
-    std::vector<std::vector<double>> fs = ForwardingProblem::batch_fitness(xs, threads);
+    // The inner problem's own batch (a journal records the batch in its order, whatever the
+    // threads); ForwardingProblem would evaluate the designs one by one through fitness().
+    std::vector<std::vector<double>> fs = inner().batch_fitness(xs, threads);
     for (const std::vector<double>& f : fs) record(f);
     return fs;
   }

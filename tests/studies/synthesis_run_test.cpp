@@ -87,7 +87,7 @@ class Recording final : public ForwardingProblem {
   using ForwardingProblem::ForwardingProblem;
   std::vector<std::vector<double>> batch_fitness(std::span<const std::vector<double>> xs,
                                                  int threads) const override {
-    auto fs = ForwardingProblem::batch_fitness(xs, threads);
+    auto fs = inner().batch_fitness(xs, threads);
     for (const auto& f : fs) keep(f);
     return fs;
   }
@@ -313,6 +313,19 @@ TEST_F(SynthesisCli, MergedFrontCandidatesTableAndOwnFolders) {
   ASSERT_EQ(alone.status, 0) << alone.err;
   EXPECT_EQ(cli_runner::read_text(dir_ / "alone" / "pareto.csv"),
             cli_runner::read_text(hexapod / "pareto.csv"));
+
+  // One thread writes the same journals, in the same order, and the same fronts.
+  const fs::path one = dir_ / "one-thread";
+  ASSERT_EQ(run_cli("run " + study + " --out " + one.string() + " --threads 1").status, 0);
+  for (const char* name : {"hexapod", "delta", "linear_delta"}) {
+    EXPECT_EQ(cli_runner::read_text(one / "candidates" / name / "journal.txt"),
+              cli_runner::read_text(out / "candidates" / name / "journal.txt"))
+        << name;
+    EXPECT_EQ(cli_runner::read_text(one / "candidates" / name / "evaluations.csv"),
+              cli_runner::read_text(out / "candidates" / name / "evaluations.csv"))
+        << name;
+  }
+  EXPECT_EQ(cli_runner::read_text(one / "pareto.csv"), cli_runner::read_text(out / "pareto.csv"));
 
   // --resume serves every evaluation from the journals and writes the same files.
   const std::string before = cli_runner::read_text(out / "pareto.csv");
