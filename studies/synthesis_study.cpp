@@ -249,18 +249,20 @@ std::optional<PlatformDofs> section_dofs(const CandidateSource& source) {
   return entry->platform_dofs(*source.machine);
 }
 
-// The middle design (every free parameter at the middle of its range) of a loaded candidate.
-std::unique_ptr<Machine> middle_machine(const DesignStudy& study, std::string* file = nullptr,
-                                        double* lift = nullptr) {
+// The middle design (every free parameter at the middle of its range) of a loaded candidate:
+// its machine file and the task's home_height lift.
+struct MiddleDesign {
+  std::string file;
+  double lift = 0.0;
+};
+
+MiddleDesign middle_design(const DesignStudy& study) {
   const DesignProblem& problem = *study.problem;
   const Bounds bounds = problem.bounds();
   std::vector<double> x(bounds.lower.size());
   for (std::size_t j = 0; j < x.size(); ++j) x[j] = 0.5 * (bounds.lower[j] + bounds.upper[j]);
   const std::vector<double> parameters = problem.design_parameters(x);
-  const std::string text = study.machine->machine_file(parameters);
-  if (file) *file = text;
-  if (lift) *lift = problem.home_height(parameters);
-  return load_machine(YamlValue::load_string(text, "the middle design"));
+  return {study.machine->machine_file(parameters), problem.home_height(parameters)};
 }
 
 // The degrees of freedom `pkmopt describe` gives the middle design (serial and hybrid machines).
@@ -268,10 +270,8 @@ std::optional<PlatformDofs> described_dofs(const DesignStudy& study) {
   const ModelEntry* entry = find_model(study.model);
   if (entry == nullptr || !entry->describe) return std::nullopt;
   try {
-    std::string text;
-    (void)middle_machine(study, &text);
     MachineDescription d;
-    entry->describe(YamlValue::load_string(text, "the middle design"), d);
+    entry->describe(YamlValue::load_string(middle_design(study).file, "the middle design"), d);
     return PlatformDofs{d.translations, d.rotations};
   } catch (const std::exception&) {
     return std::nullopt;
@@ -285,7 +285,9 @@ std::string rank_reason(const DesignStudy& study, const TaskMotion& motion, std:
   std::unique_ptr<Machine> machine;
   double lift = 0.0;
   try {
-    machine = middle_machine(study, nullptr, &lift);
+    const MiddleDesign middle = middle_design(study);
+    machine = load_machine(YamlValue::load_string(middle.file, "the middle design"));
+    lift = middle.lift;
   } catch (const std::exception& error) {
     note = fmt::format("not checked: the middle design cannot be built ({})", error.what());
     return "";

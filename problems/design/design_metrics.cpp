@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace pkmopt {
 namespace {
@@ -238,6 +239,16 @@ std::vector<double> aggregate_design_rows(const std::vector<DesignObjective>& ob
 
 namespace {
 
+// The box of the poses' positions (poses not empty): {lo, hi}.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> position_box(const std::vector<Pose>& poses) {
+  Eigen::Vector3d lo = poses.front().position, hi = lo;
+  for (const Pose& pose : poses) {
+    lo = lo.cwiseMin(pose.position);
+    hi = hi.cwiseMax(pose.position);
+  }
+  return {lo, hi};
+}
+
 // The task's poses moved outwards by d (see task_margin).
 bool grown_task_reachable(const Machine& machine, MachineData& data, const std::vector<Pose>& poses,
                           const Eigen::Vector3d& centre, const Eigen::Vector3d& tolerance,
@@ -256,11 +267,7 @@ bool grown_task_reachable(const Machine& machine, MachineData& data, const std::
 
 double task_margin(const Machine& machine, const std::vector<Pose>& poses, double d_max) {
   if (poses.empty()) return 0.0;
-  Eigen::Vector3d lo = poses.front().position, hi = lo;
-  for (const Pose& pose : poses) {
-    lo = lo.cwiseMin(pose.position);
-    hi = hi.cwiseMax(pose.position);
-  }
+  const auto [lo, hi] = position_box(poses);
   const Eigen::Vector3d centre = 0.5 * (lo + hi);
   const Eigen::Vector3d tolerance = 1e-9 * (hi - lo).cwiseMax(Eigen::Vector3d::Constant(1.0));
   const std::unique_ptr<MachineData> data = machine.make_data();
@@ -276,11 +283,7 @@ double task_margin(const Machine& machine, const std::vector<Pose>& poses, doubl
 
 double task_margin_limit(const std::vector<Pose>& poses) {
   if (poses.empty()) return 0.1;
-  Eigen::Vector3d lo = poses.front().position, hi = lo;
-  for (const Pose& pose : poses) {
-    lo = lo.cwiseMin(pose.position);
-    hi = hi.cwiseMax(pose.position);
-  }
+  const auto [lo, hi] = position_box(poses);
   return std::max(0.1, (hi - lo).maxCoeff());
 }
 

@@ -227,16 +227,18 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     drive_force = drive_force.cwiseMax(m.tau.cwiseAbs());
     ++ev.analysed_poses;
   }
-  if (needed_[static_cast<int>(DesignMetric::task_margin)]) {
-    std::vector<Pose> lifted = spec_.task.poses;
+  const bool margin = needed_[static_cast<int>(DesignMetric::task_margin)];
+  const bool envelope_needed = needed_[static_cast<int>(DesignMetric::swept_volume)] ||
+                               needed_[static_cast<int>(DesignMetric::footprint)];
+  std::vector<Pose> lifted;  // the task poses after the home_height lift
+  if (margin || envelope_needed) {
+    lifted = spec_.task.poses;
     for (Pose& pose : lifted) pose.position.z() += h;
+  }
+  if (margin)
     metric(DesignMetric::task_margin) =
         task_margin(*machine, lifted, task_margin_limit(spec_.task.poses));
-  }
-  if (needed_[static_cast<int>(DesignMetric::swept_volume)] ||
-      needed_[static_cast<int>(DesignMetric::footprint)]) {
-    std::vector<Pose> lifted = spec_.task.poses;
-    for (Pose& pose : lifted) pose.position.z() += h;
+  if (envelope_needed) {
     const SketchEnvelope envelope = sketch_envelope(*machine, lifted);
     const bool drawn = envelope.drawn > 0;
     metric(DesignMetric::swept_volume) =
