@@ -99,6 +99,7 @@ StudyEvaluator evaluator_of(std::shared_ptr<const void> owner, const Problem& pr
 }
 
 StudyEvaluator load_evaluator(const YamlValue& root) {
+  if (is_synthesis_study(root)) throw InputError("a synthesis study runs on one process");
   if (root.is_map() && root.has("machine")) {
     auto design = std::make_shared<DesignStudy>(load_design_study(root));
     const JournalOptions journal = design_journal_options(*design);
@@ -228,17 +229,20 @@ StudyRunResult run_study(const YamlValue& root, const StudyRunOptions& options) 
                     kMaxStudyThreads, opt.threads));
   if (opt.resume && opt.force)
     throw InputError("--resume and --force: expected one of them, found both");
-  if (is_synthesis_study(root) && opt.mpi != nullptr && opt.mpi->size() > 1)
-    throw InputError(fmt::format(
-        "mpirun: expected one process for a synthesis study (its structures are searched one "
-        "after another on the threads of one process), found {} processes",
-        opt.mpi->size()));
+  // The other ranks wait for rank 0's word whatever the study: a rank that ended on its own with
+  // an error would make mpirun stop rank 0 before it has said why. A synthesis study gives them
+  // nothing to load, and rank 0 refuses it.
   if (opt.mpi != nullptr && opt.mpi->rank() > 0) {
     serve_as_worker([&root] { return load_evaluator(root); }, opt.threads);
     StudyRunResult worker;
     worker.worker = true;
     return worker;
   }
+  if (is_synthesis_study(root) && opt.mpi != nullptr && opt.mpi->size() > 1)
+    throw InputError(fmt::format(
+        "mpirun: expected one process for a synthesis study (its structures are searched one "
+        "after another on the threads of one process), found {} processes",
+        opt.mpi->size()));
   if (is_synthesis_study(root)) return run_synthesis_study(root, opt, wall_start);
   if (root.is_map() && root.has("machine")) return run_design_study(root, opt, wall_start);
   return run_benchmark_study(root, opt, wall_start);
