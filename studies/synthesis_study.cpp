@@ -106,6 +106,27 @@ SynthesisScale scale_of(const DesignTask& task, double tilt_deg, double yaw_deg)
   return scale;
 }
 
+// Whether the study measures a metric that needs masses: an objective or constraint on
+// natural_frequency_min or moving_mass (the shapes are checked where the study is loaded).
+bool needs_masses(const YamlValue& root) {
+  auto mass_metric = [](const YamlValue& v) {
+    if (!v.is_scalar()) return false;
+    const std::string name = v.as_string();
+    return name == "natural_frequency_min" || name == "moving_mass";
+  };
+  for (const char* section : {"objectives", "constraints"}) {
+    const std::optional<YamlValue> list = root.optional(section);
+    if (!list || !list->is_sequence()) continue;
+    for (const YamlValue& item : list->elements()) {
+      if (!item.is_map()) continue;
+      for (const char* key : {"minimize", "maximize", "metric"})
+        if (const std::optional<YamlValue> v = item.optional(key); v && mass_metric(*v))
+          return true;
+    }
+  }
+  return false;
+}
+
 // The candidates a model offers for this task, with their generated machine sections.
 std::vector<CandidateSource> model_candidates(const ModelEntry& entry,
                                               const SynthesisScale& scale) {
@@ -512,7 +533,8 @@ SynthesisStudy load_synthesis_study(const YamlValue& root) {
   std::string task_yaml;
   read_task(root.required("task"), task, task_study, task_yaml);
   study.motion = task_motion_of(task, task_study.task_tilt_deg, task_study.task_yaw_deg);
-  const SynthesisScale scale = scale_of(task, task_study.task_tilt_deg, task_study.task_yaw_deg);
+  SynthesisScale scale = scale_of(task, task_study.task_tilt_deg, task_study.task_yaw_deg);
+  scale.masses = needs_masses(root);
 
   const YamlValue optimizer = root.required("optimizer");
   optimizer.expect_map();

@@ -185,6 +185,10 @@ std::vector<SynthesisTemplate> hexapod_synthesis(const SynthesisScale& scale) {
       "actuator_error: 5.0e-6\n",
       range(0.35, 0.75), range(0.15, 0.30), range(0.35, 0.90), range(0.25, 0.70),
       range(-0.60, 0.20));
+  // With masses: a steel actuator housing (1e-3 m^2) and rod (the legs' 3e-4 m^2) at the middle
+  // of the length and stroke ranges.
+  t.machine_yaml += synthesis_masses_yaml(
+      scale, {steel_link("cylinder", 1.0e-3, 0.625 * s), steel_link("rod", 3.0e-4, 0.475 * s)});
   t.task_centre = {0.0, 0.0, 0.9 * s};
   return {t};
 }

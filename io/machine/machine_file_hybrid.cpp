@@ -309,14 +309,17 @@ void describe_hybrid(const YamlValue& root, MachineDescription& d) {
 // Architecture synthesis: an X/Y gantry carrying each parallel structure that cannot move its
 // tool along x and y (a 3-PRS head: the Sprint Z3 on a gantry), its travel the task's size plus
 // half of it for the head's parasitic motion and the tilted tool, ball-screw axes of 1.5e8 N/m
-// and 5 um; the head works about its own task place (the follow rule's home).
+// and 5 um; the head works about its own task place (the follow rule's home). No masses: the
+// carriages' are not assumed, and a head with parasitic motion takes none on moving axes.
 std::vector<SynthesisTemplate> hybrid_synthesis(const SynthesisScale& scale) {
   std::vector<SynthesisTemplate> out;
+  SynthesisScale module_scale = scale;
+  module_scale.masses = false;
   for (const ModelEntry* module : registered_models()) {
     if (module->name == "hybrid" || !module->synthesis || !module->platform_dofs ||
         !module->design_family)
       continue;
-    for (const SynthesisTemplate& head : module->synthesis(scale)) {
+    for (const SynthesisTemplate& head : module->synthesis(module_scale)) {
       const YamlValue section = YamlValue::load_string(head.machine_yaml, head.name);
       if (module->platform_dofs(section).translations >= 2) continue;
       const double travel = std::max(scale.size, 0.1);

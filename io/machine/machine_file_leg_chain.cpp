@@ -322,7 +322,10 @@ PlatformDofs generic_leg_chain_dofs(const YamlValue& root) {
 // 300 mm task; studies/library/compare-300 and tripod-z3 are the unscaled ones), the same
 // engineering assumptions for all (steel links, drives of 2e8 N/m with 5 um errors, the TCP 0.1 m
 // from the platform), and where the task sits in the model's frame.
+// With masses (SynthesisScale::masses) the links are steel of their sections at the middle of
+// their length ranges and a carriage with its joint weighs kSynthesisCarriage.
 double synthesis_factor(const SynthesisScale& scale) { return std::max(scale.size, 0.1) / 0.3; }
+constexpr double kSynthesisCarriage = 8.0;  // kg
 
 std::string synthesis_range(double s, double lo, double hi) {
   return fmt::format("{{min: {:.4g}, max: {:.4g}}}", lo * s, hi * s);
@@ -349,6 +352,8 @@ std::vector<SynthesisTemplate> delta_synthesis(const SynthesisScale& scale) {
       "tool: {{tcp: [0, 0, -0.10]}}\n",
       synthesis_range(s, 0.10, 0.30), 0.06 * s, synthesis_range(s, 0.20, 0.60),
       synthesis_range(s, 0.50, 1.20), synthesis_range(s, -0.30, 0.30));
+  t.machine_yaml += synthesis_masses_yaml(
+      scale, {steel_link("crank", 1.0e-3, 0.40 * s), steel_link("link", 3.0e-4, 0.85 * s)});
   t.task_centre = {0.0, 0.0, -0.8 * s};
   return {t};
 }
@@ -374,6 +379,8 @@ std::vector<SynthesisTemplate> linear_delta_synthesis(const SynthesisScale& scal
       "actuator_error: 5.0e-6\n",
       synthesis_range(s, 0.25, 0.70), 0.06 * s, synthesis_range(s, 0.40, 1.10),
       synthesis_range(s, 0.30, 0.90), synthesis_range(s, -0.30, 0.30));
+  t.machine_yaml += synthesis_masses_yaml(
+      scale, {{"carriage", kSynthesisCarriage, 0.0}, steel_link("link", 3.0e-4, 0.75 * s)});
   t.task_centre = {0.0, 0.0, -0.4 * s};
   return {t};
 }
@@ -401,6 +408,8 @@ std::vector<SynthesisTemplate> hexaglide_synthesis(const SynthesisScale& scale) 
       synthesis_range(s, 0.10, 0.40), synthesis_range(s, 0.02, 0.60),
       synthesis_range(s, 0.50, 1.30), synthesis_range(s, 0.80, 2.60),
       synthesis_range(s, -0.20, 0.80));
+  t.machine_yaml += synthesis_masses_yaml(
+      scale, {{"carriage", kSynthesisCarriage, 0.0}, steel_link("link", 3.0e-4, 0.90 * s)});
   t.task_centre = {0.0, 0.0, 0.4 * s};
   return {t};
 }
@@ -425,6 +434,8 @@ std::vector<SynthesisTemplate> tripod_3prs_synthesis(const SynthesisScale& scale
       "actuator_error: 5.0e-6\n",
       synthesis_range(s, 0.20, 0.45), synthesis_range(s, 0.08, 0.25),
       synthesis_range(s, 0.25, 0.80), 0.95 * s, synthesis_range(s, -0.3, 0.6));
+  t.machine_yaml += synthesis_masses_yaml(
+      scale, {{"carriage", kSynthesisCarriage, 0.0}, steel_link("link", 2.2e-3, 0.525 * s)});
   t.task_centre = {0.0, 0.0, 0.9 * s};
   return {t};
 }

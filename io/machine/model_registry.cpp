@@ -49,6 +49,28 @@ const ModelEntry& machine_model(const YamlValue& model_value) {
   return *entry;
 }
 
+SynthesisBody steel_link(std::string key, double area, double length) {
+  return {std::move(key), 7850.0 * area * length, length};
+}
+
+std::string synthesis_masses_yaml(const SynthesisScale& scale,
+                                  const std::vector<SynthesisBody>& legs) {
+  if (!scale.masses) return {};
+  std::string text =
+      "masses:\n"
+      "  platform: {mass: 40, inertia: [0.8, 0.8, 0.5, 0, 0, 0]}\n"
+      "  legs:\n";
+  for (const SynthesisBody& b : legs) {
+    if (b.length == 0.0) {
+      text += fmt::format("    {}: {{mass: {:.4g}}}\n", b.key, b.mass);
+      continue;
+    }
+    text += fmt::format("    {}: {{mass: {:.4g}, centre: {:.4g}, inertia: {:.4g}}}\n", b.key,
+                        b.mass, 0.5 * b.length, b.mass * b.length * b.length / 12.0);
+  }
+  return text;
+}
+
 std::vector<const ModelEntry*> registered_models() {
   Registry& r = registry();
   const std::lock_guard lock(r.mutex);

@@ -62,14 +62,35 @@ struct SynthesisScale {
   double height = 0.2;    ///< its extent along z, m
   double tilt_deg = 0.0;  ///< the tool's tilt cone
   double yaw_deg = 0.0;   ///< the yaw range (+-)
+  /// The study measures a metric that needs masses (natural_frequency_min, moving_mass): the
+  /// templates of models that take a mass model give one (synthesis_masses_yaml).
+  bool masses = false;
 };
+
+/// A leg body of a synthesis template's mass model: its `masses.legs` key, its mass and length
+/// (a link: its centre of mass halfway, a thin rod's inertia m l^2 / 12; length 0: a carriage,
+/// mass only).
+struct SynthesisBody {
+  std::string key;      ///< cylinder, rod, carriage, link, crank
+  double mass = 0.0;    ///< kg
+  double length = 0.0;  ///< m (0 for a carriage)
+};
+
+/// A steel link (7850 kg/m^3) of cross-section `area` (m^2) and `length` (m).
+SynthesisBody steel_link(std::string key, double area, double length);
+
+/// The `masses:` section every synthesis template of a model with a mass model shares (empty
+/// unless scale.masses): a 40 kg platform with its spindle (inertia 0.8, 0.8, 0.5 kg*m^2 about
+/// its centre, which is the platform's origin) whatever the structure, and the legs' bodies.
+std::string synthesis_masses_yaml(const SynthesisScale& scale,
+                                  const std::vector<SynthesisBody>& legs);
 
 /// A candidate structure a model offers an architecture synthesis: the study's machine section
 /// with a design space scaled from the task, and where the task sits in the model's frame.
 struct SynthesisTemplate {
-  std::string name;          ///< the candidate's name ("hexapod", "linear_delta")
-  std::string structure;     ///< in words: "Gough–Stewart hexapod (6-UPS)"
-  std::string machine_yaml;  ///< the `machine:` section's map, as YAML text
+  std::string name;                     ///< the candidate's name ("hexapod", "linear_delta")
+  std::string structure;                ///< in words: "Gough–Stewart hexapod (6-UPS)"
+  std::string machine_yaml;             ///< the `machine:` section's map, as YAML text
   std::array<double, 3> task_centre{};  ///< m, the task region's centre before home_height
 };
 

@@ -92,6 +92,9 @@ class Dynamics {
 
   /// The machine's platform and leg masses (models/dynamics/mass_model.hpp).
   virtual const MassModel& mass_model() const = 0;
+  /// The mass the drives move (kg): the platform and every leg's moving bodies
+  /// (models/dynamics/leg_dynamics.hpp, moving_mass); a hybrid machine's serial carriages too.
+  virtual double moving_mass() const = 0;
   /// How many natural frequencies analyze gives (the platform's DOF, and a hybrid machine's
   /// elastic axes).
   virtual int natural_frequency_count() const = 0;

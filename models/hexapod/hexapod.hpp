@@ -233,6 +233,10 @@ class Hexapod final : public Machine,
   }
   int natural_frequency_count() const override { return design_.masses.present ? 6 : 0; }
   const MassModel& mass_model() const override { return design_.masses; }
+  double moving_mass() const override {
+    return pkmopt::moving_mass(design_.masses,
+                               std::vector<LegBodyKind>(6, LegBodyKind::kTelescopic));
+  }
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;
   bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
   bool dynamic_wrench(MachineData& data, const Pose& pose, const Vector6d& xi,

@@ -25,6 +25,12 @@ Matrix6d turn6(const Eigen::Matrix3d& R) {
 
 }  // namespace
 
+double HybridMachine::moving_mass() const {
+  double total = module_dynamics_ == nullptr ? 0.0 : module_dynamics_->moving_mass();
+  for (const HybridAxis& a : design_.axes) total += a.mass;
+  return total;
+}
+
 int HybridMachine::natural_frequency_count() const {
   if (module_dynamics_ == nullptr) return 0;
   int elastic = 0;

@@ -198,12 +198,18 @@ class HybridMachine final : public Machine, public Dynamics {
   /// The module's masses (with the axes' in design().axes); null when the module has none.
   /// Present when the module has a mass model.
   Capability<Dynamics> dynamics() const override {
+    if (parasitic_module_ != nullptr)
+      return Capability<Dynamics>::missing(
+          "its parallel module has parasitic motion (planar legs), whose dynamics on moving axes "
+          "are not modelled");
     if (module_dynamics_ == nullptr)
       return Capability<Dynamics>::missing("its parallel module has no mass model (" +
                                            design_.module->dynamics().reason() + ")");
     return this;
   }
   const MassModel& mass_model() const override { return module_dynamics_->mass_model(); }
+  /// The module's moving mass and every axis's carriage (HybridAxis::mass).
+  double moving_mass() const override;
   int natural_frequency_count() const override;
   bool mode_shapes(MachineData& data, const Pose& pose, PoseModes& out) const override;
   int mode_axis_count() const override { return num_serial_; }

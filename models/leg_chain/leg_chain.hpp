@@ -331,6 +331,7 @@ class LegChainMachine final : public Machine,
     return design_.masses.present ? num_actuators() : 0;
   }
   const MassModel& mass_model() const override { return design_.masses; }
+  double moving_mass() const override;
   /// The full-twist TCP mass matrix at actual_pose(pose); only its restriction T^T M T to the
   /// platform's own twists is meaningful.
   bool mass_matrix(MachineData& data, const Pose& pose, Matrix6d& M) const override;

@@ -9,6 +9,22 @@
 
 namespace pkmopt {
 
+namespace {
+
+LegBodyKind body_kind(const LegChainLeg& leg) {
+  return leg.kind == LegKind::kUPS   ? LegBodyKind::kTelescopic
+         : leg.kind == LegKind::kPUS ? LegBodyKind::kCarriage
+                                     : LegBodyKind::kCrank;
+}
+
+}  // namespace
+
+double LegChainMachine::moving_mass() const {
+  std::vector<LegBodyKind> kinds;
+  for (const LegChainLeg& leg : design_.legs) kinds.push_back(body_kind(leg));
+  return pkmopt::moving_mass(design_.masses, kinds);
+}
+
 std::vector<LegPoints> LegChainMachine::leg_points(const LegChainData& d) const {
   // The legs' bodies from the joint points of the pose: UPS base joint, PUS carriage joint,
   // RUS elbow (d.c), the platform joints P_i = p + r_i.
@@ -17,9 +33,7 @@ std::vector<LegPoints> LegChainMachine::leg_points(const LegChainData& d) const 
     const LegChainLeg& leg = design_.legs[i];
     const int j = static_cast<int>(i);
     LegPoints& p = legs[i];
-    p.kind = leg.kind == LegKind::kUPS   ? LegBodyKind::kTelescopic
-             : leg.kind == LegKind::kPUS ? LegBodyKind::kCarriage
-                                         : LegBodyKind::kCrank;
+    p.kind = body_kind(leg);
     p.joint = d.c.col(j);
     p.platform = d.position + d.r.col(j);
     p.axis = leg.axis.normalized();

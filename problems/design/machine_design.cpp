@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "models/core/capabilities.hpp"
 #include "models/core/require.hpp"
 #include "models/geometry/sketch_envelope.hpp"
 
@@ -50,6 +51,21 @@ namespace {
 
 double lift(const std::vector<double>& p, std::size_t home_index) { return p.at(home_index); }
 
+// The machine that stands for the family's designs where the problem checks what every design
+// shares (its shape, its masses, its kind of drives): the middle of the ranges, else the family's
+// defaults; nullptr when neither is a valid machine (the evaluations will say why).
+std::unique_ptr<Machine> template_machine(const MachineDesignSpec& spec) {
+  std::vector<double> middle;
+  for (const ParameterRange& r : spec.parameters) middle.push_back(0.5 * (r.lower + r.upper));
+  for (const std::vector<double>& p : {middle, spec.family.default_parameters()}) {
+    try {
+      return spec.family.build(p);
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
@@ -89,15 +105,19 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
   if (spec_.actuator_catalog) set_up_actuator_catalog(where);
   if (spec_.task.acceleration_max > 0.0)
     throw std::invalid_argument(
-        fmt::format("{}: task a_max needs a mass model, which only hexapod design problems have "
-                    "(machine.masses)",
-                    where));
-  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass,
-                                    DesignMetric::actuator_force_dynamic_max})
-    if (needed_[static_cast<int>(metric)])
-      throw std::invalid_argument(fmt::format(
-          "{}: {} needs a mass model, which only hexapod design problems have (machine.masses)",
-          where, design_metric_name(metric)));
+        fmt::format("{}: task a_max is checked only in hexapod design problems", where));
+  if (needed_[static_cast<int>(DesignMetric::actuator_force_dynamic_max)])
+    throw std::invalid_argument(fmt::format(
+        "{}: actuator_force_dynamic_max is computed only in hexapod design problems", where));
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
+    if (needed_[static_cast<int>(metric)]) {
+      const std::unique_ptr<Machine> machine = template_machine(spec_);
+      if (machine == nullptr) break;  // every evaluation fails with the machine's reason
+      if (const Capability<Dynamics> dynamics = machine->dynamics(); !dynamics)
+        throw std::invalid_argument(fmt::format("{}: {} needs a mass model: {} (docs/dynamics.md)",
+                                                where, design_metric_name(metric),
+                                                dynamics.reason()));
+    }
   if (spec_.task.installation_space.present())
     throw std::invalid_argument(fmt::format(
         "{}: task installation_space is checked only in hexapod design problems", where));
@@ -108,18 +128,8 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
         where));
   if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)]) {
     // The template's shape is every design's (the family's parameters are dimensions).
-    const std::vector<double> middle = [&] {
-      std::vector<double> p;
-      for (const ParameterRange& r : spec_.parameters) p.push_back(0.5 * (r.lower + r.upper));
-      return p;
-    }();
-    bool shaped = false;
-    try {
-      shaped = family.build(middle)->checks_leg_interference();
-    } catch (const std::invalid_argument&) {
-      shaped = true;  // an invalid middle design says nothing about the shape; evaluations will
-    }
-    if (!shaped)
+    const std::unique_ptr<Machine> machine = template_machine(spec_);
+    if (machine != nullptr && !machine->checks_leg_interference())
       throw std::invalid_argument(fmt::format(
           "{}: leg_clearance_min needs the links' shape (machine.link_diameter or crank_diameter, "
           "docs/interference.md)",
@@ -161,14 +171,8 @@ void MachineDesignProblem::set_up_actuator_catalog(const std::string& where) {
   pricing_ = catalog_pricing(catalog);  // throws when only some entries have a cost
   // The catalog holds linear drives: a family with revolute drives (a delta's cranks) has none
   // to choose.
-  std::unique_ptr<Machine> machine;
-  try {
-    std::vector<double> middle;
-    for (const ParameterRange& r : spec_.parameters) middle.push_back(0.5 * (r.lower + r.upper));
-    machine = spec_.family.build(middle);
-  } catch (const std::invalid_argument&) {
-    machine = spec_.family.build(spec_.family.default_parameters());
-  }
+  std::unique_ptr<Machine> machine = template_machine(spec_);
+  if (machine == nullptr) machine = spec_.family.build(spec_.family.default_parameters());
   if (machine->any_revolute_actuator())
     throw std::invalid_argument(fmt::format(
         "{}: actuator catalog '{}' holds linear drives; the {} family's drives are revolute", where,
@@ -204,7 +208,8 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
   const double h = home_height_of(ev.parameters);
   const std::unique_ptr<MachineData> data = machine->make_data();
   data->compliance_metrics = needed_[static_cast<int>(DesignMetric::tcp_deflection_max)] ||
-                             needed_[static_cast<int>(DesignMetric::stiffness_min_loaded)];
+                             needed_[static_cast<int>(DesignMetric::stiffness_min_loaded)] ||
+                             needed_[static_cast<int>(DesignMetric::natural_frequency_min)];
   PoseMetrics m;
   TaskWorstCase worst;
   Eigen::VectorXd drive_force = Eigen::VectorXd::Zero(machine->num_actuators());  // max |tau_i|
@@ -253,6 +258,11 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
   if (ev.analysed_poses == 0 && ev.failure.empty())
     ev.failure = "no task pose can be analysed (every pose is unreachable and singular)";
   worst.store(ev.metrics);
+  if (needed_[static_cast<int>(DesignMetric::moving_mass)]) {
+    const Capability<Dynamics> dynamics = machine->dynamics();
+    metric(DesignMetric::moving_mass) =
+        dynamics ? dynamics->moving_mass() : std::numeric_limits<double>::quiet_NaN();
+  }
   if (spec_.actuator_catalog) {
     // Every drive gets the entry: the largest force over the task, the longest stroke.
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;

@@ -180,6 +180,35 @@ TEST(SynthesisStudy, StructuresThatCannotMeasureTheGoalsAreDropped) {
       << load_error(own);
 }
 
+// A study on the first natural frequency: the structures scaled from the task come with a mass
+// model where their model takes one (the same 40 kg spindle platform, steel links); a serial
+// machine and a gantry on a 3-PRS head have none and say why. Without a mass metric the templates
+// carry no masses.
+TEST(SynthesisStudy, MassMetricsGiveTheTemplatesMassesOrDropThem) {
+  std::string text = study_text("auto", kBoxTask);
+  text.replace(text.find("minimize: machine_size"), 22, "maximize: natural_frequency_min");
+  const SynthesisStudy s = load(text);
+  EXPECT_EQ(searched_names(s),
+            (std::set<std::string>{"hexapod", "delta", "linear_delta", "hexaglide"}));
+  for (const char* name : {"hexapod", "delta", "linear_delta", "hexaglide"}) {
+    ASSERT_TRUE(candidate(s, name).study) << name;
+    const std::string& resolved = candidate(s, name).study->resolved_yaml;
+    EXPECT_NE(resolved.find("masses:"), std::string::npos) << resolved;
+  }
+  const std::string& serial = candidate(s, "serial_table_ca").dropped;
+  EXPECT_NE(serial.find("natural_frequency_min needs a mass model: serial machines have no mass "
+                        "model"),
+            std::string::npos)
+      << serial;
+  const std::string& gantry = candidate(s, "xy_tripod_3prs").dropped;
+  EXPECT_NE(gantry.find("its parallel module has parasitic motion (planar legs)"),
+            std::string::npos)
+      << gantry;
+  const SynthesisStudy plain = load(study_text("auto", kBoxTask));
+  ASSERT_TRUE(candidate(plain, "hexapod").study);
+  EXPECT_EQ(candidate(plain, "hexapod").study->resolved_yaml.find("masses:"), std::string::npos);
+}
+
 TEST(SynthesisStudy, ListNamesModelsOrStructures) {
   // A model's name takes every structure it offers; a structure's name that one.
   const SynthesisStudy s = load(study_text("[serial, xy_tripod_3prs]", kBoxTask));

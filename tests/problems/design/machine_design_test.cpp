@@ -2,12 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <random>
 
+#include "models/core/capabilities.hpp"
 #include "models/hexapod/hexapod.hpp"
 #include "problems/design/leg_chain_design.hpp"
 
@@ -89,6 +91,75 @@ TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
   EXPECT_EQ(f[3], 0.05 - margin);
   EXPECT_EQ(f[4], error - 1e-4);
   EXPECT_EQ(f[5], ev.reach_violation);
+}
+
+// A linear delta with masses: moving_mass is the platform and the three carriages and rod pairs
+// (summed here from the mass model), natural_frequency_min the lowest first frequency over the
+// lifted task, computed here from the machine's compliance and TCP mass matrix: the translational
+// platform's K_tt = C_tt^-1 and M_tt, f = sqrt(eig(K_tt, M_tt)) / 2 pi.
+TEST(MachineDesign, MassModelsGiveNaturalFrequencyAndMovingMass) {
+  MachineDesignSpec spec = linear_delta_spec();
+  LinearDeltaDesign t;
+  t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  t.carriage_max_angle = t.platform_max_angle = deg_to_rad(60);
+  t.masses.present = true;
+  t.masses.platform.mass = 6.0;
+  t.masses.platform.inertia = Eigen::Vector3d(0.05, 0.05, 0.08).asDiagonal();
+  t.masses.legs.carriage = 2.5;
+  t.masses.legs.link = {.mass = 0.8, .centre = 0.35, .inertia = 0.03};
+  spec.family = linear_delta_family(t);
+  spec.parameters = default_ranges(spec.family);
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("rod"))] = {0.4, 0.9};
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("stroke"))] = {0.3, 0.8};
+  spec.parameters[static_cast<std::size_t>(spec.family.index_of("home_height"))] = {-0.2, 0.2};
+  spec.objectives = {{DesignMetric::natural_frequency_min, Sense::maximize},
+                     {DesignMetric::moving_mass, Sense::minimize}};
+  const MachineDesignProblem problem(spec);
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation ev = problem.evaluate(x);
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  EXPECT_DOUBLE_EQ(ev.metrics[static_cast<int>(DesignMetric::moving_mass)], 6.0 + 3 * (2.5 + 0.8));
+
+  LinearDeltaDesign d = t;
+  d.rod = 0.7;
+  d.q_min = 0.0;
+  d.q_max = 0.6;
+  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const Capability<Dynamics> dynamics = machine->dynamics();
+  ASSERT_TRUE(dynamics);
+  const auto data = machine->make_data();
+  double lowest = kInf;
+  for (Pose pose : spec.task.poses) {
+    pose.position.z() += 0.1;
+    PoseMetrics m;
+    machine->analyze(*data, pose, spec.task.wrench, m);
+    const Eigen::Matrix3d K = data->matrices.compliance.topLeftCorner<3, 3>().inverse();
+    Matrix6d M;
+    ASSERT_TRUE(dynamics->mass_matrix(*data, pose, M));
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, M.topLeftCorner<3, 3>());
+    lowest = std::min(lowest, std::sqrt(eig.eigenvalues()(0)) / (2 * std::numbers::pi));
+  }
+  EXPECT_NEAR(ev.metrics[static_cast<int>(DesignMetric::natural_frequency_min)] / lowest, 1.0,
+              1e-9);
+  EXPECT_GT(lowest, 10.0);  // a stiff machine: tens of hertz at least
+
+  // Without masses, and for a model with no mass model, the problem says why before any
+  // evaluation.
+  spec.family = linear_delta_family(LinearDeltaDesign{});
+  spec.parameters = default_ranges(spec.family);
+  for (const DesignMetric metric :
+       {DesignMetric::natural_frequency_min, DesignMetric::moving_mass}) {
+    spec.objectives = {{metric, Sense::maximize}};
+    try {
+      MachineDesignProblem refused(spec);
+      ADD_FAILURE() << "no exception";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string(design_metric_name(metric)) +
+                                           " needs a mass model: the machine file has no 'masses'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 // Linear motors for the carriages: the choice is the cheapest entry whose force rating and stroke
