@@ -86,7 +86,7 @@ std::string hybrid_study_machine_markdown() {
          "follow rule |\n"
          "| `parallel.machine` | a map | – | required | the module's study section: a model with "
          "a design family and prismatic drives (linear_delta, hexaglide, tripod_3prs, "
-         "lathe_16k20f3); its `parameters` are the study's |\n"
+         "tripod_3rps, lathe_16k20f3); its `parameters` are the study's |\n"
          "| `gravity` | [gx, gy, gz] | m/s² | [0, 0, -9.81] | as in a hybrid machine file |\n";
 }
 

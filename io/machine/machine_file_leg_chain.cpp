@@ -219,6 +219,36 @@ void describe_fields(Fields& f, Tripod3PrsDesign& d) {
   describe_link_shapes(f, d.shapes, false);
 }
 
+template <class Fields>
+void describe_fields(Fields& f, Tripod3RpsDesign& d) {
+  describe_model(f, "tripod_3rps");
+  f.field("base_radius", d.base_radius, positive("m", "head axis to each base revolute joint"));
+  f.field("platform_radius", d.platform_radius,
+          positive("m", "platform centre to each spherical joint"));
+  FieldRange length{d.q_min, d.q_max};
+  f.field("leg_length", length,
+          stroke_rule("range of each telescopic leg, revolute axis to spherical joint"));
+  f.field("tool_length", d.tool_length,
+          {.unit = "m", .doc = "TCP beyond the platform centre along the platform's +z"});
+  describe_links(f, "legs", d.stiffness, "cross-section of a leg",
+                 "a leg's section (local y: the revolute axis), taken as one beam over its "
+                 "length: its E·A replaces E and area, its bending and torsion enter the stiffness",
+                 false);
+  f.field("actuator_stiffness", d.stiffness.actuator_stiffness,
+          drive_stiffness(d.stiffness, "N/m", "drive along the leg; unset: rigid"));
+  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
+  describe_joints(f, "revolute_max_angle_deg", d.revolute_max_angle,
+                  "limit of the leg's angle from the base's +z (in the leg plane)",
+                  d.platform_max_angle,
+                  "limit of the angle between the leg and the platform normal");
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  MassFields masses{d.masses, kTelescopicBodies};
+  describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, false);
+}
+
 DeltaDesign read_delta_design(const YamlValue& root) {
   DeltaDesign d = reader_start<DeltaDesign>();
   read_fields(root, d);
@@ -276,6 +306,16 @@ Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root) {
   check_drive_section(root, d.stiffness.drive, false);
   check_mass_fields(root, d.masses);
   validate(root, d, make_tripod_3prs);
+  return d;
+}
+
+Tripod3RpsDesign read_tripod_3rps_design(const YamlValue& root) {
+  Tripod3RpsDesign d = reader_start<Tripod3RpsDesign>();
+  read_fields(root, d);
+  check_links(root.required("legs"));
+  check_drive_section(root, d.stiffness.drive, false);
+  check_mass_fields(root, d.masses);
+  validate(root, d, make_tripod_3rps);
   return d;
 }
 
@@ -440,6 +480,35 @@ std::vector<SynthesisTemplate> tripod_3prs_synthesis(const SynthesisScale& scale
   return {t};
 }
 
+// The A3-like head: the 3-PRS head's radii and steel tube (its bending and torsion enter, as the
+// 3-PRS head's struts'), legs from 0.35 s to 1.4 s at most, the same drives.
+std::vector<SynthesisTemplate> tripod_3rps_synthesis(const SynthesisScale& scale) {
+  const double s = synthesis_factor(scale);
+  SynthesisTemplate t;
+  t.name = "tripod_3rps";
+  t.structure = "3-RPS tripod head (A3-like)";
+  t.machine_yaml = fmt::format(
+      "model: tripod_3rps\n"
+      "parameters:\n"
+      "  base_radius: {}\n"
+      "  platform_radius: {}\n"
+      "  min_length: {}\n"
+      "  stroke: {}\n"
+      "  home_height: {}\n"
+      "tool_length: 0.10\n"
+      "legs: {{section: {{E: 2.1e11, G: 8.1e10, outer_diameter: 0.08, inner_diameter: 0.06}}}}\n"
+      "actuator_stiffness: 2.0e8\n"
+      "joints: {{revolute_max_angle_deg: 50, platform_max_angle_deg: 70}}\n"
+      "actuator_error: 5.0e-6\n",
+      synthesis_range(s, 0.20, 0.45), synthesis_range(s, 0.08, 0.25),
+      synthesis_range(s, 0.35, 0.80), synthesis_range(s, 0.25, 0.60),
+      synthesis_range(s, -0.3, 0.6));
+  t.machine_yaml += synthesis_masses_yaml(
+      scale, {steel_link("cylinder", 2.2e-3, 0.55 * s), steel_link("rod", 2.2e-3, 0.45 * s)});
+  t.task_centre = {0.0, 0.0, 0.9 * s};
+  return {t};
+}
+
 }  // namespace
 
 std::vector<ModelEntry> leg_chain_model_entries() {
@@ -455,7 +524,10 @@ std::vector<ModelEntry> leg_chain_model_entries() {
   entries[0].synthesis = delta_synthesis;
   entries[1].synthesis = linear_delta_synthesis;
   entries[2].synthesis = hexaglide_synthesis;
+  entries.push_back(leg_chain_entry("tripod_3rps", read_tripod_3rps_design, make_tripod_3rps,
+                                    {1, 2}, tripod_3rps_family, tripod_3rps_machine_file));
   entries[3].synthesis = tripod_3prs_synthesis;
+  entries[4].synthesis = tripod_3rps_synthesis;
   ModelEntry generic;
   generic.name = "leg_chain";
   generic.load = [](const YamlValue& root) -> std::unique_ptr<Machine> {
@@ -472,6 +544,7 @@ template void describe_fields(FieldWriter&, DeltaDesign&);
 template void describe_fields(FieldWriter&, LinearDeltaDesign&);
 template void describe_fields(FieldWriter&, HexaglideDesign&);
 template void describe_fields(FieldWriter&, Tripod3PrsDesign&);
+template void describe_fields(FieldWriter&, Tripod3RpsDesign&);
 template void describe_fields(FieldWriter&, BeamSectionFields&);
 // The generic form's lists (io/machine/machine_file_leg_chain_generic.cpp) read and document
 // sections.
@@ -490,6 +563,10 @@ std::string hexaglide_machine_file(const HexaglideDesign& d) {
 
 std::string tripod_3prs_machine_file(const Tripod3PrsDesign& d) {
   return model_file_text("tripod_3prs", d);
+}
+
+std::string tripod_3rps_machine_file(const Tripod3RpsDesign& d) {
+  return model_file_text("tripod_3rps", d);
 }
 
 std::string leg_chain_machine_file(const LegChainDesign& d) {

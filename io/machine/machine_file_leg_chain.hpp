@@ -1,5 +1,5 @@
 // Machine files (YAML) of the leg-chain models: delta, linear_delta, hexaglide, tripod_3prs,
-// and the generic form `model: leg_chain` (any mobility, an explicit list of legs).
+// tripod_3rps, and the generic form `model: leg_chain` (any mobility, an explicit list of legs).
 //
 // Strict like the hexapod reader (io/machine/machine_file.hpp): unknown keys, missing required
 // keys, wrong counts, non-finite numbers and impossible values throw InputError naming file, line,
@@ -42,6 +42,7 @@ DeltaDesign read_delta_design(const YamlValue& root);
 LinearDeltaDesign read_linear_delta_design(const YamlValue& root);
 HexaglideDesign read_hexaglide_design(const YamlValue& root);
 Tripod3PrsDesign read_tripod_3prs_design(const YamlValue& root);
+Tripod3RpsDesign read_tripod_3rps_design(const YamlValue& root);
 /// The generic form `model: leg_chain` (mobility, rotation_axis, tool, legs list; see
 /// docs/machines.md).
 LegChainDesign read_leg_chain_design(const YamlValue& root);
@@ -81,6 +82,8 @@ template <class Fields>
 void describe_fields(Fields& f, HexaglideDesign& design);
 template <class Fields>
 void describe_fields(Fields& f, Tripod3PrsDesign& design);
+template <class Fields>
+void describe_fields(Fields& f, Tripod3RpsDesign& design);
 /// The generic form's top-level keys (its legs and actuator error are read by hand).
 template <class Fields>
 void describe_fields(Fields& f, LegChainDesign& design);
@@ -95,6 +98,7 @@ std::string delta_machine_file(const DeltaDesign& design);
 std::string linear_delta_machine_file(const LinearDeltaDesign& design);
 std::string hexaglide_machine_file(const HexaglideDesign& design);
 std::string tripod_3prs_machine_file(const Tripod3PrsDesign& design);
+std::string tripod_3rps_machine_file(const Tripod3RpsDesign& design);
 /// The generic `model: leg_chain` file of a design, its legs as flow maps (RUS legs: the actuator
 /// error as actuator_error_deg).
 std::string leg_chain_machine_file(const LegChainDesign& design);

@@ -1,5 +1,5 @@
 // The leg-chain family of parallel machines, and its named members (delta, linear_delta,
-// hexaglide, tripod_3prs).
+// hexaglide, tripod_3prs, tripod_3rps).
 //
 // Every leg closes one distance constraint between an actuated point c_i(q_i) on the base side
 // and a platform point P_i = p + R (b_i - tcp) (p, R: the TCP pose; b_i in the platform frame):
@@ -589,5 +589,33 @@ struct Tripod3PrsDesign {
 };
 LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& d);
 std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d);
+
+/// 3-RPS tripod head like the A3 head: the 3-PRS head's joints in the other order. Three
+/// revolute joints fixed in the base at base_radius, azimuths -90 + 120 (i - 1) deg, their axes
+/// horizontal and tangential (n_i = (-sin a_i, cos a_i, 0)), each carrying a telescopic leg of
+/// length q_i in [min_length, max_length] (the actuator) that stays in the vertical plane through
+/// the head axis and its joint; a spherical joint at platform_radius joins it to the platform.
+/// Same base frame, TCP and parasitic motion as the 3-PRS head (a platform point in a vertical
+/// plane through the head axis: x, y, rz follow from z, rx, ry alone, as Carretero, Podhorodeski,
+/// Nahon & Gosselin, J. Mech. Design 122(1), 2000, give for the 3-RPS): DOF (z, rx, ry)
+/// (kPlanarLegs, UPS legs). Defaults: the 3-PRS head's radii and tool, legs 0.55-1.35 m.
+struct Tripod3RpsDesign {
+  double base_radius = 0.30;      ///< m, head axis to each base revolute joint
+  double platform_radius = 0.15;  ///< m, platform centre to each spherical joint
+  double q_min = 0.55;            ///< m, leg length range
+  double q_max = 1.35;
+  double tool_length = 0.20;                     ///< m, TCP beyond the platform centre
+  double revolute_max_angle = 50.0 * kDegToRad;  ///< rad, leg from the base's +z
+  double platform_max_angle = 70.0 * kDegToRad;  ///< rad, leg from the platform normal
+  LinkStiffness stiffness{.E = 2.1e11,
+                          .area = 6.0e-4,
+                          .actuator_stiffness = 2.0e8};  ///< legs (steel), ball-screw drives
+  std::optional<double> characteristic_length;
+  double actuator_error = 1e-5;  ///< m
+  MassModel masses;              ///< platform and leg masses (LegChainDesign::masses)
+  LinkShapes shapes;             ///< interference check (LegChainDesign::shapes)
+};
+LegChainDesign tripod_3rps_design(const Tripod3RpsDesign& d);
+std::unique_ptr<Machine> make_tripod_3rps(const Tripod3RpsDesign& d);
 
 }  // namespace pkmopt

@@ -221,4 +221,47 @@ std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d) {
   return make_leg_chain_machine(tripod_3prs_design(d));
 }
 
+LegChainDesign tripod_3rps_design(const Tripod3RpsDesign& p) {
+  require(std::isfinite(p.base_radius) && p.base_radius > 0.0,
+          "base_radius must be a finite number > 0");
+  require(std::isfinite(p.platform_radius) && p.platform_radius > 0.0,
+          "platform_radius must be a finite number > 0");
+  require(std::isfinite(p.tool_length), "tool_length must be a finite number");
+  LegChainDesign d;
+  d.model = "tripod_3rps";
+  d.mobility = PlatformMobility::kPlanarLegs;
+  for (int i = 0; i < 3; ++i) {
+    const double phi = deg_to_rad(-90.0 + 120.0 * i);
+    const Eigen::Vector3d u = radial(phi);
+    LegChainLeg leg;
+    leg.kind = LegKind::kUPS;
+    leg.base_point = p.base_radius * u;
+    leg.platform_point = p.platform_radius * u;
+    leg.q_min = p.q_min;
+    leg.q_max = p.q_max;
+    apply_stiffness(leg, p.stiffness, 1);
+    leg.base_max_angle = p.revolute_max_angle;
+    leg.platform_max_angle = p.platform_max_angle;
+    leg.base_axis = Eigen::Vector3d::UnitZ();
+    leg.platform_axis = -Eigen::Vector3d::UnitZ();
+    leg.plane_normal = Eigen::Vector3d::UnitZ().cross(u);  // tangential
+    d.legs.push_back(leg);
+  }
+  d.tcp = Eigen::Vector3d(0, 0, p.tool_length);
+  d.characteristic_length = p.characteristic_length;
+  d.actuator_error = p.actuator_error;
+  // Home: level platform, legs at the middle of their range.
+  const double dr = p.base_radius - p.platform_radius;
+  const double length = 0.5 * (p.q_min + p.q_max);
+  const double h2 = length * length - dr * dr;
+  d.home.position = Eigen::Vector3d(0, 0, h2 > 0.0 ? std::sqrt(h2) : length) + d.tcp;
+  d.masses = p.masses;
+  d.shapes = p.shapes;
+  return d;
+}
+
+std::unique_ptr<Machine> make_tripod_3rps(const Tripod3RpsDesign& d) {
+  return make_leg_chain_machine(tripod_3rps_design(d));
+}
+
 }  // namespace pkmopt

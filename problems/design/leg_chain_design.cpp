@@ -154,4 +154,28 @@ DesignFamily tripod_3prs_family(const Tripod3PrsDesign& t, DesignWriter<Tripod3P
   return family;
 }
 
+DesignFamily tripod_3rps_family(const Tripod3RpsDesign& t, DesignWriter<Tripod3RpsDesign> writer) {
+  DesignFamily family;
+  family.model = "tripod_3rps";
+  family.parameters = {
+      {"base_radius", "m", "head axis to each base revolute joint", t.base_radius, false, false},
+      {"platform_radius", "m", "platform centre to each spherical joint", t.platform_radius, false,
+       false},
+      {"min_length", "m", "the shortest leg", t.q_min, false, false},
+      {"stroke", "m", "leg length q ∈ [min_length, min_length + stroke]", t.q_max - t.q_min, false,
+       false},
+      {"home_height", "m", "the task region is lifted by this along base z", 0.0, true, true}};
+  family.parameter_keys = {"base_radius", "platform_radius", "leg_length"};
+  auto design = [t](const std::vector<double>& p) {
+    Tripod3RpsDesign d = t;
+    d.base_radius = p.at(0);
+    d.platform_radius = p.at(1);
+    d.q_min = p.at(2);
+    d.q_max = p.at(2) + p.at(3);
+    return d;
+  };
+  wire_family(family, design, make_tripod_3rps, writer);
+  return family;
+}
+
 }  // namespace pkmopt

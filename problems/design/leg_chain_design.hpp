@@ -25,6 +25,10 @@
 //                task's x, y and rz are replaced by the parasitic ones
 //                (models/leg_chain/leg_chain.hpp), so a tripod task is a column of z values times a
 //                tilt cone.
+//   tripod_3rps  base_radius, platform_radius, min_length, stroke (m: leg length q in
+//                [min_length, min_length + stroke]), home_height (m); machine_size =
+//                envelope_volume (the cylinder about the base joints, extended by the longest
+//                leg). Its task, like the 3-PRS head's, is a column of z values times a tilt cone.
 //
 //   DesignFamily family = delta_family(DeltaDesign{}, delta_machine_file);
 #pragma once
@@ -45,5 +49,7 @@ DesignFamily hexaglide_family(const HexaglideDesign& design_template,
                               DesignWriter<HexaglideDesign> machine_file = {});
 DesignFamily tripod_3prs_family(const Tripod3PrsDesign& design_template,
                                 DesignWriter<Tripod3PrsDesign> machine_file = {});
+DesignFamily tripod_3rps_family(const Tripod3RpsDesign& design_template,
+                                DesignWriter<Tripod3RpsDesign> machine_file = {});
 
 }  // namespace pkmopt

@@ -570,8 +570,8 @@ TEST_F(LegChainDesignStudy, SchemaErrors) {
       load_error("lc_e1", replaced(kLinearDeltaStudy, "model: linear_delta", "model: tripod")),
       file +
           ":3:10: machine.model: expected one of hexapod, delta, linear_delta, hexaglide, "
-          "tripod_3prs, lathe_16k20f3, hybrid, serial (the models with a design family), found "
-          "'tripod'");
+          "tripod_3prs, tripod_3rps, lathe_16k20f3, hybrid, serial (the models with a design "
+          "family), found 'tripod'");
   const std::string file2 = (dir_ / "lc_e2" / "study.yaml").string();
   EXPECT_EQ(load_error("lc_e2", replaced(kLinearDeltaStudy, "    rod:", "    rods:")),
             file2 +
@@ -768,9 +768,9 @@ TEST(DesignStudyFields, DocsTablesMatchTheFieldLists) {
   for (const char* section :
        {"machine hexapod", "machine.parameters delta", "machine.parameters linear_delta",
         "machine.parameters hexaglide", "machine.parameters tripod_3prs",
-        "machine.parameters lathe_16k20f3", "machine hybrid", "machine.parameters serial",
-        "task.region box", "task.region cylinder", "task.orientations", "task.workspace",
-        "objectives[]", "constraints[]", "constraints[] actuator", "output"}) {
+        "machine.parameters tripod_3rps", "machine.parameters lathe_16k20f3", "machine hybrid",
+        "machine.parameters serial", "task.region box", "task.region cylinder", "task.orientations",
+        "task.workspace", "objectives[]", "constraints[]", "constraints[] actuator", "output"}) {
     const std::string block = std::string("<!-- fields: ") + section + " -->\n" +
                               design_study_fields_markdown(section) + "<!-- /fields -->\n";
     EXPECT_NE(docs.str().find(block), std::string::npos)

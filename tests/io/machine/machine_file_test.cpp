@@ -114,8 +114,8 @@ TEST(MachineFile, UnknownModelIsAnError) {
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(),
                  "m.yaml:1:8: model: expected a known model (hexapod, delta, linear_delta, "
-                 "hexaglide, tripod_3prs, leg_chain, lathe_16k20f3, hybrid, serial), found "
-                 "'octopod'");
+                 "hexaglide, tripod_3prs, tripod_3rps, leg_chain, lathe_16k20f3, hybrid, serial), "
+                 "found 'octopod'");
   }
   EXPECT_THROW(load_machine_file("/nonexistent/machine.yaml"), InputError);
 }

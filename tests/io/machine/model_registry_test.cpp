@@ -38,11 +38,11 @@ std::string message_of(const std::function<void()>& f) {
 
 TEST(ModelRegistry, HoldsTheBuiltInModelsInOrder) {
   EXPECT_EQ(names(), (std::vector<std::string>{"hexapod", "delta", "linear_delta", "hexaglide",
-                                               "tripod_3prs", "leg_chain", "lathe_16k20f3",
-                                               "hybrid", "serial"}));
+                                               "tripod_3prs", "tripod_3rps", "leg_chain",
+                                               "lathe_16k20f3", "hybrid", "serial"}));
   EXPECT_EQ(machine_model_names(),
-            "hexapod, delta, linear_delta, hexaglide, tripod_3prs, leg_chain, lathe_16k20f3, "
-            "hybrid, serial");
+            "hexapod, delta, linear_delta, hexaglide, tripod_3prs, tripod_3rps, leg_chain, "
+            "lathe_16k20f3, hybrid, serial");
   EXPECT_NE(find_model("serial")->load, nullptr);
   EXPECT_EQ(find_model("tetrapod"), nullptr);
 }
@@ -52,7 +52,8 @@ TEST(ModelRegistry, AnUnknownOrUncomputableModelIsRefusedAtItsValue) {
       message_of([] { (void)load_machine(YamlValue::load_string("model: tetrapod\n", "m.yaml")); });
   EXPECT_EQ(unknown,
             "m.yaml:1:8: model: expected a known model (hexapod, delta, linear_delta, hexaglide, "
-            "tripod_3prs, leg_chain, lathe_16k20f3, hybrid, serial), found 'tetrapod'");
+            "tripod_3prs, tripod_3rps, leg_chain, lathe_16k20f3, hybrid, serial), found "
+            "'tetrapod'");
   // Serial chains other than 5-axis ones are described, not computed: refused at their code.
   const std::string serial = message_of([] {
     (void)load_machine(YamlValue::load_string("model: serial\ncode: \"123\"\n", "s.yaml"));
@@ -131,7 +132,7 @@ TEST(ModelRegistry, EveryModelsDocsTableMatchesItsFieldList) {
         << block;
     ++tables;
   }
-  EXPECT_EQ(tables, 8);
+  EXPECT_EQ(tables, 9);
 }
 
 // Every example machine file names a registered model and loads to a machine of that model.
@@ -162,7 +163,8 @@ TEST(ModelRegistry, EveryRegisteredFamilyWritesItsModelsMachineFile) {
               entry->name);
     ++families;
   }
-  EXPECT_EQ(families, 6);  // delta, linear_delta, hexaglide, tripod_3prs, lathe, serial
+  EXPECT_EQ(families, 7);  // delta, linear_delta, hexaglide, tripod_3prs, tripod_3rps, lathe,
+                           // serial
 }
 
 // The registry is the one list of models: outside a model's own files (whose paths name its folder
@@ -177,6 +179,7 @@ TEST(ModelRegistry, NoSourceOutsideAModelsOwnFilesNamesAModel) {
       {"linear_delta", {"leg_chain"}},
       {"hexaglide", {"leg_chain"}},
       {"tripod_3prs", {"leg_chain"}},
+      {"tripod_3rps", {"leg_chain"}},
       {"leg_chain", {"leg_chain"}},
       {"lathe_16k20f3", {"lathe"}},
       {"hybrid", {"hybrid"}},

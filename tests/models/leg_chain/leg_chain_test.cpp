@@ -7,10 +7,12 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "models/workspace/workspace.hpp"
@@ -163,6 +165,9 @@ std::vector<Named> named_models() {
                std::make_unique<LegChainMachine>(schoenflies_sample(60.0, Q)), 0.08, 0.5});
   v.push_back({"tripod_3prs",
                std::make_unique<LegChainMachine>(tripod_3prs_design(Tripod3PrsDesign{})), 0.2,
+               0.6});
+  v.push_back({"tripod_3rps",
+               std::make_unique<LegChainMachine>(tripod_3rps_design(Tripod3RpsDesign{})), 0.2,
                0.6});
   return v;
 }
@@ -734,6 +739,58 @@ TEST(Tripod3Prs, ParasiticMotionKeepsEveryLegInItsPlane) {
     EXPECT_NEAR((R - pure_tilt).norm(), 0.0, 1e-12);
   }
   EXPECT_GT(largest_parasitic, 1e-3);  // the parasitic motion is real (mm), not zero
+}
+
+// The 3-RPS head's platform points stay in the vertical planes through the head axis at
+// azimuths a_i = -90, 30, 150 deg, as the 3-PRS head's. Closed form (the zero-torsion 3-RPS of
+// Carretero, Podhorodeski, Nahon & Gosselin, J. Mech. Design 122(1), 2000): with the tool axis
+// k = (cos phi sin theta, sin phi sin theta, cos theta), R = Rz(phi) Ry(theta) Rz(-phi) and the
+// platform centre c = (-(r/2)(1 - cos theta) sin 2 phi, -(r/2)(1 - cos theta) cos 2 phi, z_c)
+// (n_i . (c + R r u_i) = 0 with n_i . R u_i = sin(2 (a_i - phi)) (1 - cos theta) / 2, and for
+// these azimuths sin 2a_i = cos a_i, cos 2a_i = sin a_i). A 3-PRS head with the same platform
+// takes the same pose; the leg lengths are the distances from the base joints.
+TEST(Tripod3Rps, ParasiticMotionIsTheClosedFormAndTheThreePrsHeads) {
+  const Tripod3RpsDesign a3;
+  const LegChainMachine rps(tripod_3rps_design(a3));
+  Tripod3PrsDesign z3_design;
+  z3_design.platform_radius = a3.platform_radius;
+  z3_design.tool_length = a3.tool_length;
+  const LegChainMachine prs(tripod_3prs_design(z3_design));
+  const double r = a3.platform_radius;
+  Uniform u(43);
+  double largest = 0.0;
+  for (int k = 0; k < 40; ++k) {
+    const Pose asked{Eigen::Vector3d(u(-1, 1), u(-1, 1), u(0.9, 1.3)),
+                     Eigen::Vector3d(u(-0.6, 0.6), u(-0.6, 0.6), u(-1, 1))};
+    const auto actual = rps.actual_pose(asked);
+    ASSERT_TRUE(actual.has_value());
+    const Eigen::Matrix3d R = rotation_zyx<double>(actual->angles);
+    const Eigen::Vector3d k_axis = R.col(2);
+    const double theta = std::acos(std::clamp(k_axis.z(), -1.0, 1.0));
+    const double phi = std::atan2(k_axis.y(), k_axis.x());
+    const Eigen::Matrix3d expected_R = (Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitZ()) *
+                                        Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()) *
+                                        Eigen::AngleAxisd(-phi, Eigen::Vector3d::UnitZ()))
+                                           .toRotationMatrix();
+    EXPECT_NEAR((R - expected_R).norm(), 0.0, 1e-12);
+    const Eigen::Vector3d c = actual->position - R * Eigen::Vector3d(0, 0, a3.tool_length);
+    const double lift = 0.5 * r * (1.0 - std::cos(theta));
+    EXPECT_NEAR(c.x(), -lift * std::sin(2 * phi), 1e-12);
+    EXPECT_NEAR(c.y(), -lift * std::cos(2 * phi), 1e-12);
+    largest = std::max(largest, c.head<2>().norm());
+    const auto same = prs.actual_pose(asked);
+    ASSERT_TRUE(same.has_value());
+    EXPECT_NEAR((same->position - actual->position).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((same->angles - actual->angles).norm(), 0.0, 1e-12);
+    const std::optional<Eigen::VectorXd> q = rps.inverse_kinematics(*actual);
+    ASSERT_TRUE(q.has_value());
+    for (int i = 0; i < 3; ++i) {
+      const double a = deg_to_rad(-90.0 + 120.0 * i);
+      const Eigen::Vector3d dir(std::cos(a), std::sin(a), 0.0);
+      EXPECT_NEAR((*q)(i), (c + R * (r * dir) - a3.base_radius * dir).norm(), 1e-12);
+    }
+  }
+  EXPECT_GT(largest, 1e-3);  // millimetres of parasitic motion: the check is not empty
 }
 
 // Serial singularity: a strut perpendicular to its slide (B_i = s_i . z = 0). With
