@@ -1,30 +1,50 @@
 #include "models/geometry/sketch_envelope.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include "models/core/machine_sketch.hpp"
 #include "models/workspace/workspace.hpp"
 
 namespace pkmopt {
 
+namespace {
+
+// Appends every point of the drawing at `pose`; false when the model does not draw it.
+bool add_sketch_points(const Machine& machine, MachineData& data, const Pose& pose,
+                       std::vector<Eigen::Vector3d>& points) {
+  MachineSketch sketch;
+  if (!machine.sketch(data, pose, sketch)) return false;
+  for (const MachineSketch::Line& line : sketch.lines) {
+    points.push_back(line.from);
+    points.push_back(line.to);
+  }
+  points.insert(points.end(), sketch.base_joints.begin(), sketch.base_joints.end());
+  points.insert(points.end(), sketch.platform_joints.begin(), sketch.platform_joints.end());
+  points.push_back(sketch.tcp);
+  return true;
+}
+
+}  // namespace
+
 SketchEnvelope sketch_envelope(const Machine& machine, const std::vector<Pose>& poses) {
   SketchEnvelope out;
   const std::unique_ptr<MachineData> data = machine.make_data();
   std::vector<Eigen::Vector3d> points;
-  MachineSketch sketch;
-  for (const Pose& pose : poses) {
-    sketch = MachineSketch{};
-    if (!machine.sketch(*data, pose, sketch)) continue;
-    ++out.drawn;
-    for (const MachineSketch::Line& line : sketch.lines) {
-      points.push_back(line.from);
-      points.push_back(line.to);
-    }
-    points.insert(points.end(), sketch.base_joints.begin(), sketch.base_joints.end());
-    points.insert(points.end(), sketch.platform_joints.begin(), sketch.platform_joints.end());
-    points.push_back(sketch.tcp);
-  }
+  for (const Pose& pose : poses)
+    if (add_sketch_points(machine, *data, pose, points)) ++out.drawn;
   out.volume = convex_hull_volume(points);
   out.footprint = footprint_area(points);
   return out;
+}
+
+std::optional<double> sketch_excess(const Machine& machine, MachineData& data, const Pose& pose,
+                                    const InstallationSpace& space) {
+  std::vector<Eigen::Vector3d> points;
+  if (!add_sketch_points(machine, data, pose, points)) return std::nullopt;
+  double excess = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : points) excess = std::max(excess, space.excess(p, 0.0));
+  return excess;
 }
 
 }  // namespace pkmopt

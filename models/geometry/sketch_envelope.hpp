@@ -7,16 +7,23 @@
 // sketch, so structures compare: the drawn machine, not its frame or covers (a lower bound of the
 // space it needs).
 //
+// The same drawing against an installation space (models/geometry/installation_space.hpp): how
+// far the machine drawn at a pose sticks out of it, over the ends of its lines (segments: a
+// convex region holds a segment when it holds both ends), its joints and the TCP.
+//
 // Example:
 //   const SketchEnvelope e = sketch_envelope(machine, task_poses);
 //   // e.volume (m^3), e.footprint (m^2), e.drawn poses
+//   const std::optional<double> out = sketch_excess(machine, *data, pose, space);  // m, <= 0 in
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
+#include "models/geometry/installation_space.hpp"
 
 namespace pkmopt {
 
@@ -28,5 +35,10 @@ struct SketchEnvelope {
 
 /// The envelope over the poses (the machine draws with its own data).
 SketchEnvelope sketch_envelope(const Machine& machine, const std::vector<Pose>& poses);
+
+/// How far the machine drawn at `pose` sticks out of `space` (m; <= 0 inside); nullopt when the
+/// model does not draw the pose. `data` is the machine's (made by machine.make_data()).
+std::optional<double> sketch_excess(const Machine& machine, MachineData& data, const Pose& pose,
+                                    const InstallationSpace& space);
 
 }  // namespace pkmopt

@@ -118,9 +118,6 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
                                                 where, design_metric_name(metric),
                                                 dynamics.reason()));
     }
-  if (spec_.task.installation_space.present())
-    throw std::invalid_argument(fmt::format(
-        "{}: task installation_space is checked only in hexapod design problems", where));
   if (needed_[static_cast<int>(DesignMetric::task_singularity_free)])
     throw std::invalid_argument(fmt::format(
         "{}: task_singularity_free is computed only in hexapod design problems (an interval "
@@ -214,11 +211,19 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
   TaskWorstCase worst;
   Eigen::VectorXd drive_force = Eigen::VectorXd::Zero(machine->num_actuators());  // max |tau_i|
   double reach_sum = 0.0;
+  const InstallationSpace& space = spec_.task.installation_space;
+  const std::unique_ptr<MachineData> sketch_data = space.present() ? machine->make_data() : nullptr;
   for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
     Pose pose = spec_.task.poses[k];
     pose.position.z() += h;
     machine->analyze(*data, pose, spec_.task.wrench, m);
     if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
+    if (sketch_data != nullptr) {
+      // The machine drawn at the pose must fit the installation space: how far it sticks out
+      // (m, at most 1 per pose) is a term of the reach row, as an unreachable pose's excess.
+      const std::optional<double> out = sketch_excess(*machine, *sketch_data, pose, space);
+      if (out && *out > 0.0) reach_sum += std::min(1.0, *out);
+    }
     if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
     // A singular pose fails the design when its statics blow up (a parallel machine: forces
     // and compliance without bound); a serial machine's free rotary axis (the tool along it)

@@ -55,7 +55,10 @@
 //   ranges, joint limits, no rotation of a translational platform), else
 //   v_k = min(1, e_k) with e_k the largest excess of pose k over an actuator range (m or rad)
 //   or a joint-angle limit (rad) of a leg-chain machine, and v_k = 1 when the legs cannot close,
-//   when no excess explains it, or for machines that are not leg chains.
+//   when no excess explains it, or for machines that are not leg chains. With an installation
+//   space (task.installation_space), v_k also gains min(1, o_k) for o_k > 0, how far the
+//   machine drawn at pose k sticks out of it (models/geometry/sketch_envelope.hpp,
+//   sketch_excess).
 // So g_reach <= 0 <=> the whole task is reachable, and g_reach in (0, 1] says how far off it
 // is (the fraction of unreachable poses when each misses by 1 or more).
 //

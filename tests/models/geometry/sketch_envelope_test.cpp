@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "models/core/machine_sketch.hpp"
@@ -77,6 +79,43 @@ TEST(SketchEnvelope, HoldsTheDrawingAndGrowsWithThePoses) {
   EXPECT_EQ(none.drawn, 0u);
   EXPECT_EQ(none.volume, 0.0);
   EXPECT_EQ(none.footprint, 0.0);
+}
+
+// sketch_excess: the drawing's farthest point outside a box or cylinder, by hand from the drawn
+// points (the TCP, joints and line ends); <= 0 when it is inside; nullopt where the model cannot
+// draw (a pose far outside its reach, where a rod cannot close).
+TEST(SketchEnvelope, ExcessIsTheFarthestDrawnPointOutside) {
+  const std::unique_ptr<Machine> delta = make_linear_delta(LinearDeltaDesign{});
+  const auto data = delta->make_data();
+  Pose pose;
+  pose.position = {0.02, -0.03, 0.2};
+  MachineSketch s;
+  ASSERT_TRUE(delta->sketch(*data, pose, s));
+  std::vector<Eigen::Vector3d> points = {s.tcp};
+  for (const auto& line : s.lines) {
+    points.push_back(line.from);
+    points.push_back(line.to);
+  }
+  for (const auto& p : s.base_joints) points.push_back(p);
+  for (const auto& p : s.platform_joints) points.push_back(p);
+  InstallationSpace cylinder;
+  cylinder.kind = InstallationSpace::Kind::kCylinder;
+  cylinder.radius = 0.2;
+  cylinder.z_min = 0.25;
+  cylinder.z_max = 2.0;
+  double expected = -1e9;
+  for (const auto& p : points)
+    expected = std::max({expected, p.head<2>().norm() - 0.2, 0.25 - p.z(), p.z() - 2.0});
+  const std::optional<double> excess = sketch_excess(*delta, *data, pose, cylinder);
+  ASSERT_TRUE(excess.has_value());
+  EXPECT_NEAR(*excess, expected, 1e-12);
+  EXPECT_GT(*excess, 0.0);  // the guides stand at 0.25 m from the axis
+  cylinder.radius = 5.0;
+  cylinder.z_min = -5.0;
+  cylinder.z_max = 5.0;
+  EXPECT_LE(*sketch_excess(*delta, *data, pose, cylinder), 0.0);
+  pose.position = {3.0, 0.0, 0.2};
+  EXPECT_FALSE(sketch_excess(*delta, *data, pose, cylinder).has_value());
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "models/core/capabilities.hpp"
+#include "models/core/machine_sketch.hpp"
 #include "models/hexapod/hexapod.hpp"
 #include "problems/design/leg_chain_design.hpp"
 
@@ -160,6 +161,58 @@ TEST(MachineDesign, MassModelsGiveNaturalFrequencyAndMovingMass) {
           << e.what();
     }
   }
+}
+
+// An installation space: at every lifted task pose the drawn machine (its lines' ends, joints,
+// TCP) must lie inside; how far it sticks out (here from the sketch points and the box, by hand),
+// at most 1 m per pose, joins the reach row. A box that holds everything changes nothing.
+TEST(MachineDesign, InstallationSpaceHoldsTheDrawnMachine) {
+  MachineDesignSpec spec = linear_delta_spec();
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation free = MachineDesignProblem(spec).evaluate(x);
+  ASSERT_TRUE(free.ok()) << free.failure;
+
+  LinearDeltaDesign d;
+  d.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
+  d.carriage_max_angle = d.platform_max_angle = deg_to_rad(60);
+  d.rod = 0.7;
+  d.q_min = 0.0;
+  d.q_max = 0.6;
+  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const auto data = machine->make_data();
+  std::vector<std::vector<Eigen::Vector3d>> drawn;
+  double lowest = kInf;
+  for (Pose pose : spec.task.poses) {
+    pose.position.z() += 0.1;
+    MachineSketch sketch;
+    ASSERT_TRUE(machine->sketch(*data, pose, sketch));
+    std::vector<Eigen::Vector3d> points = {sketch.tcp};
+    for (const MachineSketch::Line& line : sketch.lines) {
+      points.push_back(line.from);
+      points.push_back(line.to);
+    }
+    for (const auto& p : sketch.base_joints) points.push_back(p);
+    for (const auto& p : sketch.platform_joints) points.push_back(p);
+    for (const auto& p : points) lowest = std::min(lowest, p.z());
+    drawn.push_back(points);
+  }
+  // A floor 30 mm above the lowest drawn point (the tool tip at the lowest poses).
+  spec.task.installation_space.kind = InstallationSpace::Kind::kBox;
+  spec.task.installation_space.min = Eigen::Vector3d(-5, -5, lowest + 0.03);
+  spec.task.installation_space.max = Eigen::Vector3d(5, 5, 5);
+  double sticking_out = 0.0;
+  for (const auto& points : drawn) {
+    double worst = -kInf;
+    for (const auto& p : points) worst = std::max(worst, lowest + 0.03 - p.z());
+    sticking_out += std::min(1.0, std::max(0.0, worst));
+  }
+  ASSERT_GT(sticking_out, 0.0);
+  const MachineDesignEvaluation boxed = MachineDesignProblem(spec).evaluate(x);
+  EXPECT_NEAR(boxed.reach_violation,
+              free.reach_violation + sticking_out / static_cast<double>(drawn.size()), 1e-12);
+  EXPECT_FALSE(boxed.reachable);
+  spec.task.installation_space.min.z() = -5;
+  EXPECT_EQ(MachineDesignProblem(spec).evaluate(x).reach_violation, free.reach_violation);
 }
 
 // Linear motors for the carriages: the choice is the cheapest entry whose force rating and stroke
