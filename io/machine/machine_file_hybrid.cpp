@@ -306,35 +306,53 @@ void describe_hybrid(const YamlValue& root, MachineDescription& d) {
                                   parallel.has("file") ? module_root.file() : "inline"));
 }
 
-// Architecture synthesis: an X/Y gantry carrying each parallel structure that cannot move its
-// tool along x and y (a 3-PRS head: the Sprint Z3 on a gantry), its travel the task's size plus
-// half of it for the head's parasitic motion and the tilted tool, ball-screw axes of 1.5e8 N/m
-// and 5 um; the head works about its own task place (the follow rule's home). No masses: the
-// carriages' are not assumed, and a head with parasitic motion takes none on moving axes.
+// Architecture synthesis: serial axes carrying each parallel structure with prismatic drives,
+// ball-screw axes of 1.5e8 N/m and 5 um travelling +- the task's size, the module working about
+// its own task place (the follow rule's home):
+//   xy_NAME  an X/Y gantry carrying a structure that cannot move its tool along x and y (a 3-PRS
+//            head: the Sprint Z3 on a gantry);
+//   x_NAME   a long X axis carrying a structure that can (a hexapod on a long axis, P1З6): the
+//            module then covers less of the task along x.
+// No masses: the carriages' are not assumed, and a head with parasitic motion takes none on
+// moving axes.
 std::vector<SynthesisTemplate> hybrid_synthesis(const SynthesisScale& scale) {
   std::vector<SynthesisTemplate> out;
   SynthesisScale module_scale = scale;
   module_scale.masses = false;
+  const double travel = std::max(scale.size, 0.1);
   for (const ModelEntry* module : registered_models()) {
     if (module->name == "hybrid" || !module->synthesis || !module->platform_dofs ||
         !module->design_family)
       continue;
+    // A module's drives must be prismatic (the hybrid model's rule): its family's default design
+    // says so for every design of the family.
+    const DesignFamily family = module->design_family(nullptr);
+    if (family.build(family.default_parameters())->any_revolute_actuator()) continue;
     for (const SynthesisTemplate& head : module->synthesis(module_scale)) {
       const YamlValue section = YamlValue::load_string(head.machine_yaml, head.name);
-      if (module->platform_dofs(section).translations >= 2) continue;
-      const double travel = std::max(scale.size, 0.1);
+      const bool gantry = module->platform_dofs(section).translations < 2;
       SynthesisTemplate t;
-      t.name = "xy_" + head.name;
-      t.structure = "X/Y gantry carrying a " + head.structure;
+      t.name = (gantry ? "xy_" : "x_") + head.name;
+      t.structure =
+          (gantry ? "X/Y gantry carrying a " : "long X axis carrying a ") + head.structure;
       t.task_centre = head.task_centre;
-      t.machine_yaml = fmt::format(
-          "model: hybrid\n"
-          "serial: {{code: \"12\", axes: [X, Y], range: [[{0:.4g}, {1:.4g}], [{0:.4g}, {1:.4g}]], "
-          "stiffness: [1.5e8, 1.5e8], error: [5.0e-6, 5.0e-6]}}\n"
+      t.machine_yaml =
+          gantry ? fmt::format(
+                       "model: hybrid\n"
+                       "serial: {{code: \"12\", axes: [X, Y], range: [[{0:.4g}, {1:.4g}], "
+                       "[{0:.4g}, {1:.4g}]], stiffness: [1.5e8, 1.5e8], error: [5.0e-6, "
+                       "5.0e-6]}}\n",
+                       -travel, travel)
+                 : fmt::format(
+                       "model: hybrid\n"
+                       "serial: {{code: \"1\", axes: [X], range: [[{:.4g}, {:.4g}]], "
+                       "stiffness: [1.5e8], error: [5.0e-6]}}\n",
+                       -travel, travel);
+      t.machine_yaml += fmt::format(
           "parallel:\n"
-          "  home: [{2:.4g}, {3:.4g}, {4:.4g}]\n"
+          "  home: [{:.4g}, {:.4g}, {:.4g}]\n"
           "  machine:\n",
-          -travel, travel, head.task_centre[0], head.task_centre[1], head.task_centre[2]);
+          head.task_centre[0], head.task_centre[1], head.task_centre[2]);
       std::istringstream lines(head.machine_yaml);
       for (std::string line; std::getline(lines, line);) t.machine_yaml += "    " + line + "\n";
       out.push_back(std::move(t));

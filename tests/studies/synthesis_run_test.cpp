@@ -355,11 +355,11 @@ TEST_F(SynthesisCli, ValidateListsCandidatesAndDrops) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("synthesis study 'small' is valid"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("task motion: 3T0R (x, y, z)"), std::string::npos);
-  EXPECT_NE(r.out.find("candidates: 8 searched, 2 dropped"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("candidates: 10 searched, 2 dropped"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("search   hexaglide"), std::string::npos);
   EXPECT_NE(r.out.find("dropped  tripod_3prs (3-PRS tripod head): no x, y"), std::string::npos)
       << r.out;
-  EXPECT_NE(r.out.find("round 1: 8 structure(s) x 3 generations"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("round 1: 10 structure(s) x 3 generations"), std::string::npos) << r.out;
   // Bad input: one line, exit 2, nothing written.
   text.replace(text.find("auto"), 4, "[hexapod, cube]");
   const fs::path out = dir_ / "bad";

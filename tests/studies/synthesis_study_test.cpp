@@ -66,10 +66,10 @@ TEST(SynthesisStudy, ThreeAxisTaskKeepsTheTranslationalStructures) {
   const SynthesisStudy s = load(study_text("auto", kBoxTask));
   EXPECT_EQ(s.motion.type(), "3T0R");
   EXPECT_EQ(s.motion.words(), "x, y, z");
-  EXPECT_EQ(
-      searched_names(s),
-      (std::set<std::string>{"hexapod", "delta", "linear_delta", "hexaglide", "xy_tripod_3prs",
-                             "xy_tripod_3rps", "serial_table_ca", "serial_head_ca"}));
+  EXPECT_EQ(searched_names(s),
+            (std::set<std::string>{"hexapod", "delta", "linear_delta", "hexaglide",
+                                   "x_linear_delta", "x_hexaglide", "xy_tripod_3prs",
+                                   "xy_tripod_3rps", "serial_table_ca", "serial_head_ca"}));
   const SynthesisCandidate& tripod = candidate(s, "tripod_3prs");
   EXPECT_FALSE(tripod.searched);
   EXPECT_NE(tripod.dropped.find("no x, y:"), std::string::npos) << tripod.dropped;
@@ -95,7 +95,7 @@ TEST(SynthesisStudy, SixDofTaskKeepsOnlySixDofStructures) {
   const SynthesisStudy s = load(
       study_text("auto", kBoxTask + "  orientations: {tilt_deg: 15, yaw_deg: 10, step_deg: 15}\n"));
   EXPECT_EQ(s.motion.type(), "3T3R");
-  EXPECT_EQ(searched_names(s), (std::set<std::string>{"hexapod", "hexaglide"}));
+  EXPECT_EQ(searched_names(s), (std::set<std::string>{"hexapod", "hexaglide", "x_hexaglide"}));
   // The 5-axis machines leave the turn about the tool axis to the spindle; the gantry's head
   // cannot turn its tool either.
   for (const char* name : {"serial_table_ca", "serial_head_ca", "xy_tripod_3prs", "xy_tripod_3rps"})
@@ -122,10 +122,10 @@ TEST(SynthesisStudy, TiltingColumnTaskKeepsTheTripod) {
                  "  region: {shape: box, centre: [0, 0, 0], size: [0, 0, 0.2], points: [1, 1, 3]}\n"
                  "  orientations: {tilt_deg: 20, yaw_deg: 0, step_deg: 20}\n"));
   EXPECT_EQ(s.motion.type(), "1T2R");
-  EXPECT_EQ(
-      searched_names(s),
-      (std::set<std::string>{"hexapod", "hexaglide", "tripod_3prs", "tripod_3rps", "xy_tripod_3prs",
-                             "xy_tripod_3rps", "serial_table_ca", "serial_head_ca"}));
+  EXPECT_EQ(searched_names(s),
+            (std::set<std::string>{"hexapod", "hexaglide", "x_hexaglide", "tripod_3prs",
+                                   "tripod_3rps", "xy_tripod_3prs", "xy_tripod_3rps",
+                                   "serial_table_ca", "serial_head_ca"}));
   EXPECT_TRUE(candidate(s, "delta").dropped.starts_with("no tilt about x, tilt about y:"));
 }
 
@@ -281,7 +281,8 @@ TEST(SynthesisStudy, BadInputSaysWhereAndWhat) {
        "candidates[1]: expected a model that offers structures to a synthesis (hexapod, delta, "
        "linear_delta, hexaglide, tripod_3prs, tripod_3rps, hybrid, serial), one of its "
        "structures (hexapod, delta, linear_delta, hexaglide, tripod_3prs, tripod_3rps, "
-       "xy_tripod_3prs, xy_tripod_3rps, serial_table_ca, serial_head_ca)"},
+       "x_linear_delta, x_hexaglide, xy_tripod_3prs, xy_tripod_3rps, serial_table_ca, "
+       "serial_head_ca)"},
       {study_text("[hexapod, hexapod]", kBoxTask), "expected a candidate name not used before"},
       {study_text("[{name: a/b, machine: {model: hexapod}}]", kBoxTask),
        "expected a name of letters, digits, '-' and '_'"},
