@@ -189,6 +189,21 @@ void describe_fields(Fields& f, HexaglideDesign& d) {
   describe_link_shapes(f, d.shapes, false);
 }
 
+// The keys after the drive stiffness of the tripod heads (3-PRS, 3-RPS).
+template <class Fields, class Tripod>
+void describe_tripod_rest(Fields& f, Tripod& d, std::string_view revolute_doc,
+                          std::string_view platform_doc, LegBodies bodies) {
+  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
+  describe_joints(f, "revolute_max_angle_deg", d.revolute_max_angle, revolute_doc,
+                  d.platform_max_angle, platform_doc);
+  describe_characteristic_length(f, d.characteristic_length);
+  f.field("actuator_error", d.actuator_error,
+          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
+  MassFields masses{d.masses, bodies};
+  describe_mass_section(f, masses);
+  describe_link_shapes(f, d.shapes, false);
+}
+
 template <class Fields>
 void describe_fields(Fields& f, Tripod3PrsDesign& d) {
   describe_model(f, "tripod_3prs");
@@ -206,17 +221,9 @@ void describe_fields(Fields& f, Tripod3PrsDesign& d) {
                  false);
   f.field("slide_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "drive along the slide; unset: rigid"));
-  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
-  describe_joints(f, "revolute_max_angle_deg", d.revolute_max_angle,
-                  "limit of the strut's angle from the slide's +z (in the leg plane)",
-                  d.platform_max_angle,
-                  "limit of the angle between the strut and the platform normal");
-  describe_characteristic_length(f, d.characteristic_length);
-  f.field("actuator_error", d.actuator_error,
-          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
-  MassFields masses{d.masses, kCarriageBodies};
-  describe_mass_section(f, masses);
-  describe_link_shapes(f, d.shapes, false);
+  describe_tripod_rest(f, d, "limit of the strut's angle from the slide's +z (in the leg plane)",
+                       "limit of the angle between the strut and the platform normal",
+                       kCarriageBodies);
 }
 
 template <class Fields>
@@ -236,17 +243,9 @@ void describe_fields(Fields& f, Tripod3RpsDesign& d) {
                  false);
   f.field("actuator_stiffness", d.stiffness.actuator_stiffness,
           drive_stiffness(d.stiffness, "N/m", "drive along the leg; unset: rigid"));
-  describe_drive(f, d.stiffness.drive, "the ball-screw drive train of each actuator, in series");
-  describe_joints(f, "revolute_max_angle_deg", d.revolute_max_angle,
-                  "limit of the leg's angle from the base's +z (in the leg plane)",
-                  d.platform_max_angle,
-                  "limit of the angle between the leg and the platform normal");
-  describe_characteristic_length(f, d.characteristic_length);
-  f.field("actuator_error", d.actuator_error,
-          {.min = 0, .unit = "m", .doc = "half-width of the actuator error box of tcp_error_max"});
-  MassFields masses{d.masses, kTelescopicBodies};
-  describe_mass_section(f, masses);
-  describe_link_shapes(f, d.shapes, false);
+  describe_tripod_rest(f, d, "limit of the leg's angle from the base's +z (in the leg plane)",
+                       "limit of the angle between the leg and the platform normal",
+                       kTelescopicBodies);
 }
 
 DeltaDesign read_delta_design(const YamlValue& root) {

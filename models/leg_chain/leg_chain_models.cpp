@@ -174,46 +174,59 @@ std::unique_ptr<Machine> make_hexaglide(const HexaglideDesign& d) {
   return make_leg_chain_machine(hexaglide_design(d));
 }
 
-LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& p) {
+namespace {
+
+// The tripod heads' shared frame: three legs at azimuths -90 + 120 (i - 1) deg, each in the
+// vertical plane through the head axis (its revolute joint tangential), the platform points at
+// platform_radius, the TCP tool_length beyond the platform centre; `leg` gives the kind and what
+// only its kind has.
+template <class Tripod>
+LegChainDesign planar_tripod(const Tripod& p, const char* model, LegChainLeg leg) {
   require(std::isfinite(p.base_radius) && p.base_radius > 0.0,
           "base_radius must be a finite number > 0");
   require(std::isfinite(p.platform_radius) && p.platform_radius > 0.0,
           "platform_radius must be a finite number > 0");
   require(std::isfinite(p.tool_length), "tool_length must be a finite number");
   LegChainDesign d;
-  d.model = "tripod_3prs";
+  d.model = model;
   d.mobility = PlatformMobility::kPlanarLegs;
+  leg.q_min = p.q_min;
+  leg.q_max = p.q_max;
+  apply_stiffness(leg, p.stiffness, 1);
+  leg.base_max_angle = p.revolute_max_angle;
+  leg.platform_max_angle = p.platform_max_angle;
+  leg.base_axis = Eigen::Vector3d::UnitZ();
+  leg.platform_axis = -Eigen::Vector3d::UnitZ();
   for (int i = 0; i < 3; ++i) {
-    const double phi = deg_to_rad(-90.0 + 120.0 * i);
-    const Eigen::Vector3d u = radial(phi);
-    LegChainLeg leg;
-    leg.kind = LegKind::kPUS;
+    const Eigen::Vector3d u = radial(deg_to_rad(-90.0 + 120.0 * i));
     leg.base_point = p.base_radius * u;
-    leg.axis = Eigen::Vector3d::UnitZ();
-    leg.link_length = p.strut;
     leg.platform_point = p.platform_radius * u;
-    leg.q_min = p.q_min;
-    leg.q_max = p.q_max;
-    leg.branch = 1;  // platform point on the +z side of the carriage: B_i = s_i . z > 0
-    apply_stiffness(leg, p.stiffness, 1);
-    leg.base_max_angle = p.revolute_max_angle;
-    leg.platform_max_angle = p.platform_max_angle;
-    leg.base_axis = Eigen::Vector3d::UnitZ();
-    leg.platform_axis = -Eigen::Vector3d::UnitZ();
     leg.plane_normal = Eigen::Vector3d::UnitZ().cross(u);  // tangential
     d.legs.push_back(leg);
   }
   d.tcp = Eigen::Vector3d(0, 0, p.tool_length);
   d.characteristic_length = p.characteristic_length;
   d.actuator_error = p.actuator_error;
+  d.masses = p.masses;
+  d.shapes = p.shapes;
+  return d;
+}
+
+}  // namespace
+
+LegChainDesign tripod_3prs_design(const Tripod3PrsDesign& p) {
+  LegChainLeg leg;
+  leg.kind = LegKind::kPUS;
+  leg.axis = Eigen::Vector3d::UnitZ();
+  leg.link_length = p.strut;
+  leg.branch = 1;  // platform point on the +z side of the carriage: B_i = s_i . z > 0
+  LegChainDesign d = planar_tripod(p, "tripod_3prs", leg);
   // Home: level platform, carriages at mid-stroke.
   const double dr = p.base_radius - p.platform_radius;
   const double h2 = p.strut * p.strut - dr * dr;
   d.home.position =
       Eigen::Vector3d(0, 0, 0.5 * (p.q_min + p.q_max) + (h2 > 0.0 ? std::sqrt(h2) : p.strut)) +
       d.tcp;
-  d.masses = p.masses;
-  d.shapes = p.shapes;
   return d;
 }
 
@@ -222,41 +235,14 @@ std::unique_ptr<Machine> make_tripod_3prs(const Tripod3PrsDesign& d) {
 }
 
 LegChainDesign tripod_3rps_design(const Tripod3RpsDesign& p) {
-  require(std::isfinite(p.base_radius) && p.base_radius > 0.0,
-          "base_radius must be a finite number > 0");
-  require(std::isfinite(p.platform_radius) && p.platform_radius > 0.0,
-          "platform_radius must be a finite number > 0");
-  require(std::isfinite(p.tool_length), "tool_length must be a finite number");
-  LegChainDesign d;
-  d.model = "tripod_3rps";
-  d.mobility = PlatformMobility::kPlanarLegs;
-  for (int i = 0; i < 3; ++i) {
-    const double phi = deg_to_rad(-90.0 + 120.0 * i);
-    const Eigen::Vector3d u = radial(phi);
-    LegChainLeg leg;
-    leg.kind = LegKind::kUPS;
-    leg.base_point = p.base_radius * u;
-    leg.platform_point = p.platform_radius * u;
-    leg.q_min = p.q_min;
-    leg.q_max = p.q_max;
-    apply_stiffness(leg, p.stiffness, 1);
-    leg.base_max_angle = p.revolute_max_angle;
-    leg.platform_max_angle = p.platform_max_angle;
-    leg.base_axis = Eigen::Vector3d::UnitZ();
-    leg.platform_axis = -Eigen::Vector3d::UnitZ();
-    leg.plane_normal = Eigen::Vector3d::UnitZ().cross(u);  // tangential
-    d.legs.push_back(leg);
-  }
-  d.tcp = Eigen::Vector3d(0, 0, p.tool_length);
-  d.characteristic_length = p.characteristic_length;
-  d.actuator_error = p.actuator_error;
+  LegChainLeg leg;
+  leg.kind = LegKind::kUPS;
+  LegChainDesign d = planar_tripod(p, "tripod_3rps", leg);
   // Home: level platform, legs at the middle of their range.
   const double dr = p.base_radius - p.platform_radius;
   const double length = 0.5 * (p.q_min + p.q_max);
   const double h2 = length * length - dr * dr;
   d.home.position = Eigen::Vector3d(0, 0, h2 > 0.0 ? std::sqrt(h2) : length) + d.tcp;
-  d.masses = p.masses;
-  d.shapes = p.shapes;
   return d;
 }
 

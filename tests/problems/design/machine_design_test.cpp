@@ -19,15 +19,20 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A linear delta problem: rod, stroke and home_height free, a 3 x 3 x 2 box below the base.
-MachineDesignSpec linear_delta_spec() {
-  MachineDesignSpec spec;
-  spec.name = "linear-delta-test";
+// Steel rods, 2e8 N/m carriages, joints within 60 deg.
+LinearDeltaDesign linear_delta_template() {
   LinearDeltaDesign t;
   t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
   t.carriage_max_angle = deg_to_rad(60);
   t.platform_max_angle = deg_to_rad(60);
-  spec.family = linear_delta_family(t);
+  return t;
+}
+
+// A linear delta problem: rod, stroke and home_height free, a 3 x 3 x 2 box below the base.
+MachineDesignSpec linear_delta_spec() {
+  MachineDesignSpec spec;
+  spec.name = "linear-delta-test";
+  spec.family = linear_delta_family(linear_delta_template());
   spec.parameters = default_ranges(spec.family);
   spec.parameters[static_cast<std::size_t>(spec.family.index_of("rod"))] = {0.4, 0.9};
   spec.parameters[static_cast<std::size_t>(spec.family.index_of("stroke"))] = {0.3, 0.8};
@@ -42,6 +47,14 @@ MachineDesignSpec linear_delta_spec() {
   return spec;
 }
 
+// A template design `t` (default: linear_delta_spec's) at x = {rod 0.7, stroke 0.6}.
+LinearDeltaDesign design_at_x(LinearDeltaDesign t = linear_delta_template()) {
+  t.rod = 0.7;
+  t.q_min = 0.0;
+  t.q_max = 0.6;
+  return t;
+}
+
 TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
   const MachineDesignProblem problem(linear_delta_spec());
   const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
@@ -50,13 +63,7 @@ TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
   EXPECT_EQ(ev.analysed_poses, problem.spec().task.poses.size());
 
   // The same design built directly from the model.
-  LinearDeltaDesign d;
-  d.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
-  d.carriage_max_angle = d.platform_max_angle = deg_to_rad(60);
-  d.rod = 0.7;
-  d.q_min = 0.0;
-  d.q_max = 0.6;
-  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x());
   const auto data = machine->make_data();
   double stiffness = kInf, margin = kInf, force = 0.0, error = 0.0;
   int reachable = 0;
@@ -100,9 +107,7 @@ TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
 // platform's K_tt = C_tt^-1 and M_tt, f = sqrt(eig(K_tt, M_tt)) / 2 pi.
 TEST(MachineDesign, MassModelsGiveNaturalFrequencyAndMovingMass) {
   MachineDesignSpec spec = linear_delta_spec();
-  LinearDeltaDesign t;
-  t.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
-  t.carriage_max_angle = t.platform_max_angle = deg_to_rad(60);
+  LinearDeltaDesign t = linear_delta_template();
   t.masses.present = true;
   t.masses.platform.mass = 6.0;
   t.masses.platform.inertia = Eigen::Vector3d(0.05, 0.05, 0.08).asDiagonal();
@@ -121,11 +126,7 @@ TEST(MachineDesign, MassModelsGiveNaturalFrequencyAndMovingMass) {
   ASSERT_TRUE(ev.ok()) << ev.failure;
   EXPECT_DOUBLE_EQ(ev.metrics[static_cast<int>(DesignMetric::moving_mass)], 6.0 + 3 * (2.5 + 0.8));
 
-  LinearDeltaDesign d = t;
-  d.rod = 0.7;
-  d.q_min = 0.0;
-  d.q_max = 0.6;
-  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x(t));
   const Capability<Dynamics> dynamics = machine->dynamics();
   ASSERT_TRUE(dynamics);
   const auto data = machine->make_data();
@@ -172,13 +173,7 @@ TEST(MachineDesign, InstallationSpaceHoldsTheDrawnMachine) {
   const MachineDesignEvaluation free = MachineDesignProblem(spec).evaluate(x);
   ASSERT_TRUE(free.ok()) << free.failure;
 
-  LinearDeltaDesign d;
-  d.stiffness = {0.0, 2.1e11, 1.5e-4, 2.0e8};
-  d.carriage_max_angle = d.platform_max_angle = deg_to_rad(60);
-  d.rod = 0.7;
-  d.q_min = 0.0;
-  d.q_max = 0.6;
-  const std::unique_ptr<Machine> machine = make_linear_delta(d);
+  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x());
   const auto data = machine->make_data();
   std::vector<std::vector<Eigen::Vector3d>> drawn;
   double lowest = kInf;
