@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/middle_design.hpp"
 #include "studies/design_study.hpp"
 
 namespace {
@@ -13,15 +14,7 @@ namespace {
 void evaluate_study_design(benchmark::State& state, const std::string& study_file) {
   const pkmopt::DesignStudy study =
       pkmopt::load_design_study(std::string(PKMOPT_SOURCE_DIR) + "/" + study_file);
-  const pkmopt::Problem& problem = study.optimization_problem();
-  const pkmopt::Bounds bounds = problem.bounds();
-  // The centre of the design box (a mid-range machine).
-  std::vector<double> x(bounds.lower.size());
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = 0.5 * (bounds.lower[i] + bounds.upper[i]);
-  for (auto _ : state) {
-    std::vector<double> f = problem.fitness(x);
-    benchmark::DoNotOptimize(f.data());
-  }
+  pkmopt_bench::evaluate_middle_design(state, study.optimization_problem());
   state.counters["task_poses"] = static_cast<double>(study.task().poses.size());
   state.SetItemsProcessed(state.iterations());
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/middle_design.hpp"
 #include "io/format/yaml_reader.hpp"
 #include "studies/run_study.hpp"
 #include "studies/synthesis_study.hpp"
@@ -29,14 +30,7 @@ void BM_SynthesisDesignEvaluation(benchmark::State& state) {
     return;
   }
   const pkmopt::SynthesisCandidate& c = study.candidates[searched[k]];
-  const pkmopt::Problem& problem = c.study->optimization_problem();
-  const pkmopt::Bounds bounds = problem.bounds();
-  std::vector<double> x(bounds.lower.size());
-  for (std::size_t i = 0; i < x.size(); ++i) x[i] = 0.5 * (bounds.lower[i] + bounds.upper[i]);
-  for (auto _ : state) {
-    std::vector<double> f = problem.fitness(x);
-    benchmark::DoNotOptimize(f.data());
-  }
+  pkmopt_bench::evaluate_middle_design(state, c.study->optimization_problem());
   state.SetLabel(c.name);
   state.counters["task_poses"] = static_cast<double>(c.study->task().poses.size());
 }

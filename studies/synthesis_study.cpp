@@ -17,6 +17,7 @@
 #include "io/machine/machine_file.hpp"
 #include "io/machine/model_registry.hpp"
 #include "pkmopt/version.hpp"
+#include "problems/design/design_metrics.hpp"
 #include "studies/design_study_sections.hpp"
 #include "studies/journal.hpp"
 
@@ -112,7 +113,8 @@ bool needs_masses(const YamlValue& root) {
   auto mass_metric = [](const YamlValue& v) {
     if (!v.is_scalar()) return false;
     const std::string name = v.as_string();
-    return name == "natural_frequency_min" || name == "moving_mass";
+    return name == design_metric_name(DesignMetric::natural_frequency_min) ||
+           name == design_metric_name(DesignMetric::moving_mass);
   };
   for (const char* section : {"objectives", "constraints"}) {
     const std::optional<YamlValue> list = root.optional(section);

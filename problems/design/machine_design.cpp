@@ -109,29 +109,34 @@ MachineDesignProblem::MachineDesignProblem(MachineDesignSpec spec) : spec_(std::
   if (needed_[static_cast<int>(DesignMetric::actuator_force_dynamic_max)])
     throw std::invalid_argument(fmt::format(
         "{}: actuator_force_dynamic_max is computed only in hexapod design problems", where));
-  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
-    if (needed_[static_cast<int>(metric)]) {
-      const std::unique_ptr<Machine> machine = template_machine(spec_);
-      if (machine == nullptr) break;  // every evaluation fails with the machine's reason
-      if (const Capability<Dynamics> dynamics = machine->dynamics(); !dynamics)
-        throw std::invalid_argument(fmt::format("{}: {} needs a mass model: {} (docs/dynamics.md)",
-                                                where, design_metric_name(metric),
-                                                dynamics.reason()));
-    }
   if (needed_[static_cast<int>(DesignMetric::task_singularity_free)])
     throw std::invalid_argument(fmt::format(
         "{}: task_singularity_free is computed only in hexapod design problems (an interval "
         "enclosure of the hexapod's Jacobian over the task region)",
         where));
-  if (needed_[static_cast<int>(DesignMetric::leg_clearance_min)]) {
-    // The template's shape is every design's (the family's parameters are dimensions).
-    const std::unique_ptr<Machine> machine = template_machine(spec_);
-    if (machine != nullptr && !machine->checks_leg_interference())
-      throw std::invalid_argument(fmt::format(
-          "{}: leg_clearance_min needs the links' shape (machine.link_diameter or crank_diameter, "
-          "docs/interference.md)",
-          where));
-  }
+  check_template_machine(where);
+}
+
+void MachineDesignProblem::check_template_machine(const std::string& where) const {
+  auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
+  if (!need(DesignMetric::natural_frequency_min) && !need(DesignMetric::moving_mass) &&
+      !need(DesignMetric::leg_clearance_min))
+    return;
+  // The template's masses and shape are every design's (the family's parameters are
+  // dimensions); without a valid template every evaluation fails with the machine's reason.
+  const std::unique_ptr<Machine> machine = template_machine(spec_);
+  if (machine == nullptr) return;
+  for (const DesignMetric metric : {DesignMetric::natural_frequency_min, DesignMetric::moving_mass})
+    if (need(metric))
+      if (const Capability<Dynamics> dynamics = machine->dynamics(); !dynamics)
+        throw std::invalid_argument(fmt::format("{}: {} needs a mass model: {} (docs/dynamics.md)",
+                                                where, design_metric_name(metric),
+                                                dynamics.reason()));
+  if (need(DesignMetric::leg_clearance_min) && !machine->checks_leg_interference())
+    throw std::invalid_argument(fmt::format(
+        "{}: leg_clearance_min needs the links' shape (machine.link_diameter or crank_diameter, "
+        "docs/interference.md)",
+        where));
 }
 
 Bounds MachineDesignProblem::bounds() const {

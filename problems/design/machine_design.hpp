@@ -239,6 +239,9 @@ class MachineDesignProblem final : public DesignProblem {
  private:
   /// Checks the catalog and the family's drives; the costs by which designs choose.
   void set_up_actuator_catalog(const std::string& where);
+  /// Refuses mass metrics without a mass model and leg_clearance_min without the links' shape,
+  /// from the family's template machine.
+  void check_template_machine(const std::string& where) const;
   MachineDesignSpec spec_;
   std::vector<int> free_;
   NeededMetrics needed_{};
