@@ -25,7 +25,7 @@ namespace pkmopt {
 using namespace design_outputs_detail;
 
 Infeasibility design_outputs_detail::count_infeasibility(const DesignStudy& study,
-                                  const std::vector<JournalEntry>& entries) {
+                                                         const std::vector<JournalEntry>& entries) {
   const std::size_t m = study.objectives().size();
   const std::vector<std::string> names =
       study.aggregate() ? constraint_names(study) : std::vector<std::string>{"g_max"};
@@ -61,7 +61,6 @@ Infeasibility design_outputs_detail::count_infeasibility(const DesignStudy& stud
 }
 
 namespace {
-
 
 // What the writers of one front share.
 struct FrontFiles {
@@ -329,7 +328,8 @@ DesignFiles design_output_files(const std::string& directory, const DesignStudy&
   for (const StudyParameter& p : study.parameters)
     if (p.name == "home_height") f.home_free = p.free();
   f.g_names = constraint_names(study);
-  f.catalog = study.problem->actuator_catalog();
+  // A catalog pricing every drive gives each design its drive_cost, not one entry.
+  if (!study.problem->prices_each_drive()) f.catalog = study.problem->actuator_catalog();
   for (const MeasuredDesign& d : f.front)
     f.objectives.emplace_back(d.aggregate.begin(),
                               d.aggregate.begin() + static_cast<std::ptrdiff_t>(f.m));
@@ -373,6 +373,12 @@ DesignFiles design_output_files(const std::string& directory, const DesignStudy&
         {"name", f.catalog->name},
         {"entries", f.catalog->entries.size()},
         {"cost", f.catalog->entries.front().cost ? "catalog cost" : "rank by force rating"}};
+  if (const ActuatorCatalog* catalog = study.problem->actuator_catalog();
+      catalog != nullptr && study.problem->prices_each_drive())
+    pareto["drive_catalog"] = {{"name", catalog->name},
+                               {"entries", catalog->entries.size()},
+                               {"rotary_entries", catalog->rotary_entries.size()},
+                               {"cost", "every drive: catalog cost, alike drives one entry"}};
   pareto["task"] = task_json(study);
   pareto["designs"] = designs;
   pareto["knee"] = knee;

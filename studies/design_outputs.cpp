@@ -54,6 +54,8 @@ std::string_view design_metric_unit(DesignMetric metric) {
     case DesignMetric::conditioning_index:
     case DesignMetric::actuator_cost:
     case DesignMetric::task_singularity_free:
+    case DesignMetric::drive_cost:
+    case DesignMetric::drive_overload:
       return "";
   }
   return "";

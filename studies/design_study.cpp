@@ -53,9 +53,10 @@ DesignStudy load_design_study(const std::string& path) {
 
 namespace {
 
-// Where an actuator metric (actuator_cost, actuator_overload) is first used: it needs the
-// constraint {actuator: cheapest, catalog: FILE}.
-using ActuatorMetricUse = std::optional<YamlValue>;
+// Where the actuator metrics (actuator_cost, actuator_overload, drive_cost, drive_overload) are
+// used: they need the constraint {actuator: cheapest, catalog: FILE} (the drive_ ones with
+// each_drive: true, the others without).
+using ActuatorMetricUse = std::vector<YamlValue>;
 
 // `objectives:` into goals.objectives; appends its resolved YAML.
 void read_objectives(const YamlValue& root, DesignGoals& goals,
@@ -75,8 +76,8 @@ void read_objectives(const YamlValue& root, DesignGoals& goals,
     objectives_list.push_back(
         {static_cast<DesignMetric>(maximize ? entry.maximize : entry.minimize),
          maximize ? Sense::maximize : Sense::minimize});
-    if (is_actuator_metric(objectives_list.back().metric) && !actuator_metric_use)
-      actuator_metric_use = metric_value;
+    if (is_actuator_metric(objectives_list.back().metric))
+      actuator_metric_use.push_back(metric_value);
     yaml += "  - " + fields_flow_map(entry) + "\n";
   }
 }
@@ -113,8 +114,7 @@ void read_constraints(const YamlValue& root, const std::string& path, StudyMachi
       ConstraintEntry entry;
       read_fields(c, entry);
       const auto metric = static_cast<DesignMetric>(entry.metric);
-      if (is_actuator_metric(metric) && !actuator_metric_use)
-        actuator_metric_use = c.required("metric");
+      if (is_actuator_metric(metric)) actuator_metric_use.push_back(c.required("metric"));
       if (entry.max.has_value() == entry.min.has_value())
         c.fail("exactly one of max and min", c.describe());
       const bool upper = entry.max.has_value();
@@ -123,12 +123,26 @@ void read_constraints(const YamlValue& root, const std::string& path, StudyMachi
       constraint_yaml += "  - " + fields_flow_map(entry) + "\n";
     }
   }
-  if (actuator_metric_use && machine.actuator_catalog() == nullptr)
-    actuator_metric_use->fail(
+  if (!actuator_metric_use.empty() && machine.actuator_catalog() == nullptr)
+    actuator_metric_use.front().fail(
         fmt::format("a metric of this {} study (actuator_cost and actuator_overload need a "
-                    "constraint {{actuator: cheapest, catalog: FILE}})",
+                    "constraint {{actuator: cheapest, catalog: FILE}}, drive_cost and "
+                    "drive_overload one with each_drive: true)",
                     machine.model),
-        actuator_metric_use->describe());
+        actuator_metric_use.front().describe());
+  for (const YamlValue& use : actuator_metric_use) {
+    const bool drive = is_drive_metric(*design_metric_from_name(use.as_string()));
+    if (drive && !machine.prices_each_drive())
+      use.fail(
+          "a metric of this study (drive_cost and drive_overload need each_drive: true in "
+          "the {actuator: cheapest, catalog: FILE} constraint)",
+          use.describe());
+    if (!drive && machine.prices_each_drive())
+      use.fail(
+          "a metric of this study (with each_drive: true the catalog prices every drive: "
+          "drive_cost, drive_overload)",
+          use.describe());
+  }
   goals.require_reachable = require_reachable;
   if (require_reachable) constraint_yaml = "  - task_reachable\n" + constraint_yaml;
   yaml += constraint_yaml.empty() ? "constraints: []\n" : "constraints:\n" + constraint_yaml;

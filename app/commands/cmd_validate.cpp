@@ -80,7 +80,14 @@ std::string objectives_text(const DesignStudy& study) {
                         c.relation == Relation::less_equal ? "<=" : ">=", c.bound,
                         unit.empty() ? "" : " ", unit);
   }
-  if (const ActuatorCatalog* chosen = study.problem->actuator_catalog()) {
+  if (const ActuatorCatalog* chosen = study.problem->actuator_catalog();
+      chosen != nullptr && study.problem->prices_each_drive()) {
+    text += fmt::format(
+        "\n  drives: every drive priced from catalog '{}' ({} linear, {} rotary entries, by "
+        "cost): the cheapest entry of its kind that carries it; alike drives (a parallel "
+        "machine's legs) one entry",
+        chosen->name, chosen->entries.size(), chosen->rotary_entries.size());
+  } else if (const ActuatorCatalog* chosen = study.problem->actuator_catalog()) {
     const ActuatorCatalog& catalog = *chosen;
     text += fmt::format(
         "\n  actuators: each design's cheapest entry of catalog '{}' ({} entries, {}) that "

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 #include <type_traits>
@@ -49,6 +50,21 @@ void describe_fields(Fields& f, ActuatorEntry& e) {
 }
 
 template <class Fields>
+void describe_fields(Fields& f, RotaryEntry& e) {
+  f.field("name", e.name, {.required = true, .doc = "the entry's name, unique in the catalog"});
+  f.field("type", e.type,
+          {.required = true, .doc = "drive type, e.g. servo_motor, gear_motor, torque_motor"});
+  f.field("max_torque", e.max_torque,
+          positive("N*m", "rated (continuous) torque at the output shaft", true));
+  f.field(
+      "peak_torque", e.peak_torque,
+      positive("N*m", "short-time peak torque (>= max_torque; max_torque when not given)", false));
+  f.field("max_speed", e.max_speed_rpm, positive("1/min", "maximum output speed", true));
+  f.field("cost", e.cost,
+          positive("", "relative cost, in the unit of the linear entries' costs", false));
+}
+
+template <class Fields>
 void describe_fields(Fields& f, DriveType& t) {
   f.field("name", t.name, {.required = true, .doc = "the drive type"});
   FieldRange speed{.low = t.speed_min, .high = t.speed_max, .closed = true};
@@ -62,8 +78,12 @@ template <class Fields>
 void describe_fields(Fields& f, ActuatorCatalog& c) {
   f.field("catalog", c.name, {.required = true, .doc = "the catalog's name"});
   f.note("description", "a text", "", "none", "free text");
-  f.note("entries", "a list of at least one entry (entries[] below)", "", "required",
-         "the actuators, one entry per orderable variant");
+  f.note("entries", "a list of entries (entries[] below)", "", "none",
+         "the linear drives, one entry per orderable variant (the catalog needs at least one "
+         "entry, linear or rotary)");
+  f.note("rotary_entries", "a list of rotary entries (rotary_entries[] below)", "", "none",
+         "the rotary drives (revolute actuators), priced by {actuator: cheapest, catalog: FILE, "
+         "each_drive: true}");
   f.note("drive_types", "a list of drive types (drive_types[] below)", "", "none",
          "a comparison table of drive principles (not used for sizing)");
 }
@@ -72,9 +92,16 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
   ActuatorCatalog catalog;
   read_fields(root, catalog);
   if (const auto d = root.optional("description")) (void)d->as_string();
-  const YamlValue entries = root.required("entries");
-  const std::vector<YamlValue> items = entries.elements();
-  if (items.empty()) entries.fail("a list of at least one entry", "an empty list");
+  const std::optional<YamlValue> entries = root.optional("entries");
+  const std::optional<YamlValue> rotary = root.optional("rotary_entries");
+  const std::vector<YamlValue> items = entries ? entries->elements() : std::vector<YamlValue>{};
+  const std::vector<YamlValue> rotary_items =
+      rotary ? rotary->elements() : std::vector<YamlValue>{};
+  if (items.empty() && rotary_items.empty()) {
+    if (entries) entries->fail("a list of at least one entry", "an empty list");
+    if (rotary) rotary->fail("a list of at least one entry", "an empty list");
+    root.fail("entries (linear drives) or rotary_entries (rotary drives)", "neither");
+  }
   std::set<std::string> names;
   for (const YamlValue& item : items) {
     ActuatorEntry entry;
@@ -90,6 +117,21 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
                                  "'" + entry.name + "' again");
     }
     catalog.entries.push_back(std::move(entry));
+  }
+  for (const YamlValue& item : rotary_items) {
+    RotaryEntry entry;
+    read_fields(item, entry);
+    if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
+    if (entry.peak_torque && *entry.peak_torque < entry.max_torque) {
+      item.required("peak_torque")
+          .fail(fmt::format("a peak torque (N*m) >= max_torque = {}", entry.max_torque),
+                fmt::format("{}", *entry.peak_torque));
+    }
+    if (!names.insert(entry.name).second) {
+      item.required("name").fail("a name not used by an earlier entry",
+                                 "'" + entry.name + "' again");
+    }
+    catalog.rotary_entries.push_back(std::move(entry));
   }
   if (const auto types = root.optional("drive_types")) {
     for (const YamlValue& item : types->elements()) {
@@ -118,6 +160,8 @@ std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog) {
   // The lists by hand, as the reader takes them (no description: the catalog holds none).
   out += catalog.entries.empty() ? "entries: []\n" : "entries:\n";
   for (const ActuatorEntry& entry : catalog.entries) out += "  - " + flow_map(entry) + "\n";
+  if (!catalog.rotary_entries.empty()) out += "rotary_entries:\n";
+  for (const RotaryEntry& entry : catalog.rotary_entries) out += "  - " + flow_map(entry) + "\n";
   if (!catalog.drive_types.empty()) out += "drive_types:\n";
   for (const DriveType& type : catalog.drive_types) out += "  - " + flow_map(type) + "\n";
   return out;
@@ -130,6 +174,9 @@ std::string actuator_catalog_fields_markdown() {
   ActuatorEntry entry;
   docs.set_prefix("entries[].");
   describe_fields(docs, entry);
+  RotaryEntry rotary;
+  docs.set_prefix("rotary_entries[].");
+  describe_fields(docs, rotary);
   DriveType type;
   docs.set_prefix("drive_types[].");
   describe_fields(docs, type);
@@ -151,6 +198,26 @@ ActuatorConstraintFile read_actuator_constraint_file(const YamlValue& constraint
   const YamlValue name_value = constraint.required("actuator");
   const std::string& name = out.keys.actuator;
   const ActuatorEntry* entry = find_actuator(out.catalog, name);
+  if (out.keys.each_drive) {
+    if (name != kCheapestActuator)
+      name_value.fail(fmt::format("{} (each_drive: true chooses per design)", kCheapestActuator),
+                      "'" + name + "'");
+    if (constraint.optional("drives"))
+      constraint.required("drives").fail(
+          "no drives list with each_drive: true (every drive is "
+          "priced)",
+          "a list");
+    if (const std::string problem = check_drive_pricing(out.catalog); !problem.empty())
+      catalog_value.fail(fmt::format("a catalog that prices every drive (each_drive: true) in '{}'",
+                                     out.catalog_path),
+                         problem);
+    return out;
+  }
+  if (out.catalog.entries.empty())
+    catalog_value.fail(
+        "a catalog with linear entries (rotary_entries are priced with each_drive: "
+        "true)",
+        fmt::format("catalog '{}' with rotary entries only", out.catalog.name));
   if (name == kCheapestActuator) {
     if (entry != nullptr)
       name_value.fail(fmt::format("a catalog without an entry named '{}' (the word asks for the "

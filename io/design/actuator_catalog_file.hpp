@@ -34,6 +34,7 @@ std::string actuator_catalog_to_yaml(const ActuatorCatalog& catalog);
 struct ActuatorConstraintEntry {
   std::string actuator;
   std::string catalog;
+  bool each_drive = false;
 };
 
 template <class Fields>
@@ -51,6 +52,12 @@ void describe_fields(Fields& f, ActuatorConstraintEntry& a) {
          "the drives the entry is chosen for (a machine with two kinds of drive, e.g. the "
          "16K20F3 lathe's cylinders 3 and 4 beside its carriages 1 and 2); not for hexapods, "
          "whose six legs are alike");
+  f.field("each_drive", a.each_drive,
+          {.doc = "true: every drive is priced, linear ones from entries[], revolute ones from "
+                  "rotary_entries[]; alike drives (a parallel machine's legs) share the entry "
+                  "that carries the worst of them, each serial axis gets its own; the metrics "
+                  "drive_cost (the sum) and drive_overload, and drive_overload <= 0; needs "
+                  "actuator: cheapest and a cost on every entry"});
 }
 
 /// `{actuator: cheapest, catalog: FILE}`: the optimiser chooses the entry.

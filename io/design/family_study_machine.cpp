@@ -74,9 +74,11 @@ class FamilyStudyMachine final : public StudyMachine {
     spec.require_reachable = goals.require_reachable;
     spec.actuator_catalog = catalog;
     spec.actuator_drives = drives;
+    spec.each_drive = each_drive;
     return std::make_unique<MachineDesignProblem>(std::move(spec));
   }
   const ActuatorCatalog* actuator_catalog() const override { return catalog ? &*catalog : nullptr; }
+  bool prices_each_drive() const override { return each_drive; }
 
   // {actuator: cheapest, catalog: FILE}: every design's drives are the cheapest entry that
   // carries them; {actuator: NAME, catalog: FILE}: they are that entry. Either adds
@@ -96,6 +98,22 @@ class FamilyStudyMachine final : public StudyMachine {
             fmt::format("actuator numbers 1..{} ({} drives)", machine->num_actuators(), model),
             std::to_string(i + 1));
     drives = file.drives;
+    if (file.keys.each_drive) {
+      for (int i = 0; i < machine->num_actuators(); ++i) {
+        const bool revolute = machine->revolute_actuator(i);
+        if (revolute ? file.catalog.rotary_entries.empty() : file.catalog.entries.empty())
+          c.required("catalog").fail(fmt::format("a catalog with {} entries ({} drive {} is {})",
+                                                 revolute ? "rotary" : "linear", model, i + 1,
+                                                 revolute ? "revolute" : "linear"),
+                                     fmt::format("catalog '{}' without", file.catalog.name));
+      }
+      catalog = file.catalog;
+      each_drive = true;
+      constraints.push_back({DesignMetric::drive_overload, Relation::less_equal, 0.0});
+      return fmt::format(
+          "  - {{actuator: {}, catalog: {}, each_drive: true}}  # drive_overload <= 0\n",
+          nlohmann::json(name).dump(), nlohmann::json(file.catalog_path).dump());
+    }
     if (machine->any_revolute_actuator())
       name_value.fail(fmt::format("a model with linear drives (the catalog holds linear drives; "
                                   "bound leg_force_max instead)"),
@@ -105,6 +123,7 @@ class FamilyStudyMachine final : public StudyMachine {
                   ? file.catalog
                   : ActuatorCatalog{file.catalog.name,
                                     {file.catalog.entries[static_cast<std::size_t>(file.entry)]},
+                                    {},
                                     {}};
     constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
     std::string listed;
@@ -121,6 +140,7 @@ class FamilyStudyMachine final : public StudyMachine {
   DesignFamily family;
   std::optional<ActuatorCatalog> catalog;  // from an {actuator, catalog} constraint
   std::vector<int> drives;                 // its drives (0-based), empty: every drive
+  bool each_drive = false;                 // every drive priced (drive_cost, drive_overload)
 };
 
 }  // namespace

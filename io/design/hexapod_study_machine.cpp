@@ -66,6 +66,7 @@ class HexapodStudyMachine final : public StudyMachine {
   const ActuatorCatalog* actuator_catalog() const override {
     return spec.actuator_catalog ? &*spec.actuator_catalog : nullptr;
   }
+  bool prices_each_drive() const override { return spec.each_drive; }
   std::unique_ptr<DesignProblem> make_problem(DesignGoals goals) const override {
     HexapodDesignSpec s = spec;
     s.name = std::move(goals.name);
@@ -199,6 +200,10 @@ std::string HexapodStudyMachine::read_actuator_constraint(
     if (spec.actuator_catalog)
       name_value.fail("one {actuator: cheapest, catalog: FILE} constraint per study",
                       "a second one");
+    if (catalog.entries.empty())
+      c.required("catalog").fail(
+          "a catalog with linear entries for the hexapod's legs",
+          fmt::format("catalog '{}' with rotary entries only", catalog.name));
     double longest = 0.0;
     for (const ActuatorEntry& e : catalog.entries) longest = std::max(longest, e.stroke);
     if (lo > longest)
@@ -209,10 +214,14 @@ std::string HexapodStudyMachine::read_actuator_constraint(
                                   format_number(longest)));
     hi = std::min(hi, longest);
     spec.actuator_catalog = catalog;
-    constraints.push_back({DesignMetric::actuator_overload, Relation::less_equal, 0.0});
-    return fmt::format(
-        "  - {{actuator: {}, catalog: {}}}  # actuator_overload <= 0, stroke <= {} m\n",
-        kCheapestActuator, nlohmann::json(catalog_path.string()).dump(), format_number(hi));
+    spec.each_drive = file.keys.each_drive;
+    const DesignMetric overload =
+        spec.each_drive ? DesignMetric::drive_overload : DesignMetric::actuator_overload;
+    constraints.push_back({overload, Relation::less_equal, 0.0});
+    return fmt::format("  - {{actuator: {}, catalog: {}{}}}  # {} <= 0, stroke <= {} m\n",
+                       kCheapestActuator, nlohmann::json(catalog_path.string()).dump(),
+                       spec.each_drive ? ", each_drive: true" : "", design_metric_name(overload),
+                       format_number(hi));
   }
   const ActuatorEntry* entry = &catalog.entries[static_cast<std::size_t>(file.entry)];
   constraints.push_back({DesignMetric::leg_force_max, Relation::less_equal, entry->max_force});

@@ -71,6 +71,8 @@ class StudyMachine {
                                                std::vector<DesignConstraint>& constraints);
   /// The catalog `{actuator: cheapest}` chose from; null when there is none.
   virtual const ActuatorCatalog* actuator_catalog() const { return nullptr; }
+  /// True when the catalog prices every drive (each_drive: true).
+  virtual bool prices_each_drive() const { return false; }
   /// The design problem for the study's goals. Throws std::invalid_argument naming a field.
   virtual std::unique_ptr<DesignProblem> make_problem(DesignGoals goals) const = 0;
   /// The machine file of a design (every parameter, internal units), for `pkmopt analyze`.

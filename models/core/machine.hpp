@@ -40,6 +40,8 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -185,6 +187,20 @@ class Machine {
   /// The travel of actuator i (0-based): the width of its range, m (rad for a revolute one);
   /// nullopt when the model does not give one.
   virtual std::optional<double> actuator_stroke(int /*i*/) const { return std::nullopt; }
+  /// Drives bought as one catalog entry share a group, numbered by its first drive: by default
+  /// the alike drives of a parallel machine (same kind, same stroke), so a hexapod's six legs are
+  /// one group. A serial machine's axes are groups of their own.
+  virtual int drive_group(int i) const {
+    const std::optional<double> stroke = actuator_stroke(i);
+    for (int j = 0; j < i; ++j) {
+      if (revolute_actuator(j) != revolute_actuator(i)) continue;
+      const std::optional<double> other = actuator_stroke(j);
+      if (stroke.has_value() != other.has_value()) continue;
+      if (!stroke || std::abs(*stroke - *other) <= 1e-9 * std::max(1.0, std::abs(*stroke)))
+        return j;
+    }
+    return i;
+  }
   /// True when any actuator is revolute.
   bool any_revolute_actuator() const {
     for (int i = 0; i < num_actuators(); ++i)

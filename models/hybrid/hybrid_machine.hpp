@@ -177,6 +177,11 @@ class HybridMachine final : public Machine, public Dynamics {
     }
     return design_.module->actuator_stroke(i - num_serial_);
   }
+  /// Each serial axis its own group; the module's drives grouped as the module groups them.
+  int drive_group(int i) const override {
+    if (i < num_serial_) return i;
+    return num_serial_ + design_.module->drive_group(i - num_serial_);
+  }
   /// The module's interference check; clearance_pair numbers its legs as their actuators.
   bool checks_leg_interference() const override {
     return design_.module->checks_leg_interference();

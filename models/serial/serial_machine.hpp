@@ -110,6 +110,8 @@ class SerialMachine final : public Machine {
     const SerialAxis& a = design_.axes[static_cast<std::size_t>(i)];
     return a.max - a.min;
   }
+  /// Every axis is a drive of its own.
+  int drive_group(int i) const override { return i; }
   std::unique_ptr<MachineData> make_data() const override;
   void analyze(MachineData& data, const Pose& pose, const Wrench& wrench,
                PoseMetrics& out) const override;

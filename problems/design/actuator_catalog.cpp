@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 namespace pkmopt {
 namespace {
@@ -48,6 +49,23 @@ std::string check_actuator_catalog(const ActuatorCatalog& catalog) {
     if (e.peak_force && *e.peak_force < e.max_force)
       return fmt::format("{}: peak_force: expected a number >= max_force = {}, found {}", where,
                          e.max_force, *e.peak_force);
+  }
+  for (std::size_t i = 0; i < catalog.rotary_entries.size(); ++i) {
+    const RotaryEntry& e = catalog.rotary_entries[i];
+    const std::string where =
+        fmt::format("rotary entry {} ({})", i, e.name.empty() ? "unnamed" : e.name);
+    if (e.name.empty()) return where + ": name: expected a non-empty name";
+    if (!names.insert(e.name).second)
+      return where + ": name: expected a unique name, found a repeat";
+    if (!positive(e.max_torque))
+      return fmt::format("{}: max_torque: expected a number > 0, found {}", where, e.max_torque);
+    if (!positive(e.max_speed_rpm))
+      return fmt::format("{}: max_speed: expected a number > 0, found {}", where, e.max_speed_rpm);
+    if (e.cost && !positive(*e.cost))
+      return fmt::format("{}: cost: expected a number > 0, found {}", where, *e.cost);
+    if (e.peak_torque && !(positive(*e.peak_torque) && *e.peak_torque >= e.max_torque))
+      return fmt::format("{}: peak_torque: expected a number >= max_torque = {}, found {}", where,
+                         e.max_torque, *e.peak_torque);
   }
   return {};
 }
@@ -152,6 +170,95 @@ double actuator_force_capacity(const ActuatorCatalog& catalog, double stroke) {
   for (const ActuatorEntry& e : catalog.entries)
     if (e.stroke >= stroke) capacity = std::max(capacity, e.max_force);
   return capacity;
+}
+
+std::string check_drive_pricing(const ActuatorCatalog& catalog) {
+  for (const ActuatorEntry& e : catalog.entries)
+    if (!e.cost) return fmt::format("entry {}: cost: expected a cost, found none", e.name);
+  for (const RotaryEntry& e : catalog.rotary_entries)
+    if (!e.cost) return fmt::format("rotary entry {}: cost: expected a cost, found none", e.name);
+  if (catalog.entries.empty() && catalog.rotary_entries.empty())
+    return "expected at least one entry, found none";
+  return {};
+}
+
+double drive_cost_none(const ActuatorCatalog& catalog) {
+  double dearest = 0.0;
+  for (const ActuatorEntry& e : catalog.entries) dearest = std::max(dearest, e.cost.value_or(0.0));
+  for (const RotaryEntry& e : catalog.rotary_entries)
+    dearest = std::max(dearest, e.cost.value_or(0.0));
+  return 2.0 * dearest;
+}
+
+namespace {
+
+// How far an entry falls short of a group's need, relative: <= 0 when it carries.
+double linear_shortfall(const ActuatorEntry& e, const DriveGroupNeed& need) {
+  return std::max({need.force / e.max_force, need.peak_force / e.peak_force.value_or(e.max_force),
+                   need.stroke / e.stroke}) -
+         1.0;
+}
+
+double rotary_shortfall(const RotaryEntry& e, const DriveGroupNeed& need) {
+  return std::max(need.force / e.max_torque,
+                  need.peak_force / e.peak_torque.value_or(e.max_torque)) -
+         1.0;
+}
+
+// The cheapest carrying entry of a list (ties: the smaller rating, then the list order) and the
+// least shortfall.
+template <class Entry, class Shortfall, class Rating>
+DriveGroupChoice choose_group(const std::vector<Entry>& entries, const DriveGroupNeed& need,
+                              Shortfall shortfall, Rating rating) {
+  DriveGroupChoice choice;
+  choice.overload = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const Entry& e = entries[i];
+    const double s = shortfall(e, need);
+    choice.overload = std::min(choice.overload, s);
+    if (s > 0.0) continue;
+    if (choice.entry < 0) {
+      choice.entry = static_cast<int>(i);
+      continue;
+    }
+    const Entry& best = entries[static_cast<std::size_t>(choice.entry)];
+    if (std::pair(*e.cost, rating(e)) < std::pair(*best.cost, rating(best)))
+      choice.entry = static_cast<int>(i);
+  }
+  return choice;
+}
+
+}  // namespace
+
+DriveChoice choose_drives(const ActuatorCatalog& catalog,
+                          const std::vector<DriveGroupNeed>& needs) {
+  DriveChoice out;
+  out.overload = -std::numeric_limits<double>::infinity();
+  const double none = drive_cost_none(catalog);
+  for (const DriveGroupNeed& need : needs) {
+    DriveGroupChoice group = need.revolute
+                                 ? choose_group(catalog.rotary_entries, need, rotary_shortfall,
+                                                [](const RotaryEntry& e) { return e.max_torque; })
+                                 : choose_group(catalog.entries, need, linear_shortfall,
+                                                [](const ActuatorEntry& e) { return e.max_force; });
+    double unit = none;
+    if (group.entry >= 0) {
+      const auto i = static_cast<std::size_t>(group.entry);
+      unit = need.revolute ? *catalog.rotary_entries[i].cost : *catalog.entries[i].cost;
+    }
+    group.cost = need.count * unit;
+    out.cost += group.cost;
+    out.overload = std::max(out.overload, group.overload);
+    out.groups.push_back(group);
+  }
+  if (needs.empty()) out.overload = 0.0;
+  return out;
+}
+
+const RotaryEntry* find_rotary(const ActuatorCatalog& catalog, const std::string& name) {
+  for (const RotaryEntry& e : catalog.rotary_entries)
+    if (e.name == name) return &e;
+  return nullptr;
 }
 
 const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name) {

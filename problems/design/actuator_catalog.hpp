@@ -46,9 +46,22 @@ struct DriveType {
   std::string note;
 };
 
+/// A rotary drive (a servo motor, with its gearbox when it has one): the revolute actuators (a
+/// delta's cranks, a serial machine's rotary axes) are chosen from these. Figures at the output
+/// shaft.
+struct RotaryEntry {
+  std::string name;
+  std::string type;                   ///< e.g. servo_motor, gear_motor, torque_motor
+  double max_torque = 0.0;            ///< N*m, continuous (rated) torque
+  std::optional<double> peak_torque;  ///< N*m, short-time peak (>= max_torque)
+  double max_speed_rpm = 0.0;         ///< 1/min, maximum speed
+  std::optional<double> cost;         ///< relative cost if known
+};
+
 struct ActuatorCatalog {
   std::string name;
-  std::vector<ActuatorEntry> entries;
+  std::vector<ActuatorEntry> entries;       ///< linear drives
+  std::vector<RotaryEntry> rotary_entries;  ///< rotary drives (priced per drive only)
   std::vector<DriveType> drive_types;
 };
 
@@ -70,8 +83,9 @@ struct ActuatorChoice {
   std::string reason;  ///< when entry is null: the closest miss
 };
 
-/// Empty when usable: every entry named, finite positive force, stroke and speed, optional
-/// values finite and positive, names unique; otherwise what is wrong.
+/// Empty when usable: every entry named, finite positive force (torque), stroke and speed,
+/// optional values finite and positive, peaks at least the ratings, names unique across the linear
+/// and rotary entries; otherwise what is wrong.
 std::string check_actuator_catalog(const ActuatorCatalog& catalog);
 
 bool carries(const ActuatorEntry& entry, const ActuatorRequirement& need);
@@ -137,6 +151,54 @@ struct DriveCheck {
   bool carries() const { return peak_ok && rms_ok && speed_ok && stroke_ok; }
 };
 DriveCheck check_drive(const ActuatorEntry& entry, const DriveDuty& duty);
+
+// ---------------------------------------------------------------------------------------------
+// Every drive priced: the drives of a machine fall into groups of alike drives (a parallel
+// machine's legs are one group, bought as one entry; a serial axis is a group of its own), and
+// each group gets the cheapest entry of its kind (linear or rotary) that carries the group's worst
+// drive. The machine's drive cost is the sum over the groups of count x the entry's cost, so that
+// structures with different numbers and kinds of drives compare.
+
+/// One group of alike drives and the most any of them must do.
+struct DriveGroupNeed {
+  bool revolute = false;
+  int count = 1;
+  double force = 0.0;       ///< N (N*m for revolute drives): the largest |tau| over the task
+  double peak_force = 0.0;  ///< N (N*m): the largest short-time force (0: none)
+  double stroke = 0.0;      ///< m: linear drives' travel (revolute drives: none)
+};
+
+/// The choice for one group: the entry's index (into `entries` or `rotary_entries`; -1 when none
+/// carries), the group's cost (count x entry cost, or count x DrivePricing::none) and its
+/// relative overload: the minimum over the entries of the kind of
+/// max(force / rating, peak / peak rating, stroke / entry stroke) - 1, <= 0 exactly when some
+/// entry carries the group (speed not considered).
+struct DriveGroupChoice {
+  int entry = -1;
+  double cost = 0.0;
+  double overload = 0.0;
+};
+
+struct DriveChoice {
+  std::vector<DriveGroupChoice> groups;
+  double cost = 0.0;      ///< the sum of the groups' costs
+  double overload = 0.0;  ///< the largest group overload (dimensionless)
+};
+
+/// Empty when the catalog can price every drive: every entry, linear and rotary, has a cost (the
+/// sum compares only costs in one unit); otherwise why not.
+std::string check_drive_pricing(const ActuatorCatalog& catalog);
+
+/// The price of a drive no entry carries: twice the dearest cost of the catalog (linear or rotary).
+double drive_cost_none(const ActuatorCatalog& catalog);
+
+/// Each group's cheapest carrying entry of its kind (ties: the smaller rating, then the catalog
+/// order). Needs check_drive_pricing(catalog) empty; a group whose kind has no entries has
+/// overload +inf.
+DriveChoice choose_drives(const ActuatorCatalog& catalog, const std::vector<DriveGroupNeed>& needs);
+
+/// The rotary entry named `name`, or null.
+const RotaryEntry* find_rotary(const ActuatorCatalog& catalog, const std::string& name);
 
 /// The entry named `name`, or null.
 const ActuatorEntry* find_actuator(const ActuatorCatalog& catalog, const std::string& name);

@@ -30,7 +30,9 @@ constexpr std::array<std::string_view, kNumDesignMetrics> kMetricNames = {
     "swept_volume",
     "footprint",
     "task_singularity_free",
-    "task_margin"};
+    "task_margin",
+    "drive_cost",
+    "drive_overload"};
 
 double metric_sign(Sense sense) { return sense == Sense::maximize ? -1.0 : 1.0; }
 
@@ -55,7 +57,30 @@ bool is_compliance_metric(DesignMetric metric) {
 }
 
 bool is_actuator_metric(DesignMetric metric) {
-  return metric == DesignMetric::actuator_cost || metric == DesignMetric::actuator_overload;
+  return metric == DesignMetric::actuator_cost || metric == DesignMetric::actuator_overload ||
+         is_drive_metric(metric);
+}
+
+bool is_drive_metric(DesignMetric metric) {
+  return metric == DesignMetric::drive_cost || metric == DesignMetric::drive_overload;
+}
+
+std::string actuator_metric_mismatch(const std::array<bool, kNumDesignMetrics>& needed,
+                                     bool each_drive) {
+  for (int m = 0; m < kNumDesignMetrics; ++m) {
+    const auto metric = static_cast<DesignMetric>(m);
+    if (!needed[m] || !is_actuator_metric(metric) || is_drive_metric(metric) == each_drive)
+      continue;
+    return each_drive ? fmt::format(
+                            "{} prices one entry for the legs; with each_drive: true the "
+                            "catalog prices every drive (drive_cost, drive_overload)",
+                            kMetricNames[m])
+                      : fmt::format(
+                            "{} prices every drive: it needs each_drive: true in the {{actuator: "
+                            "cheapest, catalog: FILE}} constraint",
+                            kMetricNames[m]);
+  }
+  return {};
 }
 
 std::optional<DesignMetric> design_metric_from_name(std::string_view name) {

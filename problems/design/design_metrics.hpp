@@ -72,13 +72,27 @@ enum class DesignMetric {
   task_singularity_free,
   /// How far the task could grow and stay reachable (m; task_margin below): the workspace
   /// margin around the task, for any model.
-  task_margin
+  task_margin,
+  /// Every drive priced ({actuator: cheapest, catalog: FILE, each_drive: true}): the sum over the
+  /// groups of alike drives of count x the cost of the cheapest catalog entry of their kind that
+  /// carries the group (problems/design/actuator_catalog.hpp choose_drives; relative cost).
+  drive_cost,
+  /// The largest relative shortfall over those groups (dimensionless, choose_drives); <= 0
+  /// exactly when every drive is carried by some entry.
+  drive_overload
 };
-inline constexpr int kNumDesignMetrics = 19;
+inline constexpr int kNumDesignMetrics = 21;
 /// True for the metrics that need the compliance matrix at every task pose.
 bool is_compliance_metric(DesignMetric metric);
-/// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload).
+/// True for the metrics that need an actuator catalog (actuator_cost, actuator_overload,
+/// drive_cost, drive_overload).
 bool is_actuator_metric(DesignMetric metric);
+/// True for the metrics of a catalog that prices every drive (drive_cost, drive_overload).
+bool is_drive_metric(DesignMetric metric);
+/// Why a design problem with a catalog (each_drive or not) cannot measure the needed metrics:
+/// the one-entry metrics with each_drive, the every-drive ones without; empty when it can.
+std::string actuator_metric_mismatch(const std::array<bool, kNumDesignMetrics>& needed,
+                                     bool each_drive);
 std::string_view design_metric_name(DesignMetric metric);
 /// The metric named `name`, nullopt if none is.
 std::optional<DesignMetric> design_metric_from_name(std::string_view name);

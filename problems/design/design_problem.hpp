@@ -74,6 +74,9 @@ class DesignProblem : public Problem {
   virtual double home_height(const std::vector<double>& parameters) const = 0;
   virtual DesignRecord measure(const std::vector<double>& x) const = 0;
   virtual const ActuatorCatalog* actuator_catalog() const { return nullptr; }
+  /// True when the catalog prices every drive (drive_cost, drive_overload) instead of choosing
+  /// one entry for the legs (actuator_cost, the per-design entry of the outputs).
+  virtual bool prices_each_drive() const { return false; }
 };
 
 }  // namespace pkmopt

@@ -97,15 +97,17 @@ void HexapodDesignProblem::set_up_actuator_catalog(const std::string& where) {
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
     if (catalog.entries.empty())
       throw std::invalid_argument(
-          fmt::format("{}: actuator catalog '{}': expected at least one "
+          fmt::format("{}: actuator catalog '{}': expected at least one linear "
                       "entry, found none",
                       where, catalog.name));
-    const std::string problem = check_actuator_catalog(catalog);
+    std::string problem = check_actuator_catalog(catalog);
+    if (problem.empty()) problem = actuator_metric_mismatch(needed_, spec_.each_drive);
+    if (problem.empty() && spec_.each_drive) problem = check_drive_pricing(catalog);
     if (!problem.empty())
       throw std::invalid_argument(
           fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
     try {
-      pricing_ = catalog_pricing(catalog);
+      if (!spec_.each_drive) pricing_ = catalog_pricing(catalog);
     } catch (const std::invalid_argument& error) {
       throw std::invalid_argument(fmt::format("{}: {}", where, error.what()));
     }
@@ -254,10 +256,19 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
         .force = metric(DesignMetric::leg_force_max),
         .stroke = p[kStroke],
         .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
-    const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
-    ev.actuator = choice.entry;
-    metric(DesignMetric::actuator_cost) = choice.cost;
-    metric(DesignMetric::actuator_overload) = choice.overload;
+    if (spec_.each_drive) {
+      const DriveChoice drives = choose_drives(catalog, {{.count = 6,
+                                                          .force = need.force,
+                                                          .peak_force = need.peak_force,
+                                                          .stroke = need.stroke}});
+      metric(DesignMetric::drive_cost) = drives.cost;
+      metric(DesignMetric::drive_overload) = drives.overload;
+    } else {
+      const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
+      ev.actuator = choice.entry;
+      metric(DesignMetric::actuator_cost) = choice.cost;
+      metric(DesignMetric::actuator_overload) = choice.overload;
+    }
   }
   if (need(DesignMetric::task_singularity_free)) {
     PoseBox region = *spec_.task.region;  // check_design_goals: present when needed

@@ -146,6 +146,9 @@ struct HexapodDesignSpec {
   /// The actuators to choose the legs from (actuator_cost, actuator_overload and the chosen
   /// entry of every evaluation); the stroke's upper bound must not exceed the longest entry.
   std::optional<ActuatorCatalog> actuator_catalog;
+  /// The catalog prices the six legs as one group of alike drives (drive_cost = 6 x the entry's
+  /// cost, drive_overload) instead of actuator_cost and actuator_overload.
+  bool each_drive = false;
 
   /// The docs/conventions.md hexapod with every parameter fixed at its value.
   HexapodDesignSpec();
@@ -215,6 +218,7 @@ class HexapodDesignProblem final : public DesignProblem {
   const ActuatorCatalog* actuator_catalog() const override {
     return spec_.actuator_catalog ? &*spec_.actuator_catalog : nullptr;
   }
+  bool prices_each_drive() const override { return spec_.each_drive; }
 
   /// Number of epigraph variables (smooth formulation), after the free parameters (one per
   /// minimize leg_force_max / maximize stiffness_min objective, in objective order).

@@ -71,6 +71,27 @@ std::unique_ptr<Machine> template_machine(const MachineDesignSpec& spec) {
 // ---------------------------------------------------------------------------------------------
 // The problem.
 
+std::vector<DriveGroupNeed> drive_group_needs(const Machine& machine,
+                                              const Eigen::VectorXd& drive_force) {
+  std::vector<DriveGroupNeed> needs;
+  std::vector<int> group_of;  // group number -> index in needs
+  for (int i = 0; i < machine.num_actuators(); ++i) {
+    const int g = machine.drive_group(i);
+    auto at = std::find(group_of.begin(), group_of.end(), g);
+    if (at == group_of.end()) {
+      group_of.push_back(g);
+      needs.push_back({.revolute = machine.revolute_actuator(i), .count = 0});
+      at = group_of.end() - 1;
+    }
+    DriveGroupNeed& need = needs[static_cast<std::size_t>(at - group_of.begin())];
+    ++need.count;
+    need.force = std::max(need.force, std::abs(drive_force(i)));
+    if (!need.revolute)
+      need.stroke = std::max(need.stroke, machine.actuator_stroke(i).value_or(0.0));
+  }
+  return needs;
+}
+
 double pose_reach_violation(const Machine& machine, const Pose& pose) {
   const std::optional<double> excess = machine.reach_excess(pose);
   // Unreachable for a reason the terms do not see (a rotation of a translational platform...).
@@ -164,17 +185,41 @@ double MachineDesignProblem::home_height_of(const std::vector<double>& parameter
 
 void MachineDesignProblem::set_up_actuator_catalog(const std::string& where) {
   const ActuatorCatalog& catalog = *spec_.actuator_catalog;
-  if (catalog.entries.empty())
+  if (catalog.entries.empty() && catalog.rotary_entries.empty())
     throw std::invalid_argument(fmt::format(
         "{}: actuator catalog '{}': expected at least one entry, found none", where, catalog.name));
   if (const std::string problem = check_actuator_catalog(catalog); !problem.empty())
     throw std::invalid_argument(
         fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
+  if (const std::string problem = actuator_metric_mismatch(needed_, spec_.each_drive);
+      !problem.empty())
+    throw std::invalid_argument(fmt::format("{}: {}", where, problem));
+  std::unique_ptr<Machine> machine = template_machine(spec_);
+  if (machine == nullptr) machine = spec_.family.build(spec_.family.default_parameters());
+  if (spec_.each_drive) {
+    if (const std::string problem = check_drive_pricing(catalog); !problem.empty())
+      throw std::invalid_argument(
+          fmt::format("{}: actuator catalog '{}': {}", where, catalog.name, problem));
+    for (int i = 0; i < machine->num_actuators(); ++i) {
+      const bool revolute = machine->revolute_actuator(i);
+      if (revolute ? catalog.rotary_entries.empty() : catalog.entries.empty())
+        throw std::invalid_argument(fmt::format(
+            "{}: actuator catalog '{}' has no {} entries for the {} family's drive {}", where,
+            catalog.name, revolute ? "rotary" : "linear", spec_.family.model, i + 1));
+      if (!revolute && !machine->actuator_stroke(i))
+        throw std::invalid_argument(
+            fmt::format("{}: the {} family gives no actuator stroke to choose a catalog entry by",
+                        where, spec_.family.model));
+    }
+    return;
+  }
+  if (catalog.entries.empty())
+    throw std::invalid_argument(
+        fmt::format("{}: actuator catalog '{}': expected at least one linear entry, found none",
+                    where, catalog.name));
   pricing_ = catalog_pricing(catalog);  // throws when only some entries have a cost
   // The catalog holds linear drives: a family with revolute drives (a delta's cranks) has none
   // to choose.
-  std::unique_ptr<Machine> machine = template_machine(spec_);
-  if (machine == nullptr) machine = spec_.family.build(spec_.family.default_parameters());
   if (machine->any_revolute_actuator())
     throw std::invalid_argument(fmt::format(
         "{}: actuator catalog '{}' holds linear drives; the {} family's drives are revolute", where,
@@ -273,7 +318,12 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     metric(DesignMetric::moving_mass) =
         dynamics ? dynamics->moving_mass() : std::numeric_limits<double>::quiet_NaN();
   }
-  if (spec_.actuator_catalog) {
+  if (spec_.actuator_catalog && spec_.each_drive) {
+    const DriveChoice choice =
+        choose_drives(*spec_.actuator_catalog, drive_group_needs(*machine, drive_force));
+    metric(DesignMetric::drive_cost) = choice.cost;
+    metric(DesignMetric::drive_overload) = choice.overload;
+  } else if (spec_.actuator_catalog) {
     // Every drive gets the entry: the largest force over the task, the longest stroke.
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
     double stroke = 0.0, force = 0.0;

@@ -175,7 +175,15 @@ struct MachineDesignSpec {
   std::optional<ActuatorCatalog> actuator_catalog;
   /// The drives (0-based) the catalog entry is chosen for; empty: every drive.
   std::vector<int> actuator_drives;
+  /// Every drive priced from the catalog, linear and rotary (drive_cost, drive_overload;
+  /// Machine::drive_group gives the alike drives), instead of one entry for the chosen drives.
+  bool each_drive = false;
 };
+
+/// The machine's drives in groups of alike drives (Machine::drive_group, in order of their first
+/// drive): their kind, count, largest |drive_force| and longest stroke (linear drives).
+std::vector<DriveGroupNeed> drive_group_needs(const Machine& machine,
+                                              const Eigen::VectorXd& drive_force);
 
 /// Every parameter of a family fixed at its default.
 std::vector<ParameterRange> default_ranges(const DesignFamily& family);
@@ -218,6 +226,7 @@ class MachineDesignProblem final : public DesignProblem {
   const ActuatorCatalog* actuator_catalog() const override {
     return spec_.actuator_catalog ? &*spec_.actuator_catalog : nullptr;
   }
+  bool prices_each_drive() const override { return spec_.each_drive; }
   /// Indices of the free parameters, in variable order.
   const std::vector<int>& free_parameters() const override { return free_; }
   std::vector<double> design_parameters(const std::vector<double>& x) const override {

@@ -291,6 +291,70 @@ TEST_F(DesignStudy, CheapestCatalogActuatorIsChosenForEveryDesign) {
   }
 }
 
+// {actuator: cheapest, catalog: FILE, each_drive: true}: the six legs priced as one group of
+// alike drives, drive_cost = 6 x the entry's cost; the metrics of the other mode are refused.
+TEST_F(DesignStudy, EveryDrivePricedHexapodStudy) {
+  const std::string catalog_path =
+      std::string(PKMOPT_SOURCE_DIR) + "/studies/library/catalogs/milling-drives.yaml";
+  std::string text =
+      replaced(kStudy, "  - {metric: leg_force_max, max: 10500}\n",
+               "  - {actuator: cheapest, catalog: " + catalog_path + ", each_drive: true}\n");
+  text = replaced(text, "  - minimize: machine_size\n", "  - minimize: drive_cost\n");
+  const fs::path dir = write_study("each_drive", text);
+  const pkmopt::DesignStudy study = load_design_study((dir / "study.yaml").string());
+  EXPECT_TRUE(study.problem->prices_each_drive());
+  ASSERT_EQ(study.constraints().size(), 1u);
+  EXPECT_EQ(study.constraints()[0].metric, DesignMetric::drive_overload);
+  const fs::path again = write_study("each_drive_resolved", study.resolved_yaml);
+  EXPECT_EQ(load_design_study((again / "study.yaml").string()).resolved_yaml, study.resolved_yaml);
+  const cli_runner::CliRun validate = run_cli("validate " + (dir / "study.yaml").string());
+  ASSERT_EQ(validate.status, 0) << validate.err;
+  EXPECT_NE(validate.out.find("drives: every drive priced from catalog 'milling-drives' (11 "
+                              "linear, 5 rotary entries, by cost)"),
+            std::string::npos)
+      << validate.out;
+  const cli_runner::CliRun run = run_cli("run " + (dir / "study.yaml").string() + " --out " +
+                                         (dir / "out").string() + " --threads 2");
+  ASSERT_EQ(run.status, 0) << run.out << run.err;
+  const nlohmann::json pareto = nlohmann::json::parse(read_text(dir / "out" / "pareto.json"));
+  EXPECT_EQ(pareto["drive_catalog"]["name"], "milling-drives");
+  EXPECT_EQ(pareto["drive_catalog"]["rotary_entries"], 5);
+  EXPECT_FALSE(pareto.contains("actuator_catalog"));
+  const ActuatorCatalog& catalog = *study.problem->actuator_catalog();
+  int checked = 0;
+  for (const nlohmann::json& d : pareto["designs"]) {
+    if (!d["feasible"].get<bool>()) continue;
+    EXPECT_FALSE(d.contains("actuator"));
+    // The cost is six of some entry's, and that entry carries the design's stroke.
+    const double cost = d["objectives"]["drive_cost"].get<double>();
+    double stroke = 0.0;  // fixed in this study
+    for (const pkmopt::StudyParameter& p : study.parameters)
+      if (p.name == "stroke") stroke = p.min;
+    ASSERT_GT(stroke, 0.0);
+    bool some = false;
+    for (const ActuatorEntry& e : catalog.entries)
+      some = some || (std::abs(cost - 6.0 * *e.cost) < 1e-12 && e.stroke >= stroke);
+    EXPECT_TRUE(some) << cost;
+    ++checked;
+  }
+  EXPECT_GT(checked, 0);
+  // The one-entry metric with each_drive; drive_cost without it; a named entry with it.
+  EXPECT_NE(load_error("each_drive_mixed", replaced(text, "  - minimize: drive_cost\n",
+                                                    "  - minimize: actuator_cost\n"))
+                .find("objectives[1].minimize: expected a metric of this study (with each_drive: "
+                      "true the catalog prices every drive: drive_cost, drive_overload), found "
+                      "'actuator_cost'"),
+            std::string::npos);
+  EXPECT_NE(load_error("each_drive_off", replaced(text, ", each_drive: true", ""))
+                .find("objectives[1].minimize: expected a metric of this study (drive_cost and "
+                      "drive_overload need each_drive: true"),
+            std::string::npos);
+  EXPECT_NE(load_error("each_drive_named", replaced(text, "cheapest", "CMS63S/200"))
+                .find("constraints[1].actuator: expected cheapest (each_drive: true chooses per "
+                      "design), found 'CMS63S/200'"),
+            std::string::npos);
+}
+
 // The shipped actuator-choice study, reduced (population 12, 3 generations), through the CLI:
 // it resolves to itself and every feasible front design names the catalog entry it chose.
 TEST_F(DesignStudy, ShippedActuatorChoiceStudyRunsReduced) {
@@ -363,8 +427,8 @@ TEST_F(DesignStudy, SchemaErrorsNameFileLineKeyExpectedAndFound) {
           "singularity_margin, leg_force_max, tcp_error_max, workspace_volume, "
           "conditioning_index, machine_size, actuator_cost, actuator_overload, tcp_deflection_max, "
           "stiffness_min_loaded, natural_frequency_min, moving_mass, actuator_force_dynamic_max, "
-          "leg_clearance_min, swept_volume, footprint, task_singularity_free, task_margin, found "
-          "'stifness'");
+          "leg_clearance_min, swept_volume, footprint, task_singularity_free, task_margin, "
+          "drive_cost, drive_overload, found 'stifness'");
   const std::string file3 = (dir_ / "e3" / "study.yaml").string();
   EXPECT_EQ(load_error("e3", replaced(kStudy, "{min: 0.5, max: 0.7}", "{min: 0.7, max: 0.5}")),
             file3 + ":5:34: machine.parameters.base_radius.max: expected max > min, found '0.5'");

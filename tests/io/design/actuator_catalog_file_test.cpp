@@ -50,7 +50,7 @@ TEST(ActuatorCatalogFile, BadFilesGiveExactMessages) {
   EXPECT_EQ(error_of("catalog: c\nentries:\n" + entry), "no error");
   EXPECT_EQ(error_of("catalog: c\nentries:\n" + entry + "colour: red\n"),
             "cat.yaml:4:1: colour: unknown key 'colour'; allowed keys here: catalog, description, "
-            "entries, drive_types");
+            "entries, rotary_entries, drive_types");
   EXPECT_EQ(error_of("catalog: c\nentries: []\n"),
             "cat.yaml:2:10: entries: expected a list of at least one entry, found an empty list");
   EXPECT_EQ(error_of("catalog: c\nentries:\n  - {name: A, type: e, max_force: -5, stroke: 0.1, "
@@ -105,6 +105,49 @@ TEST(ActuatorCatalogFile, ReadsEveryKey) {
   EXPECT_EQ(error_of("catalog: c\nentries:\n  - {name: A, type: e, max_force: 5, stroke: 0.1, "
                      "max_speed: 0.2, cost: 0}\n"),
             "cat.yaml:3:73: entries[0].cost: expected a number > 0, found '0'");
+}
+
+// Rotary drives: their own list, names unique across both lists, a catalog of rotary drives
+// only, and the writer's text reads back to the same entries.
+TEST(ActuatorCatalogFile, ReadsRotaryEntries) {
+  const std::string rotary =
+      "rotary_entries:\n"
+      "  - {name: M40, type: gear_motor, max_torque: 40, peak_torque: 100, max_speed: 300, "
+      "cost: 9}\n"
+      "  - {name: T200, type: torque_motor, max_torque: 200, max_speed: 150}\n";
+  const ActuatorCatalog catalog =
+      read_actuator_catalog(YamlValue::load_string("catalog: c\n" + rotary, "cat.yaml"));
+  EXPECT_TRUE(catalog.entries.empty());
+  ASSERT_EQ(catalog.rotary_entries.size(), 2u);
+  const RotaryEntry& m = catalog.rotary_entries[0];
+  EXPECT_EQ(m.name, "M40");
+  EXPECT_EQ(m.type, "gear_motor");
+  EXPECT_EQ(m.max_torque, 40.0);
+  EXPECT_EQ(m.peak_torque, 100.0);
+  EXPECT_EQ(m.max_speed_rpm, 300.0);
+  EXPECT_EQ(m.cost, 9.0);
+  EXPECT_FALSE(catalog.rotary_entries[1].peak_torque.has_value());
+  EXPECT_FALSE(catalog.rotary_entries[1].cost.has_value());
+  const ActuatorCatalog back =
+      read_actuator_catalog(YamlValue::load_string(actuator_catalog_to_yaml(catalog), "w.yaml"));
+  ASSERT_EQ(back.rotary_entries.size(), 2u);
+  EXPECT_EQ(back.rotary_entries[0].peak_torque, 100.0);
+  EXPECT_EQ(back.rotary_entries[1].max_speed_rpm, 150.0);
+  EXPECT_EQ(error_of("catalog: c\n"),
+            "cat.yaml:1:1: expected entries (linear drives) or rotary_entries (rotary drives), "
+            "found neither");
+  EXPECT_EQ(error_of("catalog: c\nrotary_entries: []\n"),
+            "cat.yaml:2:17: rotary_entries: expected a list of at least one entry, found an empty "
+            "list");
+  EXPECT_EQ(error_of("catalog: c\nentries:\n  - {name: M40, type: e, max_force: 5, stroke: 0.1, "
+                     "max_speed: 0.2}\n" +
+                     rotary),
+            "cat.yaml:5:12: rotary_entries[0].name: expected a name not used by an earlier entry, "
+            "found 'M40' again");
+  EXPECT_EQ(error_of("catalog: c\nrotary_entries:\n  - {name: M, type: g, max_torque: 40, "
+                     "peak_torque: 30, max_speed: 300}\n"),
+            "cat.yaml:3:53: rotary_entries[0].peak_torque: expected a peak torque (N*m) >= "
+            "max_torque = 40, found 30");
 }
 
 TEST(ActuatorCatalogFile, ReadmeTableMatchesTheFieldLists) {

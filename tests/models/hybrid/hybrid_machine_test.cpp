@@ -182,6 +182,20 @@ TEST(HybridMachine, FollowRuleAndRoundTrip) {
   EXPECT_GT(reachable, 15);
 }
 
+// The drives bought as one entry: each serial axis alone (even at equal travels), the module's
+// alike legs together; a hexapod module's six legs are one group.
+TEST(HybridMachine, DriveGroupsAreEachAxisAndTheModulesLegs) {
+  const HybridMachine gantry = make_hybrid("12", {{-1.0, 1.0}, {-1.0, 1.0}},
+                                           make_tripod_3prs(Tripod3PrsDesign{}), {0, 0, 1.2});
+  const std::vector<int> expected = {0, 1, 2, 2, 2};
+  for (int i = 0; i < gantry.num_actuators(); ++i)
+    EXPECT_EQ(gantry.drive_group(i), expected[static_cast<std::size_t>(i)]) << i;
+  const HybridMachine long_axis =
+      make_hybrid("1", {{-1.0, 1.0}}, conventions_hexapod(), {0, 0, 0.9});
+  EXPECT_EQ(long_axis.drive_group(0), 0);
+  for (int i = 1; i < 7; ++i) EXPECT_EQ(long_axis.drive_group(i), 1) << i;
+}
+
 // A gantry X/Y carrying a 3-PRS head: the axes compensate the head's parasitic x, y.
 TEST(HybridMachine, GantryOverATripodRoundTrip) {
   const std::shared_ptr<const Machine> tripod = make_tripod_3prs(Tripod3PrsDesign{});

@@ -135,6 +135,13 @@ TEST(SerialMachine, InverseJacobianMatchesCentralDifferencesAndIgnoresTheSpin) {
   }
 }
 
+// Every axis is a drive of its own, even where two have the same kind and travel (X, Y, Z here;
+// a parallel machine's alike legs share one group: HybridMachine.DriveGroups...).
+TEST(SerialMachine, EveryAxisIsADriveGroupOfItsOwn) {
+  const SerialMachine machine(head_head());
+  for (int i = 0; i < machine.num_actuators(); ++i) EXPECT_EQ(machine.drive_group(i), i);
+}
+
 TEST(SerialMachine, DriveLoadsDoTheWrenchsVirtualWork) {
   const SerialDesign d = table_table();
   const SerialMachine machine(d);

@@ -167,6 +167,86 @@ TEST(ActuatorCatalog, CheckNamesTheBadEntry) {
             "entry 3 (CMS63S/100): peak_force: expected a number >= max_force = 10500, found 9000");
 }
 
+// A catalog that prices every drive: the cylinders with a cost each (per kN of rating, plus the
+// stroke) and three rotary drives.
+ActuatorCatalog priced_catalog() {
+  ActuatorCatalog catalog = sample_catalogs::sew_cms();
+  for (ActuatorEntry& e : catalog.entries) e.cost = e.max_force / 1000.0 + 10.0 * e.stroke;
+  catalog.rotary_entries = {{"M10", "servo_motor", 10.0, 30.0, 3000.0, 4.0},
+                            {"M40", "gear_motor", 40.0, {}, 300.0, 9.0},
+                            {"M40b", "gear_motor", 40.0, 100.0, 500.0, 9.0},
+                            {"T200", "torque_motor", 200.0, 350.0, 200.0, 30.0}};
+  return catalog;
+}
+
+// Each group gets the cheapest carrying entry of its kind; the cost is count x the entry's; the
+// overload is the least relative shortfall, <= 0 exactly when an entry carries.
+TEST(ActuatorCatalog, EveryDrivePricedByItsGroup) {
+  const ActuatorCatalog catalog = priced_catalog();
+  EXPECT_EQ(check_actuator_catalog(catalog), "");
+  EXPECT_EQ(check_drive_pricing(catalog), "");
+  EXPECT_DOUBLE_EQ(drive_cost_none(catalog), 60.0);  // twice T200's 30
+  const DriveChoice choice = choose_drives(
+      catalog, {{.count = 6, .force = 6633.0, .stroke = 0.18},     // CMS63S/200: 10.5 + 2 = 12.5
+                {.revolute = true, .count = 2, .force = 25.0},     // M40 (9; M40b ties, later)
+                {.revolute = true, .count = 1, .force = 250.0}});  // none: 60
+  ASSERT_EQ(choice.groups.size(), 3u);
+  EXPECT_EQ(choice.groups[0].entry, 4);
+  EXPECT_DOUBLE_EQ(choice.groups[0].cost, 6 * 12.5);
+  // The least shortfall is CMS71L/350's: max(6633/17000, 0.18/0.35) - 1.
+  EXPECT_DOUBLE_EQ(choice.groups[0].overload, 0.18 / 0.35 - 1.0);
+  EXPECT_EQ(choice.groups[1].entry, 1);
+  EXPECT_DOUBLE_EQ(choice.groups[1].cost, 18.0);
+  EXPECT_DOUBLE_EQ(choice.groups[1].overload, 25.0 / 200.0 - 1.0);  // T200 carries it best
+  EXPECT_EQ(choice.groups[2].entry, -1);
+  EXPECT_DOUBLE_EQ(choice.groups[2].cost, 60.0);
+  EXPECT_DOUBLE_EQ(choice.groups[2].overload, 250.0 / 200.0 - 1.0);
+  EXPECT_DOUBLE_EQ(choice.cost, 75.0 + 18.0 + 60.0);
+  EXPECT_DOUBLE_EQ(choice.overload, 0.25);
+  // A peak against the peak ratings (the continuous one when none is given): 60 N*m peak is
+  // beyond M40 (no peak rating: 40) and within M40b's 100.
+  const DriveChoice peak =
+      choose_drives(catalog, {{.revolute = true, .force = 25.0, .peak_force = 60.0}});
+  EXPECT_EQ(peak.groups[0].entry, 2);
+  // The overload's sign and the choice agree over a grid, for both kinds.
+  for (double force = 0.0; force <= 21000.0; force += 1500.0)
+    for (double stroke = 0.05; stroke <= 0.40; stroke += 0.05) {
+      const DriveChoice c = choose_drives(catalog, {{.force = force, .stroke = stroke}});
+      EXPECT_EQ(c.overload <= 0.0, c.groups[0].entry >= 0) << force << " " << stroke;
+      const ActuatorChoice one = choose_actuator(catalog, {force, stroke, 0.0, 0.0});
+      EXPECT_EQ(one.entry != nullptr, c.groups[0].entry >= 0) << force << " " << stroke;
+    }
+  for (double torque = 0.0; torque <= 260.0; torque += 5.0) {
+    const DriveChoice c = choose_drives(catalog, {{.revolute = true, .force = torque}});
+    EXPECT_EQ(c.overload <= 0.0, c.groups[0].entry >= 0) << torque;
+  }
+  EXPECT_DOUBLE_EQ(choose_drives(catalog, {}).cost, 0.0);
+  EXPECT_DOUBLE_EQ(choose_drives(catalog, {}).overload, 0.0);
+}
+
+TEST(ActuatorCatalog, EveryDrivePricingNeedsEveryCost) {
+  ActuatorCatalog catalog = priced_catalog();
+  catalog.rotary_entries[1].cost.reset();
+  EXPECT_EQ(check_drive_pricing(catalog), "rotary entry M40: cost: expected a cost, found none");
+  catalog = priced_catalog();
+  catalog.entries[0].cost.reset();
+  EXPECT_EQ(check_drive_pricing(catalog), "entry CMS50S/70: cost: expected a cost, found none");
+  catalog = priced_catalog();
+  catalog.rotary_entries[2].name = "CMS50S/70";
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "rotary entry 2 (CMS50S/70): name: expected a unique name, found a repeat");
+  catalog = priced_catalog();
+  catalog.rotary_entries[3].peak_torque = 150.0;
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "rotary entry 3 (T200): peak_torque: expected a number >= max_torque = 200, found 150");
+  catalog = priced_catalog();
+  catalog.rotary_entries[0].max_torque = 0.0;
+  EXPECT_EQ(check_actuator_catalog(catalog),
+            "rotary entry 0 (M10): max_torque: expected a number > 0, found 0");
+  EXPECT_EQ(find_rotary(catalog, "T200"), &catalog.rotary_entries[3]);
+  EXPECT_EQ(find_rotary(catalog, "CMS50S/70"), nullptr);
+}
+
 // A drive carries a path's duty when the peak is within the peak rating (the continuous one when
 // there is none), the RMS within the continuous rating, and speed and stroke within the entry's.
 TEST(ActuatorCatalog, DriveCheckOfAPathDuty) {

@@ -12,7 +12,10 @@
 #include "models/core/capabilities.hpp"
 #include "models/core/machine_sketch.hpp"
 #include "models/hexapod/hexapod.hpp"
+#include "models/serial/serial_machine.hpp"
 #include "problems/design/leg_chain_design.hpp"
+#include "problems/design/serial_design.hpp"
+#include "tests/sample_machines.hpp"
 
 namespace pkmopt {
 namespace {
@@ -258,6 +261,127 @@ TEST(MachineDesign, CarriagesGetTheCheapestCatalogEntryThatCarriesThem) {
   delta.objectives = {{DesignMetric::actuator_cost, Sense::minimize}};
   delta.actuator_catalog = catalog;
   EXPECT_THROW(MachineDesignProblem{delta}, std::invalid_argument);
+}
+
+// A catalog pricing every drive: ball-screw axes and cylinders, servo and torque motors.
+ActuatorCatalog every_drive_catalog() {
+  ActuatorCatalog c;
+  c.name = "every-drive";
+  c.entries = {{"axis-600", "ball_screw_axis", 3000.0, 0.6, 0.5, {}, {}, 3.0, {}},
+               {"axis-1000", "ball_screw_axis", 3000.0, 1.0, 0.5, {}, {}, 4.0, {}},
+               {"axis-1000-hd", "ball_screw_axis", 8000.0, 1.0, 0.5, {}, {}, 7.0, {}},
+               {"cyl-300", "electric_cylinder", 10000.0, 0.3, 0.4, {}, {}, 2.5, {}}};
+  c.rotary_entries = {{"servo-50", "gear_motor", 50.0, {}, 300.0, 2.0},
+                      {"servo-200", "gear_motor", 200.0, {}, 200.0, 5.0},
+                      {"torque-1000", "torque_motor", 1000.0, {}, 100.0, 12.0}};
+  return c;
+}
+
+// Every drive priced: a C/A fork head's X, Y and Z get linear entries by their own force and
+// travel, its C and A rotary ones by their torque, each axis alone; the sum is recomputed here
+// from the drives' loads at the task poses.
+TEST(MachineDesign, EveryDrivePricedFromItsLoadsAndTravel) {
+  SerialDesign t;
+  t.chain = SerialChain::from_code("123646");
+  t.spindle = 5;
+  t.axes = {{.min = -0.4, .max = 0.4, .stiffness = 1.5e8},
+            {.min = -0.4, .max = 0.4, .stiffness = 1.5e8},
+            {.min = -0.1, .max = 0.6, .stiffness = 1.2e8},
+            {.min = -200 * M_PI / 180, .max = 200 * M_PI / 180, .stiffness = 1e6},
+            {.min = -100 * M_PI / 180, .max = 100 * M_PI / 180, .stiffness = 1e6}};
+  t.tool_point = {0, 0, -0.25};
+  t.characteristic_length = 0.2;
+  MachineDesignSpec spec;
+  spec.name = "every-drive";
+  spec.family = serial_family(t);
+  spec.parameters = default_ranges(spec.family);
+  spec.parameters[0] = {0.8, 1.2};  // x_travel
+  const std::unique_ptr<Machine> machine = spec.family.build(spec.family.default_parameters());
+  // The task: poses the template reaches, with tilted tools.
+  sample_machines::Uniform u(4);
+  for (int k = 0; k < 12; ++k) {
+    Eigen::VectorXd q(5);
+    q << u(-0.3, 0.3), u(-0.3, 0.3), u(0.0, 0.5), u(-1.0, 1.0), u(-0.3, 0.3);
+    spec.task.poses.push_back(machine->forward_kinematics(q, std::nullopt).pose);
+  }
+  spec.task.wrench << -2455, 982, 1228, 0, 0, -77;
+  spec.objectives = {{DesignMetric::drive_cost, Sense::minimize},
+                     {DesignMetric::tcp_deflection_max, Sense::minimize}};
+  spec.constraints = {{DesignMetric::drive_overload, Relation::less_equal, 0.0}};
+  spec.actuator_catalog = every_drive_catalog();
+  spec.each_drive = true;
+  const MachineDesignProblem problem(spec);
+  const MachineDesignEvaluation ev = problem.evaluate({0.8});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  ASSERT_TRUE(ev.reachable);
+  // The drives' largest loads over the task, and each axis's entry by brute force.
+  const std::unique_ptr<MachineData> data = machine->make_data();
+  Eigen::VectorXd load = Eigen::VectorXd::Zero(5);
+  for (const Pose& pose : spec.task.poses) {
+    PoseMetrics m;
+    machine->analyze(*data, pose, spec.task.wrench, m);
+    ASSERT_TRUE(m.reachable);
+    load = load.cwiseMax(m.tau.cwiseAbs());
+  }
+  const ActuatorCatalog& c = *spec.actuator_catalog;
+  double cost = 0.0, overload = -kInf;
+  for (int i = 0; i < 5; ++i) {
+    double best = kInf, least = kInf;
+    if (i < 3) {
+      const SerialAxis& a = t.axes[static_cast<std::size_t>(i)];
+      const double travel = i == 0 ? 0.8 : a.max - a.min;
+      for (const ActuatorEntry& e : c.entries) {
+        const double r = std::max(load(i) / e.max_force, travel / e.stroke) - 1.0;
+        least = std::min(least, r);
+        if (r <= 0.0) best = std::min(best, *e.cost);
+      }
+    } else {
+      for (const RotaryEntry& e : c.rotary_entries) {
+        least = std::min(least, load(i) / e.max_torque - 1.0);
+        if (load(i) <= e.max_torque) best = std::min(best, *e.cost);
+      }
+    }
+    cost += std::isfinite(best) ? best : 24.0;  // none: twice the dearest (12)
+    overload = std::max(overload, least);
+  }
+  const double drive_cost = ev.metrics[static_cast<int>(DesignMetric::drive_cost)];
+  EXPECT_NEAR(drive_cost, cost, 1e-12);
+  EXPECT_NEAR(ev.metrics[static_cast<int>(DesignMetric::drive_overload)], overload, 1e-12);
+  // The loads are of the milling load's size: the axes carry kN, the C/A axes tens of N*m; X, Y
+  // and Z are priced alone although two have equal travel.
+  EXPECT_GT(load.head<3>().maxCoeff(), 1000.0);
+  EXPECT_GT(load.tail<2>().maxCoeff(), 10.0);
+  EXPECT_EQ(drive_group_needs(*machine, load).size(), 5u);
+  // The one-entry metrics are refused with each_drive, the every-drive ones without it; a
+  // revolute drive needs rotary entries.
+  MachineDesignSpec one_entry = spec;
+  one_entry.objectives.push_back({DesignMetric::actuator_cost, Sense::minimize});
+  EXPECT_THROW(MachineDesignProblem{one_entry}, std::invalid_argument);
+  MachineDesignSpec no_each = spec;
+  no_each.each_drive = false;
+  EXPECT_THROW(MachineDesignProblem{no_each}, std::invalid_argument);
+  MachineDesignSpec no_rotary = spec;
+  no_rotary.actuator_catalog->rotary_entries.clear();
+  EXPECT_THROW(MachineDesignProblem{no_rotary}, std::invalid_argument);
+}
+
+// A parallel machine's alike legs are one group: the linear delta's three carriages cost three
+// times the entry that carries the most loaded one.
+TEST(MachineDesign, AlikeLegsArePricedAsOneEntry) {
+  MachineDesignSpec spec = linear_delta_spec();
+  spec.actuator_catalog = every_drive_catalog();
+  spec.each_drive = true;
+  spec.objectives.push_back({DesignMetric::drive_cost, Sense::minimize});
+  const MachineDesignProblem problem(spec);
+  const MachineDesignEvaluation ev = problem.evaluate({0.7, 0.6, 0.1});
+  ASSERT_TRUE(ev.ok()) << ev.failure;
+  const double force = ev.metrics[static_cast<int>(DesignMetric::leg_force_max)];
+  ASSERT_LT(force, 3000.0);  // axis-600 (stroke 0.6 rules out the cylinder)
+  EXPECT_EQ(ev.metrics[static_cast<int>(DesignMetric::drive_cost)], 3 * 3.0);
+  const MachineDesignEvaluation longer = problem.evaluate({0.7, 0.65, 0.1});
+  ASSERT_TRUE(longer.ok()) << longer.failure;
+  ASSERT_LT(longer.metrics[static_cast<int>(DesignMetric::leg_force_max)], 3000.0);
+  EXPECT_EQ(longer.metrics[static_cast<int>(DesignMetric::drive_cost)], 3 * 4.0);  // axis-1000
 }
 
 TEST(MachineDesign, FailuresGivePenaltyRowsAndAReason) {
