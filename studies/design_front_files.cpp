@@ -139,6 +139,10 @@ std::pair<std::string, nlohmann::json> design_row(const FrontFiles& f, std::size
                       ? std::string()
                       : csv_field(design["actuator"]["name"].get<std::string>()));
   }
+  if (f.study.problem->prices_each_drive()) {
+    design["drives"] = d.drives;
+    csv += ',' + csv_field(d.drives);
+  }
   design["feasible"] = feasible;
   csv += feasible ? ",1,\"\"\n" : ",0,\"\"\n";
   if (f.study.write_designs) design["machine_file"] = "designs/" + id + ".yaml";
@@ -153,6 +157,7 @@ std::string pareto_csv_header(const FrontFiles& f) {
     csv += ',' + std::string(design_metric_name(o.metric));
   for (const std::string& g : f.g_names) csv += ',' + g;
   if (f.catalog) csv += ",actuator";
+  if (f.study.problem->prices_each_drive()) csv += ",drives";
   return csv + ",feasible,failure\n";
 }
 

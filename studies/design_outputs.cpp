@@ -98,6 +98,7 @@ MeasuredDesign measure_design(const DesignStudy& study, const std::vector<double
   d.aggregate = std::move(record.aggregate);
   d.failure = std::move(record.failure);
   d.actuator = record.actuator;
+  d.drives = record.drives;
   if (machine_file && d.failure.empty())
     d.machine_file = study.machine->machine_file(record.parameters);
   return d;

@@ -3,9 +3,9 @@
 // the public interface: studies/design_study.hpp is.
 #pragma once
 
-#include <cstddef>
 #include <fmt/format.h>
 
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -39,6 +39,7 @@ struct MeasuredDesign {
   std::string failure;
   std::string machine_file;  // YAML of the machine (when asked for)
   int actuator = -1;         // chosen catalog entry (hexapod studies choosing the cheapest)
+  std::string drives;        // every drive's entry (a catalog with each_drive), in words
   bool ok() const { return failure.empty(); }
 };
 

@@ -276,7 +276,12 @@ std::pair<std::string, nlohmann::json> merged_design(const std::string& director
                            " of candidates/" + part.candidate->name + "\n" + d.machine_file);
     row += "designs/" + id + ".yaml";
   }
-  return {row + "," + structure_id(j) + "\n", design};
+  row += "," + structure_id(j);
+  if (s.problem->prices_each_drive()) {
+    design["drives"] = d.drives;
+    row += "," + csv_field(d.drives);
+  }
+  return {row + "\n", design};
 }
 
 MergedFront merged_front(const std::string& directory, const SynthesisStudy& study,
@@ -303,7 +308,8 @@ MergedFront merged_front(const std::string& directory, const SynthesisStudy& stu
   for (const DesignObjective& o : objectives)
     out.csv += "," + std::string(design_metric_name(o.metric));
   for (const std::string& g : g_names) out.csv += "," + g;
-  out.csv += ",home_height,parameters,machine_file,structure_design\n";
+  out.csv += ",home_height,parameters,machine_file,structure_design";
+  out.csv += first.problem->prices_each_drive() ? ",drives\n" : "\n";
   nlohmann::json designs = nlohmann::json::array();
   if (study.write_designs && !keep.empty())
     std::filesystem::create_directories(directory + "/designs");

@@ -255,6 +255,31 @@ DriveChoice choose_drives(const ActuatorCatalog& catalog,
   return out;
 }
 
+std::string drive_choice_text(const ActuatorCatalog& catalog,
+                              const std::vector<DriveGroupNeed>& needs, const DriveChoice& choice) {
+  std::string text;
+  for (std::size_t g = 0; g < needs.size() && g < choice.groups.size(); ++g) {
+    const DriveGroupNeed& need = needs[g];
+    const int entry = choice.groups[g].entry;
+    std::string name = "none";
+    if (entry >= 0)
+      name = need.revolute ? catalog.rotary_entries[static_cast<std::size_t>(entry)].name
+                           : catalog.entries[static_cast<std::size_t>(entry)].name;
+    std::string drives;  // q3-q5 for a run, q1,q4 otherwise
+    const std::vector<int>& d = need.drives;
+    bool run = d.size() > 2;
+    for (std::size_t k = 1; k < d.size(); ++k) run = run && d[k] == d[k - 1] + 1;
+    if (run) {
+      drives = fmt::format("q{}-q{}", d.front() + 1, d.back() + 1);
+    } else {
+      for (const int i : d) drives += fmt::format("{}q{}", drives.empty() ? "" : ",", i + 1);
+    }
+    text += fmt::format("{}{}{}{}", text.empty() ? "" : "; ", drives, drives.empty() ? "" : " ",
+                        need.count > 1 ? fmt::format("{} x {}", need.count, name) : name);
+  }
+  return text;
+}
+
 const RotaryEntry* find_rotary(const ActuatorCatalog& catalog, const std::string& name) {
   for (const RotaryEntry& e : catalog.rotary_entries)
     if (e.name == name) return &e;

@@ -166,6 +166,7 @@ struct DriveGroupNeed {
   double force = 0.0;       ///< N (N*m for revolute drives): the largest |tau| over the task
   double peak_force = 0.0;  ///< N (N*m): the largest short-time force (0: none)
   double stroke = 0.0;      ///< m: linear drives' travel (revolute drives: none)
+  std::vector<int> drives;  ///< the machine's drives in the group (0-based), for the text
 };
 
 /// The choice for one group: the entry's index (into `entries` or `rotary_entries`; -1 when none
@@ -196,6 +197,12 @@ double drive_cost_none(const ActuatorCatalog& catalog);
 /// order). Needs check_drive_pricing(catalog) empty; a group whose kind has no entries has
 /// overload +inf.
 DriveChoice choose_drives(const ActuatorCatalog& catalog, const std::vector<DriveGroupNeed>& needs);
+
+/// The choice in words, group by group: "q1 BSA32/800; q2 BSA32/800; q3-q5 3 x BSA32/500"
+/// (drives numbered from 1 as q_1..q_n; "none" where no entry carries; a group without drive
+/// numbers is named by its count only).
+std::string drive_choice_text(const ActuatorCatalog& catalog,
+                              const std::vector<DriveGroupNeed>& needs, const DriveChoice& choice);
 
 /// The rotary entry named `name`, or null.
 const RotaryEntry* find_rotary(const ActuatorCatalog& catalog, const std::string& name);

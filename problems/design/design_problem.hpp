@@ -59,6 +59,8 @@ struct DesignRecord {
   std::string failure;  ///< empty when the evaluation succeeded
   /// With an actuator catalog: the chosen entry's index, -1 when none carries the legs.
   int actuator = -1;
+  /// With a catalog pricing every drive: each group's entry in words (drive_choice_text).
+  std::string drives;
   bool ok() const { return failure.empty(); }
 };
 

@@ -171,6 +171,7 @@ DesignRecord HexapodDesignProblem::measure(const std::vector<double>& x) const {
   record.metrics = ev.metrics;
   record.aggregate = aggregate_fitness(ev);
   record.actuator = ev.actuator;
+  record.drives = ev.drives;
   record.failure = std::move(ev.failure);
   return record;
 }
@@ -257,12 +258,15 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
         .stroke = p[kStroke],
         .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
     if (spec_.each_drive) {
-      const DriveChoice drives = choose_drives(catalog, {{.count = 6,
-                                                          .force = need.force,
-                                                          .peak_force = need.peak_force,
-                                                          .stroke = need.stroke}});
+      const std::vector<DriveGroupNeed> legs = {{.count = 6,
+                                                 .force = need.force,
+                                                 .peak_force = need.peak_force,
+                                                 .stroke = need.stroke,
+                                                 .drives = {0, 1, 2, 3, 4, 5}}};
+      const DriveChoice drives = choose_drives(catalog, legs);
       metric(DesignMetric::drive_cost) = drives.cost;
       metric(DesignMetric::drive_overload) = drives.overload;
+      ev.drives = drive_choice_text(catalog, legs, drives);
     } else {
       const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
       ev.actuator = choice.entry;
@@ -291,7 +295,10 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   }
   measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);
-  if (!ev.ok()) ev.actuator = -1;
+  if (!ev.ok()) {
+    ev.actuator = -1;
+    ev.drives.clear();
+  }
   return ev;
 }
 

@@ -178,6 +178,7 @@ struct DesignEvaluation {
   /// With an actuator catalog: the index of the chosen entry (the cheapest that carries the
   /// legs), -1 when none does or the design failed.
   int actuator = -1;
+  std::string drives;  ///< each_drive: the legs' entry in words (drive_choice_text)
   bool ok() const { return failure.empty(); }
 };
 

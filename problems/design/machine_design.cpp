@@ -80,12 +80,13 @@ std::vector<DriveGroupNeed> drive_group_needs(const Machine& machine,
     auto at = std::find(group_of.begin(), group_of.end(), g);
     if (at == group_of.end()) {
       group_of.push_back(g);
-      needs.push_back({.revolute = machine.revolute_actuator(i), .count = 0});
+      needs.push_back({.revolute = machine.revolute_actuator(i), .count = 0, .drives = {}});
       at = group_of.end() - 1;
     }
     DriveGroupNeed& need = needs[static_cast<std::size_t>(at - group_of.begin())];
     ++need.count;
     need.force = std::max(need.force, std::abs(drive_force(i)));
+    need.drives.push_back(i);
     if (!need.revolute)
       need.stroke = std::max(need.stroke, machine.actuator_stroke(i).value_or(0.0));
   }
@@ -319,10 +320,11 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
         dynamics ? dynamics->moving_mass() : std::numeric_limits<double>::quiet_NaN();
   }
   if (spec_.actuator_catalog && spec_.each_drive) {
-    const DriveChoice choice =
-        choose_drives(*spec_.actuator_catalog, drive_group_needs(*machine, drive_force));
+    const std::vector<DriveGroupNeed> needs = drive_group_needs(*machine, drive_force);
+    const DriveChoice choice = choose_drives(*spec_.actuator_catalog, needs);
     metric(DesignMetric::drive_cost) = choice.cost;
     metric(DesignMetric::drive_overload) = choice.overload;
+    ev.drives = drive_choice_text(*spec_.actuator_catalog, needs, choice);
   } else if (spec_.actuator_catalog) {
     // Every drive gets the entry: the largest force over the task, the longest stroke.
     const ActuatorCatalog& catalog = *spec_.actuator_catalog;
@@ -361,6 +363,7 @@ DesignRecord MachineDesignProblem::measure(const std::vector<double>& x) const {
   record.failure = std::move(ev.failure);
   record.parameters = std::move(ev.parameters);
   record.actuator = ev.actuator;
+  record.drives = std::move(ev.drives);
   return record;
 }
 

@@ -335,6 +335,12 @@ TEST_F(DesignStudy, EveryDrivePricedHexapodStudy) {
     for (const ActuatorEntry& e : catalog.entries)
       some = some || (std::abs(cost - 6.0 * *e.cost) < 1e-12 && e.stroke >= stroke);
     EXPECT_TRUE(some) << cost;
+    // The drives named: six of the entry whose cost it is.
+    const std::string drives = d["drives"].get<std::string>();
+    ASSERT_EQ(drives.rfind("q1-q6 6 x ", 0), 0u) << drives;
+    const ActuatorEntry* entry = find_actuator(catalog, drives.substr(10));
+    ASSERT_NE(entry, nullptr) << drives;
+    EXPECT_NEAR(cost, 6.0 * *entry->cost, 1e-12);
     ++checked;
   }
   EXPECT_GT(checked, 0);

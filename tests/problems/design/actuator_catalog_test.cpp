@@ -186,10 +186,12 @@ TEST(ActuatorCatalog, EveryDrivePricedByItsGroup) {
   EXPECT_EQ(check_actuator_catalog(catalog), "");
   EXPECT_EQ(check_drive_pricing(catalog), "");
   EXPECT_DOUBLE_EQ(drive_cost_none(catalog), 60.0);  // twice T200's 30
-  const DriveChoice choice = choose_drives(
-      catalog, {{.count = 6, .force = 6633.0, .stroke = 0.18},     // CMS63S/200: 10.5 + 2 = 12.5
-                {.revolute = true, .count = 2, .force = 25.0},     // M40 (9; M40b ties, later)
-                {.revolute = true, .count = 1, .force = 250.0}});  // none: 60
+  // 6 legs: CMS63S/200 (10.5 + 2 = 12.5); 2 motors: M40 (9; M40b ties, later); 1 motor: none (60).
+  const std::vector<DriveGroupNeed> needs = {
+      {.count = 6, .force = 6633.0, .stroke = 0.18, .drives = {0, 1, 2, 3, 4, 5}},
+      {.revolute = true, .count = 2, .force = 25.0, .drives = {6, 8}},
+      {.revolute = true, .count = 1, .force = 250.0, .drives = {7}}};
+  const DriveChoice choice = choose_drives(catalog, needs);
   ASSERT_EQ(choice.groups.size(), 3u);
   EXPECT_EQ(choice.groups[0].entry, 4);
   EXPECT_DOUBLE_EQ(choice.groups[0].cost, 6 * 12.5);
@@ -202,22 +204,27 @@ TEST(ActuatorCatalog, EveryDrivePricedByItsGroup) {
   EXPECT_DOUBLE_EQ(choice.groups[2].cost, 60.0);
   EXPECT_DOUBLE_EQ(choice.groups[2].overload, 250.0 / 200.0 - 1.0);
   EXPECT_DOUBLE_EQ(choice.cost, 75.0 + 18.0 + 60.0);
+  // In words, with the drives' numbers (from 1): a run, a list, one drive.
+  EXPECT_EQ(drive_choice_text(catalog, needs, choice),
+            "q1-q6 6 x CMS63S/200; q7,q9 2 x M40; q8 none");
   EXPECT_DOUBLE_EQ(choice.overload, 0.25);
   // A peak against the peak ratings (the continuous one when none is given): 60 N*m peak is
   // beyond M40 (no peak rating: 40) and within M40b's 100.
   const DriveChoice peak =
-      choose_drives(catalog, {{.revolute = true, .force = 25.0, .peak_force = 60.0}});
+      choose_drives(catalog, {{.revolute = true, .force = 25.0, .peak_force = 60.0, .drives = {}}});
   EXPECT_EQ(peak.groups[0].entry, 2);
   // The overload's sign and the choice agree over a grid, for both kinds.
   for (double force = 0.0; force <= 21000.0; force += 1500.0)
     for (double stroke = 0.05; stroke <= 0.40; stroke += 0.05) {
-      const DriveChoice c = choose_drives(catalog, {{.force = force, .stroke = stroke}});
+      const DriveChoice c =
+          choose_drives(catalog, {{.force = force, .stroke = stroke, .drives = {}}});
       EXPECT_EQ(c.overload <= 0.0, c.groups[0].entry >= 0) << force << " " << stroke;
       const ActuatorChoice one = choose_actuator(catalog, {force, stroke, 0.0, 0.0});
       EXPECT_EQ(one.entry != nullptr, c.groups[0].entry >= 0) << force << " " << stroke;
     }
   for (double torque = 0.0; torque <= 260.0; torque += 5.0) {
-    const DriveChoice c = choose_drives(catalog, {{.revolute = true, .force = torque}});
+    const DriveChoice c =
+        choose_drives(catalog, {{.revolute = true, .force = torque, .drives = {}}});
     EXPECT_EQ(c.overload <= 0.0, c.groups[0].entry >= 0) << torque;
   }
   EXPECT_DOUBLE_EQ(choose_drives(catalog, {}).cost, 0.0);
