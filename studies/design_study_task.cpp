@@ -55,6 +55,49 @@ void read_installation_space(const YamlValue& value, InstallationSpace& space) {
   }
 }
 
+// The space moved by a synthesis structure's placement (its task centre), as the region is.
+void place_installation_space(InstallationSpace& space, const std::array<double, 3>& placement) {
+  const Eigen::Vector3d shift(placement[0], placement[1], placement[2]);
+  space.min += shift;
+  space.max += shift;
+  space.centre += shift.head<2>();
+  space.z_min += shift.z();
+  space.z_max += shift.z();
+}
+
+// obstacles: a list of {box: {min: [x, y, z], max: [x, y, z]}} (m, base frame), each moved by
+// the placement.
+void read_obstacles(const YamlValue& value, std::vector<ObstacleBox>& obstacles,
+                    const std::array<double, 3>& placement) {
+  const std::vector<YamlValue> items = value.elements();
+  if (items.empty())
+    value.fail("a list of at least one obstacle {box: {min, max}}", "an empty list");
+  for (const YamlValue& item : items) {
+    item.check_keys({"box"});
+    const YamlValue box = item.required("box");
+    box.check_keys({"min", "max"});
+    const auto lo = box.required("min").as_lengths(3), hi = box.required("max").as_lengths(3);
+    ObstacleBox o;
+    for (int a = 0; a < 3; ++a) {
+      o.min(a) = lo[static_cast<std::size_t>(a)] + placement[static_cast<std::size_t>(a)];
+      o.max(a) = hi[static_cast<std::size_t>(a)] + placement[static_cast<std::size_t>(a)];
+      if (!(hi[static_cast<std::size_t>(a)] > lo[static_cast<std::size_t>(a)]))
+        box.required("max").fail("max > min on every axis (m)", box.required("max").describe());
+    }
+    obstacles.push_back(o);
+  }
+}
+
+std::string obstacles_yaml(const std::vector<ObstacleBox>& obstacles) {
+  std::string t = "[";
+  for (const ObstacleBox& o : obstacles)
+    t +=
+        fmt::format("{}{{box: {{min: [{}, {}, {}], max: [{}, {}, {}]}}}}", t.size() > 1 ? ", " : "",
+                    format_number(o.min.x()), format_number(o.min.y()), format_number(o.min.z()),
+                    format_number(o.max.x()), format_number(o.max.y()), format_number(o.max.z()));
+  return t + "]";
+}
+
 std::string installation_space_yaml(const InstallationSpace& s) {
   auto list = [](std::initializer_list<double> v) {
     std::string t = "[";
@@ -83,7 +126,8 @@ PoseBox task_region(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
 
 void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study, std::string& yaml,
                const std::array<double, 3>& placement) {
-  task.check_keys({"region", "orientations", "wrench", "a_max", "workspace", "installation_space"});
+  task.check_keys({"region", "orientations", "wrench", "a_max", "workspace", "installation_space",
+                   "obstacles"});
   TaskOrientationsSection orientations;
   if (auto o = task.optional("orientations")) read_fields(*o, orientations);
   const double tilt_deg = orientations.tilt_deg, yaw_deg = orientations.yaw_deg,
@@ -165,7 +209,12 @@ void read_task(const YamlValue& task, DesignTask& task_spec, DesignStudy& study,
   }
   if (auto space = task.optional("installation_space")) {
     read_installation_space(*space, task_spec.installation_space);
+    place_installation_space(task_spec.installation_space, placement);
     yaml += "  installation_space: " + installation_space_yaml(task_spec.installation_space) + "\n";
+  }
+  if (auto obstacles = task.optional("obstacles")) {
+    read_obstacles(*obstacles, task_spec.obstacles, placement);
+    yaml += "  obstacles: " + obstacles_yaml(task_spec.obstacles) + "\n";
   }
   TaskWorkspaceSection workspace;
   if (auto w = task.optional("workspace")) read_fields(*w, workspace);

@@ -38,6 +38,23 @@ SketchEnvelope sketch_envelope(const Machine& machine, const std::vector<Pose>& 
   return out;
 }
 
+std::optional<double> sketch_intrusion(const Machine& machine, MachineData& data, const Pose& pose,
+                                       const std::vector<ObstacleBox>& obstacles) {
+  if (obstacles.empty()) return std::nullopt;
+  MachineSketch sketch;
+  if (!machine.sketch(data, pose, sketch)) return std::nullopt;
+  double deepest = -std::numeric_limits<double>::infinity();
+  for (const ObstacleBox& box : obstacles) {
+    for (const MachineSketch::Line& line : sketch.lines)
+      if (line.part != MachineSketch::Part::kTool)
+        deepest = std::max(deepest, intrusion(box, line.from, line.to));
+    for (const Eigen::Vector3d& p : sketch.base_joints) deepest = std::max(deepest, depth(box, p));
+    for (const Eigen::Vector3d& p : sketch.platform_joints)
+      deepest = std::max(deepest, depth(box, p));
+  }
+  return deepest;
+}
+
 std::optional<double> sketch_excess(const Machine& machine, MachineData& data, const Pose& pose,
                                     const InstallationSpace& space) {
   std::vector<Eigen::Vector3d> points;

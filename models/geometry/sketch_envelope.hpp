@@ -7,6 +7,8 @@
 // sketch, so structures compare: the drawn machine, not its frame or covers (a lower bound of the
 // space it needs).
 //
+// The same drawing against obstacles: how deep its lines (not the tool's) and joints go into
+// them.
 // The same drawing against an installation space (models/geometry/installation_space.hpp): how
 // far the machine drawn at a pose sticks out of it, over the ends of its lines (segments: a
 // convex region holds a segment when it holds both ends), its joints and the TCP.
@@ -24,6 +26,7 @@
 #include "models/core/machine.hpp"
 #include "models/core/pose.hpp"
 #include "models/geometry/installation_space.hpp"
+#include "models/geometry/obstacle.hpp"
 
 namespace pkmopt {
 
@@ -35,6 +38,13 @@ struct SketchEnvelope {
 
 /// The envelope over the poses (the machine draws with its own data).
 SketchEnvelope sketch_envelope(const Machine& machine, const std::vector<Pose>& poses);
+
+/// How deep the machine drawn at `pose` goes into the obstacles (m; <= 0 when it keeps out): the
+/// largest intrusion (models/geometry/obstacle.hpp) of its lines and joints, except the tool line
+/// (from the platform to the TCP, which must reach the work); nullopt when the model does not draw
+/// the pose or there are no obstacles.
+std::optional<double> sketch_intrusion(const Machine& machine, MachineData& data, const Pose& pose,
+                                       const std::vector<ObstacleBox>& obstacles);
 
 /// How far the machine drawn at `pose` sticks out of `space` (m; <= 0 inside); nullopt when the
 /// model does not draw the pose. `data` is the machine's (made by machine.make_data()).

@@ -142,6 +142,7 @@ NeededMetrics check_design_goals(const std::string& where,
     throw std::invalid_argument(where + ": expected at least one task pose, found none");
   try {
     check_installation_space(task.installation_space);
+    for (const ObstacleBox& box : task.obstacles) check_obstacle(box);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(where + ": task " + e.what());
   }

@@ -16,6 +16,7 @@
 #include "models/core/machine.hpp"
 #include "models/core/pose_box.hpp"
 #include "models/geometry/installation_space.hpp"
+#include "models/geometry/obstacle.hpp"
 #include "models/workspace/workspace.hpp"
 
 namespace pkmopt {
@@ -136,6 +137,10 @@ struct DesignTask {
   /// their shape, base and platform joints; models/geometry/installation_space.hpp); part of the
   /// reachability row.
   InstallationSpace installation_space;
+  /// Fixed bodies the machine must keep out of at every task pose (base frame: its drawing's lines
+  /// and joints, not the tool; models/geometry/sketch_envelope.hpp sketch_intrusion); part of the
+  /// reachability row.
+  std::vector<ObstacleBox> obstacles;
 };
 
 /// Positions on an n_x x n_y x n_z grid of the box centre +- half_extents (a count of 1 puts the

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "models/dynamics/acceleration_capability.hpp"
+#include "models/geometry/sketch_envelope.hpp"
 #include "models/hexapod/swept_envelope.hpp"
 #include "models/sample_machines.hpp"
 #include "models/workspace/mode_certificate.hpp"
@@ -211,6 +212,18 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   } catch (const std::invalid_argument& error) {
     ev.failure = fmt::format("invalid machine: {}", error.what());
     return ev;
+  }
+  if (!spec_.task.obstacles.empty()) {
+    // The drawn hexapod must keep out of the obstacles: how deep it goes in (m) joins the
+    // reachability terms.
+    const std::unique_ptr<MachineData> sketch_data = hexapod->make_data();
+    for (Pose pose : spec_.task.poses) {
+      pose.position.z() += p[kHomeHeight];
+      const std::optional<double> in =
+          sketch_intrusion(*hexapod, *sketch_data, pose, spec_.task.obstacles);
+      if (in) ev.reach_violation = std::max(ev.reach_violation, *in);
+    }
+    ev.reachable = ev.reach_violation <= 0.0;
   }
   auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
   const bool compliance = need(DesignMetric::tcp_deflection_max) ||

@@ -37,12 +37,13 @@ void HexapodDesignProblem::set_up_smooth_formulation(const std::string& where) {
   const HexapodJointLimits& limits = spec_.machine_template.joints;
   const std::size_t reach_per_pose = 12 + (std::isfinite(limits.base_max_angle) ? 6 : 0) +
                                      (std::isfinite(limits.platform_max_angle) ? 6 : 0);
-  if ((spec_.machine_template.leg_shape.present() || spec_.task.installation_space.present()) &&
+  if ((spec_.machine_template.leg_shape.present() || spec_.task.installation_space.present() ||
+       !spec_.task.obstacles.empty()) &&
       spec_.require_reachable)
     throw std::invalid_argument(fmt::format(
         "{}: the legs' interference (machine.legs.diameter, cylinder, rod) and the task's "
-        "installation_space have no smooth formulation; use an evolutionary optimizer "
-        "(aggregate formulation)",
+        "installation_space and obstacles have no smooth formulation; use an evolutionary "
+        "optimizer (aggregate formulation)",
         where));
   if (spec_.task.acceleration_max > 0.0)
     throw std::invalid_argument(fmt::format(

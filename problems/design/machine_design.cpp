@@ -264,6 +264,8 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
   double reach_sum = 0.0;
   const InstallationSpace& space = spec_.task.installation_space;
   const std::unique_ptr<MachineData> sketch_data = space.present() ? machine->make_data() : nullptr;
+  const std::unique_ptr<MachineData> obstacle_data =
+      spec_.task.obstacles.empty() ? nullptr : machine->make_data();
   for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
     Pose pose = spec_.task.poses[k];
     pose.position.z() += h;
@@ -274,6 +276,12 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
       // (m, at most 1 per pose) is a term of the reach row, as an unreachable pose's excess.
       const std::optional<double> out = sketch_excess(*machine, *sketch_data, pose, space);
       if (out && *out > 0.0) reach_sum += std::min(1.0, *out);
+    }
+    // So must it keep out of the obstacles (how deep it goes in, m, at most 1 per pose).
+    if (obstacle_data != nullptr) {
+      const std::optional<double> in =
+          sketch_intrusion(*machine, *obstacle_data, pose, spec_.task.obstacles);
+      if (in && *in > 0.0) reach_sum += std::min(1.0, *in);
     }
     if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
     // A singular pose fails the design when its statics blow up (a parallel machine: forces

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/format/csv.hpp"
 #include "io/format/input_error.hpp"
 
 namespace pkmopt {
@@ -87,6 +88,37 @@ TEST(SynthesisStudy, ThreeAxisTaskKeepsTheTranslationalStructures) {
   const SynthesisCandidate& hexapod = candidate(s, "hexapod");
   EXPECT_NEAR(hexapod.study->task_centre[2], 0.9, 1e-12);
   EXPECT_NEAR(candidate(s, "linear_delta").study->task_centre[2], -0.4, 1e-12);
+}
+
+// The installation space and the obstacles are written where the region is: each structure gets
+// them moved to its task centre, with the region; the resolved file holds them moved.
+TEST(SynthesisStudy, SpaceAndObstaclesMoveWithTheTask) {
+  const SynthesisStudy s = load(study_text(
+      "[hexapod, linear_delta]",
+      kBoxTask + "  installation_space: {box: {min: [-1, -1, -1.5], max: [1, 1, 1]}}\n"
+                 "  obstacles: [{box: {min: [0.5, 0.5, -0.2], max: [0.7, 0.7, 0.3]}}]\n"));
+  for (const char* name : {"hexapod", "linear_delta"}) {
+    const SynthesisCandidate& c = candidate(s, name);
+    const double z = c.study->task_centre[2];
+    const DesignTask& task = c.study->problem->task();
+    EXPECT_NEAR(task.installation_space.min.z(), -1.5 + z, 1e-12) << name;
+    EXPECT_NEAR(task.installation_space.max.z(), 1.0 + z, 1e-12) << name;
+    ASSERT_EQ(task.obstacles.size(), 1u);
+    EXPECT_NEAR(task.obstacles[0].min.z(), -0.2 + z, 1e-12) << name;
+    EXPECT_NEAR(task.obstacles[0].max.x(), 0.7, 1e-12) << name;
+    EXPECT_NE(c.study->resolved_yaml.find("  obstacles: [{box: {min: [0.5, 0.5, " +
+                                          format_number(-0.2 + z) + "], max: [0.7, 0.7, " +
+                                          format_number(0.3 + z) + "]}}]\n"),
+              std::string::npos)
+        << c.study->resolved_yaml;
+  }
+  EXPECT_NE(load_error(study_text("[hexapod]",
+                                  kBoxTask + "  obstacles: [{box: {min: [0, 0, 0], max: [1, 0, "
+                                             "1]}}]\n")),
+            "");
+  EXPECT_NE(load_error(study_text("[hexapod]", kBoxTask + "  obstacles: []\n"))
+                .find("task.obstacles: expected a list of at least one obstacle"),
+            std::string::npos);
 }
 
 TEST(SynthesisStudy, SixDofTaskKeepsOnlySixDofStructures) {

@@ -118,5 +118,43 @@ TEST(SketchEnvelope, ExcessIsTheFarthestDrawnPointOutside) {
   EXPECT_FALSE(sketch_excess(*delta, *data, pose, cylinder).has_value());
 }
 
+// The intrusion into obstacles is the deepest drawn line (not the tool's) or joint, recomputed
+// here from the drawing; the tool may reach into an obstacle.
+TEST(SketchEnvelope, IntrusionIsTheDeepestDrawnLineOrJointButTheTool) {
+  const std::unique_ptr<Machine> delta = make_linear_delta(LinearDeltaDesign{});
+  const auto data = delta->make_data();
+  Pose pose;
+  pose.position = {0.02, -0.03, 0.2};
+  MachineSketch s;
+  ASSERT_TRUE(delta->sketch(*data, pose, s));
+  // A box around the first guide's lower half and a box around the TCP only.
+  const MachineSketch::Line* guide = nullptr;
+  const MachineSketch::Line* tool = nullptr;
+  for (const auto& line : s.lines) {
+    if (line.part == MachineSketch::Part::kGuide && guide == nullptr) guide = &line;
+    if (line.part == MachineSketch::Part::kTool) tool = &line;
+  }
+  ASSERT_NE(guide, nullptr);
+  const Eigen::Vector3d mid = 0.5 * (guide->from + guide->to);
+  const ObstacleBox column{mid - Eigen::Vector3d(0.03, 0.03, 0.05),
+                           mid + Eigen::Vector3d(0.03, 0.03, 0.05)};
+  double expected = -1e9;
+  for (const auto& line : s.lines)
+    if (line.part != MachineSketch::Part::kTool)
+      expected = std::max(expected, intrusion(column, line.from, line.to));
+  for (const auto& p : s.base_joints) expected = std::max(expected, depth(column, p));
+  for (const auto& p : s.platform_joints) expected = std::max(expected, depth(column, p));
+  const std::optional<double> in = sketch_intrusion(*delta, *data, pose, {column});
+  ASSERT_TRUE(in.has_value());
+  EXPECT_NEAR(*in, expected, 1e-12);
+  EXPECT_NEAR(*in, 0.03, 1e-12);  // the guide runs through the column's middle
+  if (tool != nullptr) {
+    const ObstacleBox at_tcp{s.tcp - Eigen::Vector3d::Constant(0.005),
+                             s.tcp + Eigen::Vector3d::Constant(0.005)};
+    EXPECT_LE(*sketch_intrusion(*delta, *data, pose, {at_tcp}), 0.0);
+  }
+  EXPECT_FALSE(sketch_intrusion(*delta, *data, pose, {}).has_value());
+}
+
 }  // namespace
 }  // namespace pkmopt

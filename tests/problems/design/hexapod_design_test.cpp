@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "models/core/machine_sketch.hpp"
 #include "models/dynamics/acceleration_capability.hpp"
 #include "models/hexapod/swept_envelope.hpp"
 #include "models/workspace/mode_certificate.hpp"
@@ -325,6 +326,32 @@ TEST(HexapodDesign, LegDiameterRemovesTheDesignsWhoseLegsCollide) {
   }
   EXPECT_GT(both, 5);
   EXPECT_GT(removed, 5);
+}
+
+// Obstacles: a box around a base joint (the joints on a circle of 0.6 m at z = 0) takes the
+// hexapod's drawing 20 mm deep (the box's half height); moved aside it changes nothing; the smooth
+// formulation refuses obstacles.
+TEST(HexapodDesign, ObstaclesCountInReachability) {
+  HexapodDesignSpec spec;
+  spec.objectives = {{DesignMetric::machine_size, Sense::minimize}};
+  spec.task.poses = {Pose{{0, 0, 0.9}, {0, 0, 0}}};
+  const double free = HexapodDesignProblem(spec).evaluate({}).reach_violation;
+  const std::unique_ptr<Machine> hexapod = std::make_unique<Hexapod>(spec.machine_template);
+  MachineSketch sketch;
+  ASSERT_TRUE(hexapod->sketch(*hexapod->make_data(), spec.task.poses[0], sketch));
+  const Eigen::Vector3d joint = sketch.base_joints.front();
+  EXPECT_NEAR(joint.head<2>().norm(), 0.6, 1e-9);
+  spec.task.obstacles = {
+      {joint - Eigen::Vector3d(0.05, 0.05, 0.02), joint + Eigen::Vector3d(0.05, 0.05, 0.02)}};
+  const DesignEvaluation blocked = HexapodDesignProblem(spec).evaluate({});
+  EXPECT_FALSE(blocked.reachable);
+  EXPECT_NEAR(blocked.reach_violation, 0.02, 1e-12);  // the joint at the box's centre
+  spec.task.obstacles[0].min.z() += 1.5;
+  spec.task.obstacles[0].max.z() += 1.5;
+  EXPECT_EQ(HexapodDesignProblem(spec).evaluate({}).reach_violation, free);
+  HexapodDesignSpec smooth = test_specs::smooth_spec();
+  smooth.task.obstacles = spec.task.obstacles;
+  EXPECT_THROW(HexapodDesignProblem{smooth}, std::invalid_argument);
 }
 
 // The installation space: the sample hexapod at home fits a box of its base (radius 0.6 m) and

@@ -263,6 +263,56 @@ TEST(MachineDesign, CarriagesGetTheCheapestCatalogEntryThatCarriesThem) {
   EXPECT_THROW(MachineDesignProblem{delta}, std::invalid_argument);
 }
 
+// Obstacles: at every lifted task pose the drawn machine (its lines but the tool's, its joints)
+// must keep out; how deep it goes in (here from the drawing, by hand: a column around the first
+// guide's middle, which every pose draws through it), at most 1 m per pose, joins the reach row.
+TEST(MachineDesign, ObstaclesKeepTheDrawnMachineOut) {
+  MachineDesignSpec spec = linear_delta_spec();
+  const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
+  const MachineDesignEvaluation free = MachineDesignProblem(spec).evaluate(x);
+  ASSERT_TRUE(free.ok()) << free.failure;
+  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x());
+  const auto data = machine->make_data();
+  MachineSketch first;
+  Pose lifted = spec.task.poses.front();
+  lifted.position.z() += 0.1;
+  ASSERT_TRUE(machine->sketch(*data, lifted, first));
+  const MachineSketch::Line& guide = first.lines.front();
+  ASSERT_EQ(guide.part, MachineSketch::Part::kGuide);
+  const Eigen::Vector3d mid = 0.5 * (guide.from + guide.to);
+  const ObstacleBox column{mid - Eigen::Vector3d(0.02, 0.02, 0.01),
+                           mid + Eigen::Vector3d(0.02, 0.02, 0.01)};
+  // The fixed guide goes 10 mm deep into the column at every pose (its z half-extent); nothing
+  // else of the drawing comes closer.
+  double intruding = 0.0;
+  for (Pose pose : spec.task.poses) {
+    pose.position.z() += 0.1;
+    MachineSketch sketch;
+    ASSERT_TRUE(machine->sketch(*data, pose, sketch));
+    double deepest = -kInf;
+    for (const MachineSketch::Line& line : sketch.lines)
+      if (line.part != MachineSketch::Part::kTool)
+        deepest = std::max(deepest, intrusion(column, line.from, line.to));
+    for (const auto& p : sketch.base_joints) deepest = std::max(deepest, depth(column, p));
+    for (const auto& p : sketch.platform_joints) deepest = std::max(deepest, depth(column, p));
+    EXPECT_NEAR(deepest, 0.01, 1e-12);
+    intruding += std::min(1.0, std::max(0.0, deepest));
+  }
+  spec.task.obstacles = {column};
+  const MachineDesignEvaluation blocked = MachineDesignProblem(spec).evaluate(x);
+  EXPECT_NEAR(blocked.reach_violation,
+              free.reach_violation + intruding / static_cast<double>(spec.task.poses.size()),
+              1e-12);
+  EXPECT_FALSE(blocked.reachable);
+  // Moved 2 m aside, it is out of every drawing.
+  spec.task.obstacles[0].min.x() += 2.0;
+  spec.task.obstacles[0].max.x() += 2.0;
+  EXPECT_EQ(MachineDesignProblem(spec).evaluate(x).reach_violation, free.reach_violation);
+  // An empty box is refused.
+  spec.task.obstacles[0].max.x() = spec.task.obstacles[0].min.x();
+  EXPECT_THROW(MachineDesignProblem{spec}, std::invalid_argument);
+}
+
 // A catalog pricing every drive: ball-screw axes and cylinders, servo and torque motors.
 ActuatorCatalog every_drive_catalog() {
   ActuatorCatalog c;
