@@ -88,6 +88,30 @@ void describe_fields(Fields& f, ActuatorCatalog& c) {
          "a comparison table of drive principles (not used for sizing)");
 }
 
+namespace {
+
+// The entries of one list: each read by its field list, named, its peak rating at least its
+// rating, its name not used before (in either list).
+template <class Entry>
+void read_entries(const std::vector<YamlValue>& items, const char* peak_key,
+                  std::string_view peak_expected, std::optional<double> Entry::*peak,
+                  double Entry::*rating, std::set<std::string>& names, std::vector<Entry>& out) {
+  for (const YamlValue& item : items) {
+    Entry entry;
+    read_fields(item, entry);
+    if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
+    if ((entry.*peak) && *(entry.*peak) < entry.*rating)
+      item.required(peak_key).fail(fmt::format("{} = {}", peak_expected, entry.*rating),
+                                   fmt::format("{}", *(entry.*peak)));
+    if (!names.insert(entry.name).second)
+      item.required("name").fail("a name not used by an earlier entry",
+                                 "'" + entry.name + "' again");
+    out.push_back(std::move(entry));
+  }
+}
+
+}  // namespace
+
 ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
   ActuatorCatalog catalog;
   read_fields(root, catalog);
@@ -102,37 +126,11 @@ ActuatorCatalog read_actuator_catalog(const YamlValue& root) {
     if (rotary) rotary->fail("a list of at least one entry", "an empty list");
     root.fail("entries (linear drives) or rotary_entries (rotary drives)", "neither");
   }
-  std::set<std::string> names;
-  for (const YamlValue& item : items) {
-    ActuatorEntry entry;
-    read_fields(item, entry);
-    if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
-    if (entry.peak_force && *entry.peak_force < entry.max_force) {
-      item.required("peak_force")
-          .fail(fmt::format("a peak force (N) >= max_force = {}", entry.max_force),
-                fmt::format("{}", *entry.peak_force));
-    }
-    if (!names.insert(entry.name).second) {
-      item.required("name").fail("a name not used by an earlier entry",
-                                 "'" + entry.name + "' again");
-    }
-    catalog.entries.push_back(std::move(entry));
-  }
-  for (const YamlValue& item : rotary_items) {
-    RotaryEntry entry;
-    read_fields(item, entry);
-    if (entry.name.empty()) item.required("name").fail("a non-empty name", "''");
-    if (entry.peak_torque && *entry.peak_torque < entry.max_torque) {
-      item.required("peak_torque")
-          .fail(fmt::format("a peak torque (N*m) >= max_torque = {}", entry.max_torque),
-                fmt::format("{}", *entry.peak_torque));
-    }
-    if (!names.insert(entry.name).second) {
-      item.required("name").fail("a name not used by an earlier entry",
-                                 "'" + entry.name + "' again");
-    }
-    catalog.rotary_entries.push_back(std::move(entry));
-  }
+  std::set<std::string> names;  // unique across the linear and rotary entries
+  read_entries(items, "peak_force", "a peak force (N) >= max_force", &ActuatorEntry::peak_force,
+               &ActuatorEntry::max_force, names, catalog.entries);
+  read_entries(rotary_items, "peak_torque", "a peak torque (N*m) >= max_torque",
+               &RotaryEntry::peak_torque, &RotaryEntry::max_torque, names, catalog.rotary_entries);
   if (const auto types = root.optional("drive_types")) {
     for (const YamlValue& item : types->elements()) {
       DriveType type;

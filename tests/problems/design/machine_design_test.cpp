@@ -58,6 +58,20 @@ LinearDeltaDesign design_at_x(LinearDeltaDesign t = linear_delta_template()) {
   return t;
 }
 
+// design_at_x()'s machine drawn at the spec's task poses lifted by x's home_height (0.1 m).
+std::vector<MachineSketch> drawn_at_lifted_poses(const MachineDesignSpec& spec) {
+  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x());
+  const auto data = machine->make_data();
+  std::vector<MachineSketch> sketches;
+  for (Pose pose : spec.task.poses) {
+    pose.position.z() += 0.1;
+    MachineSketch sketch;
+    EXPECT_TRUE(machine->sketch(*data, pose, sketch));
+    sketches.push_back(sketch);
+  }
+  return sketches;
+}
+
 TEST(MachineDesign, MetricsAreTheWorstCasesOfMachineAnalyzeOverTheLiftedTask) {
   const MachineDesignProblem problem(linear_delta_spec());
   const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
@@ -176,14 +190,9 @@ TEST(MachineDesign, InstallationSpaceHoldsTheDrawnMachine) {
   const MachineDesignEvaluation free = MachineDesignProblem(spec).evaluate(x);
   ASSERT_TRUE(free.ok()) << free.failure;
 
-  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x());
-  const auto data = machine->make_data();
   std::vector<std::vector<Eigen::Vector3d>> drawn;
   double lowest = kInf;
-  for (Pose pose : spec.task.poses) {
-    pose.position.z() += 0.1;
-    MachineSketch sketch;
-    ASSERT_TRUE(machine->sketch(*data, pose, sketch));
+  for (const MachineSketch& sketch : drawn_at_lifted_poses(spec)) {
     std::vector<Eigen::Vector3d> points = {sketch.tcp};
     for (const MachineSketch::Line& line : sketch.lines) {
       points.push_back(line.from);
@@ -271,13 +280,8 @@ TEST(MachineDesign, ObstaclesKeepTheDrawnMachineOut) {
   const std::vector<double> x = {0.7, 0.6, 0.1};  // rod, stroke, home_height
   const MachineDesignEvaluation free = MachineDesignProblem(spec).evaluate(x);
   ASSERT_TRUE(free.ok()) << free.failure;
-  const std::unique_ptr<Machine> machine = make_linear_delta(design_at_x());
-  const auto data = machine->make_data();
-  MachineSketch first;
-  Pose lifted = spec.task.poses.front();
-  lifted.position.z() += 0.1;
-  ASSERT_TRUE(machine->sketch(*data, lifted, first));
-  const MachineSketch::Line& guide = first.lines.front();
+  const std::vector<MachineSketch> sketches = drawn_at_lifted_poses(spec);
+  const MachineSketch::Line& guide = sketches.front().lines.front();
   ASSERT_EQ(guide.part, MachineSketch::Part::kGuide);
   const Eigen::Vector3d mid = 0.5 * (guide.from + guide.to);
   const ObstacleBox column{mid - Eigen::Vector3d(0.02, 0.02, 0.01),
@@ -285,10 +289,7 @@ TEST(MachineDesign, ObstaclesKeepTheDrawnMachineOut) {
   // The fixed guide goes 10 mm deep into the column at every pose (its z half-extent); nothing
   // else of the drawing comes closer.
   double intruding = 0.0;
-  for (Pose pose : spec.task.poses) {
-    pose.position.z() += 0.1;
-    MachineSketch sketch;
-    ASSERT_TRUE(machine->sketch(*data, pose, sketch));
+  for (const MachineSketch& sketch : sketches) {
     double deepest = -kInf;
     for (const MachineSketch::Line& line : sketch.lines)
       if (line.part != MachineSketch::Part::kTool)
