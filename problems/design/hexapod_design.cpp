@@ -213,99 +213,15 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     ev.failure = fmt::format("invalid machine: {}", error.what());
     return ev;
   }
-  if (!spec_.task.obstacles.empty()) {
-    // The drawn hexapod must keep out of the obstacles: how deep it goes in (m) joins the
-    // reachability terms.
-    const std::unique_ptr<MachineData> sketch_data = hexapod->make_data();
-    for (Pose pose : spec_.task.poses) {
-      pose.position.z() += p[kHomeHeight];
-      const std::optional<double> in =
-          sketch_intrusion(*hexapod, *sketch_data, pose, spec_.task.obstacles);
-      if (in) ev.reach_violation = std::max(ev.reach_violation, *in);
-    }
-    ev.reachable = ev.reach_violation <= 0.0;
-  }
-  auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
-  const bool compliance = need(DesignMetric::tcp_deflection_max) ||
-                          need(DesignMetric::stiffness_min_loaded) ||
-                          need(DesignMetric::natural_frequency_min);
-  const bool dynamic_force = need(DesignMetric::actuator_force_dynamic_max);
-  if (need(DesignMetric::stiffness_min) || need(DesignMetric::singularity_margin) ||
-      need(DesignMetric::leg_force_max) || need(DesignMetric::tcp_error_max) || compliance ||
-      dynamic_force || need(DesignMetric::leg_clearance_min)) {
-    HexapodData data(*hexapod);
-    data.compliance_metrics = compliance;
-    PoseMetrics m;
-    TaskWorstCase worst;
-    Eigen::VectorXd bound;
-    for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
-      Pose pose = spec_.task.poses[k];
-      pose.position.z() += p[kHomeHeight];
-      hexapod->compute_metrics(data, pose, spec_.task.wrench, m);
-      if (m.singular && ev.failure.empty())
-        ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
-                                 pose.position.x(), pose.position.y(), pose.position.z());
-      worst.add(m);
-      if (dynamic_force) {
-        double& force = metric(DesignMetric::actuator_force_dynamic_max);
-        if (acceleration_force_bound(*hexapod, data, pose, spec_.task.wrench,
-                                     spec_.task.acceleration_max, bound)) {
-          force = std::max(force, bound.maxCoeff());
-        } else {
-          force = std::numeric_limits<double>::infinity();  // singular: check_finite_metrics
-        }
-      }
-    }
-    worst.store(ev.metrics);
-  }
-  if (need(DesignMetric::moving_mass)) {
+  const double h = p[kHomeHeight];
+  if (!spec_.task.obstacles.empty()) keep_out_of_obstacles(*hexapod, h, ev);
+  measure_task_poses(*hexapod, h, ev);
+  if (needed_[static_cast<int>(DesignMetric::moving_mass)]) {
     ev.metrics[static_cast<int>(DesignMetric::moving_mass)] = moving_mass(
         spec_.machine_template.masses, std::vector<LegBodyKind>(6, LegBodyKind::kTelescopic));
   }
-  if (spec_.actuator_catalog) {
-    const ActuatorCatalog& catalog = *spec_.actuator_catalog;
-    // The cutting load against the continuous rating; with a_max, the accelerated task's force
-    // against the peak rating too.
-    const ActuatorRequirement need{
-        .force = metric(DesignMetric::leg_force_max),
-        .stroke = p[kStroke],
-        .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
-    if (spec_.each_drive) {
-      const std::vector<DriveGroupNeed> legs = {{.count = 6,
-                                                 .force = need.force,
-                                                 .peak_force = need.peak_force,
-                                                 .stroke = need.stroke,
-                                                 .drives = {0, 1, 2, 3, 4, 5}}};
-      const DriveChoice drives = choose_drives(catalog, legs);
-      metric(DesignMetric::drive_cost) = drives.cost;
-      metric(DesignMetric::drive_overload) = drives.overload;
-      ev.drives = drive_choice_text(catalog, legs, drives);
-    } else {
-      const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
-      ev.actuator = choice.entry;
-      metric(DesignMetric::actuator_cost) = choice.cost;
-      metric(DesignMetric::actuator_overload) = choice.overload;
-    }
-  }
-  if (need(DesignMetric::task_singularity_free)) {
-    PoseBox region = *spec_.task.region;  // check_design_goals: present when needed
-    region.position_lo.z() += p[kHomeHeight];
-    region.position_hi.z() += p[kHomeHeight];
-    metric(DesignMetric::task_singularity_free) = singularity_free_share(*hexapod, region);
-  }
-  if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint) ||
-      need(DesignMetric::task_margin)) {
-    std::vector<Pose> poses = spec_.task.poses;
-    for (Pose& pose : poses) pose.position.z() += p[kHomeHeight];
-    if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
-      const SweptEnvelope envelope = swept_envelope(*hexapod, poses);
-      metric(DesignMetric::swept_volume) = envelope.volume;
-      metric(DesignMetric::footprint) = envelope.footprint;
-    }
-    if (need(DesignMetric::task_margin))
-      metric(DesignMetric::task_margin) =
-          task_margin(*hexapod, poses, task_margin_limit(spec_.task.poses));
-  }
+  if (spec_.actuator_catalog) price_legs(p[kStroke], ev);
+  measure_task_region(*hexapod, h, ev);
   measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);
   if (!ev.ok()) {
@@ -313,6 +229,110 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
     ev.drives.clear();
   }
   return ev;
+}
+
+void HexapodDesignProblem::keep_out_of_obstacles(const Hexapod& hexapod, double h,
+                                                 DesignEvaluation& ev) const {
+  // The drawn hexapod must keep out of the obstacles: how deep it goes in (m) joins the
+  // reachability terms.
+  const std::unique_ptr<MachineData> sketch_data = hexapod.make_data();
+  for (Pose pose : spec_.task.poses) {
+    pose.position.z() += h;
+    const std::optional<double> in =
+        sketch_intrusion(hexapod, *sketch_data, pose, spec_.task.obstacles);
+    if (in) ev.reach_violation = std::max(ev.reach_violation, *in);
+  }
+  ev.reachable = ev.reach_violation <= 0.0;
+}
+
+void HexapodDesignProblem::measure_task_poses(const Hexapod& hexapod, double h,
+                                              DesignEvaluation& ev) const {
+  auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
+  const bool compliance = need(DesignMetric::tcp_deflection_max) ||
+                          need(DesignMetric::stiffness_min_loaded) ||
+                          need(DesignMetric::natural_frequency_min);
+  const bool dynamic_force = need(DesignMetric::actuator_force_dynamic_max);
+  if (!need(DesignMetric::stiffness_min) && !need(DesignMetric::singularity_margin) &&
+      !need(DesignMetric::leg_force_max) && !need(DesignMetric::tcp_error_max) && !compliance &&
+      !dynamic_force && !need(DesignMetric::leg_clearance_min))
+    return;
+  HexapodData data(hexapod);
+  data.compliance_metrics = compliance;
+  PoseMetrics m;
+  TaskWorstCase worst;
+  Eigen::VectorXd bound;
+  double& force = ev.metrics[static_cast<int>(DesignMetric::actuator_force_dynamic_max)];
+  for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
+    Pose pose = spec_.task.poses[k];
+    pose.position.z() += h;
+    hexapod.compute_metrics(data, pose, spec_.task.wrench, m);
+    if (m.singular && ev.failure.empty())
+      ev.failure = fmt::format("singular at task pose {} (x {:.4g}, y {:.4g}, z {:.4g} m)", k,
+                               pose.position.x(), pose.position.y(), pose.position.z());
+    worst.add(m);
+    if (dynamic_force) {
+      if (acceleration_force_bound(hexapod, data, pose, spec_.task.wrench,
+                                   spec_.task.acceleration_max, bound)) {
+        force = std::max(force, bound.maxCoeff());
+      } else {
+        force = std::numeric_limits<double>::infinity();  // singular: check_finite_metrics
+      }
+    }
+  }
+  worst.store(ev.metrics);
+}
+
+void HexapodDesignProblem::price_legs(double stroke, DesignEvaluation& ev) const {
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
+  const ActuatorCatalog& catalog = *spec_.actuator_catalog;
+  // The cutting load against the continuous rating; with a_max, the accelerated task's force
+  // against the peak rating too.
+  const bool dynamic_force = needed_[static_cast<int>(DesignMetric::actuator_force_dynamic_max)];
+  const ActuatorRequirement need{
+      .force = metric(DesignMetric::leg_force_max),
+      .stroke = stroke,
+      .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
+  if (spec_.each_drive) {
+    const std::vector<DriveGroupNeed> legs = {{.count = 6,
+                                               .force = need.force,
+                                               .peak_force = need.peak_force,
+                                               .stroke = need.stroke,
+                                               .drives = {0, 1, 2, 3, 4, 5}}};
+    const DriveChoice drives = choose_drives(catalog, legs);
+    metric(DesignMetric::drive_cost) = drives.cost;
+    metric(DesignMetric::drive_overload) = drives.overload;
+    ev.drives = drive_choice_text(catalog, legs, drives);
+    return;
+  }
+  const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
+  ev.actuator = choice.entry;
+  metric(DesignMetric::actuator_cost) = choice.cost;
+  metric(DesignMetric::actuator_overload) = choice.overload;
+}
+
+void HexapodDesignProblem::measure_task_region(const Hexapod& hexapod, double h,
+                                               DesignEvaluation& ev) const {
+  auto need = [&](DesignMetric m) { return needed_[static_cast<int>(m)]; };
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
+  if (need(DesignMetric::task_singularity_free)) {
+    PoseBox region = *spec_.task.region;  // check_design_goals: present when needed
+    region.position_lo.z() += h;
+    region.position_hi.z() += h;
+    metric(DesignMetric::task_singularity_free) = singularity_free_share(hexapod, region);
+  }
+  if (!need(DesignMetric::swept_volume) && !need(DesignMetric::footprint) &&
+      !need(DesignMetric::task_margin))
+    return;
+  std::vector<Pose> poses = spec_.task.poses;
+  for (Pose& pose : poses) pose.position.z() += h;
+  if (need(DesignMetric::swept_volume) || need(DesignMetric::footprint)) {
+    const SweptEnvelope envelope = swept_envelope(hexapod, poses);
+    metric(DesignMetric::swept_volume) = envelope.volume;
+    metric(DesignMetric::footprint) = envelope.footprint;
+  }
+  if (need(DesignMetric::task_margin))
+    metric(DesignMetric::task_margin) =
+        task_margin(hexapod, poses, task_margin_limit(spec_.task.poses));
 }
 
 std::vector<double> HexapodDesignProblem::aggregate_fitness(const DesignEvaluation& ev) const {

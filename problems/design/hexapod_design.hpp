@@ -243,6 +243,13 @@ class HexapodDesignProblem final : public DesignProblem {
                    std::vector<T>& rows) const;
   template <typename T>
   T reach_rows(const std::array<T, kNumDesignParameters>& p, std::vector<T>* rows) const;
+  // The parts of evaluate: the obstacles in the reach terms, the pass over the lifted task poses
+  // (worst cases, the accelerated force), the catalog's choice for the legs, and the region's
+  // metrics (task_singularity_free, swept_volume, footprint, task_margin).
+  void keep_out_of_obstacles(const Hexapod& hexapod, double h, DesignEvaluation& ev) const;
+  void measure_task_poses(const Hexapod& hexapod, double h, DesignEvaluation& ev) const;
+  void price_legs(double stroke, DesignEvaluation& ev) const;
+  void measure_task_region(const Hexapod& hexapod, double h, DesignEvaluation& ev) const;
 
   HexapodDesignSpec spec_;
   std::vector<int> free_;

@@ -249,38 +249,54 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     ev.failure = fmt::format("invalid machine: {}", error.what());
     return ev;
   }
-  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
-  metric(DesignMetric::machine_size) = spec_.family.machine_size(*machine, ev.parameters);
-
-  // Every pose is analysed (reachability and the per-pose metrics come from one call).
+  ev.metrics[static_cast<int>(DesignMetric::machine_size)] =
+      spec_.family.machine_size(*machine, ev.parameters);
   const double h = home_height_of(ev.parameters);
-  const std::unique_ptr<MachineData> data = machine->make_data();
+  const Eigen::VectorXd drive_force = measure_task_poses(*machine, h, ev);
+  measure_envelope(*machine, h, ev);
+  if (ev.analysed_poses == 0 && ev.failure.empty())
+    ev.failure = "no task pose can be analysed (every pose is unreachable and singular)";
+  if (needed_[static_cast<int>(DesignMetric::moving_mass)]) {
+    const Capability<Dynamics> dynamics = machine->dynamics();
+    ev.metrics[static_cast<int>(DesignMetric::moving_mass)] =
+        dynamics ? dynamics->moving_mass() : std::numeric_limits<double>::quiet_NaN();
+  }
+  if (spec_.actuator_catalog) price_drives(*machine, drive_force, ev);
+  measure_workspace_metrics(*machine, spec_.task.workspace, needed_, ev.metrics, ev.failure);
+  check_finite_metrics(needed_, ev.metrics, ev.failure);
+  return ev;
+}
+
+Eigen::VectorXd MachineDesignProblem::measure_task_poses(const Machine& machine, double h,
+                                                         MachineDesignEvaluation& ev) const {
+  // Every pose is analysed (reachability and the per-pose metrics come from one call).
+  const std::unique_ptr<MachineData> data = machine.make_data();
   data->compliance_metrics = needed_[static_cast<int>(DesignMetric::tcp_deflection_max)] ||
                              needed_[static_cast<int>(DesignMetric::stiffness_min_loaded)] ||
                              needed_[static_cast<int>(DesignMetric::natural_frequency_min)];
   PoseMetrics m;
   TaskWorstCase worst;
-  Eigen::VectorXd drive_force = Eigen::VectorXd::Zero(machine->num_actuators());  // max |tau_i|
+  Eigen::VectorXd drive_force = Eigen::VectorXd::Zero(machine.num_actuators());  // max |tau_i|
   double reach_sum = 0.0;
   const InstallationSpace& space = spec_.task.installation_space;
-  const std::unique_ptr<MachineData> sketch_data = space.present() ? machine->make_data() : nullptr;
+  const std::unique_ptr<MachineData> sketch_data = space.present() ? machine.make_data() : nullptr;
   const std::unique_ptr<MachineData> obstacle_data =
-      spec_.task.obstacles.empty() ? nullptr : machine->make_data();
+      spec_.task.obstacles.empty() ? nullptr : machine.make_data();
   for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
     Pose pose = spec_.task.poses[k];
     pose.position.z() += h;
-    machine->analyze(*data, pose, spec_.task.wrench, m);
-    if (!m.reachable) reach_sum += pose_reach_violation(*machine, pose);
+    machine.analyze(*data, pose, spec_.task.wrench, m);
+    if (!m.reachable) reach_sum += pose_reach_violation(machine, pose);
     if (sketch_data != nullptr) {
       // The machine drawn at the pose must fit the installation space: how far it sticks out
       // (m, at most 1 per pose) is a term of the reach row, as an unreachable pose's excess.
-      const std::optional<double> out = sketch_excess(*machine, *sketch_data, pose, space);
+      const std::optional<double> out = sketch_excess(machine, *sketch_data, pose, space);
       if (out && *out > 0.0) reach_sum += std::min(1.0, *out);
     }
     // So must it keep out of the obstacles (how deep it goes in, m, at most 1 per pose).
     if (obstacle_data != nullptr) {
       const std::optional<double> in =
-          sketch_intrusion(*machine, *obstacle_data, pose, spec_.task.obstacles);
+          sketch_intrusion(machine, *obstacle_data, pose, spec_.task.obstacles);
       if (in && *in > 0.0) reach_sum += std::min(1.0, *in);
     }
     if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
@@ -296,19 +312,26 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     drive_force = drive_force.cwiseMax(m.tau.cwiseAbs());
     ++ev.analysed_poses;
   }
+  ev.reach_violation = reach_sum / static_cast<double>(spec_.task.poses.size());
+  ev.reachable = reach_sum == 0.0;
+  worst.store(ev.metrics);
+  return drive_force;
+}
+
+void MachineDesignProblem::measure_envelope(const Machine& machine, double h,
+                                            MachineDesignEvaluation& ev) const {
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
   const bool margin = needed_[static_cast<int>(DesignMetric::task_margin)];
   const bool envelope_needed = needed_[static_cast<int>(DesignMetric::swept_volume)] ||
                                needed_[static_cast<int>(DesignMetric::footprint)];
-  std::vector<Pose> lifted;  // the task poses after the home_height lift
-  if (margin || envelope_needed) {
-    lifted = spec_.task.poses;
-    for (Pose& pose : lifted) pose.position.z() += h;
-  }
+  if (!margin && !envelope_needed) return;
+  std::vector<Pose> lifted = spec_.task.poses;  // the task poses after the home_height lift
+  for (Pose& pose : lifted) pose.position.z() += h;
   if (margin)
     metric(DesignMetric::task_margin) =
-        task_margin(*machine, lifted, task_margin_limit(spec_.task.poses));
+        task_margin(machine, lifted, task_margin_limit(spec_.task.poses));
   if (envelope_needed) {
-    const SketchEnvelope envelope = sketch_envelope(*machine, lifted);
+    const SketchEnvelope envelope = sketch_envelope(machine, lifted);
     const bool drawn = envelope.drawn > 0;
     metric(DesignMetric::swept_volume) =
         drawn ? envelope.volume : std::numeric_limits<double>::quiet_NaN();
@@ -317,43 +340,35 @@ MachineDesignEvaluation MachineDesignProblem::evaluate(const std::vector<double>
     if (!drawn && ev.failure.empty())
       ev.failure = "the machine cannot be drawn at any task pose (swept_volume, footprint)";
   }
-  ev.reach_violation = reach_sum / static_cast<double>(spec_.task.poses.size());
-  ev.reachable = reach_sum == 0.0;
-  if (ev.analysed_poses == 0 && ev.failure.empty())
-    ev.failure = "no task pose can be analysed (every pose is unreachable and singular)";
-  worst.store(ev.metrics);
-  if (needed_[static_cast<int>(DesignMetric::moving_mass)]) {
-    const Capability<Dynamics> dynamics = machine->dynamics();
-    metric(DesignMetric::moving_mass) =
-        dynamics ? dynamics->moving_mass() : std::numeric_limits<double>::quiet_NaN();
-  }
-  if (spec_.actuator_catalog && spec_.each_drive) {
-    const std::vector<DriveGroupNeed> needs = drive_group_needs(*machine, drive_force);
-    const DriveChoice choice = choose_drives(*spec_.actuator_catalog, needs);
+}
+
+void MachineDesignProblem::price_drives(const Machine& machine, const Eigen::VectorXd& drive_force,
+                                        MachineDesignEvaluation& ev) const {
+  auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
+  const ActuatorCatalog& catalog = *spec_.actuator_catalog;
+  if (spec_.each_drive) {
+    const std::vector<DriveGroupNeed> needs = drive_group_needs(machine, drive_force);
+    const DriveChoice choice = choose_drives(catalog, needs);
     metric(DesignMetric::drive_cost) = choice.cost;
     metric(DesignMetric::drive_overload) = choice.overload;
-    ev.drives = drive_choice_text(*spec_.actuator_catalog, needs, choice);
-  } else if (spec_.actuator_catalog) {
-    // Every drive gets the entry: the largest force over the task, the longest stroke.
-    const ActuatorCatalog& catalog = *spec_.actuator_catalog;
-    double stroke = 0.0, force = 0.0;
-    for (int i = 0; i < machine->num_actuators(); ++i) {
-      if (!spec_.actuator_drives.empty() &&
-          std::find(spec_.actuator_drives.begin(), spec_.actuator_drives.end(), i) ==
-              spec_.actuator_drives.end())
-        continue;
-      stroke = std::max(stroke, machine->actuator_stroke(i).value_or(0.0));
-      force = std::max(force, drive_force(i));
-    }
-    const ActuatorRequirement need{.force = force, .stroke = stroke};
-    const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
-    ev.actuator = choice.entry;
-    metric(DesignMetric::actuator_cost) = choice.cost;
-    metric(DesignMetric::actuator_overload) = choice.overload;
+    ev.drives = drive_choice_text(catalog, needs, choice);
+    return;
   }
-  measure_workspace_metrics(*machine, spec_.task.workspace, needed_, ev.metrics, ev.failure);
-  check_finite_metrics(needed_, ev.metrics, ev.failure);
-  return ev;
+  // Every chosen drive gets the entry: the largest force over the task, the longest stroke.
+  double stroke = 0.0, force = 0.0;
+  for (int i = 0; i < machine.num_actuators(); ++i) {
+    if (!spec_.actuator_drives.empty() &&
+        std::find(spec_.actuator_drives.begin(), spec_.actuator_drives.end(), i) ==
+            spec_.actuator_drives.end())
+      continue;
+    stroke = std::max(stroke, machine.actuator_stroke(i).value_or(0.0));
+    force = std::max(force, drive_force(i));
+  }
+  const ActuatorRequirement need{.force = force, .stroke = stroke};
+  const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);
+  ev.actuator = choice.entry;
+  metric(DesignMetric::actuator_cost) = choice.cost;
+  metric(DesignMetric::actuator_overload) = choice.overload;
 }
 
 std::vector<double> MachineDesignProblem::aggregate_fitness(

@@ -252,6 +252,15 @@ class MachineDesignProblem final : public DesignProblem {
   /// Refuses mass metrics without a mass model and leg_clearance_min without the links' shape,
   /// from the family's template machine.
   void check_template_machine(const std::string& where) const;
+  /// The pass over the lifted task poses: the worst-case metrics, reachability (with the
+  /// installation space and the obstacles) and a failure; returns each drive's largest |tau|.
+  Eigen::VectorXd measure_task_poses(const Machine& machine, double h,
+                                     MachineDesignEvaluation& ev) const;
+  /// task_margin, swept_volume and footprint over the lifted task, when needed.
+  void measure_envelope(const Machine& machine, double h, MachineDesignEvaluation& ev) const;
+  /// The catalog's choice for the drives' largest loads: one entry, or every drive priced.
+  void price_drives(const Machine& machine, const Eigen::VectorXd& drive_force,
+                    MachineDesignEvaluation& ev) const;
   MachineDesignSpec spec_;
   std::vector<int> free_;
   NeededMetrics needed_{};
