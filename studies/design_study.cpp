@@ -56,7 +56,11 @@ namespace {
 // Where the actuator metrics (actuator_cost, actuator_overload, drive_cost, drive_overload) are
 // used: they need the constraint {actuator: cheapest, catalog: FILE} (the drive_ ones with
 // each_drive: true, the others without).
-using ActuatorMetricUse = std::vector<YamlValue>;
+struct ActuatorMetricValue {
+  YamlValue value;  // the metric's name in the file
+  DesignMetric metric;
+};
+using ActuatorMetricUse = std::vector<ActuatorMetricValue>;
 
 // `objectives:` into goals.objectives; appends its resolved YAML.
 void read_objectives(const YamlValue& root, DesignGoals& goals,
@@ -77,7 +81,7 @@ void read_objectives(const YamlValue& root, DesignGoals& goals,
         {static_cast<DesignMetric>(maximize ? entry.maximize : entry.minimize),
          maximize ? Sense::maximize : Sense::minimize});
     if (is_actuator_metric(objectives_list.back().metric))
-      actuator_metric_use.push_back(metric_value);
+      actuator_metric_use.push_back({metric_value, objectives_list.back().metric});
     yaml += "  - " + fields_flow_map(entry) + "\n";
   }
 }
@@ -114,7 +118,7 @@ void read_constraints(const YamlValue& root, const std::string& path, StudyMachi
       ConstraintEntry entry;
       read_fields(c, entry);
       const auto metric = static_cast<DesignMetric>(entry.metric);
-      if (is_actuator_metric(metric)) actuator_metric_use.push_back(c.required("metric"));
+      if (is_actuator_metric(metric)) actuator_metric_use.push_back({c.required("metric"), metric});
       if (entry.max.has_value() == entry.min.has_value())
         c.fail("exactly one of max and min", c.describe());
       const bool upper = entry.max.has_value();
@@ -124,14 +128,14 @@ void read_constraints(const YamlValue& root, const std::string& path, StudyMachi
     }
   }
   if (!actuator_metric_use.empty() && machine.actuator_catalog() == nullptr)
-    actuator_metric_use.front().fail(
+    actuator_metric_use.front().value.fail(
         fmt::format("a metric of this {} study (actuator_cost and actuator_overload need a "
                     "constraint {{actuator: cheapest, catalog: FILE}}, drive_cost and "
                     "drive_overload one with each_drive: true)",
                     machine.model),
-        actuator_metric_use.front().describe());
-  for (const YamlValue& use : actuator_metric_use) {
-    const bool drive = is_drive_metric(*design_metric_from_name(use.as_string()));
+        actuator_metric_use.front().value.describe());
+  for (const auto& [use, metric] : actuator_metric_use) {
+    const bool drive = is_drive_metric(metric);
     if (drive && !machine.prices_each_drive())
       use.fail(
           "a metric of this study (drive_cost and drive_overload need each_drive: true in "

@@ -38,11 +38,7 @@ SketchEnvelope sketch_envelope(const Machine& machine, const std::vector<Pose>& 
   return out;
 }
 
-std::optional<double> sketch_intrusion(const Machine& machine, MachineData& data, const Pose& pose,
-                                       const std::vector<ObstacleBox>& obstacles) {
-  if (obstacles.empty()) return std::nullopt;
-  MachineSketch sketch;
-  if (!machine.sketch(data, pose, sketch)) return std::nullopt;
+double sketch_intrusion(const MachineSketch& sketch, const std::vector<ObstacleBox>& obstacles) {
   double deepest = -std::numeric_limits<double>::infinity();
   for (const ObstacleBox& box : obstacles) {
     for (const MachineSketch::Line& line : sketch.lines)
@@ -55,13 +51,30 @@ std::optional<double> sketch_intrusion(const Machine& machine, MachineData& data
   return deepest;
 }
 
+std::optional<double> sketch_intrusion(const Machine& machine, MachineData& data, const Pose& pose,
+                                       const std::vector<ObstacleBox>& obstacles) {
+  if (obstacles.empty()) return std::nullopt;
+  MachineSketch sketch;
+  if (!machine.sketch(data, pose, sketch)) return std::nullopt;
+  return sketch_intrusion(sketch, obstacles);
+}
+
+double sketch_excess(const MachineSketch& sketch, const InstallationSpace& space) {
+  double excess = space.excess(sketch.tcp, 0.0);
+  for (const MachineSketch::Line& line : sketch.lines)
+    excess = std::max({excess, space.excess(line.from, 0.0), space.excess(line.to, 0.0)});
+  for (const Eigen::Vector3d& p : sketch.base_joints)
+    excess = std::max(excess, space.excess(p, 0.0));
+  for (const Eigen::Vector3d& p : sketch.platform_joints)
+    excess = std::max(excess, space.excess(p, 0.0));
+  return excess;
+}
+
 std::optional<double> sketch_excess(const Machine& machine, MachineData& data, const Pose& pose,
                                     const InstallationSpace& space) {
-  std::vector<Eigen::Vector3d> points;
-  if (!add_sketch_points(machine, data, pose, points)) return std::nullopt;
-  double excess = -std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& p : points) excess = std::max(excess, space.excess(p, 0.0));
-  return excess;
+  MachineSketch sketch;
+  if (!machine.sketch(data, pose, sketch)) return std::nullopt;
+  return sketch_excess(sketch, space);
 }
 
 }  // namespace pkmopt

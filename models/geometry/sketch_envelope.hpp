@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "models/core/machine.hpp"
+#include "models/core/machine_sketch.hpp"
 #include "models/core/pose.hpp"
 #include "models/geometry/installation_space.hpp"
 #include "models/geometry/obstacle.hpp"
@@ -48,7 +49,10 @@ std::optional<double> sketch_intrusion(const Machine& machine, MachineData& data
 
 /// How far the machine drawn at `pose` sticks out of `space` (m; <= 0 inside); nullopt when the
 /// model does not draw the pose. `data` is the machine's (made by machine.make_data()).
+/// The overloads on a drawing serve a caller that checks one drawing against both.
 std::optional<double> sketch_excess(const Machine& machine, MachineData& data, const Pose& pose,
                                     const InstallationSpace& space);
+double sketch_excess(const MachineSketch& sketch, const InstallationSpace& space);
+double sketch_intrusion(const MachineSketch& sketch, const std::vector<ObstacleBox>& obstacles);
 
 }  // namespace pkmopt

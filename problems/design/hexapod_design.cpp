@@ -172,7 +172,8 @@ DesignRecord HexapodDesignProblem::measure(const std::vector<double>& x) const {
   record.metrics = ev.metrics;
   record.aggregate = aggregate_fitness(ev);
   record.actuator = ev.actuator;
-  record.drives = ev.drives;
+  if (spec_.actuator_catalog && spec_.each_drive && ev.ok())
+    record.drives = drive_choice_text(*spec_.actuator_catalog, ev.drive_needs, ev.drive_choice);
   record.failure = std::move(ev.failure);
   return record;
 }
@@ -224,10 +225,7 @@ DesignEvaluation HexapodDesignProblem::evaluate(const std::vector<double>& x) co
   measure_task_region(*hexapod, h, ev);
   measure_workspace_metrics(*hexapod, spec_.task.workspace, needed_, ev.metrics, ev.failure);
   check_finite_metrics(needed_, ev.metrics, ev.failure);
-  if (!ev.ok()) {
-    ev.actuator = -1;
-    ev.drives.clear();
-  }
+  if (!ev.ok()) ev.actuator = -1;
   return ev;
 }
 
@@ -293,15 +291,14 @@ void HexapodDesignProblem::price_legs(double stroke, DesignEvaluation& ev) const
       .stroke = stroke,
       .peak_force = dynamic_force ? metric(DesignMetric::actuator_force_dynamic_max) : 0.0};
   if (spec_.each_drive) {
-    const std::vector<DriveGroupNeed> legs = {{.count = 6,
-                                               .force = need.force,
-                                               .peak_force = need.peak_force,
-                                               .stroke = need.stroke,
-                                               .drives = {0, 1, 2, 3, 4, 5}}};
-    const DriveChoice drives = choose_drives(catalog, legs);
-    metric(DesignMetric::drive_cost) = drives.cost;
-    metric(DesignMetric::drive_overload) = drives.overload;
-    ev.drives = drive_choice_text(catalog, legs, drives);
+    ev.drive_needs = {{.count = 6,
+                       .force = need.force,
+                       .peak_force = need.peak_force,
+                       .stroke = need.stroke,
+                       .drives = {0, 1, 2, 3, 4, 5}}};
+    ev.drive_choice = choose_drives(catalog, ev.drive_needs);
+    metric(DesignMetric::drive_cost) = ev.drive_choice.cost;
+    metric(DesignMetric::drive_overload) = ev.drive_choice.overload;
     return;
   }
   const StudyActuatorChoice choice = study_actuator_choice(catalog, pricing_, need);

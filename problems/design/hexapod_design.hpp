@@ -178,7 +178,10 @@ struct DesignEvaluation {
   /// With an actuator catalog: the index of the chosen entry (the cheapest that carries the
   /// legs), -1 when none does or the design failed.
   int actuator = -1;
-  std::string drives;  ///< each_drive: the legs' entry in words (drive_choice_text)
+  /// each_drive: the legs as one group and the catalog's choice for it (measure() puts it in
+  /// words, drive_choice_text).
+  std::vector<DriveGroupNeed> drive_needs;
+  DriveChoice drive_choice;
   bool ok() const { return failure.empty(); }
 };
 

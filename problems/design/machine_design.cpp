@@ -279,25 +279,22 @@ Eigen::VectorXd MachineDesignProblem::measure_task_poses(const Machine& machine,
   Eigen::VectorXd drive_force = Eigen::VectorXd::Zero(machine.num_actuators());  // max |tau_i|
   double reach_sum = 0.0;
   const InstallationSpace& space = spec_.task.installation_space;
-  const std::unique_ptr<MachineData> sketch_data = space.present() ? machine.make_data() : nullptr;
-  const std::unique_ptr<MachineData> obstacle_data =
-      spec_.task.obstacles.empty() ? nullptr : machine.make_data();
+  const std::vector<ObstacleBox>& obstacles = spec_.task.obstacles;
+  const std::unique_ptr<MachineData> sketch_data =
+      space.present() || !obstacles.empty() ? machine.make_data() : nullptr;
+  MachineSketch sketch;
   for (std::size_t k = 0; k < spec_.task.poses.size(); ++k) {
     Pose pose = spec_.task.poses[k];
     pose.position.z() += h;
     machine.analyze(*data, pose, spec_.task.wrench, m);
     if (!m.reachable) reach_sum += pose_reach_violation(machine, pose);
-    if (sketch_data != nullptr) {
-      // The machine drawn at the pose must fit the installation space: how far it sticks out
-      // (m, at most 1 per pose) is a term of the reach row, as an unreachable pose's excess.
-      const std::optional<double> out = sketch_excess(machine, *sketch_data, pose, space);
-      if (out && *out > 0.0) reach_sum += std::min(1.0, *out);
-    }
-    // So must it keep out of the obstacles (how deep it goes in, m, at most 1 per pose).
-    if (obstacle_data != nullptr) {
-      const std::optional<double> in =
-          sketch_intrusion(machine, *obstacle_data, pose, spec_.task.obstacles);
-      if (in && *in > 0.0) reach_sum += std::min(1.0, *in);
+    if (sketch_data != nullptr && machine.sketch(*sketch_data, pose, sketch)) {
+      // The machine drawn at the pose must fit the installation space and keep out of the
+      // obstacles: how far it sticks out and how deep it goes in (m, each at most 1 per pose)
+      // are terms of the reach row, as an unreachable pose's excess.
+      if (space.present()) reach_sum += std::min(1.0, std::max(0.0, sketch_excess(sketch, space)));
+      if (!obstacles.empty())
+        reach_sum += std::min(1.0, std::max(0.0, sketch_intrusion(sketch, obstacles)));
     }
     if (m.singular && !m.reachable) continue;  // no metrics (e.g. a leg that cannot close)
     // A singular pose fails the design when its statics blow up (a parallel machine: forces
@@ -347,11 +344,10 @@ void MachineDesignProblem::price_drives(const Machine& machine, const Eigen::Vec
   auto metric = [&](DesignMetric m) -> double& { return ev.metrics[static_cast<int>(m)]; };
   const ActuatorCatalog& catalog = *spec_.actuator_catalog;
   if (spec_.each_drive) {
-    const std::vector<DriveGroupNeed> needs = drive_group_needs(machine, drive_force);
-    const DriveChoice choice = choose_drives(catalog, needs);
-    metric(DesignMetric::drive_cost) = choice.cost;
-    metric(DesignMetric::drive_overload) = choice.overload;
-    ev.drives = drive_choice_text(catalog, needs, choice);
+    ev.drive_needs = drive_group_needs(machine, drive_force);
+    ev.drive_choice = choose_drives(catalog, ev.drive_needs);
+    metric(DesignMetric::drive_cost) = ev.drive_choice.cost;
+    metric(DesignMetric::drive_overload) = ev.drive_choice.overload;
     return;
   }
   // Every chosen drive gets the entry: the largest force over the task, the longest stroke.
@@ -386,7 +382,8 @@ DesignRecord MachineDesignProblem::measure(const std::vector<double>& x) const {
   record.failure = std::move(ev.failure);
   record.parameters = std::move(ev.parameters);
   record.actuator = ev.actuator;
-  record.drives = std::move(ev.drives);
+  if (spec_.actuator_catalog && spec_.each_drive)
+    record.drives = drive_choice_text(*spec_.actuator_catalog, ev.drive_needs, ev.drive_choice);
   return record;
 }
 

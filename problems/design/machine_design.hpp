@@ -196,8 +196,11 @@ struct MachineDesignEvaluation {
   double reach_violation = 0.0;    ///< g_reach (0 when reachable, else in (0, 1])
   std::size_t analysed_poses = 0;  ///< poses the metrics were reduced over
   int actuator = -1;               ///< with a catalog: the chosen entry, -1 when none carries
-  std::string drives;              ///< each_drive: drive_choice_text of the choice
-  std::string failure;             ///< empty when the evaluation succeeded
+  /// each_drive: the groups of drives and the catalog's choice for them (measure() puts it in
+  /// words, drive_choice_text; the search needs only the metrics).
+  std::vector<DriveGroupNeed> drive_needs;
+  DriveChoice drive_choice;
+  std::string failure;  ///< empty when the evaluation succeeded
   bool ok() const { return failure.empty(); }
 };
 
